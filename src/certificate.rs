@@ -1,0 +1,138 @@
+//! The certificate of a step, computed on the full (uncondensed) system and
+//! independently of the solver that produced the step.
+//!
+//! For the step's $u$ and $b_n$, the residual $\rho = K u - b_n$ must vanish at every
+//! dof except the contact normal ones, where $\rho$ is the contact reaction
+//! $k w_i(\xi_i + \mu_i)$ with $-\sigma_\nu = \xi_i + \mu_i$. The certificate splits the
+//! reaction into $\xi_i \in \partial_{Cl} j(u_{\nu,i})$ (so $\sigma^1_\nu = -\xi_i$) and
+//! $\mu_i \ge 0$ (so $\sigma^2_\nu = -\mu_i \le 0$) and reports
+//! - stationarity: $\|\rho - P^\top(\text{admissible reaction})\|_\infty / \max(\|b\|_\infty, \|Ku\|_\infty)$,
+//! - feasibility: $\max_i (u_{\nu,i} - g)^+ / \max(g, \|u\|_\infty)$,
+//! - complementarity: $\max_i k w_i \mu_i (g - u_{\nu,i})$, scaled by the product of both scales.
+
+use crate::law::Law;
+
+/// The best split of a nodal contact pressure $\zeta = -\sigma_\nu$ at $s = u_\nu$.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeSplit {
+    /// $\xi \in \partial_{Cl} j(s)$, i.e. $-\sigma^1_\nu$.
+    pub xi: f64,
+    /// $\mu \ge 0$, i.e. $-\sigma^2_\nu$.
+    pub mu: f64,
+    /// Distance of $\zeta$ from the admissible set (pressure units).
+    pub stationarity: f64,
+    /// $\mu\,|g - s|$ (pressure × displacement).
+    pub complementarity: f64,
+}
+
+// ANCHOR: split
+/// Relative distance to $g$ below which a node counts as on the unilateral limit.
+pub const ON_LIMIT: f64 = 1e-8;
+
+/// Splits the pressure $\zeta$ at a node with normal displacement $s$ into
+/// $\xi \in \partial_{Cl} j(s)$ and $\mu \ge 0$. Off the limit ($g - s > 10^{-8} g$)
+/// $\mu = 0$ and all of $\zeta$ must lie in $\partial_{Cl} j(s)$; on it, the excess
+/// $\mu = (\zeta - \xi)^+$ is the unilateral pressure, paid for in
+/// complementarity by $\mu\,|g - s|$.
+pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64) -> NodeSplit {
+    let sub = law.clarke(s);
+    let xi = sub.clamp(zeta);
+    if g - s > ON_LIMIT * g.abs() {
+        NodeSplit {
+            xi,
+            mu: 0.0,
+            stationarity: sub.dist(zeta),
+            complementarity: 0.0,
+        }
+    } else {
+        let mu = (zeta - xi).max(0.0);
+        NodeSplit {
+            xi,
+            mu,
+            stationarity: (sub.lo - zeta).max(0.0),
+            complementarity: mu * (g - s).abs(),
+        }
+    }
+}
+// ANCHOR_END: split
+
+/// The certificate of one step.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Certificate {
+    pub stationarity: f64,
+    pub feasibility: f64,
+    pub complementarity: f64,
+}
+
+impl Certificate {
+    /// The largest of the three relative residuals.
+    pub fn max(&self) -> f64 {
+        self.stationarity
+            .max(self.feasibility)
+            .max(self.complementarity)
+    }
+}
+
+/// Per contact node: $u_\nu$, $\sigma^1_\nu$, $\sigma^2_\nu$.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactState {
+    pub u_nu: f64,
+    pub sigma_nu1: f64,
+    pub sigma_nu2: f64,
+}
+
+// ANCHOR: certify
+/// Certifies $u$ as a solution of the step with matrix `k`, right-hand side `b`,
+/// contact normal dofs `contact_dofs` (where $u_\nu = -u_y$) and weights `kw` $= k w_i$.
+pub fn certify(
+    k: &crate::assembly::SpMat,
+    b: &[f64],
+    u: &[f64],
+    contact_dofs: &[usize],
+    kw: &[f64],
+    law: &Law,
+    g: f64,
+) -> (Certificate, Vec<ContactState>) {
+    let ku = crate::assembly::matvec(k, u);
+    let fscale = crate::step::inf_norm(b)
+        .max(crate::step::inf_norm(&ku))
+        .max(f64::MIN_POSITIVE);
+    let dscale = g.abs().max(crate::step::inf_norm(u)).max(f64::MIN_POSITIVE);
+    let mut rho: Vec<f64> = ku.iter().zip(b).map(|(a, c)| a - c).collect();
+    let mut cert = Certificate::default();
+    let mut states = Vec::with_capacity(contact_dofs.len());
+    for (i, &d) in contact_dofs.iter().enumerate() {
+        let s = -u[d];
+        let split = split_node(law, g, s, rho[d] / kw[i]);
+        rho[d] -= kw[i] * (split.xi + split.mu);
+        cert.feasibility = cert.feasibility.max((s - g).max(0.0) / dscale);
+        cert.complementarity = cert
+            .complementarity
+            .max(kw[i] * split.complementarity / (fscale * dscale));
+        states.push(ContactState {
+            u_nu: s,
+            sigma_nu1: 0.0 - split.xi,
+            sigma_nu2: 0.0 - split.mu,
+        });
+    }
+    cert.stationarity = crate::step::inf_norm(&rho) / fscale;
+    (cert, states)
+}
+// ANCHOR_END: certify
+
+impl ContactState {
+    /// The node's regime: `limit` when $u_\nu$ is at $g$ (to $10^{-8} g$),
+    /// otherwise `no_contact` on a branch where $p \equiv 0$ left of the first
+    /// breakpoint, and `branch{b}` on branch $b$ of the law.
+    pub fn regime(&self, law: &Law, g: f64) -> String {
+        if g - self.u_nu <= ON_LIMIT * g.abs() {
+            return "limit".into();
+        }
+        let b = law.branch(self.u_nu);
+        if b == 0 && law.slopes()[0] == 0.0 && law.p_on(0, self.u_nu) == 0.0 {
+            "no_contact".into()
+        } else {
+            format!("branch{b}")
+        }
+    }
+}

@@ -1,0 +1,240 @@
+//! The normal compliance law: a piecewise-linear, possibly discontinuous
+//! function $p$, its potential $j(s) = \int_0^s p$ and the Clarke subdifferential
+//! $\partial_{Cl} j(s)$ (paper §4, (4.5); the paper's instance is (5.1)).
+//!
+//! The real line is cut by breakpoints $s_1 < \dots < s_K$ into branches
+//! $b = 0, \dots, K$: branch 0 is $(-\infty, s_1]$, branch $b$ is $(s_b, s_{b+1}]$,
+//! branch $K$ is $(s_K, \infty)$. On branch $b$, $p$ is affine with slope $c_b$.
+//! At $s_b$ the law may jump by $d_b = p(s_b^+) - p(s_b^-)$.
+//!
+//! Because $p$ is locally bounded and piecewise continuous, Clarke's generalised
+//! gradient of $j$ at $s$ is the closed convex hull of the one-sided limits:
+//! $\partial_{Cl} j(s) = [\min(p(s^-), p(s^+)), \max(p(s^-), p(s^+))]$, a single
+//! point wherever $p$ is continuous.
+
+use crate::error::InputError;
+
+/// A closed interval $[lo, hi]$ of the real line; `hi` may be $+\infty$.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interval {
+    pub lo: f64,
+    pub hi: f64,
+}
+
+impl Interval {
+    /// The point of the interval nearest to `x`.
+    pub fn clamp(&self, x: f64) -> f64 {
+        x.clamp(self.lo, self.hi)
+    }
+    /// Distance from `x` to the interval.
+    pub fn dist(&self, x: f64) -> f64 {
+        (self.lo - x).max(x - self.hi).max(0.0)
+    }
+}
+
+/// A piecewise-linear normal compliance law, validated on construction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Law {
+    /// Breakpoints $s_1 < \dots < s_K$.
+    breaks: Vec<f64>,
+    /// Slopes $c_0, \dots, c_K$, one per branch.
+    slopes: Vec<f64>,
+    /// Value of $p$ at the left end of each branch: $p(s_1^-)$ for branch 0
+    /// (anchored at $s_1$, or at 0 when there are no breakpoints), $p(s_b^+)$ for
+    /// branch $b \ge 1$.
+    start: Vec<f64>,
+    /// Value of the antiderivative (normalised to vanish at the anchor of branch 0)
+    /// at the left end of each branch.
+    prim_start: Vec<f64>,
+    /// $j(s) = P(s) - P(0)$ with $P$ the antiderivative above.
+    prim_zero: f64,
+}
+
+// ANCHOR: law_paper
+/// The paper's law (5.1): $p = 0$ for $s \le 0$, slope $c_1 = 200$ up to
+/// $u_1 = 0.05$, slope $c_2 = -100$ up to $u_2 = 0.075$, slope $c_3 = 300$ beyond.
+pub fn paper_law() -> Law {
+    Law::new(
+        &[0.0, 0.05, 0.075],
+        &[0.0, 200.0, -100.0, 300.0],
+        &[0.0; 3],
+        0.0,
+    )
+    .expect("the paper's law is valid")
+}
+// ANCHOR_END: law_paper
+
+impl Law {
+    /// Builds a law from its breakpoints, the slope on each branch, the jump
+    /// at each breakpoint and the value `p_left` $= p(s_1^-)$ (or $p(0)$ when there
+    /// are no breakpoints). Every input is checked; an error names the field.
+    pub fn new(
+        breaks: &[f64],
+        slopes: &[f64],
+        jumps: &[f64],
+        p_left: f64,
+    ) -> Result<Law, InputError> {
+        for (i, &s) in breaks.iter().enumerate() {
+            if !s.is_finite() {
+                return Err(InputError::field(
+                    format!("law.breakpoints[{i}]"),
+                    s,
+                    "a finite number",
+                ));
+            }
+            if i > 0 && s <= breaks[i - 1] {
+                return Err(InputError::field(
+                    format!("law.breakpoints[{i}]"),
+                    s,
+                    format!(
+                        "a value above law.breakpoints[{}] = {} (breakpoints strictly increase)",
+                        i - 1,
+                        breaks[i - 1]
+                    ),
+                ));
+            }
+        }
+        if slopes.len() != breaks.len() + 1 {
+            return Err(InputError::field(
+                "law.slopes",
+                format!("{} entries", slopes.len()),
+                format!(
+                    "{} entries, one per branch (one more than law.breakpoints)",
+                    breaks.len() + 1
+                ),
+            ));
+        }
+        if jumps.len() != breaks.len() {
+            return Err(InputError::field(
+                "law.jumps",
+                format!("{} entries", jumps.len()),
+                format!("{} entries, one per breakpoint", breaks.len()),
+            ));
+        }
+        for (i, &c) in slopes.iter().enumerate() {
+            if !c.is_finite() {
+                return Err(InputError::field(
+                    format!("law.slopes[{i}]"),
+                    c,
+                    "a finite number",
+                ));
+            }
+        }
+        for (i, &d) in jumps.iter().enumerate() {
+            if !d.is_finite() {
+                return Err(InputError::field(
+                    format!("law.jumps[{i}]"),
+                    d,
+                    "a finite number",
+                ));
+            }
+        }
+        if !p_left.is_finite() {
+            return Err(InputError::field("law.p_left", p_left, "a finite number"));
+        }
+        let nb = slopes.len();
+        let mut start = vec![p_left; nb];
+        let mut prim_start = vec![0.0; nb];
+        for b in 1..nb {
+            let len = if b == 1 {
+                0.0
+            } else {
+                breaks[b - 1] - breaks[b - 2]
+            };
+            let end_val = start[b - 1] + slopes[b - 1] * len;
+            prim_start[b] =
+                prim_start[b - 1] + start[b - 1] * len + 0.5 * slopes[b - 1] * len * len;
+            start[b] = end_val + jumps[b - 1];
+        }
+        let mut law = Law {
+            breaks: breaks.to_vec(),
+            slopes: slopes.to_vec(),
+            start,
+            prim_start,
+            prim_zero: 0.0,
+        };
+        law.prim_zero = law.prim(0.0);
+        Ok(law)
+    }
+
+    pub fn breakpoints(&self) -> &[f64] {
+        &self.breaks
+    }
+    pub fn slopes(&self) -> &[f64] {
+        &self.slopes
+    }
+    pub fn n_branches(&self) -> usize {
+        self.slopes.len()
+    }
+
+    /// The branch holding `s`: the number of breakpoints strictly below `s`
+    /// (branches are closed on the right).
+    pub fn branch(&self, s: f64) -> usize {
+        self.breaks.partition_point(|&b| b < s)
+    }
+
+    /// Left end (anchor) of branch `b`.
+    pub fn anchor(&self, b: usize) -> f64 {
+        match b {
+            0 => self.breaks.first().copied().unwrap_or(0.0),
+            _ => self.breaks[b - 1],
+        }
+    }
+
+    /// $p$ on branch `b`, extended affinely to all of $\mathbb{R}$.
+    pub fn p_on(&self, b: usize, s: f64) -> f64 {
+        self.start[b] + self.slopes[b] * (s - self.anchor(b))
+    }
+
+    /// The one-sided limits $p(s^-)$, $p(s^+)$.
+    pub fn p_sides(&self, s: f64) -> (f64, f64) {
+        let left = self.branch(s);
+        let right = self.breaks.partition_point(|&b| b <= s);
+        (self.p_on(left, s), self.p_on(right, s))
+    }
+
+    /// $p(s)$ where $p$ is continuous; at a jump, the left limit.
+    pub fn p(&self, s: f64) -> f64 {
+        self.p_on(self.branch(s), s)
+    }
+
+    // ANCHOR: clarke
+    /// Clarke's subdifferential $\partial_{Cl} j(s)$: the interval spanned by the
+    /// one-sided limits of $p$ at $s$ (a point where $p$ is continuous).
+    pub fn clarke(&self, s: f64) -> Interval {
+        let (a, b) = self.p_sides(s);
+        Interval {
+            lo: a.min(b),
+            hi: a.max(b),
+        }
+    }
+    // ANCHOR_END: clarke
+
+    fn prim(&self, s: f64) -> f64 {
+        let b = self.branch(s);
+        let d = s - self.anchor(b);
+        self.prim_start[b] + self.start[b] * d + 0.5 * self.slopes[b] * d * d
+    }
+
+    /// The potential $j(s) = \int_0^s p(t)\,dt$ (nonconvex when a slope or a jump is negative).
+    pub fn j(&self, s: f64) -> f64 {
+        self.prim(s) - self.prim_zero
+    }
+
+    /// The most negative curvature of $j$, $\min(0, \min_b c_b)$: the constant
+    /// $m$ of hypothesis H(j) when the law has no downward jump.
+    pub fn min_slope(&self) -> f64 {
+        self.slopes.iter().copied().fold(0.0, f64::min)
+    }
+
+    /// Breakpoints with a downward jump, with the jump (negative).
+    pub fn down_jumps(&self) -> Vec<(f64, f64)> {
+        (0..self.breaks.len())
+            .filter_map(|i| {
+                let s = self.breaks[i];
+                let (a, b) = self.p_sides(s);
+                (b < a).then_some((s, b - a))
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,26 @@
+//! # evhi
+//!
+//! Reference implementation of Barboteu, Bartosz & Han (2017), *Numerical analysis
+//! of an evolutionary variational–hemivariational inequality with application in
+//! contact mechanics*: quasistatic Kelvin–Voigt viscoelastic frictionless contact
+//! with a nonmonotone normal compliance law and a unilateral limit, P1 elements
+//! in space, backward Euler in time.
+//!
+//! Data flows one way: [`scenario`] → [`mesh`] → [`assembly`] (with [`element`],
+//! [`material`]) → [`linalg`] and [`condense`] → [`scheme`] (time loop) →
+//! [`step`] (per-step solvers) → [`certificate`] → [`output`].
+
+pub mod assembly;
+pub mod certificate;
+pub mod condense;
+pub mod element;
+pub mod error;
+pub mod law;
+pub mod linalg;
+pub mod material;
+pub mod mesh;
+pub mod norms;
+pub mod output;
+pub mod scenario;
+pub mod scheme;
+pub mod step;

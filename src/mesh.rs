@@ -1,0 +1,123 @@
+//! The structured, nested P1 triangulation of $\Omega = (0,2)\times(0,1)$ (MODEL.md):
+//! $n = 1/h$ segments on $\Gamma_3$, square cells of side $2h$ ($n$ in $x$, $n/2$ in
+//! $y$), each cut by its lower-left–upper-right diagonal. Boundary parts:
+//! $\Gamma_1 = \{0,2\}\times[1/2, 1]$ (clamped), $\Gamma_3 = [0,2]\times\{0\}$
+//! (contact), $\Gamma_2$ the rest (loaded on the top edge, free on the sides).
+
+use crate::error::InputError;
+
+#[derive(Debug, Clone)]
+pub struct Mesh {
+    /// Number of contact segments, $n = 1/h$.
+    pub n: usize,
+    /// Node coordinates.
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles, counter-clockwise node triples.
+    pub triangles: Vec<[usize; 3]>,
+    /// Nodes on $\Gamma_1$ (clamped).
+    pub clamped: Vec<bool>,
+    /// Nodes on $\Gamma_3$, ordered by $x$ (both bottom corners included).
+    pub contact: Vec<usize>,
+    /// Edges of the top side $(0,2)\times\{1\}$, where $f_2$ acts.
+    pub top_edges: Vec<[usize; 2]>,
+}
+
+impl Mesh {
+    /// The mesh with $n$ contact segments; $n$ must be a positive multiple of 4
+    /// so that $y = 1/2$ is a mesh line.
+    pub fn structured(n: usize) -> Result<Mesh, InputError> {
+        if n == 0 || n % 4 != 0 {
+            return Err(InputError::field(
+                "n",
+                n,
+                "a positive multiple of 4 (so that y = 0.5 is a mesh line)",
+            ));
+        }
+        if n > 4096 {
+            return Err(InputError::field("n", n, "at most 4096 (memory)"));
+        }
+        let (nx, ny) = (n, n / 2);
+        let side = 2.0 / n as f64;
+        let id = |i: usize, j: usize| j * (nx + 1) + i;
+        let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
+        let mut clamped = Vec::with_capacity(nodes.capacity());
+        for j in 0..=ny {
+            for i in 0..=nx {
+                nodes.push([i as f64 * side, j as f64 * side]);
+                clamped.push((i == 0 || i == nx) && 2 * j >= ny);
+            }
+        }
+        let mut triangles = Vec::with_capacity(2 * nx * ny);
+        for j in 0..ny {
+            for i in 0..nx {
+                let (ll, lr, ur, ul) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                triangles.push([ll, lr, ur]);
+                triangles.push([ll, ur, ul]);
+            }
+        }
+        let contact = (0..=nx).map(|i| id(i, 0)).collect();
+        let top_edges = (0..nx).map(|i| [id(i, ny), id(i + 1, ny)]).collect();
+        Ok(Mesh {
+            n,
+            nodes,
+            triangles,
+            clamped,
+            contact,
+            top_edges,
+        })
+    }
+
+    /// The mesh size $h = 1/n$ of the paper (cells have side $2h$).
+    pub fn h(&self) -> f64 {
+        1.0 / self.n as f64
+    }
+
+    // ANCHOR: weights
+    /// Trapezoidal weights of the contact nodes: $2h$ inside $\Gamma_3$, $h$ at its ends.
+    pub fn contact_weights(&self) -> Vec<f64> {
+        let h = self.h();
+        let m = self.contact.len();
+        (0..m)
+            .map(|i| if i == 0 || i == m - 1 { h } else { 2.0 * h })
+            .collect()
+    }
+    // ANCHOR_END: weights
+}
+
+/// Degrees of freedom: two per node, clamped nodes removed (or kept, for tests).
+#[derive(Debug, Clone)]
+pub struct Dofs {
+    /// `map[2 * node + c]` is the dof of component `c` of `node`, if free.
+    pub map: Vec<Option<usize>>,
+    pub count: usize,
+}
+
+impl Dofs {
+    /// Numbers the free dofs node by node; with `clamp = false` every dof is free.
+    pub fn new(mesh: &Mesh, clamp: bool) -> Dofs {
+        let mut map = Vec::with_capacity(2 * mesh.nodes.len());
+        let mut count = 0;
+        for v in 0..mesh.nodes.len() {
+            for _ in 0..2 {
+                if clamp && mesh.clamped[v] {
+                    map.push(None);
+                } else {
+                    map.push(Some(count));
+                    count += 1;
+                }
+            }
+        }
+        Dofs { map, count }
+    }
+    /// The dof of component `c` (0 = x, 1 = y) of `node`.
+    pub fn of(&self, node: usize, c: usize) -> Option<usize> {
+        self.map[2 * node + c]
+    }
+    /// Expands a vector of free dofs to one value pair per node (zero where clamped).
+    pub fn expand(&self, u: &[f64]) -> Vec<[f64; 2]> {
+        self.map
+            .chunks(2)
+            .map(|d| [d[0].map_or(0.0, |i| u[i]), d[1].map_or(0.0, |i| u[i])])
+            .collect()
+    }
+}

@@ -1,0 +1,67 @@
+//! CSV tables built as polars data frames.
+
+use polars::prelude::*;
+use std::path::Path;
+
+/// One column of a table.
+pub enum Col {
+    F64(Vec<f64>),
+    U64(Vec<u64>),
+    Str(Vec<String>),
+}
+
+/// A table under construction: named columns of equal length.
+#[derive(Default)]
+pub struct Table {
+    cols: Vec<(String, Col)>,
+}
+
+impl Table {
+    pub fn new() -> Self {
+        Self::default()
+    }
+    pub fn f64(mut self, name: &str, v: Vec<f64>) -> Self {
+        self.cols.push((name.to_string(), Col::F64(v)));
+        self
+    }
+    pub fn u64(mut self, name: &str, v: Vec<u64>) -> Self {
+        self.cols.push((name.to_string(), Col::U64(v)));
+        self
+    }
+    pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
+        self.cols.push((name.to_string(), Col::Str(v)));
+        self
+    }
+
+    /// The table as a polars frame.
+    pub fn frame(&self) -> PolarsResult<DataFrame> {
+        let cols = self
+            .cols
+            .iter()
+            .map(|(n, c)| match c {
+                Col::F64(v) => Column::new(n.as_str().into(), v.as_slice()),
+                Col::U64(v) => Column::new(n.as_str().into(), v.as_slice()),
+                Col::Str(v) => Column::new(n.as_str().into(), v.as_slice()),
+            })
+            .collect();
+        DataFrame::new_infer_height(cols)
+    }
+
+    /// CSV text; floats are written in full (round-trip) precision.
+    pub fn to_csv(&self) -> PolarsResult<Vec<u8>> {
+        let mut df = self.frame()?;
+        let mut buf = Vec::new();
+        CsvWriter::new(&mut buf).finish(&mut df)?;
+        Ok(buf)
+    }
+
+    /// Writes the table atomically; `comments` become leading `# ` lines.
+    pub fn write(&self, path: &Path, comments: &[String]) -> std::io::Result<()> {
+        let mut out = Vec::new();
+        for c in comments {
+            out.extend_from_slice(format!("# {c}\n").as_bytes());
+        }
+        out.extend(self.to_csv().map_err(std::io::Error::other)?);
+        super::write_atomic(path, &out)
+    }
+}

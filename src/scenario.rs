@@ -1,0 +1,222 @@
+//! Scenarios: the data of one contact problem, read from TOML and validated.
+//!
+//! Every field is checked; a bad value is rejected with the field's name, the
+//! value and what is allowed, and unknown keys are errors.
+
+use crate::error::InputError;
+use crate::law::Law;
+use crate::material::Isotropic;
+use serde::Deserialize;
+use std::path::Path;
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScenario {
+    name: String,
+    #[serde(default)]
+    description: String,
+    #[serde(rename = "T")]
+    t_end: f64,
+    g: f64,
+    material: RawMaterial,
+    loads: RawLoads,
+    law: RawLaw,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMaterial {
+    #[serde(rename = "E")]
+    e: f64,
+    kappa: f64,
+    alpha: f64,
+    beta: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLoads {
+    f0: [f64; 2],
+    f2: [f64; 2],
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLaw {
+    breakpoints: Vec<f64>,
+    slopes: Vec<f64>,
+    #[serde(default)]
+    jumps: Option<Vec<f64>>,
+    #[serde(default)]
+    p_left: f64,
+}
+
+/// A validated scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scenario {
+    pub name: String,
+    pub description: String,
+    /// Final time $T$.
+    pub t_end: f64,
+    /// Unilateral limit $g > 0$.
+    pub g: f64,
+    /// Young's modulus $E$, Poisson's ratio $\kappa$.
+    pub e: f64,
+    pub kappa: f64,
+    /// Viscosity constants $\alpha$, $\beta$.
+    pub alpha: f64,
+    pub beta: f64,
+    /// Constant volume force $f_0$ and top traction $f_2$.
+    pub f0: [f64; 2],
+    pub f2: [f64; 2],
+    pub law: Law,
+}
+
+/// The scenarios shipped in `data/scenarios/`, compiled in.
+pub const BUILTIN: [(&str, &str); 2] = [
+    ("literal", include_str!("../data/scenarios/literal.toml")),
+    ("figure", include_str!("../data/scenarios/figure.toml")),
+];
+
+fn finite(field: &str, v: f64) -> Result<f64, InputError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(InputError::field(field, v, "a finite number"))
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<f64, InputError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(InputError::field(field, v, "a finite number > 0"))
+    }
+}
+
+impl Scenario {
+    /// Parses and validates TOML text; `source` names it in errors.
+    pub fn from_toml(text: &str, source: &str) -> Result<Scenario, InputError> {
+        let raw: RawScenario = toml::from_str(text).map_err(|e| InputError::Parse {
+            source_name: source.to_string(),
+            message: e.to_string().trim().to_string(),
+        })?;
+        Scenario::validate(raw)
+    }
+
+    /// A built-in scenario by name, or a TOML file by path.
+    pub fn load(name_or_path: &str) -> Result<Scenario, InputError> {
+        if let Some((_, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
+            return Scenario::from_toml(text, name_or_path);
+        }
+        let path = Path::new(name_or_path);
+        if path.extension().is_some_and(|e| e == "toml") || path.exists() {
+            let text = std::fs::read_to_string(path).map_err(|e| InputError::Parse {
+                source_name: name_or_path.to_string(),
+                message: e.to_string(),
+            })?;
+            return Scenario::from_toml(&text, name_or_path);
+        }
+        Err(InputError::field(
+            "scenario",
+            name_or_path,
+            format!(
+                "a built-in name ({}) or a path to a .toml file",
+                BUILTIN.map(|b| b.0).join(", ")
+            ),
+        ))
+    }
+
+    fn validate(raw: RawScenario) -> Result<Scenario, InputError> {
+        if raw.name.trim().is_empty() {
+            return Err(InputError::field("name", "\"\"", "a non-empty name"));
+        }
+        let t_end = positive("T", raw.t_end)?;
+        let g = positive("g", raw.g)?;
+        let m = &raw.material;
+        let e = positive("material.E", m.e)?;
+        if !(m.kappa.is_finite() && m.kappa > -1.0 && m.kappa < 0.5) {
+            return Err(InputError::field(
+                "material.kappa",
+                m.kappa,
+                "a Poisson ratio in (-1, 0.5)",
+            ));
+        }
+        finite("material.alpha", m.alpha)?;
+        let beta = positive("material.beta", m.beta)?;
+        if 2.0 * m.alpha + beta <= 0.0 {
+            return Err(InputError::field(
+                "material.alpha",
+                m.alpha,
+                format!(
+                    "a value > -beta/2 = {} (the viscosity tensor must be positive definite)",
+                    -beta / 2.0
+                ),
+            ));
+        }
+        for (name, v) in [("loads.f0", raw.loads.f0), ("loads.f2", raw.loads.f2)] {
+            for (c, x) in v.iter().enumerate() {
+                finite(&format!("{name}[{c}]"), *x)?;
+            }
+        }
+        let jumps = raw
+            .law
+            .jumps
+            .clone()
+            .unwrap_or_else(|| vec![0.0; raw.law.breakpoints.len()]);
+        let law = Law::new(
+            &raw.law.breakpoints,
+            &raw.law.slopes,
+            &jumps,
+            raw.law.p_left,
+        )?;
+        Ok(Scenario {
+            name: raw.name,
+            description: raw.description,
+            t_end,
+            g,
+            e,
+            kappa: m.kappa,
+            alpha: m.alpha,
+            beta,
+            f0: raw.loads.f0,
+            f2: raw.loads.f2,
+            law,
+        })
+    }
+
+    /// Overrides $g$ (validated).
+    pub fn with_g(mut self, g: f64) -> Result<Self, InputError> {
+        self.g = positive("g", g)?;
+        Ok(self)
+    }
+
+    /// Overrides the loads (validated).
+    pub fn with_loads(
+        mut self,
+        f0: Option<[f64; 2]>,
+        f2: Option<[f64; 2]>,
+    ) -> Result<Self, InputError> {
+        for (name, v) in [("f0", f0), ("f2", f2)] {
+            if let Some(v) = v {
+                for (c, x) in v.iter().enumerate() {
+                    finite(&format!("{name}[{c}]"), *x)?;
+                }
+            }
+        }
+        if let Some(v) = f0 {
+            self.f0 = v;
+        }
+        if let Some(v) = f2 {
+            self.f2 = v;
+        }
+        Ok(self)
+    }
+
+    pub fn elasticity(&self) -> Isotropic {
+        Isotropic::elasticity(self.e, self.kappa)
+    }
+    pub fn viscosity(&self) -> Isotropic {
+        Isotropic::viscosity(self.alpha, self.beta)
+    }
+}

@@ -1,0 +1,266 @@
+//! The fully discrete scheme (paper (4.12)–(4.13), problem $(P^{V,hk,*}_M)$):
+//! backward Euler with $k = T/N$, $u_0 = 0$, and at each step
+//! $$\langle A u_n + kB u_n + k\iota^*\xi_n, v - u_n\rangle \ge \langle A u_{n-1} + k f_n, v - u_n\rangle
+//! \quad \forall v \in U^h, \qquad \xi_n \in \partial_{Cl} J(u_n),$$
+//! the optimality condition of minimising $\mathcal E$ of [`crate::step`]. $K = A + kB$
+//! is factorised once and condensed once; each step costs two solves with the
+//! factor ($r_0$, then the recovery of $u$) plus the condensed solve.
+
+use crate::assembly::{self, SpMat, lin_comb, matvec};
+use crate::certificate::{Certificate, ContactState, certify};
+use crate::condense::{Condensed, condense};
+use crate::error::InputError;
+use crate::linalg::{Cholesky, FactorError};
+use crate::mesh::{Dofs, Mesh};
+use crate::norms::energy_norm;
+use crate::scenario::Scenario;
+use crate::step::{Status, StepProblem, StepSolver};
+use std::time::Instant;
+
+/// The space discretisation of a scenario: mesh, dofs and operators.
+pub struct Discretisation {
+    pub mesh: Mesh,
+    pub dofs: Dofs,
+    /// Viscosity operator $A$.
+    pub a: SpMat,
+    /// Elasticity operator $B$.
+    pub b: SpMat,
+    /// Load vector $f$ (constant in time).
+    pub f: Vec<f64>,
+    /// $y$-dof of each contact node.
+    pub contact_dofs: Vec<usize>,
+    /// Trapezoidal weights $w_i$.
+    pub weights: Vec<f64>,
+}
+
+impl Discretisation {
+    pub fn new(scn: &Scenario, n: usize) -> Result<Self, InputError> {
+        let mesh = Mesh::structured(n)?;
+        let dofs = Dofs::new(&mesh, true);
+        let a = assembly::stiffness(&mesh, &dofs, &scn.viscosity());
+        let b = assembly::stiffness(&mesh, &dofs, &scn.elasticity());
+        let f = assembly::load(&mesh, &dofs, scn.f0, scn.f2);
+        let contact_dofs = mesh
+            .contact
+            .iter()
+            .map(|&v| dofs.of(v, 1).expect("contact nodes are free"))
+            .collect();
+        let weights = mesh.contact_weights();
+        Ok(Discretisation {
+            mesh,
+            dofs,
+            a,
+            b,
+            f,
+            contact_dofs,
+            weights,
+        })
+    }
+}
+
+/// One step's record.
+#[derive(Debug, Clone)]
+pub struct StepRecord {
+    pub step: usize,
+    pub t: f64,
+    pub status: Status,
+    pub iterations: usize,
+    pub inner_iterations: usize,
+    /// The step solver's own residual on the condensed problem.
+    pub solver_residual: f64,
+    pub certificate: Certificate,
+    pub energy_norm: f64,
+    /// Wall time of the step (condensed solve and both solves with $K$), s.
+    pub time_s: f64,
+}
+
+/// Wall times of the phases, s.
+#[derive(Debug, Clone, Default)]
+pub struct Timings {
+    pub assembly: f64,
+    pub factorisation: f64,
+    pub condensation: f64,
+    pub steps: f64,
+    /// Of `steps`: time inside the step solver.
+    pub step_solver: f64,
+    /// Of `steps`: certificates.
+    pub certificates: f64,
+}
+
+/// The result of a run.
+pub struct Run {
+    pub n: usize,
+    pub steps: usize,
+    pub dofs: usize,
+    pub nnz_l: usize,
+    /// $u_N$ at $t = T$ (free dofs).
+    pub u: Vec<f64>,
+    pub records: Vec<StepRecord>,
+    /// Contact state at $t = T$.
+    pub contact: Vec<ContactState>,
+    pub timings: Timings,
+    /// Extreme eigenvalues of the condensed stiffness $S$.
+    pub s_eigen: (f64, f64),
+}
+
+/// Why a run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error(transparent)]
+    Input(#[from] InputError),
+    #[error(transparent)]
+    Factor(#[from] FactorError),
+    #[error("condensation failed: {0}")]
+    Condense(String),
+    #[error(
+        "step {step} (t = {t}) failed: solver `{solver}` ended with {status:?} after {iterations} iterations, \
+         solver residual {residual:.3e}, certificate {certificate:.3e} (tolerance {tol:.1e})"
+    )]
+    Step {
+        step: usize,
+        t: f64,
+        solver: String,
+        status: Status,
+        iterations: usize,
+        residual: f64,
+        certificate: f64,
+        tol: f64,
+    },
+}
+
+/// Options of a run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    pub n: usize,
+    pub steps: usize,
+    /// A step whose certificate exceeds this fails the run.
+    pub certificate_tol: f64,
+}
+
+impl Options {
+    pub fn new(n: usize, steps: usize) -> Self {
+        Options {
+            n,
+            steps,
+            certificate_tol: 1e-10,
+        }
+    }
+}
+
+// ANCHOR: run
+/// Runs the scheme. `observe(n, t_n, u_n)` is called after every step.
+pub fn run(
+    scn: &Scenario,
+    opt: &Options,
+    solver: &mut dyn StepSolver,
+    observe: &mut dyn FnMut(usize, f64, &[f64]),
+) -> Result<Run, RunError> {
+    if opt.steps == 0 || opt.steps > 1_000_000 {
+        return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
+    }
+    let mut timings = Timings::default();
+    let clock = Instant::now();
+    let disc = Discretisation::new(scn, opt.n)?;
+    timings.assembly = clock.elapsed().as_secs_f64();
+
+    let k = scn.t_end / opt.steps as f64;
+    let clock = Instant::now();
+    let kmat = lin_comb(1.0, &disc.a, k, &disc.b);
+    let chol = Cholesky::factor(&kmat)?;
+    timings.factorisation = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let Condensed {
+        dofs: cdofs,
+        s,
+        lambda_max,
+        lambda_min,
+    } = condense(&chol, &disc.contact_dofs).map_err(RunError::Condense)?;
+    timings.condensation = clock.elapsed().as_secs_f64();
+
+    let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
+    let m = cdofs.len();
+    let mut u = vec![0.0; disc.dofs.count];
+    let mut r = vec![0.0; m];
+    let mut records = Vec::with_capacity(opt.steps);
+    let mut contact = vec![];
+    let clock = Instant::now();
+    for step in 1..=opt.steps {
+        let t = step as f64 * k;
+        let t0 = Instant::now();
+        // b_n = A u_{n-1} + k f, and y = K^{-1} b_n.
+        let b: Vec<f64> = matvec(&disc.a, &u)
+            .iter()
+            .zip(&disc.f)
+            .map(|(au, f)| au + k * f)
+            .collect();
+        let mut y = b.clone();
+        chol.solve_in_place(&mut y);
+        let r0: Vec<f64> = cdofs.iter().map(|&d| -y[d]).collect();
+        let prob = StepProblem {
+            s: s.as_ref(),
+            r0: &r0,
+            kw: &kw,
+            law: &scn.law,
+            g: scn.g,
+            lipschitz: lambda_max,
+        };
+        let ts = Instant::now();
+        let info = solver.solve(&prob, &mut r);
+        timings.step_solver += ts.elapsed().as_secs_f64();
+        // Recovery: u = y + K^{-1} (z at the contact y-dofs), z = S (r0 - r).
+        let diff: Vec<f64> = r0.iter().zip(&r).map(|(a, b)| a - b).collect();
+        let z = crate::step::sym_matvec(s.as_ref(), &diff);
+        let mut w = vec![0.0; disc.dofs.count];
+        for (i, &d) in cdofs.iter().enumerate() {
+            w[d] = z[i];
+        }
+        chol.solve_in_place(&mut w);
+        u = y.iter().zip(&w).map(|(a, b)| a + b).collect();
+        let time_s = t0.elapsed().as_secs_f64();
+        let tc = Instant::now();
+        let (certificate, states) = certify(&kmat, &b, &u, &cdofs, &kw, &scn.law, scn.g);
+        timings.certificates += tc.elapsed().as_secs_f64();
+        let rec = StepRecord {
+            step,
+            t,
+            status: info.status.clone(),
+            iterations: info.iterations,
+            inner_iterations: info.inner_iterations,
+            solver_residual: info.residual,
+            certificate,
+            energy_norm: energy_norm(&disc.b, &u),
+            time_s,
+        };
+        let failed =
+            info.status != Status::Converged || !(certificate.max() <= opt.certificate_tol);
+        records.push(rec);
+        if failed {
+            return Err(RunError::Step {
+                step,
+                t,
+                solver: solver.name().to_string(),
+                status: info.status,
+                iterations: info.iterations,
+                residual: info.residual,
+                certificate: certificate.max(),
+                tol: opt.certificate_tol,
+            });
+        }
+        observe(step, t, &u);
+        contact = states;
+    }
+    timings.steps = clock.elapsed().as_secs_f64();
+    Ok(Run {
+        n: opt.n,
+        steps: opt.steps,
+        dofs: disc.dofs.count,
+        nnz_l: chol.nnz_l(),
+        u,
+        records,
+        contact,
+        timings,
+        s_eigen: (lambda_min, lambda_max),
+    })
+}
+// ANCHOR_END: run

@@ -1,0 +1,281 @@
+//! The paper's "convexification": a sequence of convex problems, each solved by
+//! the interior-point solver Clarabel (a difference-of-convex iteration).
+//!
+//! Split $j = j_\cup + j_\cap$ with the concave part
+//! $j_\cap(s) = \tfrac12 c_{\min} s^2 + \sum_{d_b < 0} d_b (s - s_b)^+$ (the most negative
+//! slope, and every downward jump); $j_\cup$ is then convex, with slopes $c_b - c_{\min} \ge 0$
+//! and upward jumps only. Iteration $l$ replaces $j_\cap$ by its tangent at $r^l$
+//! and solves the convex problem
+//! $$\min_{r \le g}\ \tfrac12 (r - r_0)^\top S (r - r_0) + \sum_i k w_i\big(j_\cup(r_i) + \eta_i^l r_i\big), \qquad \eta_i^l \in \partial j_\cap(r_i^l),$$
+//! whose value never exceeds the last (the tangent majorises $j_\cap$). Each $j_\cup$ is
+//! written exactly as a quadratic program: $r_i = a - t_{i0} + \sum_{b \ge 1} t_{ib}$, with
+//! $t_{i0} \ge 0$ the run left of the first breakpoint $a$ and $0 \le t_{ib} \le \ell_b$ the
+//! run through branch $b$ (capped at $g$), each with its own linear and
+//! quadratic cost. The bound $r \le g$ is the cap of the last run.
+//!
+//! Interior-point solutions stop short of active bounds by about the solver's
+//! tolerance; with `polish` on, the pieces read off the last iterate are solved
+//! exactly (one linear system, [`StepProblem::solve_on_pieces`]) and kept when
+//! that lowers the optimality residual, as OSQP and Clarabel users do.
+
+use super::{Info, Piece, Status, StepProblem, StepSolver, inf_norm};
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
+};
+
+/// Settings of the convexification solver.
+#[derive(Debug, Clone)]
+pub struct Settings {
+    /// Stop when $\|r^{l+1} - r^l\|_\infty \le$ `tol` $\cdot \max(g, \|r\|_\infty)$.
+    pub tol: f64,
+    /// Limit on convex subproblems per step.
+    pub max_iter: usize,
+    /// Clarabel's gap and feasibility tolerances.
+    pub ipm_tol: f64,
+    /// Solve exactly on the identified pieces at the end (see module docs).
+    pub polish: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tol: 1e-9,
+            max_iter: 100,
+            ipm_tol: 1e-10,
+            polish: true,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct Convexify {
+    pub settings: Settings,
+}
+
+impl Convexify {
+    pub fn new(settings: Settings) -> Self {
+        Convexify { settings }
+    }
+}
+
+/// One run of a node's convex part: $t \ge 0$ (and $t \le$ `len` when finite),
+/// cost `lin * t + 0.5 * quad * t^2`, entering $r$ with sign `dir`.
+struct Run {
+    dir: f64,
+    len: f64,
+    lin: f64,
+    quad: f64,
+}
+
+/// The runs of $j_\cup$ below $g$ and the anchor $a$ they start from.
+fn runs(p: &StepProblem) -> (f64, Vec<Run>) {
+    let law = p.law;
+    let cmin = law.min_slope();
+    let down = law.down_jumps();
+    // p_cup = p - (j_cap)': the downward jumps at or below `upto` are removed.
+    let p_cup = |b: usize, s: f64, upto: f64| {
+        law.p_on(b, s)
+            - cmin * s
+            - down
+                .iter()
+                .filter(|(sb, _)| *sb <= upto)
+                .map(|(_, d)| d)
+                .sum::<f64>()
+    };
+    let bps: Vec<f64> = law
+        .breakpoints()
+        .iter()
+        .copied()
+        .filter(|&s| s < p.g)
+        .collect();
+    let a = bps.first().copied().unwrap_or(p.g);
+    // Left of the anchor: no breakpoint is passed (f64::MIN keeps the sum empty).
+    let mut out = vec![Run {
+        dir: -1.0,
+        len: f64::INFINITY,
+        lin: -p_cup(0, a, f64::MIN),
+        quad: law.slopes()[0] - cmin,
+    }];
+    for (idx, &s) in bps.iter().enumerate() {
+        let b = idx + 1;
+        let end = bps.get(idx + 1).copied().unwrap_or(p.g);
+        out.push(Run {
+            dir: 1.0,
+            len: end - s,
+            lin: p_cup(b, s, s),
+            quad: law.slopes()[b] - cmin,
+        });
+    }
+    (a, out)
+}
+
+/// A supergradient of $j_\cap$ at $s$.
+fn concave_slope(p: &StepProblem, s: f64) -> f64 {
+    p.law.min_slope() * s
+        + p.law
+            .down_jumps()
+            .iter()
+            .filter(|(sb, _)| s > *sb)
+            .map(|(_, d)| d)
+            .sum::<f64>()
+}
+
+impl Convexify {
+    /// Solves the convex subproblem with linear concave term `eta`; returns $r$ and Clarabel's iterations.
+    fn subproblem(&self, p: &StepProblem, eta: &[f64]) -> Result<(Vec<f64>, u32), String> {
+        let m = p.m();
+        let (a, runs) = runs(p);
+        let nr = runs.len();
+        let nvar = m + m * nr;
+        // P: upper triangle of S in the r block, diagonal in the t block.
+        let (mut colptr, mut rowval, mut nzval) = (vec![0usize], vec![], vec![]);
+        for j in 0..m {
+            for i in 0..=j {
+                let v = p.s[(i, j)];
+                if v != 0.0 {
+                    rowval.push(i);
+                    nzval.push(v);
+                }
+            }
+            colptr.push(rowval.len());
+        }
+        for i in 0..m {
+            for run in &runs {
+                let col = colptr.len() - 1;
+                let qv = p.kw[i] * run.quad;
+                if qv != 0.0 {
+                    rowval.push(col);
+                    nzval.push(qv);
+                }
+                colptr.push(rowval.len());
+            }
+        }
+        let pm = CscMatrix::new(nvar, nvar, colptr, rowval, nzval);
+        let sr0 = super::sym_matvec(p.s, p.r0);
+        let mut q = vec![0.0; nvar];
+        for i in 0..m {
+            q[i] = -sr0[i] + p.kw[i] * eta[i];
+            for (k, run) in runs.iter().enumerate() {
+                q[m + i * nr + k] = p.kw[i] * run.lin;
+            }
+        }
+        // Constraints: m equalities r_i - sum dir_k t_ik = a; t >= 0; t <= len.
+        let bounded: Vec<usize> = (0..nr).filter(|&k| runs[k].len.is_finite()).collect();
+        let n_nonneg = m * nr + m * bounded.len();
+        let nrows = m + n_nonneg;
+        let mut cols: Vec<Vec<(usize, f64)>> = vec![vec![]; nvar];
+        let mut b = vec![0.0; nrows];
+        for i in 0..m {
+            cols[i].push((i, 1.0));
+            b[i] = a;
+        }
+        let mut row = m;
+        for i in 0..m {
+            for (k, run) in runs.iter().enumerate() {
+                let v = m + i * nr + k;
+                cols[v].push((i, -run.dir));
+                cols[v].push((row, -1.0));
+                row += 1;
+            }
+        }
+        for i in 0..m {
+            for &k in &bounded {
+                let v = m + i * nr + k;
+                cols[v].push((row, 1.0));
+                b[row] = runs[k].len;
+                row += 1;
+            }
+        }
+        let (mut acp, mut arv, mut anz) = (vec![0usize], vec![], vec![]);
+        for c in &mut cols {
+            c.sort_by_key(|e| e.0);
+            for &(r, v) in c.iter() {
+                arv.push(r);
+                anz.push(v);
+            }
+            acp.push(arv.len());
+        }
+        let am = CscMatrix::new(nrows, nvar, acp, arv, anz);
+        let cones = [
+            SupportedConeT::ZeroConeT(m),
+            SupportedConeT::NonnegativeConeT(n_nonneg),
+        ];
+        let tol = self.settings.ipm_tol;
+        let settings = DefaultSettingsBuilder::default()
+            .verbose(false)
+            .tol_gap_abs(tol)
+            .tol_gap_rel(tol)
+            .tol_feas(tol)
+            .tol_ktratio(tol)
+            .max_iter(200)
+            .build()
+            .map_err(|e| format!("{e:?}"))?;
+        let mut solver =
+            DefaultSolver::new(&pm, &q, &am, &b, &cones, settings).map_err(|e| format!("{e:?}"))?;
+        solver.solve();
+        let sol = &solver.solution;
+        match sol.status {
+            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok((
+                sol.x[..m].iter().map(|&x| x.min(p.g)).collect(),
+                sol.iterations,
+            )),
+            s => Err(format!("clarabel status {s:?}")),
+        }
+    }
+}
+
+impl StepSolver for Convexify {
+    fn name(&self) -> &'static str {
+        "convexify"
+    }
+
+    fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
+        let st = self.settings.clone();
+        let mut info = Info {
+            status: Status::MaxIterations,
+            iterations: 0,
+            inner_iterations: 0,
+            residual: f64::NAN,
+            history: vec![],
+        };
+        for it in 0..st.max_iter {
+            let eta: Vec<f64> = r.iter().map(|&s| concave_slope(p, s)).collect();
+            let (next, ipm_iters) = match self.subproblem(p, &eta) {
+                Ok(x) => x,
+                Err(msg) => {
+                    info.status = Status::Failed(msg);
+                    info.residual = p.residual(r);
+                    return info;
+                }
+            };
+            info.inner_iterations += ipm_iters as usize;
+            info.iterations = it + 1;
+            let change = r
+                .iter()
+                .zip(&next)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            let scale = p.g.abs().max(inf_norm(&next));
+            *r = next;
+            info.history.push(change / scale);
+            if change <= st.tol * scale {
+                info.status = Status::Converged;
+                break;
+            }
+        }
+        info.residual = p.residual(r);
+        if st.polish && info.status == Status::Converged {
+            let tol = 1e3 * st.ipm_tol * p.g.abs().max(inf_norm(r));
+            let pieces: Vec<Piece> = p.pieces_of(r, tol);
+            if let Some(x) = p.solve_on_pieces(&pieces) {
+                let res = p.residual(&x);
+                if res < info.residual {
+                    *r = x;
+                    info.residual = res;
+                }
+            }
+        }
+        info
+    }
+}

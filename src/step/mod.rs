@@ -1,0 +1,220 @@
+//! The per-step problem, condensed onto the contact normal displacements.
+//!
+//! Step $n$ of the scheme minimises, over $u \in V^h$ with $u_\nu \le g$ at the
+//! contact nodes,
+//! $\mathcal E(u) = \tfrac12 u^\top K u - b_n^\top u + \sum_i k w_i\, j(u_{\nu,i})$,
+//! $K = A + kB$, $b_n = A u_{n-1} + k f_n$. Eliminating every dof but the
+//! contact normal displacements $r = Pu$ leaves
+//! $$q(r) = \tfrac12 (r - r_0)^\top S (r - r_0) + \sum_i k w_i\, j(r_i), \qquad r \le g,$$
+//! with $S = (P K^{-1} P^\top)^{-1}$ the Schur complement and $r_0 = P K^{-1} b_n$
+//! (module [`crate::condense`]). A point $r$ solves the step when
+//! $-\big(S(r - r_0)\big)_i / (k w_i) \in \partial_{Cl} j(r_i) + N_{(-\infty, g]}(r_i)$.
+
+pub mod convexify;
+pub mod newton;
+
+use crate::law::Law;
+use faer::{Mat, MatRef};
+
+/// The condensed problem of one time step.
+pub struct StepProblem<'a> {
+    /// $S$, the condensed stiffness (symmetric positive definite).
+    pub s: MatRef<'a, f64>,
+    /// $r_0$, the contact normal displacements without contact forces.
+    pub r0: &'a [f64],
+    /// $k w_i$, the weights of the contact potential.
+    pub kw: &'a [f64],
+    pub law: &'a Law,
+    /// The unilateral limit $g$.
+    pub g: f64,
+    /// An upper bound of the largest eigenvalue of $S$.
+    pub lipschitz: f64,
+}
+
+/// How a step solve ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Status {
+    /// The reduced optimality residual is below the tolerance.
+    Converged,
+    /// The iteration limit was reached; the residual says how far off.
+    MaxIterations,
+    /// A numerical failure (singular system, inner solver failure).
+    Failed(String),
+}
+
+/// What a step solve did.
+#[derive(Debug, Clone)]
+pub struct Info {
+    pub status: Status,
+    /// Outer iterations (Newton steps, or convex subproblems).
+    pub iterations: usize,
+    /// Inner iterations (line-search trials, or interior-point iterations).
+    pub inner_iterations: usize,
+    /// Final relative optimality residual of the condensed problem.
+    pub residual: f64,
+    /// Residual after each outer iteration.
+    pub history: Vec<f64>,
+}
+
+/// A solver of the condensed step problem. `r` holds the starting point on
+/// entry and the solution on exit.
+pub trait StepSolver {
+    fn name(&self) -> &'static str;
+    fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
+}
+
+impl StepProblem<'_> {
+    pub fn m(&self) -> usize {
+        self.r0.len()
+    }
+
+    /// $\nabla f(r) = S(r - r_0)$.
+    pub fn grad(&self, r: &[f64]) -> Vec<f64> {
+        let d: Vec<f64> = r.iter().zip(self.r0).map(|(a, b)| a - b).collect();
+        sym_matvec(self.s, &d)
+    }
+
+    /// The objective $q(r)$ ($+\infty$ when some $r_i > g$).
+    pub fn objective(&self, r: &[f64]) -> f64 {
+        if r.iter().any(|&x| x > self.g) {
+            return f64::INFINITY;
+        }
+        let g = self.grad(r);
+        let quad: f64 = 0.5
+            * g.iter()
+                .zip(r.iter().zip(self.r0))
+                .map(|(gi, (a, b))| gi * (a - b))
+                .sum::<f64>();
+        quad + r
+            .iter()
+            .zip(self.kw)
+            .map(|(&x, &kw)| kw * self.law.j(x))
+            .sum::<f64>()
+    }
+
+    /// Relative optimality residual of $r$ (see [`crate::certificate::split_node`]),
+    /// computed from the condensed gradient only.
+    pub fn residual(&self, r: &[f64]) -> f64 {
+        let grad = self.grad(r);
+        let fscale = self.force_scale(r);
+        let dscale = self.disp_scale(r);
+        r.iter()
+            .zip(&grad)
+            .zip(self.kw)
+            .map(|((&ri, &gi), &kw)| {
+                let split = crate::certificate::split_node(self.law, self.g, ri, -gi / kw);
+                (split.stationarity * kw / fscale)
+                    .max(split.complementarity * kw / (fscale * dscale))
+                    .max((ri - self.g).max(0.0) / dscale)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    fn force_scale(&self, r: &[f64]) -> f64 {
+        let a = inf_norm(&sym_matvec(self.s, r));
+        let b = inf_norm(&sym_matvec(self.s, self.r0));
+        a.max(b).max(f64::MIN_POSITIVE)
+    }
+
+    fn disp_scale(&self, r: &[f64]) -> f64 {
+        self.g.abs().max(inf_norm(r)).max(f64::MIN_POSITIVE)
+    }
+
+    // ANCHOR: pieces
+    /// Solves the step exactly once each node's piece is known: a node on
+    /// branch $b$ satisfies $(S(r - r_0))_i + k w_i\, p_b(r_i) = 0$ with $p_b$ affine;
+    /// a pinned node (at $g$ or at a jump of $p$) sits at its pin. This is one
+    /// symmetric linear system in the free nodes.
+    pub fn solve_on_pieces(&self, pieces: &[Piece]) -> Option<Vec<f64>> {
+        let m = self.m();
+        let mut r = vec![0.0; m];
+        let free: Vec<usize> = (0..m)
+            .filter(|&i| matches!(pieces[i], Piece::Branch(_)))
+            .collect();
+        for (i, p) in pieces.iter().enumerate() {
+            if let Piece::Pinned(s) = p {
+                r[i] = *s;
+            }
+        }
+        let nf = free.len();
+        if nf == 0 {
+            return Some(r);
+        }
+        // rhs_I = (S r0)_I - S_IA r_A - kw (p_b(0))
+        let sr0 = sym_matvec(self.s, self.r0);
+        let sra = sym_matvec(self.s, &r);
+        let mut h = Mat::<f64>::zeros(nf, nf);
+        let mut rhs = Mat::<f64>::zeros(nf, 1);
+        for (a, &i) in free.iter().enumerate() {
+            let Piece::Branch(b) = pieces[i] else {
+                unreachable!()
+            };
+            for (c, &j) in free.iter().enumerate() {
+                h[(a, c)] = self.s[(i, j)];
+            }
+            let c_b = self.law.slopes()[b];
+            h[(a, a)] += self.kw[i] * c_b;
+            rhs[(a, 0)] = sr0[i] - sra[i] - self.kw[i] * self.law.p_on(b, 0.0);
+        }
+        let x = dense_solve(h, rhs)?;
+        for (a, &i) in free.iter().enumerate() {
+            r[i] = x[(a, 0)];
+        }
+        Some(r)
+    }
+    // ANCHOR_END: pieces
+
+    /// The piece each node of `r` lies on, pinning nodes within `tol` of $g$
+    /// or of a jump of $p$.
+    pub fn pieces_of(&self, r: &[f64], tol: f64) -> Vec<Piece> {
+        let jumps: Vec<f64> = self
+            .law
+            .breakpoints()
+            .iter()
+            .copied()
+            .filter(|&s| {
+                let i = self.law.clarke(s);
+                i.hi > i.lo
+            })
+            .collect();
+        r.iter()
+            .map(|&x| {
+                if x >= self.g - tol {
+                    Piece::Pinned(self.g)
+                } else if let Some(&s) = jumps.iter().find(|&&s| (x - s).abs() <= tol) {
+                    Piece::Pinned(s)
+                } else {
+                    Piece::Branch(self.law.branch(x))
+                }
+            })
+            .collect()
+    }
+}
+
+/// Where a contact node sits: inside a branch of the law, or pinned at a point
+/// ($g$, or a jump of $p$) where $\partial_{Cl} j + N$ is an interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Piece {
+    Branch(usize),
+    Pinned(f64),
+}
+
+/// $y = S x$ for a dense symmetric matrix.
+pub fn sym_matvec(s: MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
+    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
+    let y = s * xv;
+    (0..x.len()).map(|i| y[(i, 0)]).collect()
+}
+
+pub fn inf_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |a, &b| a.max(b.abs()))
+}
+
+/// Solves a dense square system by LU with partial pivoting; `None` when the
+/// result is not finite (singular matrix).
+pub fn dense_solve(h: Mat<f64>, rhs: Mat<f64>) -> Option<Mat<f64>> {
+    use faer::linalg::solvers::Solve;
+    let x = h.partial_piv_lu().solve(&rhs);
+    let ok = (0..x.nrows()).all(|i| x[(i, 0)].is_finite());
+    ok.then_some(x)
+}
