@@ -50,7 +50,7 @@ struct SolveArgs {
     #[arg(long, default_value = "newton", value_parser = ["newton", "convexify"])]
     solver: String,
     /// Override the unilateral limit g (> 0, metres).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     g: Option<f64>,
     /// Override the volume force f0 as FX,FY (N/m²).
     #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
@@ -107,7 +107,7 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(g) => scn.with_g(g)?,
         None => scn,
     };
-    if !(args.certificate_tol > 0.0) {
+    if args.certificate_tol.is_nan() || args.certificate_tol <= 0.0 {
         return Err(evhi::error::InputError::field(
             "certificate-tol",
             args.certificate_tol,

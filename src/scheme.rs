@@ -232,8 +232,9 @@ pub fn run(
             energy_norm: energy_norm(&disc.b, &u),
             time_s,
         };
-        let failed =
-            info.status != Status::Converged || !(certificate.max() <= opt.certificate_tol);
+        let failed = info.status != Status::Converged
+            || certificate.max().is_nan()
+            || certificate.max() > opt.certificate_tol;
         records.push(rec);
         if failed {
             return Err(RunError::Step {

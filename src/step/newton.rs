@@ -110,9 +110,9 @@ impl Newton {
         let m = e.res.len();
         let mut d = vec![0.0; m];
         let free: Vec<usize> = (0..m).filter(|&i| e.slope[i] > 0.0).collect();
-        for i in 0..m {
-            if e.slope[i] == 0.0 {
-                d[i] = -e.res[i];
+        for ((di, &slope), &res) in d.iter_mut().zip(&e.slope).zip(&e.res) {
+            if slope == 0.0 {
+                *di = -res;
             }
         }
         if free.is_empty() {

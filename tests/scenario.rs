@@ -1,0 +1,78 @@
+//! Scenario files: the built-ins parse, bad values are rejected with the field named.
+
+use evhi::scenario::Scenario;
+
+const GOOD: &str = include_str!("../data/scenarios/figure.toml");
+
+fn with(from: &str, to: &str) -> String {
+    assert!(GOOD.contains(from), "fixture lacks `{from}`");
+    GOOD.replacen(from, to, 1)
+}
+
+#[test]
+fn builtins_parse() {
+    for name in ["literal", "figure"] {
+        let s = Scenario::load(name).unwrap();
+        assert_eq!(s.name, name);
+        assert_eq!(s.g, 0.1);
+        assert_eq!(s.law, evhi::law::paper_law());
+    }
+}
+
+#[test]
+fn bad_values_name_the_field() {
+    let cases = [
+        (with("T = 1.0", "T = -1.0"), "T"),
+        (with("g = 0.1", "g = 0.0"), "g"),
+        (with("g = 0.1", "g = nan"), "g"),
+        (with("E = 1000.0", "E = -5.0"), "material.E"),
+        (with("kappa = 0.4", "kappa = 0.5"), "material.kappa"),
+        (with("beta = 50.0", "beta = 0.0"), "material.beta"),
+        (with("alpha = 100.0", "alpha = -30.0"), "material.alpha"),
+        (with("f2 = [0.0, -75.0]", "f2 = [0.0, inf]"), "loads.f2[1]"),
+        (
+            with(
+                "breakpoints = [0.0, 0.05, 0.075]",
+                "breakpoints = [0.0, 0.075, 0.05]",
+            ),
+            "law.breakpoints[2]",
+        ),
+        (
+            with(
+                "slopes = [0.0, 200.0, -100.0, 300.0]",
+                "slopes = [0.0, 200.0]",
+            ),
+            "law.slopes",
+        ),
+    ];
+    for (text, field) in cases {
+        let err = Scenario::from_toml(&text, "test").unwrap_err();
+        assert_eq!(err.field_name(), Some(field), "{err}");
+        assert!(err.to_string().contains(field));
+    }
+}
+
+#[test]
+fn unknown_keys_and_syntax_errors_are_rejected() {
+    let err = Scenario::from_toml(&with("g = 0.1", "g = 0.1\ngap = 3"), "test").unwrap_err();
+    assert!(err.to_string().contains("gap"), "{err}");
+    let err = Scenario::from_toml(&with("[material]", "[material]\nnu = 0.3"), "test").unwrap_err();
+    assert!(err.to_string().contains("nu"), "{err}");
+    assert!(Scenario::from_toml("T = ", "test").is_err());
+    let err = Scenario::load("no-such-scenario").unwrap_err();
+    assert_eq!(err.field_name(), Some("scenario"));
+}
+
+#[test]
+fn overrides_are_validated() {
+    let s = Scenario::load("figure").unwrap();
+    assert_eq!(s.clone().with_g(-1.0).unwrap_err().field_name(), Some("g"));
+    assert_eq!(
+        s.clone()
+            .with_loads(Some([f64::NAN, 0.0]), None)
+            .unwrap_err()
+            .field_name(),
+        Some("f0[0]")
+    );
+    assert_eq!(s.with_g(0.07).unwrap().g, 0.07);
+}
