@@ -3,8 +3,9 @@
 //! $$\langle A u_n + kB u_n + k\iota^*\xi_n, v - u_n\rangle \ge \langle A u_{n-1} + k f_n, v - u_n\rangle
 //! \quad \forall v \in U^h, \qquad \xi_n \in \partial_{Cl} J(u_n),$$
 //! the optimality condition of minimising $\mathcal E$ of [`crate::step`]. $K = A + kB$
-//! is factorised once and condensed once; each step costs two solves with the
-//! factor ($r_0$, then the recovery of $u$) plus the condensed solve.
+//! is factorised once with the contact dofs ordered last, which also yields the
+//! condensed stiffness; each step costs one forward and one backward triangular
+//! solve (a single solve's worth) plus $O(m^2)$ dense work and the condensed solve.
 
 use crate::assembly::{self, SpMat, lin_comb, matvec};
 use crate::certificate::{Certificate, ContactState, certify};
@@ -166,21 +167,22 @@ pub fn run(
     let k = scn.t_end / opt.steps as f64;
     let clock = Instant::now();
     let kmat = lin_comb(1.0, &disc.a, k, &disc.b);
-    let chol = Cholesky::factor(&kmat)?;
+    let cdofs = disc.contact_dofs.clone();
+    let chol = Cholesky::factor(&kmat, &cdofs)?;
     timings.factorisation = clock.elapsed().as_secs_f64();
 
     let clock = Instant::now();
     let Condensed {
-        dofs: cdofs,
         s,
         lambda_max,
         lambda_min,
-    } = condense(&chol, &disc.contact_dofs).map_err(RunError::Condense)?;
+    } = condense(&chol).map_err(RunError::Condense)?;
     timings.condensation = clock.elapsed().as_secs_f64();
 
     let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
     let m = cdofs.len();
-    let mut u = vec![0.0; disc.dofs.count];
+    let nd = disc.dofs.count;
+    let mut u = vec![0.0; nd];
     let mut r = vec![0.0; m];
     let mut records = Vec::with_capacity(opt.steps);
     let mut contact = vec![];
@@ -188,15 +190,16 @@ pub fn run(
     for step in 1..=opt.steps {
         let t = step as f64 * k;
         let t0 = Instant::now();
-        // b_n = A u_{n-1} + k f, and y = K^{-1} b_n.
+        // b_n = A u_{n-1} + k f; forward solve x = L^{-1} b_n; r0 = P K^{-1} b_n from its contact block.
         let b: Vec<f64> = matvec(&disc.a, &u)
             .iter()
             .zip(&disc.f)
             .map(|(au, f)| au + k * f)
             .collect();
-        let mut y = b.clone();
-        chol.solve_in_place(&mut y);
-        let r0: Vec<f64> = cdofs.iter().map(|&d| -y[d]).collect();
+        let mut x = chol.forward(&b);
+        let mut y_c = x[nd - m..].to_vec();
+        chol.contact_backward(&mut y_c);
+        let r0: Vec<f64> = y_c.iter().map(|y| -y).collect();
         let prob = StepProblem {
             s: s.as_ref(),
             r0: &r0,
@@ -208,15 +211,15 @@ pub fn run(
         let ts = Instant::now();
         let info = solver.solve(&prob, &mut r);
         timings.step_solver += ts.elapsed().as_secs_f64();
-        // Recovery: u = y + K^{-1} (z at the contact y-dofs), z = S (r0 - r).
+        // Recovery: u = K^{-1}(b_n + z at the contact y-dofs), z = S (r0 - r): the forward
+        // solve changes only in its contact block, by L_CC^{-1} z; then one backward solve.
         let diff: Vec<f64> = r0.iter().zip(&r).map(|(a, b)| a - b).collect();
-        let z = crate::step::sym_matvec(s.as_ref(), &diff);
-        let mut w = vec![0.0; disc.dofs.count];
-        for (i, &d) in cdofs.iter().enumerate() {
-            w[d] = z[i];
+        let mut z = crate::step::sym_matvec(s.as_ref(), &diff);
+        chol.contact_forward(&mut z);
+        for (xi, zi) in x[nd - m..].iter_mut().zip(&z) {
+            *xi += zi;
         }
-        chol.solve_in_place(&mut w);
-        u = y.iter().zip(&w).map(|(a, b)| a + b).collect();
+        u = chol.backward(x);
         let time_s = t0.elapsed().as_secs_f64();
         let tc = Instant::now();
         let (certificate, states) = certify(&kmat, &b, &u, &cdofs, &kw, &scn.law, scn.g);
