@@ -15,6 +15,7 @@ pub mod certificate;
 pub mod condense;
 pub mod element;
 pub mod error;
+pub mod experiments;
 pub mod law;
 pub mod linalg;
 pub mod material;

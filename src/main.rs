@@ -31,6 +31,29 @@ enum Command {
     ///
     /// Example: evhi solve --scenario figure --n 64 --steps 64 --out runs/fig64
     Solve(SolveArgs),
+    /// Recompute the paper's figures and tables (Figs. 2-5, Table 1) and the studies
+    /// beyond it: CSV into data/, PNG and SVG into figures/.
+    ///
+    /// Experiments: fig2 (the law), loads (search of the `figure` loads), fig3
+    /// (deformed body, g = 0.1), fig4 (several g), table1 (Table 1, Fig. 5, error
+    /// split), stability (Proposition 3.1). With no name, all run.
+    Reproduce(ReproduceArgs),
+}
+
+#[derive(clap::Args)]
+struct ReproduceArgs {
+    /// Experiments to run (default: all).
+    #[arg(value_parser = evhi::experiments::NAMES)]
+    names: Vec<String>,
+    /// Coarse levels only (seconds; what the tests snapshot).
+    #[arg(long)]
+    quick: bool,
+    /// Directory of the CSV tables.
+    #[arg(long, default_value = "data")]
+    data: PathBuf,
+    /// Directory of the figures.
+    #[arg(long, default_value = "figures")]
+    figures: PathBuf,
 }
 
 #[derive(clap::Args)]
@@ -90,6 +113,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Solve(args) => solve(args),
+        Command::Reproduce(args) => reproduce(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -97,6 +121,64 @@ fn main() -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::FAILURE
         }
+    }
+}
+
+fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use evhi::experiments::{Ctx, NAMES, run};
+    let ctx = Ctx {
+        quick: args.quick,
+        data: args.data,
+        figures: args.figures,
+        verbose: true,
+    };
+    let names: Vec<String> = if args.names.is_empty() {
+        NAMES.iter().map(|s| s.to_string()).collect()
+    } else {
+        args.names
+    };
+    let total = Instant::now();
+    // The convergence study dominates; it runs on one core, everything else on the other.
+    let (heavy, light): (Vec<String>, Vec<String>) = names.into_iter().partition(|n| n == "table1");
+    let results: Vec<(String, f64, Result<(), String>)> = std::thread::scope(|s| {
+        let work = |list: Vec<String>| {
+            let ctx = ctx.clone();
+            move || {
+                list.into_iter()
+                    .map(|name| {
+                        let t = Instant::now();
+                        eprintln!("reproduce {name} ...");
+                        let r = run(&name, &ctx).map_err(|e| e.to_string());
+                        (name, t.elapsed().as_secs_f64(), r)
+                    })
+                    .collect::<Vec<_>>()
+            }
+        };
+        let a = s.spawn(work(heavy));
+        let b = s.spawn(work(light));
+        let mut out = a.join().expect("experiment thread");
+        out.extend(b.join().expect("experiment thread"));
+        out
+    });
+    let mut failed = vec![];
+    for (name, secs, r) in &results {
+        match r {
+            Ok(()) => eprintln!("  {name}: done in {secs:.1} s"),
+            Err(e) => {
+                eprintln!("  {name}: FAILED after {secs:.1} s: {e}");
+                failed.push(name.clone());
+            }
+        }
+    }
+    eprintln!(
+        "reproduce: {} experiment(s) in {:.1} s wall",
+        results.len(),
+        total.elapsed().as_secs_f64()
+    );
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("experiments failed: {}", failed.join(", ")).into())
     }
 }
 

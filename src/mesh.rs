@@ -121,3 +121,66 @@ impl Dofs {
             .collect()
     }
 }
+
+// ANCHOR: prolongate
+/// Interpolates nodal values of a P1 field on `coarse` at the nodes of `fine`,
+/// a refinement of it (same domain, `fine.n` a multiple of `coarse.n`). The
+/// meshes are nested (each fine triangle lies in one coarse triangle), so this
+/// is the exact embedding of the coarse P1 space in the fine one.
+pub fn prolongate(coarse: &Mesh, vals: &[[f64; 2]], fine: &Mesh) -> Vec<[f64; 2]> {
+    assert!(
+        fine.n % coarse.n == 0,
+        "fine mesh must refine the coarse one"
+    );
+    let r = fine.n / coarse.n;
+    let (nxc, nxf) = (coarse.n, fine.n);
+    let idc = |i: usize, j: usize| j * (nxc + 1) + i;
+    let mut out = Vec::with_capacity(fine.nodes.len());
+    for jf in 0..=nxf / 2 {
+        for if_ in 0..=nxf {
+            let (ic, a) = (
+                (if_ / r).min(nxc - 1),
+                (if_ - (if_ / r).min(nxc - 1) * r) as f64 / r as f64,
+            );
+            let (jc, b) = (
+                (jf / r).min(nxc / 2 - 1),
+                (jf - (jf / r).min(nxc / 2 - 1) * r) as f64 / r as f64,
+            );
+            let (ll, lr, ur, ul) = (
+                idc(ic, jc),
+                idc(ic + 1, jc),
+                idc(ic + 1, jc + 1),
+                idc(ic, jc + 1),
+            );
+            // lower-right triangle (ll, lr, ur) when a >= b, upper-left (ll, ur, ul) otherwise
+            let w = if a >= b {
+                [(ll, 1.0 - a), (lr, a - b), (ur, b)]
+            } else {
+                [(ll, 1.0 - b), (ur, a), (ul, b - a)]
+            };
+            let mut v = [0.0; 2];
+            for (node, wt) in w {
+                v[0] += wt * vals[node][0];
+                v[1] += wt * vals[node][1];
+            }
+            out.push(v);
+        }
+    }
+    out
+}
+// ANCHOR_END: prolongate
+
+impl Dofs {
+    /// Gathers one value pair per node into a vector of free dofs.
+    pub fn gather(&self, nodal: &[[f64; 2]]) -> Vec<f64> {
+        let mut u = vec![0.0; self.count];
+        for (v, val) in nodal.iter().enumerate() {
+            for (c, x) in val.iter().enumerate() {
+                if let Some(d) = self.of(v, c) {
+                    u[d] = *x;
+                }
+            }
+        }
+        u
+    }
+}

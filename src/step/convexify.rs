@@ -27,7 +27,7 @@ use clarabel::solver::{
 /// Settings of the convexification solver.
 #[derive(Debug, Clone)]
 pub struct Settings {
-    /// Stop when $\|r^{l+1} - r^l\|_\infty \le$ `tol` $\cdot \max(g, \|r\|_\infty)$.
+    /// Stop when $\|r^{l+1} - r^l\|_\infty \le$ `tol` $\cdot \max(\|r\|_\infty, \|r_0\|_\infty)$.
     pub tol: f64,
     /// Limit on convex subproblems per step.
     pub max_iter: usize,
@@ -256,7 +256,7 @@ impl StepSolver for Convexify {
                 .zip(&next)
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max);
-            let scale = p.g.abs().max(inf_norm(&next));
+            let scale = inf_norm(p.r0).max(inf_norm(&next)).max(f64::MIN_POSITIVE);
             *r = next;
             info.history.push(change / scale);
             if change <= st.tol * scale {
@@ -266,7 +266,7 @@ impl StepSolver for Convexify {
         }
         info.residual = p.residual(r);
         if st.polish && info.status == Status::Converged {
-            let tol = 1e3 * st.ipm_tol * p.g.abs().max(inf_norm(r));
+            let tol = 1e3 * st.ipm_tol * inf_norm(p.r0).max(inf_norm(r));
             let pieces: Vec<Piece> = p.pieces_of(r, tol);
             if let Some(x) = p.solve_on_pieces(&pieces) {
                 let res = p.residual(&x);

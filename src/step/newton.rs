@@ -22,7 +22,7 @@ use faer::Mat;
 /// Settings of the Newton solver.
 #[derive(Debug, Clone)]
 pub struct Settings {
-    /// Stop when the relative fixed-point residual $\|R\|_\infty / \max(g, \|r\|_\infty)$ falls below this.
+    /// Stop when the relative fixed-point residual $\|R\|_\infty / \max(\|r\|_\infty, \|r_0\|_\infty)$ falls below this.
     pub tol: f64,
     /// Outer iteration limit.
     pub max_iter: usize,
@@ -184,7 +184,8 @@ impl StepSolver for Newton {
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
         let st = &self.settings;
         let gamma = self.gamma(p);
-        let scale = |x: &[f64]| p.g.abs().max(inf_norm(x)).max(f64::MIN_POSITIVE);
+        let r0n = inf_norm(p.r0);
+        let scale = |x: &[f64]| r0n.max(inf_norm(x)).max(f64::MIN_POSITIVE);
         let mut info = Info {
             status: Status::MaxIterations,
             iterations: 0,

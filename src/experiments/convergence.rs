@@ -1,0 +1,539 @@
+//! Table 1 and Fig. 5: relative energy-norm errors $\|u_{ref} - u^{hk}\|_E / \|u_{ref}\|_E$
+//! against a reference solution ($h = k = 1/512$), for $h = k = 1/4, \dots, 1/128$,
+//! for the `literal` and the `figure` scenarios. Beyond the paper: the error split
+//! into its $h$ part ($k$ at the reference value) and its $k$ part ($h$ at the
+//! reference value), and where in $\Omega$ the error sits.
+//!
+//! Coarse fields are prolongated exactly onto the reference mesh (the spaces are
+//! nested). The paper does not say at which time it measures; we report $t = T$ and
+//! the maximum over the time levels shared with the reference,
+//! $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$ (the norm of Corollary 4.1's left side).
+
+use super::plot::{Figure, both, e2s};
+use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::assembly::stiffness;
+use crate::element::strain_matrix;
+use crate::mesh::{Dofs, Mesh, prolongate};
+use crate::norms::energy_norm;
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use crate::scheme::{self, Options};
+use crate::step::newton::Newton;
+use plotters::prelude::*;
+use std::collections::BTreeMap;
+
+/// The paper's Table 1 (percent), keyed by $n$ with $h = k = 1/n$ ($h + k = 2/n$).
+pub const PAPER: [(usize, f64); 6] = [
+    (4, 24.099),
+    (8, 12.835),
+    (16, 6.407),
+    (32, 3.153),
+    (64, 1.540),
+    (128, 0.741),
+];
+
+/// Levels and reference of a study.
+pub struct Plan {
+    pub levels: Vec<usize>,
+    pub n_ref: usize,
+}
+
+pub fn plan(quick: bool) -> Plan {
+    if quick {
+        Plan {
+            levels: vec![4, 8, 16],
+            n_ref: 32,
+        }
+    } else {
+        Plan {
+            levels: vec![4, 8, 16, 32, 64, 128],
+            n_ref: 512,
+        }
+    }
+}
+
+/// The reference solution at the time levels $t = j/N_{grid}$.
+struct Reference {
+    mesh: Mesh,
+    dofs: Dofs,
+    b: crate::assembly::SpMat,
+    grid: usize,
+    fields: BTreeMap<usize, Vec<f64>>,
+    norms: BTreeMap<usize, f64>,
+    tensor: crate::material::Isotropic,
+}
+
+/// Error of one level against the reference.
+#[derive(Debug, Clone)]
+pub struct LevelError {
+    pub family: &'static str,
+    pub n: usize,
+    pub steps: usize,
+    pub rel_t: f64,
+    pub rel_max: f64,
+    /// Squared error at $t = T$ in three regions: near the clamp ends, near $\Gamma_3$, the rest.
+    pub regions: [f64; 3],
+}
+
+/// Region of a point: 0 within 1/8 of the ends of $\Gamma_1$ at $(0, 1/2)$, $(2, 1/2)$;
+/// 1 within 1/8 of $\Gamma_3$; 2 elsewhere.
+pub fn region(x: f64, y: f64) -> usize {
+    let d = ((x).hypot(y - 0.5)).min((x - 2.0).hypot(y - 0.5));
+    if d < 0.125 {
+        0
+    } else if y < 0.125 {
+        1
+    } else {
+        2
+    }
+}
+
+impl Reference {
+    fn compute(
+        scn: &Scenario,
+        n_ref: usize,
+        grid: usize,
+        ctx: &Ctx,
+    ) -> Result<Reference, ExpError> {
+        let mesh = Mesh::structured(n_ref)?;
+        let dofs = Dofs::new(&mesh, true);
+        let tensor = scn.elasticity();
+        let b = stiffness(&mesh, &dofs, &tensor);
+        let mut fields = BTreeMap::new();
+        let every = n_ref / grid;
+        ctx.log(&format!(
+            "reference: scenario {}, h = k = 1/{n_ref}",
+            scn.name
+        ));
+        scheme::run(
+            scn,
+            &Options::new(n_ref, n_ref),
+            &mut Newton::default(),
+            &mut |step, _, u| {
+                if step % every == 0 {
+                    fields.insert(step / every, u.to_vec());
+                }
+            },
+        )?;
+        let norms = fields
+            .iter()
+            .map(|(&j, u)| (j, energy_norm(&b, u)))
+            .collect();
+        Ok(Reference {
+            mesh,
+            dofs,
+            b,
+            grid,
+            fields,
+            norms,
+            tensor,
+        })
+    }
+
+    /// Errors of the level $(n, N)$, computed on the fly at the shared time levels.
+    fn level(
+        &self,
+        scn: &Scenario,
+        family: &'static str,
+        n: usize,
+        steps: usize,
+    ) -> Result<LevelError, ExpError> {
+        let coarse = Mesh::structured(n)?;
+        let cdofs = Dofs::new(&coarse, true);
+        let (mut max_e, mut max_u, mut e_t, mut u_t) = (0.0f64, 0.0f64, 0.0, 1.0);
+        let mut regions = [0.0; 3];
+        let mut fail = None;
+        scheme::run(
+            scn,
+            &Options::new(n, steps),
+            &mut Newton::default(),
+            &mut |step, _, u| {
+                if (step * self.grid) % steps != 0 || fail.is_some() {
+                    return;
+                }
+                let j = step * self.grid / steps;
+                let Some(uref) = self.fields.get(&j) else {
+                    return;
+                };
+                let fine = if n == self.mesh.n {
+                    u.to_vec()
+                } else {
+                    self.dofs
+                        .gather(&prolongate(&coarse, &cdofs.expand(u), &self.mesh))
+                };
+                let diff: Vec<f64> = uref.iter().zip(&fine).map(|(a, b)| a - b).collect();
+                let e = energy_norm(&self.b, &diff);
+                max_e = max_e.max(e);
+                max_u = max_u.max(self.norms[&j]);
+                if j == self.grid {
+                    e_t = e;
+                    u_t = self.norms[&j];
+                    regions = self.regions(&diff);
+                }
+                if !e.is_finite() {
+                    fail = Some(step);
+                }
+            },
+        )?;
+        Ok(LevelError {
+            family,
+            n,
+            steps,
+            rel_t: e_t / u_t,
+            rel_max: max_e / max_u,
+            regions,
+        })
+    }
+
+    /// $\tfrac12(\mathcal G\varepsilon(v), \varepsilon(v))$ per region.
+    fn regions(&self, v: &[f64]) -> [f64; 3] {
+        let nodal = self.dofs.expand(v);
+        let d = self.tensor.voigt();
+        let mut out = [0.0; 3];
+        for tri in &self.mesh.triangles {
+            let p = tri.map(|k| self.mesh.nodes[k]);
+            let (area, bm) = strain_matrix(p);
+            let ue = nalgebra::SVector::<f64, 6>::from_fn(|a, _| nodal[tri[a / 2]][a % 2]);
+            let eps = bm * ue;
+            let dens = 0.5 * (eps.transpose() * d * eps)[(0, 0)] * area;
+            let cx = (p[0][0] + p[1][0] + p[2][0]) / 3.0;
+            let cy = (p[0][1] + p[1][1] + p[2][1]) / 3.0;
+            out[region(cx, cy)] += dens;
+        }
+        out
+    }
+}
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let plan = plan(ctx.quick);
+    let grid = *plan.levels.last().expect("levels");
+    let mut all: Vec<(String, LevelError)> = vec![];
+    for name in ["literal", "figure"] {
+        let scn = Scenario::load(name)?;
+        let reference = Reference::compute(&scn, plan.n_ref, grid, ctx)?;
+        for &n in &plan.levels {
+            ctx.log(&format!(
+                "{name}: h = k = 1/{n}, h = 1/{n} k = 1/{}, h = 1/{} k = 1/{n}",
+                plan.n_ref, plan.n_ref
+            ));
+            all.push((name.into(), reference.level(&scn, "h=k", n, n)?));
+            all.push((name.into(), reference.level(&scn, "h", n, plan.n_ref)?));
+            all.push((name.into(), reference.level(&scn, "k", plan.n_ref, n)?));
+        }
+    }
+    let params = format!(
+        "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over t = j/{grid}; solver newton",
+        plan.n_ref, plan.n_ref, plan.n_ref
+    );
+    // Observed orders within each (scenario, family), against the parameter that varies.
+    let order = |v: &dyn Fn(&LevelError) -> f64| -> Vec<f64> {
+        all.iter()
+            .enumerate()
+            .map(|(i, (s, e))| {
+                all[..i]
+                    .iter()
+                    .rev()
+                    .find(|(s2, e2)| s2 == s && e2.family == e.family)
+                    .map(|(_, p)| {
+                        let (hp, hc) = if e.family == "k" {
+                            (p.steps, e.steps)
+                        } else {
+                            (p.n, e.n)
+                        };
+                        (v(p) / v(e)).ln() / (hc as f64 / hp as f64).ln()
+                    })
+                    .unwrap_or(f64::NAN)
+            })
+            .collect()
+    };
+    let order_t = order(&|e| e.rel_t);
+    let order_max = order(&|e| e.rel_max);
+    let total = |e: &LevelError| e.regions.iter().sum::<f64>();
+    let paper: Vec<f64> = all
+        .iter()
+        .map(|(_, e)| {
+            if e.family == "h=k" {
+                PAPER.iter().find(|p| p.0 == e.n).map_or(f64::NAN, |p| p.1)
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    let t = Table::new()
+        .str("scenario", all.iter().map(|(s, _)| s.clone()).collect())
+        .str(
+            "family",
+            all.iter().map(|(_, e)| e.family.to_string()).collect(),
+        )
+        .u64("n", all.iter().map(|(_, e)| e.n as u64).collect())
+        .u64("steps", all.iter().map(|(_, e)| e.steps as u64).collect())
+        .f64(
+            "h_plus_k",
+            all.iter()
+                .map(|(_, e)| 1.0 / e.n as f64 + 1.0 / e.steps as f64)
+                .collect(),
+        )
+        .f64(
+            "rel_err_T_percent",
+            all.iter().map(|(_, e)| 100.0 * e.rel_t).collect(),
+        )
+        .f64("order_T", order_t)
+        .f64(
+            "rel_err_max_percent",
+            all.iter().map(|(_, e)| 100.0 * e.rel_max).collect(),
+        )
+        .f64("order_max", order_max)
+        .f64("paper_percent", paper)
+        .f64(
+            "share_clamp_ends",
+            all.iter().map(|(_, e)| e.regions[0] / total(e)).collect(),
+        )
+        .f64(
+            "share_contact_strip",
+            all.iter().map(|(_, e)| e.regions[1] / total(e)).collect(),
+        )
+        .f64(
+            "share_rest",
+            all.iter().map(|(_, e)| e.regions[2] / total(e)).collect(),
+        );
+    let path = ctx.write("table1.csv", &t, "table1", &params)?;
+    write_markdown(ctx, &path, &params)?;
+    draw(ctx, &path)
+}
+
+/// The Markdown Table 1, ours beside the paper's, from the CSV.
+fn write_markdown(ctx: &Ctx, path: &std::path::Path, params: &str) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let (sc, fam) = (col_str(&df, "scenario")?, col_str(&df, "family")?);
+    let (n, hk) = (col_f64(&df, "n")?, col_f64(&df, "h_plus_k")?);
+    let (et, em, ot, om, pp) = (
+        col_f64(&df, "rel_err_T_percent")?,
+        col_f64(&df, "rel_err_max_percent")?,
+        col_f64(&df, "order_T")?,
+        col_f64(&df, "order_max")?,
+        col_f64(&df, "paper_percent")?,
+    );
+    let f = |x: f64| {
+        if x.is_finite() {
+            format!("{x:.3}")
+        } else {
+            "".into()
+        }
+    };
+    let mut md = format!(
+        "<!-- {} -->\n<!-- {} -->\n\n",
+        ctx.provenance("table1", "").join(" "),
+        params
+    );
+    md += "| h + k | paper | literal, t = T | order | literal, max over t | order | figure, t = T | order | figure, max over t | order |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    let rows: Vec<usize> = (0..sc.len())
+        .filter(|&i| fam[i] == "h=k" && sc[i] == "literal")
+        .collect();
+    for i in rows {
+        let j = (0..sc.len())
+            .find(|&j| fam[j] == "h=k" && sc[j] == "figure" && n[j] == n[i])
+            .expect("both scenarios");
+        md += &format!(
+            "| 1/{} | {}% | {}% | {} | {}% | {} | {}% | {} | {}% | {} |\n",
+            (1.0 / hk[i]).round(),
+            f(pp[i]),
+            f(et[i]),
+            f(ot[i]),
+            f(em[i]),
+            f(om[i]),
+            f(et[j]),
+            f(ot[j]),
+            f(em[j]),
+            f(om[j])
+        );
+    }
+    let p = ctx.data_path("table1.md");
+    crate::output::write_atomic(&p, md.as_bytes()).map_err(|e| ExpError::Io {
+        path: p.display().to_string(),
+        source: e,
+    })
+}
+
+/// A plotted series: label, points, colour, and whether it is the thin (second) style.
+type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
+
+struct Fig5 {
+    series: Vec<Series>,
+}
+
+fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let (sc, fam) = (col_str(&df, "scenario")?, col_str(&df, "family")?);
+    let (hk, et, em, pp) = (
+        col_f64(&df, "h_plus_k")?,
+        col_f64(&df, "rel_err_T_percent")?,
+        col_f64(&df, "rel_err_max_percent")?,
+        col_f64(&df, "paper_percent")?,
+    );
+    let pick = |s: &str, f: &str, v: &[f64]| -> Vec<(f64, f64)> {
+        (0..sc.len())
+            .filter(|&i| sc[i] == s && fam[i] == f && v[i].is_finite())
+            .map(|i| (hk[i], v[i]))
+            .collect()
+    };
+    let main = Fig5 {
+        series: vec![
+            (
+                "paper, Table 1".into(),
+                pick("literal", "h=k", &pp),
+                BLACK,
+                false,
+            ),
+            (
+                "literal, t = T".into(),
+                pick("literal", "h=k", &et),
+                RGBColor(31, 119, 180),
+                false,
+            ),
+            (
+                "literal, max over t".into(),
+                pick("literal", "h=k", &em),
+                RGBColor(20, 60, 120),
+                true,
+            ),
+            (
+                "figure, t = T".into(),
+                pick("figure", "h=k", &et),
+                RGBColor(214, 39, 40),
+                false,
+            ),
+            (
+                "figure, max over t".into(),
+                pick("figure", "h=k", &em),
+                RGBColor(120, 0, 0),
+                true,
+            ),
+        ],
+    };
+    both(&ctx.figures, "fig5_errors", (1000, 750), &main)?;
+    let split = Fig5 {
+        series: vec![
+            (
+                "literal, h part (k = k_ref)".into(),
+                pick("literal", "h", &et),
+                RGBColor(31, 119, 180),
+                false,
+            ),
+            (
+                "literal, k part (h = h_ref)".into(),
+                pick("literal", "k", &et),
+                RGBColor(120, 170, 220),
+                true,
+            ),
+            (
+                "figure, h part (k = k_ref)".into(),
+                pick("figure", "h", &et),
+                RGBColor(214, 39, 40),
+                false,
+            ),
+            (
+                "figure, k part (h = h_ref)".into(),
+                pick("figure", "k", &et),
+                RGBColor(240, 140, 140),
+                true,
+            ),
+        ],
+    };
+    both(&ctx.figures, "fig5_split", (1000, 750), &split)
+}
+
+impl Figure for Fig5 {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let pts: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.1.iter().copied())
+            .collect();
+        let (xmin, xmax) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        let (ymin, ymax) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        let title = if self.series.len() == 5 {
+            "Fig. 5: relative error in energy norm, h = k"
+        } else {
+            "Error split: h part and k part (t = T)"
+        };
+        let mut chart = ChartBuilder::on(root)
+            .caption(title, ("sans-serif", 26))
+            .margin(15)
+            .x_label_area_size(55)
+            .y_label_area_size(80)
+            .build_cartesian_2d(
+                (xmin * 0.8..xmax * 1.25).log_scale(),
+                (ymin * 0.5..ymax * 2.0).log_scale(),
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("h + k   (for the split: the varying 1/n + 1/N)")
+            .x_label_formatter(&|x| format!("{x:.3}"))
+            .y_label_formatter(&|y| format!("{y}"))
+            .y_desc("relative error ‖u_ref − u^hk‖_E / ‖u_ref‖_E  [%]")
+            .label_style(("sans-serif", 16))
+            .draw()
+            .map_err(e2s)?;
+        for (label, s, colour, dashed) in &self.series {
+            if s.is_empty() {
+                continue;
+            }
+            // thin lines with crosses for the second series of a pair, thick with dots otherwise
+            let style = colour.stroke_width(if *dashed { 1 } else { 3 });
+            chart
+                .draw_series(LineSeries::new(s.clone(), style))
+                .map_err(e2s)?
+                .label(label.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
+            let c = *colour;
+            if *dashed {
+                chart
+                    .draw_series(s.iter().map(move |&p| Cross::new(p, 7, c.stroke_width(2))))
+                    .map_err(e2s)?;
+            } else {
+                chart
+                    .draw_series(s.iter().map(move |&p| Circle::new(p, 5, c.filled())))
+                    .map_err(e2s)?;
+            }
+        }
+        // slope-1 guide through the first point of the first series
+        if let Some(&(x0, y0)) = self
+            .series
+            .iter()
+            .find(|s| !s.1.is_empty())
+            .and_then(|s| s.1.first())
+        {
+            let guide = vec![(x0, y0 * 1.6), (xmin, y0 * 1.6 * xmin / x0)];
+            let g2 = vec![(x0, y0 * 0.6), (xmin, y0 * 0.6 * (xmin / x0).sqrt())];
+            chart
+                .draw_series(LineSeries::new(guide, BLACK.mix(0.5).stroke_width(1)))
+                .map_err(e2s)?
+                .label("slope 1")
+                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.mix(0.5)));
+            chart
+                .draw_series(LineSeries::new(g2, RGBColor(120, 120, 120).stroke_width(1)))
+                .map_err(e2s)?
+                .label("slope 1/2")
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 120, 120))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(e2s)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,137 @@
+//! Fig. 2: the contact law, $-\sigma_\nu$ against $u_\nu$: the nonmonotone normal
+//! compliance (5.1) up to $g$, then the vertical wall of the unilateral limit (5.2),
+//! where $-\sigma_\nu = p(g) + \mu$ with any $\mu \ge 0$.
+
+use super::plot::{Figure, both, e2s};
+use super::{Ctx, ExpError, col_f64, read_csv};
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use plotters::prelude::*;
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let scn = Scenario::load("figure")?;
+    let g = scn.g;
+    // The law is piecewise linear: its vertices draw it exactly (both sides of a jump).
+    let lo = -0.025;
+    let mut u = vec![lo];
+    let mut sig = vec![scn.law.p(lo)];
+    for &s in scn.law.breakpoints().iter().filter(|&&s| s > lo && s < g) {
+        let (a, b) = scn.law.p_sides(s);
+        u.extend([s, s]);
+        sig.extend([a, b]);
+    }
+    u.push(g);
+    sig.push(scn.law.p_sides(g).0);
+    let mut part = vec!["compliance".to_string(); u.len()];
+    // The wall at g: -sigma_nu takes every value above p(g).
+    let top = 2.0 * scn.law.p(g).max(1.0);
+    for v in [scn.law.p(g), top] {
+        u.push(g);
+        sig.push(v);
+        part.push("unilateral".to_string());
+    }
+    let mut bp_u = scn.law.breakpoints().to_vec();
+    bp_u.push(g);
+    let bp_s: Vec<f64> = bp_u.iter().map(|&s| scn.law.p(s)).collect();
+    let params = format!("law of scenario `figure` (paper (5.1)-(5.2)), g = {g}");
+    let table = Table::new()
+        .f64("u_nu", u)
+        .f64("minus_sigma_nu", sig)
+        .str("part", part);
+    let path = ctx.write("fig2_law.csv", &table, "fig2", &params)?;
+    let bp = Table::new().f64("u_nu", bp_u).f64("minus_sigma_nu", bp_s);
+    let bp_path = ctx.write("fig2_breakpoints.csv", &bp, "fig2", &params)?;
+    // Draw from the CSVs.
+    let df = read_csv(&path)?;
+    let bdf = read_csv(&bp_path)?;
+    let fig = Fig2 {
+        u: col_f64(&df, "u_nu")?,
+        s: col_f64(&df, "minus_sigma_nu")?,
+        part: super::col_str(&df, "part")?,
+        bu: col_f64(&bdf, "u_nu")?,
+        bs: col_f64(&bdf, "minus_sigma_nu")?,
+        g,
+    };
+    both(&ctx.figures, "fig2_law", (900, 600), &fig)
+}
+
+struct Fig2 {
+    u: Vec<f64>,
+    s: Vec<f64>,
+    part: Vec<String>,
+    bu: Vec<f64>,
+    bs: Vec<f64>,
+    g: f64,
+}
+
+impl Figure for Fig2 {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let ymax = self.s.iter().fold(0.0f64, |a, &b| a.max(b)) * 1.08;
+        let xmin = self.u.iter().fold(0.0f64, |a, &b| a.min(b));
+        let mut chart = ChartBuilder::on(root)
+            .caption("Fig. 2: contact law, -σν against uν", ("sans-serif", 26))
+            .margin(15)
+            .x_label_area_size(50)
+            .y_label_area_size(70)
+            .build_cartesian_2d(xmin..self.g * 1.12, -1.0..ymax)
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("normal displacement uν [m]")
+            .y_desc("-σν [N/m²]")
+            .label_style(("sans-serif", 18))
+            .draw()
+            .map_err(e2s)?;
+        let comp: Vec<(f64, f64)> = self
+            .u
+            .iter()
+            .zip(&self.s)
+            .zip(&self.part)
+            .filter(|(_, p)| *p == "compliance")
+            .map(|((&u, &s), _)| (u, s))
+            .collect();
+        let wall: Vec<(f64, f64)> = self
+            .u
+            .iter()
+            .zip(&self.s)
+            .zip(&self.part)
+            .filter(|(_, p)| *p == "unilateral")
+            .map(|((&u, &s), _)| (u, s))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(comp, BLUE.stroke_width(3)))
+            .map_err(e2s)?
+            .label("normal compliance -σν¹ = p(uν), (5.1)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(3)));
+        chart
+            .draw_series(LineSeries::new(wall, RED.stroke_width(3)))
+            .map_err(e2s)?
+            .label(format!(
+                "unilateral limit uν = g = {} (5.2): -σν² ≥ 0",
+                self.g
+            ))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(3)));
+        chart
+            .draw_series(
+                self.bu
+                    .iter()
+                    .zip(&self.bs)
+                    .map(|(&u, &s)| Circle::new((u, s), 6, BLACK.filled())),
+            )
+            .map_err(e2s)?
+            .label("branch points 0, u1 = 0.05, u2 = 0.075, g")
+            .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.filled()));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .label_font(("sans-serif", 18))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(e2s)?;
+        Ok(())
+    }
+}

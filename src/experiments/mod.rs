@@ -1,0 +1,189 @@
+//! One module per figure or table of the paper's §5 (and the studies beyond it).
+//!
+//! Each experiment computes its numbers, writes them as CSV into `data/` (every
+//! file opens with `#` lines saying what produced it), then draws its figure from
+//! that CSV into `figures/` (PNG and SVG), so a figure and its numbers never
+//! disagree. `quick` mode uses coarse levels (seconds) and is what the tests
+//! snapshot; the full mode is what `evhi reproduce` runs.
+
+pub mod convergence;
+pub mod fig2;
+pub mod loads;
+pub mod plot;
+pub mod scenes;
+pub mod stability;
+
+use crate::output::csv::Table;
+use polars::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// Where and how an experiment runs.
+#[derive(Debug, Clone)]
+pub struct Ctx {
+    /// Coarse levels for tests.
+    pub quick: bool,
+    /// Directory of the CSV tables.
+    pub data: PathBuf,
+    /// Directory of the figures.
+    pub figures: PathBuf,
+    /// Print progress lines on stderr.
+    pub verbose: bool,
+}
+
+/// An experiment's failure.
+#[derive(Debug, thiserror::Error)]
+pub enum ExpError {
+    #[error(transparent)]
+    Run(#[from] crate::scheme::RunError),
+    #[error(transparent)]
+    Input(#[from] crate::error::InputError),
+    #[error("i/o on {path}: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("table {path}: {message}")]
+    Table { path: String, message: String },
+    #[error("figure {path}: {message}")]
+    Plot { path: String, message: String },
+}
+
+/// The experiments, in the order `evhi reproduce` runs them.
+pub const NAMES: [&str; 6] = ["fig2", "loads", "fig3", "fig4", "table1", "stability"];
+
+/// Runs one experiment by name.
+pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
+    match name {
+        "fig2" => fig2::run(ctx),
+        "loads" => loads::run(ctx),
+        "fig3" => scenes::run_fig3(ctx),
+        "fig4" => scenes::run_fig4(ctx),
+        "table1" => convergence::run(ctx),
+        "stability" => stability::run(ctx),
+        other => Err(crate::error::InputError::field(
+            "experiment",
+            other,
+            format!("one of {}", NAMES.join(", ")),
+        )
+        .into()),
+    }
+}
+
+impl Ctx {
+    /// The provenance lines of a CSV: crate version, experiment, mode and the parameters.
+    pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
+        vec![
+            format!(
+                "produced by evhi {} `evhi reproduce {experiment}{}`",
+                env!("CARGO_PKG_VERSION"),
+                if self.quick { " --quick" } else { "" }
+            ),
+            params.to_string(),
+        ]
+    }
+
+    pub fn data_path(&self, file: &str) -> PathBuf {
+        self.data.join(file)
+    }
+
+    pub fn figure_path(&self, stem: &str, ext: &str) -> PathBuf {
+        self.figures.join(format!("{stem}.{ext}"))
+    }
+
+    /// Writes a table with its provenance.
+    pub fn write(
+        &self,
+        file: &str,
+        table: &Table,
+        experiment: &str,
+        params: &str,
+    ) -> Result<PathBuf, ExpError> {
+        let path = self.data_path(file);
+        table
+            .write(&path, &self.provenance(experiment, params))
+            .map_err(|e| ExpError::Io {
+                path: path.display().to_string(),
+                source: e,
+            })?;
+        Ok(path)
+    }
+
+    pub fn log(&self, msg: &str) {
+        if self.verbose {
+            eprintln!("  {msg}");
+        }
+    }
+}
+
+/// Reads a CSV written by [`Ctx::write`] (comment lines skipped).
+pub fn read_csv(path: &Path) -> Result<DataFrame, ExpError> {
+    let err = |e: PolarsError| ExpError::Table {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    CsvReadOptions::default()
+        .with_parse_options(CsvParseOptions::default().with_comment_prefix(Some("#")))
+        .try_into_reader_with_file_path(Some(path.to_path_buf()))
+        .map_err(err)?
+        .finish()
+        .map_err(err)
+}
+
+/// A numeric column as `f64`.
+pub fn col_f64(df: &DataFrame, name: &str) -> Result<Vec<f64>, ExpError> {
+    let err = |m: String| ExpError::Table {
+        path: name.to_string(),
+        message: m,
+    };
+    let c = df.column(name).map_err(|e| err(e.to_string()))?;
+    let c = c.cast(&DataType::Float64).map_err(|e| err(e.to_string()))?;
+    Ok(c.f64()
+        .map_err(|e| err(e.to_string()))?
+        .into_no_null_iter()
+        .collect())
+}
+
+/// A string column.
+pub fn col_str(df: &DataFrame, name: &str) -> Result<Vec<String>, ExpError> {
+    let err = |m: String| ExpError::Table {
+        path: name.to_string(),
+        message: m,
+    };
+    let c = df.column(name).map_err(|e| err(e.to_string()))?;
+    let ca = c.str().map_err(|e| err(e.to_string()))?;
+    Ok((0..ca.len())
+        .map(|i| ca.get(i).unwrap_or("").to_string())
+        .collect())
+}
+
+/// Rounds every number in CSV text to `sig` significant digits and drops comment
+/// lines: what the snapshot tests compare.
+pub fn rounded_csv(text: &str, sig: usize) -> String {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            l.split(',')
+                .map(|f| match f.parse::<f64>() {
+                    Ok(x) if f.contains('.') || f.contains('e') => round_sig(x, sig),
+                    _ => f.to_string(),
+                })
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// `x` to `sig` significant digits, in scientific notation (`0` for zero).
+pub fn round_sig(x: f64, sig: usize) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let s = format!("{:.*e}", sig.saturating_sub(1), x);
+    // normalise "-0.0e0" style output
+    if s.starts_with("-0.") && s[1..].chars().all(|c| c == '0' || c == '.' || c == 'e') {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}

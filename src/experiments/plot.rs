@@ -1,0 +1,99 @@
+//! Drawing helpers shared by the figures (plotters, with an embedded DejaVu Sans
+//! so that no system font is needed).
+
+use super::ExpError;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+use std::path::Path;
+use std::sync::Once;
+
+static FONT: Once = Once::new();
+
+/// Registers the embedded font once.
+pub fn init_font() {
+    FONT.call_once(|| {
+        let _ = register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            include_bytes!("../../assets/fonts/DejaVuSans.ttf"),
+        );
+    });
+}
+
+/// Colour of a contact regime.
+pub fn regime_colour(regime: &str) -> RGBColor {
+    match regime {
+        "no_contact" => RGBColor(150, 150, 150),
+        "branch1" => RGBColor(31, 119, 180),
+        "branch2" => RGBColor(255, 127, 14),
+        "branch3" => RGBColor(44, 160, 44),
+        "limit" => RGBColor(214, 39, 40),
+        _ => RGBColor(0, 0, 0),
+    }
+}
+
+/// Human label of a regime.
+pub fn regime_label(regime: &str) -> &'static str {
+    match regime {
+        "no_contact" => "no contact (u_nu <= 0)",
+        "branch1" => "branch 1 (0 < u_nu <= u1)",
+        "branch2" => "branch 2 (u1 < u_nu < u2, softening)",
+        "branch3" => "branch 3 (u_nu >= u2)",
+        "limit" => "at the limit u_nu = g",
+        _ => "other",
+    }
+}
+
+pub const REGIMES: [&str; 5] = ["no_contact", "branch1", "branch2", "branch3", "limit"];
+
+/// A figure that can be drawn on any plotters backend.
+pub trait Figure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String>;
+}
+
+/// Maps any displayable error to a string.
+pub fn e2s<E: std::fmt::Display>(e: E) -> String {
+    e.to_string()
+}
+
+/// Draws `fig` into both `stem.png` and `stem.svg` (each written to a temporary
+/// file, then renamed).
+pub fn both<F: Figure>(dir: &Path, stem: &str, size: (u32, u32), fig: &F) -> Result<(), ExpError> {
+    init_font();
+    std::fs::create_dir_all(dir).map_err(|e| ExpError::Io {
+        path: dir.display().to_string(),
+        source: e,
+    })?;
+    for ext in ["png", "svg"] {
+        let final_path = dir.join(format!("{stem}.{ext}"));
+        let tmp = dir.join(format!(".{stem}.tmp-{}.{ext}", std::process::id()));
+        let res = if ext == "png" {
+            let root = BitMapBackend::new(&tmp, size).into_drawing_area();
+            root.fill(&WHITE)
+                .map_err(e2s)
+                .and_then(|_| fig.draw(&root))
+                .and_then(|_| root.present().map_err(e2s))
+        } else {
+            let root = SVGBackend::new(&tmp, size).into_drawing_area();
+            root.fill(&WHITE)
+                .map_err(e2s)
+                .and_then(|_| fig.draw(&root))
+                .and_then(|_| root.present().map_err(e2s))
+        };
+        if let Err(m) = res {
+            let _ = std::fs::remove_file(&tmp);
+            return Err(ExpError::Plot {
+                path: final_path.display().to_string(),
+                message: m,
+            });
+        }
+        std::fs::rename(&tmp, &final_path).map_err(|e| ExpError::Io {
+            path: final_path.display().to_string(),
+            source: e,
+        })?;
+    }
+    Ok(())
+}

@@ -1,0 +1,416 @@
+//! Figs. 3 and 4: the deformed body at $t = T$ (true scale) and the interface
+//! forces on $\Gamma_3$, nodes coloured by their regime, for the `figure` scenario
+//! ($h = k = 1/128$); Fig. 4 repeats it for several $g$.
+
+use super::plot::{Figure, REGIMES, both, e2s, regime_colour, regime_label};
+use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::certificate::ContactState;
+use crate::mesh::{Dofs, Mesh};
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use crate::scheme::{self, Options};
+use crate::step::newton::Newton;
+use plotters::prelude::*;
+
+/// The state at $t = T$ of one scene.
+pub struct Scene {
+    pub mesh: Mesh,
+    pub disp: Vec<[f64; 2]>,
+    pub contact: Vec<ContactState>,
+    pub regimes: Vec<String>,
+}
+
+/// Solves the `figure` scenario with limit `g` at $h = k = 1/n$.
+pub fn solve_scene(n: usize, g: f64) -> Result<Scene, ExpError> {
+    let scn = Scenario::load("figure")?.with_g(g)?;
+    let res = scheme::run(
+        &scn,
+        &Options::new(n, n),
+        &mut Newton::default(),
+        &mut |_, _, _| {},
+    )?;
+    let mesh = Mesh::structured(n)?;
+    let disp = Dofs::new(&mesh, true).expand(&res.u);
+    let regimes = res.contact.iter().map(|c| c.regime(&scn.law, g)).collect();
+    Ok(Scene {
+        mesh,
+        disp,
+        contact: res.contact,
+        regimes,
+    })
+}
+
+fn scene_n(ctx: &Ctx) -> usize {
+    if ctx.quick { 16 } else { 128 }
+}
+
+/// Regime counts in `REGIMES` order.
+pub fn counts(regimes: &[String]) -> Vec<u64> {
+    REGIMES
+        .iter()
+        .map(|r| regimes.iter().filter(|x| x == r).count() as u64)
+        .collect()
+}
+
+fn contact_table(scenes: &[(f64, &Scene)]) -> Table {
+    let mut g = vec![];
+    let (mut x, mut un, mut s1, mut s2, mut reg) = (vec![], vec![], vec![], vec![], vec![]);
+    for (gv, sc) in scenes {
+        for (i, &v) in sc.mesh.contact.iter().enumerate() {
+            g.push(*gv);
+            x.push(sc.mesh.nodes[v][0]);
+            un.push(sc.contact[i].u_nu);
+            s1.push(sc.contact[i].sigma_nu1);
+            s2.push(sc.contact[i].sigma_nu2);
+            reg.push(sc.regimes[i].clone());
+        }
+    }
+    Table::new()
+        .f64("g", g)
+        .f64("x", x)
+        .f64("u_nu", un)
+        .f64("sigma_nu1", s1)
+        .f64("sigma_nu2", s2)
+        .str("regime", reg)
+}
+
+/// Nodes of the lattice with spacing `stride` (in mesh cells), with their displacement.
+fn nodes_table(scenes: &[(f64, &Scene)], stride: usize) -> Table {
+    let (mut g, mut x, mut y, mut ux, mut uy) = (vec![], vec![], vec![], vec![], vec![]);
+    for (gv, sc) in scenes {
+        let n = sc.mesh.n;
+        for j in (0..=n / 2).step_by(stride) {
+            for i in (0..=n).step_by(stride) {
+                let v = j * (n + 1) + i;
+                g.push(*gv);
+                x.push(sc.mesh.nodes[v][0]);
+                y.push(sc.mesh.nodes[v][1]);
+                ux.push(sc.disp[v][0]);
+                uy.push(sc.disp[v][1]);
+            }
+        }
+    }
+    Table::new()
+        .f64("g", g)
+        .f64("x", x)
+        .f64("y", y)
+        .f64("ux", ux)
+        .f64("uy", uy)
+}
+
+pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
+    let n = scene_n(ctx);
+    let g = 0.1;
+    ctx.log(&format!("fig3: figure scenario, h = k = 1/{n}, g = {g}"));
+    let sc = solve_scene(n, g)?;
+    let params = format!("scenario figure, h = k = 1/{n}, g = {g}, solver newton, t = T = 1");
+    let cp = ctx.write(
+        "fig3_contact.csv",
+        &contact_table(&[(g, &sc)]),
+        "fig3",
+        &params,
+    )?;
+    let np = ctx.write(
+        "fig3_nodes.csv",
+        &nodes_table(&[(g, &sc)], 1),
+        "fig3",
+        &params,
+    )?;
+    let panels = vec![Panel::from_csv(&cp, &np, g, n)?];
+    both(
+        &ctx.figures,
+        "fig3_deformed",
+        (1400, 1100),
+        &SceneFigure {
+            panels,
+            title: format!(
+                "Fig. 3: deformed body at t = T (true scale) and interface forces on Γ3, h = k = 1/{n}, g = {g}"
+            ),
+        },
+    )
+}
+
+pub fn fig4_gs() -> [f64; 4] {
+    [0.1, 0.09, 0.08, 0.07]
+}
+
+pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
+    let n = scene_n(ctx);
+    let gs = fig4_gs();
+    let mut scenes = vec![];
+    for &g in &gs {
+        ctx.log(&format!("fig4: figure scenario, h = k = 1/{n}, g = {g}"));
+        scenes.push((g, solve_scene(n, g)?));
+    }
+    let refs: Vec<(f64, &Scene)> = scenes.iter().map(|(g, s)| (*g, s)).collect();
+    let params = format!("scenario figure, h = k = 1/{n}, g in {gs:?}, solver newton, t = T = 1");
+    let cp = ctx.write("fig4_contact.csv", &contact_table(&refs), "fig4", &params)?;
+    let stride = (n / 32).max(1);
+    let np = ctx.write(
+        "fig4_nodes.csv",
+        &nodes_table(&refs, stride),
+        "fig4",
+        &format!("{params}; nodes every {stride} cells"),
+    )?;
+    let mut t = Table::new().f64("g", gs.to_vec());
+    for (k, r) in REGIMES.iter().enumerate() {
+        t = t.u64(
+            r,
+            scenes.iter().map(|(_, s)| counts(&s.regimes)[k]).collect(),
+        );
+    }
+    ctx.write("fig4_counts.csv", &t, "fig4", &params)?;
+    let mut panels = vec![];
+    for &g in &gs {
+        panels.push(Panel::from_csv_filtered(&cp, &np, g, n / stride)?);
+    }
+    both(
+        &ctx.figures,
+        "fig4_several_g",
+        (1400, 1800),
+        &SceneFigure {
+            panels,
+            title: format!(
+                "Fig. 4: deformed body and interface forces for several g, h = k = 1/{n} (mesh drawn every {stride} cells)"
+            ),
+        },
+    )
+}
+
+/// One panel's data, read back from the CSVs.
+struct Panel {
+    g: f64,
+    /// lattice cells per side in x
+    cells: usize,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    ux: Vec<f64>,
+    uy: Vec<f64>,
+    cx: Vec<f64>,
+    s1: Vec<f64>,
+    s2: Vec<f64>,
+    regime: Vec<String>,
+    u_nu: Vec<f64>,
+}
+
+impl Panel {
+    fn from_csv(
+        cp: &std::path::Path,
+        np: &std::path::Path,
+        g: f64,
+        cells: usize,
+    ) -> Result<Panel, ExpError> {
+        Self::from_csv_filtered(cp, np, g, cells)
+    }
+
+    fn from_csv_filtered(
+        cp: &std::path::Path,
+        np: &std::path::Path,
+        g: f64,
+        cells: usize,
+    ) -> Result<Panel, ExpError> {
+        let c = read_csv(cp)?;
+        let nd = read_csv(np)?;
+        let cg = col_f64(&c, "g")?;
+        let ng = col_f64(&nd, "g")?;
+        let pick = |v: Vec<f64>, gg: &[f64]| {
+            v.into_iter()
+                .zip(gg)
+                .filter(|(_, x)| **x == g)
+                .map(|(a, _)| a)
+                .collect::<Vec<_>>()
+        };
+        let regime = col_str(&c, "regime")?
+            .into_iter()
+            .zip(&cg)
+            .filter(|(_, x)| **x == g)
+            .map(|(a, _)| a)
+            .collect();
+        Ok(Panel {
+            g,
+            cells,
+            x: pick(col_f64(&nd, "x")?, &ng),
+            y: pick(col_f64(&nd, "y")?, &ng),
+            ux: pick(col_f64(&nd, "ux")?, &ng),
+            uy: pick(col_f64(&nd, "uy")?, &ng),
+            cx: pick(col_f64(&c, "x")?, &cg),
+            s1: pick(col_f64(&c, "sigma_nu1")?, &cg),
+            s2: pick(col_f64(&c, "sigma_nu2")?, &cg),
+            u_nu: pick(col_f64(&c, "u_nu")?, &cg),
+            regime,
+        })
+    }
+}
+
+struct SceneFigure {
+    panels: Vec<Panel>,
+    title: String,
+}
+
+impl Figure for SceneFigure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let root = root.titled(&self.title, ("sans-serif", 24)).map_err(e2s)?;
+        let rows = root.split_evenly((self.panels.len(), 1));
+        for (p, area) in self.panels.iter().zip(rows.iter()) {
+            let (top, bottom) = area.split_vertically(area.dim_in_pixel().1 * 58 / 100);
+            draw_mesh(p, &top)?;
+            draw_forces(p, &bottom)?;
+        }
+        Ok(())
+    }
+}
+
+fn draw_mesh<DB: DrawingBackend>(
+    p: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+) -> Result<(), String> {
+    let counts = counts(&p.regime);
+    let caption = format!(
+        "g = {}: deformed mesh (true scale); contact nodes: {}",
+        p.g,
+        REGIMES
+            .iter()
+            .zip(&counts)
+            .filter(|(_, c)| **c > 0)
+            .map(|(r, c)| format!("{r} {c}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 18))
+        .margin(8)
+        .x_label_area_size(30)
+        .y_label_area_size(50)
+        .build_cartesian_2d(-0.05..2.05, -0.16..1.02)
+        .map_err(e2s)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x [m]")
+        .y_desc("y [m]")
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(e2s)?;
+    // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g).
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(-0.05, -0.16), (2.05, -p.g)],
+            RGBColor(120, 120, 120).mix(0.5).filled(),
+        )))
+        .map_err(e2s)?;
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(-0.05, -p.g), (2.05, 0.0)],
+            RGBColor(240, 200, 120).mix(0.4).filled(),
+        )))
+        .map_err(e2s)?;
+    let nx = p.cells;
+    let ny = nx / 2;
+    let at = |i: usize, j: usize| {
+        let v = j * (nx + 1) + i;
+        (p.x[v] + p.ux[v], p.y[v] + p.uy[v])
+    };
+    let style = RGBColor(40, 40, 90).stroke_width(1);
+    let mut segs = vec![];
+    for j in 0..=ny {
+        for i in 0..=nx {
+            if i < nx {
+                segs.push([at(i, j), at(i + 1, j)]);
+            }
+            if j < ny {
+                segs.push([at(i, j), at(i, j + 1)]);
+            }
+            if i < nx && j < ny {
+                segs.push([at(i, j), at(i + 1, j + 1)]);
+            }
+        }
+    }
+    chart
+        .draw_series(
+            segs.into_iter()
+                .map(|s| PathElement::new(s.to_vec(), style)),
+        )
+        .map_err(e2s)?;
+    chart
+        .draw_series(
+            p.cx.iter()
+                .zip(&p.u_nu)
+                .zip(&p.regime)
+                .map(|((&x, &u), r)| Circle::new((x, -u), 3, regime_colour(r).filled())),
+        )
+        .map_err(e2s)?;
+    Ok(())
+}
+
+fn draw_forces<DB: DrawingBackend>(
+    p: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+) -> Result<(), String> {
+    let total: Vec<f64> = p.s1.iter().zip(&p.s2).map(|(a, b)| -(a + b)).collect();
+    let ymax = total.iter().fold(1.0f64, |a, &b| a.max(b)) * 1.1;
+    let mut chart = ChartBuilder::on(area)
+        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour) + unilateral part -σν² (dark red)", ("sans-serif", 16))
+        .margin(8)
+        .x_label_area_size(35)
+        .y_label_area_size(50)
+        .build_cartesian_2d(-0.05..2.05, 0.0..ymax)
+        .map_err(e2s)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_desc("x [m]")
+        .y_desc("-σν [N/m²]")
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(e2s)?;
+    let w = if p.cx.len() > 1 {
+        (p.cx[1] - p.cx[0]) * 0.35
+    } else {
+        0.01
+    };
+    for (k, &x) in p.cx.iter().enumerate() {
+        let a = -p.s1[k];
+        let b = -(p.s1[k] + p.s2[k]);
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x - w, 0.0), (x + w, a)],
+                regime_colour(&p.regime[k]).filled(),
+            )))
+            .map_err(e2s)?;
+        if b > a {
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x - w, a), (x + w, b)],
+                    RGBColor(120, 0, 0).filled(),
+                )))
+                .map_err(e2s)?;
+        }
+    }
+    for r in REGIMES {
+        if p.regime.iter().any(|x| x == r) {
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (-10.0, -10.0),
+                    0,
+                    regime_colour(r).filled(),
+                )))
+                .map_err(e2s)?
+                .label(regime_label(r))
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 5), (x + 14, y + 5)], regime_colour(r).filled())
+                });
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .label_font(("sans-serif", 13))
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e2s)?;
+    Ok(())
+}
