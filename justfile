@@ -18,3 +18,16 @@ ci:
 # One run of the solver, e.g. `just solve --scenario figure --n 128 --steps 128 --out runs/f128`
 solve *ARGS:
     cargo run --release -- solve {{ARGS}}
+
+# Build the book into book/book/ (installs just, mdbook and mdbook-katex on first use)
+book:
+    bash tools/install.sh
+    rm -rf book/src/figures && mkdir -p book/src/figures && cp figures/*.png book/src/figures/
+    .tools/bin/mdbook build book
+    @echo "book: book/book/index.html"
+
+# Serve the book locally with live reload
+serve-book:
+    bash tools/install.sh
+    rm -rf book/src/figures && mkdir -p book/src/figures && cp figures/*.png book/src/figures/
+    .tools/bin/mdbook serve book

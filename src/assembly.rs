@@ -34,9 +34,11 @@ pub fn stiffness(mesh: &Mesh, dofs: &Dofs, tensor: &Isotropic) -> SpMat {
 }
 // ANCHOR_END: assemble
 
-/// The load vector for constant densities $f_0$ (volume) and $f_2$ (top edge):
-/// each triangle gives $f_0|T|/3$ to each vertex, each top edge $f_2|e|/2$ to each end.
-pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2]) -> Vec<f64> {
+/// The load vector for densities $f_0$ (volume) and $f_2$ (top edge): each
+/// triangle gives $f_0|T|/3$ to each vertex, each top edge $f_2|e|/2$ to each end,
+/// exact for constant densities. With `modulation` $a \ne 0$ the volume force is
+/// $f_0(1 + a\cos \pi x)$, taken at the vertices (vertex quadrature, $O(h^2)$).
+pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2], modulation: f64) -> Vec<f64> {
     let mut f = vec![0.0; dofs.count];
     let mut add = |node: usize, val: [f64; 2]| {
         for (c, v) in val.iter().enumerate() {
@@ -51,7 +53,9 @@ pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2]) -> Vec<f64> {
             * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
                 - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
         for &v in tri {
-            add(v, [f0[0] * area / 3.0, f0[1] * area / 3.0]);
+            let w =
+                area / 3.0 * (1.0 + modulation * (std::f64::consts::PI * mesh.nodes[v][0]).cos());
+            add(v, [f0[0] * w, f0[1] * w]);
         }
     }
     for e in &mesh.top_edges {

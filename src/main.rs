@@ -34,7 +34,7 @@ enum Command {
     /// Recompute the paper's figures and tables (Figs. 2-5, Table 1) and the studies
     /// beyond it: CSV into data/, PNG and SVG into figures/.
     ///
-    /// Experiments: fig2 (the law), loads (search of the `figure` loads), fig3
+    /// Experiments: hypotheses (the constants of H(A)...H(s)), fig2 (the law), loads (search of the `figure` loads), fig3
     /// (deformed body, g = 0.1), fig4 (several g), table1 (Table 1, Fig. 5, error
     /// split), stability (Proposition 3.1). With no name, all run.
     Reproduce(ReproduceArgs),
@@ -265,7 +265,7 @@ fn write_outputs(
     run: &Run,
     wall_s: f64,
 ) -> std::io::Result<()> {
-    let mesh = evhi::mesh::Mesh::structured(run.n).map_err(std::io::Error::other)?;
+    let mesh = scn.mesh(run.n).map_err(std::io::Error::other)?;
     let dofs = evhi::mesh::Dofs::new(&mesh, true);
     let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
     let c = &run.contact;

@@ -3,8 +3,23 @@
 //! $y$), each cut by its lower-left–upper-right diagonal. Boundary parts:
 //! $\Gamma_1 = \{0,2\}\times[1/2, 1]$ (clamped), $\Gamma_3 = [0,2]\times\{0\}$
 //! (contact), $\Gamma_2$ the rest (loaded on the top edge, free on the sides).
+//!
+//! A second support layout, [`Supports::Rollers`], serves the regularity study:
+//! the top edge clamped and both sides on rollers ($u_x = 0$, free to slide). Reflected
+//! across a roller side, every corner becomes a point of a straight boundary, so
+//! the solution has no corner singularity.
 
 use crate::error::InputError;
+
+/// Which dofs are held fixed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Supports {
+    /// The paper's: $\{0, 2\} \times [1/2, 1]$ clamped.
+    #[default]
+    Paper,
+    /// Top edge clamped, sides on rollers ($u_x = 0$).
+    Rollers,
+}
 
 #[derive(Debug, Clone)]
 pub struct Mesh {
@@ -14,8 +29,8 @@ pub struct Mesh {
     pub nodes: Vec<[f64; 2]>,
     /// Triangles, counter-clockwise node triples.
     pub triangles: Vec<[usize; 3]>,
-    /// Nodes on $\Gamma_1$ (clamped).
-    pub clamped: Vec<bool>,
+    /// Fixed components of each node (x, y).
+    pub fixed: Vec<[bool; 2]>,
     /// Nodes on $\Gamma_3$, ordered by $x$ (both bottom corners included).
     pub contact: Vec<usize>,
     /// Edges of the top side $(0,2)\times\{1\}$, where $f_2$ acts.
@@ -26,6 +41,11 @@ impl Mesh {
     /// The mesh with $n$ contact segments; $n$ must be a positive multiple of 4
     /// so that $y = 1/2$ is a mesh line.
     pub fn structured(n: usize) -> Result<Mesh, InputError> {
+        Mesh::with_supports(n, Supports::Paper)
+    }
+
+    /// The mesh with $n$ contact segments and the given supports.
+    pub fn with_supports(n: usize, supports: Supports) -> Result<Mesh, InputError> {
         if n == 0 || n % 4 != 0 {
             return Err(InputError::field(
                 "n",
@@ -40,11 +60,15 @@ impl Mesh {
         let side = 2.0 / n as f64;
         let id = |i: usize, j: usize| j * (nx + 1) + i;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
-        let mut clamped = Vec::with_capacity(nodes.capacity());
+        let mut fixed = Vec::with_capacity(nodes.capacity());
         for j in 0..=ny {
             for i in 0..=nx {
                 nodes.push([i as f64 * side, j as f64 * side]);
-                clamped.push((i == 0 || i == nx) && 2 * j >= ny);
+                let side = i == 0 || i == nx;
+                fixed.push(match supports {
+                    Supports::Paper => [side && 2 * j >= ny; 2],
+                    Supports::Rollers => [side || j == ny, j == ny],
+                });
             }
         }
         let mut triangles = Vec::with_capacity(2 * nx * ny);
@@ -61,7 +85,7 @@ impl Mesh {
             n,
             nodes,
             triangles,
-            clamped,
+            fixed,
             contact,
             top_edges,
         })
@@ -98,8 +122,8 @@ impl Dofs {
         let mut map = Vec::with_capacity(2 * mesh.nodes.len());
         let mut count = 0;
         for v in 0..mesh.nodes.len() {
-            for _ in 0..2 {
-                if clamp && mesh.clamped[v] {
+            for c in 0..2 {
+                if clamp && mesh.fixed[v][c] {
                     map.push(None);
                 } else {
                     map.push(Some(count));

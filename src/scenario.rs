@@ -6,6 +6,7 @@
 use crate::error::InputError;
 use crate::law::Law;
 use crate::material::Isotropic;
+use crate::mesh::{Mesh, Supports};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -21,6 +22,14 @@ struct RawScenario {
     material: RawMaterial,
     loads: RawLoads,
     law: RawLaw,
+    #[serde(default)]
+    geometry: Option<RawGeometry>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawGeometry {
+    supports: String,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -38,6 +47,8 @@ struct RawMaterial {
 struct RawLoads {
     f0: [f64; 2],
     f2: [f64; 2],
+    #[serde(default)]
+    f0_modulation: f64,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -69,13 +80,17 @@ pub struct Scenario {
     /// Constant volume force $f_0$ and top traction $f_2$.
     pub f0: [f64; 2],
     pub f2: [f64; 2],
+    /// $a$ in the volume force $f_0 (1 + a \cos \pi x)$ (0: constant, the paper's case).
+    pub f0_modulation: f64,
     pub law: Law,
+    pub supports: Supports,
 }
 
 /// The scenarios shipped in `data/scenarios/`, compiled in.
-pub const BUILTIN: [(&str, &str); 2] = [
+pub const BUILTIN: [(&str, &str); 3] = [
     ("literal", include_str!("../data/scenarios/literal.toml")),
     ("figure", include_str!("../data/scenarios/figure.toml")),
+    ("smooth", include_str!("../data/scenarios/smooth.toml")),
 ];
 
 fn finite(field: &str, v: f64) -> Result<f64, InputError> {
@@ -159,6 +174,18 @@ impl Scenario {
                 finite(&format!("{name}[{c}]"), *x)?;
             }
         }
+        let f0_modulation = finite("loads.f0_modulation", raw.loads.f0_modulation)?;
+        let supports = match raw.geometry.as_ref().map(|g| g.supports.as_str()) {
+            None | Some("paper") => Supports::Paper,
+            Some("rollers") => Supports::Rollers,
+            Some(other) => {
+                return Err(InputError::field(
+                    "geometry.supports",
+                    other,
+                    "\"paper\" or \"rollers\"",
+                ));
+            }
+        };
         let jumps = raw
             .law
             .jumps
@@ -181,7 +208,9 @@ impl Scenario {
             beta,
             f0: raw.loads.f0,
             f2: raw.loads.f2,
+            f0_modulation,
             law,
+            supports,
         })
     }
 
@@ -211,6 +240,11 @@ impl Scenario {
             self.f2 = v;
         }
         Ok(self)
+    }
+
+    /// The mesh with $n$ contact segments and this scenario's supports.
+    pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
+        Mesh::with_supports(n, self.supports)
     }
 
     pub fn elasticity(&self) -> Isotropic {

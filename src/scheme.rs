@@ -36,11 +36,11 @@ pub struct Discretisation {
 
 impl Discretisation {
     pub fn new(scn: &Scenario, n: usize) -> Result<Self, InputError> {
-        let mesh = Mesh::structured(n)?;
+        let mesh = scn.mesh(n)?;
         let dofs = Dofs::new(&mesh, true);
         let a = assembly::stiffness(&mesh, &dofs, &scn.viscosity());
         let b = assembly::stiffness(&mesh, &dofs, &scn.elasticity());
-        let f = assembly::load(&mesh, &dofs, scn.f0, scn.f2);
+        let f = assembly::load(&mesh, &dofs, scn.f0, scn.f2, scn.f0_modulation);
         let contact_dofs = mesh
             .contact
             .iter()

@@ -105,7 +105,7 @@ fn matrices_are_symmetric() {
 fn load_vector_sums_to_the_total_force() {
     let mesh = Mesh::structured(8).unwrap();
     let dofs = Dofs::new(&mesh, false);
-    let f = load(&mesh, &dofs, [0.5, -2.0], [3.0, -7.0]);
+    let f = load(&mesh, &dofs, [0.5, -2.0], [3.0, -7.0], 0.0);
     let (mut fx, mut fy) = (0.0, 0.0);
     for v in 0..mesh.nodes.len() {
         fx += f[dofs.of(v, 0).unwrap()];

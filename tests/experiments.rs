@@ -40,6 +40,11 @@ fn snapshot_outputs(name: &str, files: &[&str], figures: &[&str]) {
 }
 
 #[test]
+fn hypotheses_check() {
+    snapshot_outputs("hypotheses", &["hypotheses.csv"], &[]);
+}
+
+#[test]
 fn fig2_law() {
     snapshot_outputs(
         "fig2",
@@ -79,7 +84,8 @@ fn stability_prop31() {
 
 #[test]
 fn every_experiment_is_tested_here() {
-    let src = include_str!("experiments.rs");
+    // whitespace removed, so formatting cannot hide a call
+    let src: String = include_str!("experiments.rs").split_whitespace().collect();
     for name in NAMES {
         assert!(
             src.contains(&format!("snapshot_outputs(\"{name}\"")),

@@ -8,6 +8,7 @@
 
 pub mod convergence;
 pub mod fig2;
+pub mod hypotheses;
 pub mod loads;
 pub mod plot;
 pub mod scenes;
@@ -49,11 +50,20 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 6] = ["fig2", "loads", "fig3", "fig4", "table1", "stability"];
+pub const NAMES: [&str; 7] = [
+    "hypotheses",
+    "fig2",
+    "loads",
+    "fig3",
+    "fig4",
+    "table1",
+    "stability",
+];
 
 /// Runs one experiment by name.
 pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
     match name {
+        "hypotheses" => hypotheses::run(ctx),
         "fig2" => fig2::run(ctx),
         "loads" => loads::run(ctx),
         "fig3" => scenes::run_fig3(ctx),

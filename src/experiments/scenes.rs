@@ -29,7 +29,7 @@ pub fn solve_scene(n: usize, g: f64) -> Result<Scene, ExpError> {
         &mut Newton::default(),
         &mut |_, _, _| {},
     )?;
-    let mesh = Mesh::structured(n)?;
+    let mesh = scn.mesh(n)?;
     let disp = Dofs::new(&mesh, true).expand(&res.u);
     let regimes = res.contact.iter().map(|c| c.regime(&scn.law, g)).collect();
     Ok(Scene {

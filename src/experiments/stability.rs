@@ -17,7 +17,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     } else {
         (32, vec![4, 8, 16, 32, 64, 128, 256, 512, 1024])
     };
-    let mesh = Mesh::structured(n)?;
+    let mesh = Mesh::structured(n)?; // the paper's supports, as in both scenarios below
     let dofs = Dofs::new(&mesh, true);
     // (u, v)_V = (eps(u), eps(v)): the isotropic tensor with a = 0, b = 1.
     let v_mat = stiffness(&mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });

@@ -1,0 +1,84 @@
+//! A numerical check of the hypotheses of §2 for the paper's data (§4–5):
+//! H(A), H(B) with the constants of the tensors $\mathcal C$, $\mathcal G$ in the
+//! norm $\|v\|_V^2 = (\varepsilon(v), \varepsilon(v))$; H(J)(iii) with $m$ the largest
+//! negative slope of $p$; and the smallness condition H(s), $\beta > m\|\iota\|^2$.
+//!
+//! The trace constant $\|\iota\| = \sup_v \|v_\nu\|_{L^2(\Gamma_3)} / \|v\|_V$ is computed on
+//! each mesh as a generalised eigenvalue: with $V$ the matrix of $(\varepsilon, \varepsilon)$,
+//! $\|\iota_h\|^2 = \lambda_{\max}(W^{1/2} F_V W^{1/2})$, where $F_V = P V^{-1} P^\top$ is the
+//! flexibility of $V$ on the contact normal dofs ($= (L_{CC}L_{CC}^\top)^{-1}$ of its
+//! factor) and $W$ the trapezoidal weights. Trapezoidal quadrature of
+//! $\int_{\Gamma_3} v_\nu^2$ is exact up to $O(h^2)$ for P1, and $\|\iota_h\| \to \|\iota\|$ from below.
+
+use super::{Ctx, ExpError};
+use crate::assembly::stiffness;
+use crate::linalg::Cholesky;
+use crate::material::Isotropic;
+use crate::mesh::Dofs;
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use faer::{Mat, Side};
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let scn = Scenario::load("figure")?;
+    let levels: Vec<usize> = if ctx.quick {
+        vec![4, 8, 16]
+    } else {
+        vec![4, 8, 16, 32, 64, 128, 256]
+    };
+    let visc = scn.viscosity();
+    let elas = scn.elasticity();
+    let m = -scn.law.min_slope();
+    let mut rows = vec![];
+    for &n in &levels {
+        let mesh = scn.mesh(n)?;
+        let dofs = Dofs::new(&mesh, true);
+        let v = stiffness(&mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });
+        let cdofs: Vec<usize> = mesh
+            .contact
+            .iter()
+            .map(|&c| dofs.of(c, 1).expect("free"))
+            .collect();
+        let chol = Cholesky::factor(&v, &cdofs).map_err(|e| ExpError::Table {
+            path: "hypotheses".into(),
+            message: e.to_string(),
+        })?;
+        // F_V = (L_CC L_CC^T)^{-1}; the eigenvalues of W^{1/2} F_V W^{1/2} are the
+        // inverses of those of W^{-1/2} S_V W^{-1/2}.
+        let l = chol.l_cc();
+        let s = l * l.transpose();
+        let w = mesh.contact_weights();
+        let k = s.nrows();
+        let scaled = Mat::from_fn(k, k, |i, j| {
+            0.5 * (s[(i, j)] + s[(j, i)]) / (w[i] * w[j]).sqrt()
+        });
+        let eig = scaled
+            .self_adjoint_eigenvalues(Side::Lower)
+            .map_err(|e| ExpError::Table {
+                path: "hypotheses".into(),
+                message: format!("{e:?}"),
+            })?;
+        let lam_min = eig.iter().copied().fold(f64::INFINITY, f64::min);
+        let trace_sq = 1.0 / lam_min;
+        rows.push((n, trace_sq.sqrt(), m * trace_sq));
+    }
+    let beta = elas.coercivity();
+    let t = Table::new()
+        .u64("n", rows.iter().map(|r| r.0 as u64).collect())
+        .f64("trace_norm", rows.iter().map(|r| r.1).collect())
+        .f64("m_trace_norm_sq", rows.iter().map(|r| r.2).collect())
+        .f64("alpha_A", vec![visc.coercivity(); rows.len()])
+        .f64("beta_B", vec![beta; rows.len()])
+        .f64("m", vec![m; rows.len()])
+        .str(
+            "smallness_holds",
+            rows.iter().map(|r| (beta > r.2).to_string()).collect(),
+        );
+    ctx.write(
+        "hypotheses.csv",
+        &t,
+        "hypotheses",
+        "material and law of the paper (E = 1000, kappa = 0.4, alpha = 100, beta = 50, c2 = -100); ||v||_V^2 = (eps(v), eps(v)); alpha_A, beta_B: coercivity of C and G; m = max(0, -min slope of p); paper's supports",
+    )?;
+    Ok(())
+}

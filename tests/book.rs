@@ -1,0 +1,103 @@
+//! The book only shows real code and real results: every `{{#include}}` must resolve
+//! (file and anchor), every figure and data file it names must exist, and every
+//! chapter listed in SUMMARY.md must exist and say something.
+
+use std::path::{Path, PathBuf};
+
+fn book_src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src")
+}
+
+fn chapters() -> Vec<PathBuf> {
+    let summary = std::fs::read_to_string(book_src().join("SUMMARY.md")).expect("SUMMARY.md");
+    summary
+        .lines()
+        .filter_map(|l| {
+            let start = l.find("](")? + 2;
+            let end = l[start..].find(')')? + start;
+            Some(book_src().join(&l[start..end]))
+        })
+        .collect()
+}
+
+#[test]
+fn every_chapter_exists_and_is_not_empty() {
+    let ch = chapters();
+    assert!(
+        ch.len() >= 9,
+        "expected the chapters of the book, found {}",
+        ch.len()
+    );
+    for c in ch {
+        let text = std::fs::read_to_string(&c).unwrap_or_else(|e| panic!("{}: {e}", c.display()));
+        let words = text.split_whitespace().count();
+        assert!(words > 100, "{} has only {words} words", c.display());
+    }
+}
+
+#[test]
+fn every_include_and_anchor_resolves() {
+    let mut count = 0;
+    for c in chapters() {
+        let text = std::fs::read_to_string(&c).unwrap();
+        for (i, _) in text.match_indices("{{#include ") {
+            let rest = &text[i + "{{#include ".len()..];
+            let spec = &rest[..rest.find("}}").expect("closed include")];
+            let (file, anchor) = match spec.split_once(':') {
+                Some((f, a)) => (f.trim(), Some(a.trim())),
+                None => (spec.trim(), None),
+            };
+            let path = c.parent().unwrap().join(file);
+            let body = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+                panic!(
+                    "{}: include {} does not resolve: {e}",
+                    c.display(),
+                    path.display()
+                )
+            });
+            if let Some(a) = anchor {
+                assert!(
+                    body.contains(&format!("ANCHOR: {a}\n"))
+                        && body.contains(&format!("ANCHOR_END: {a}\n")),
+                    "{}: anchor `{a}` not found in {}",
+                    c.display(),
+                    path.display()
+                );
+            }
+            count += 1;
+        }
+    }
+    assert!(
+        count >= 15,
+        "only {count} includes: the book should show the code"
+    );
+}
+
+#[test]
+fn every_figure_the_book_shows_exists() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut count = 0;
+    for c in chapters() {
+        let text = std::fs::read_to_string(&c).unwrap();
+        for (i, _) in text.match_indices("](figures/") {
+            let rest = &text[i + 2..];
+            let file = &rest[..rest.find(')').unwrap()];
+            // `just book` copies figures/ into book/src/figures/.
+            assert!(
+                root.join(file).exists(),
+                "{}: figure {file} is missing from the repository",
+                c.display()
+            );
+            count += 1;
+        }
+    }
+    assert!(count >= 5, "only {count} figures in the book");
+}
+
+#[test]
+fn katex_assets_ship_with_the_book() {
+    let k = book_src().join("katex");
+    assert!(k.join("katex.min.css").exists());
+    let fonts = std::fs::read_dir(k.join("fonts")).unwrap().count();
+    assert!(fonts >= 20, "KaTeX fonts missing ({fonts})");
+}
