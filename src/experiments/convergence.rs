@@ -208,6 +208,9 @@ impl Reference {
 /// and the smooth scene that satisfies the corollary's regularity hypotheses.
 pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
 
+/// The levels of one scenario's study, each tagged with the scenario name.
+type StudyResult = Result<Vec<(String, LevelError)>, ExpError>;
+
 /// All three families of one scenario against its reference.
 fn study(
     name: &str,
@@ -235,23 +238,22 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let grid = *plan.levels.last().expect("levels");
     // The scenarios are independent: two threads (this machine has two cores).
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<(usize, Result<Vec<(String, LevelError)>, ExpError>)> =
-        std::thread::scope(|s| {
-            let worker = || {
-                let mut out = vec![];
-                loop {
-                    let i = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                    let Some(name) = SCENARIOS.get(i) else { break };
-                    out.push((i, study(name, &plan, grid, ctx)));
-                }
-                out
-            };
-            let handles: Vec<_> = (0..2).map(|_| s.spawn(worker)).collect();
-            handles
-                .into_iter()
-                .flat_map(|h| h.join().expect("convergence thread"))
-                .collect()
-        });
+    let results: Vec<(usize, StudyResult)> = std::thread::scope(|s| {
+        let worker = || {
+            let mut out = vec![];
+            loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                let Some(name) = SCENARIOS.get(i) else { break };
+                out.push((i, study(name, &plan, grid, ctx)));
+            }
+            out
+        };
+        let handles: Vec<_> = (0..2).map(|_| s.spawn(worker)).collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("convergence thread"))
+            .collect()
+    });
     let mut results = results;
     results.sort_by_key(|r| r.0);
     let mut all: Vec<(String, LevelError)> = vec![];
