@@ -38,6 +38,29 @@ enum Command {
     /// (deformed body, g = 0.1), fig4 (several g), table1 (Table 1, Fig. 5, error
     /// split), stability (Proposition 3.1). With no name, all run.
     Reproduce(ReproduceArgs),
+    /// Time every phase at several levels (each run in a fresh process, medians of
+    /// --repeat runs), compare the step solvers, and write data/bench.csv,
+    /// data/bench_solvers.csv and the work-precision chart figures/work_precision.png.
+    Bench(BenchArgs),
+}
+
+#[derive(clap::Args)]
+struct BenchArgs {
+    /// Levels n = steps for the phase timings.
+    #[arg(long, value_delimiter = ',', default_value = "32,64,128,256,512")]
+    levels: Vec<usize>,
+    /// Runs per configuration (the median is kept).
+    #[arg(long, default_value_t = 3)]
+    repeat: usize,
+    /// Levels n = steps at which the three step solvers are compared.
+    #[arg(long, value_delimiter = ',', default_value = "16,32,64")]
+    solver_levels: Vec<usize>,
+    /// Directory of the CSV tables.
+    #[arg(long, default_value = "data")]
+    data: PathBuf,
+    /// Directory of the figures.
+    #[arg(long, default_value = "figures")]
+    figures: PathBuf,
 }
 
 #[derive(clap::Args)]
@@ -68,9 +91,10 @@ struct SolveArgs {
     /// Time steps N, k = T/N (the paper uses N = n).
     #[arg(long, default_value_t = 64)]
     steps: usize,
-    /// Step solver: `newton` (semismooth Newton, exact, fast) or `convexify` (the
-    /// paper's sequence of convex problems, each solved by Clarabel).
-    #[arg(long, default_value = "newton", value_parser = ["newton", "convexify"])]
+    /// Step solver: `newton` (semismooth Newton, exact, fast), `convexify` (the
+    /// paper's sequence of convex problems, each solved by Clarabel) or `proxgrad`
+    /// (plain proximal gradient, the slow baseline).
+    #[arg(long, default_value = "newton", value_parser = ["newton", "convexify", "proxgrad"])]
     solver: String,
     /// Override the unilateral limit g (> 0, metres).
     #[arg(long, allow_hyphen_values = true)]
@@ -114,6 +138,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Solve(args) => solve(args),
         Command::Reproduce(args) => reproduce(args),
+        Command::Bench(args) => bench(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -182,6 +207,220 @@ fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
 }
 
+/// One configuration run in a child process; returns its summary row as name -> value.
+fn child_run(
+    n: usize,
+    steps: usize,
+    solver: &str,
+) -> Result<std::collections::HashMap<String, String>, String> {
+    let dir = std::env::temp_dir().join(format!(
+        "evhi-bench-{}-{n}-{steps}-{solver}",
+        std::process::id()
+    ));
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let out = std::process::Command::new(exe)
+        .args(["solve", "--scenario", "figure", "--solver", solver])
+        .args([
+            "--n",
+            &n.to_string(),
+            "--steps",
+            &steps.to_string(),
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .map_err(|e| e.to_string())?;
+    if !out.status.success() {
+        return Err(format!(
+            "n = {n}, steps = {steps}, {solver}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    let text = std::fs::read_to_string(dir.join("summary.csv")).map_err(|e| e.to_string())?;
+    let steps_csv = std::fs::read_to_string(dir.join("steps.csv")).map_err(|e| e.to_string())?;
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let vals: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let mut row: std::collections::HashMap<String, String> = head
+        .iter()
+        .zip(&vals)
+        .map(|(h, v)| (h.to_string(), v.to_string()))
+        .collect();
+    // total inner iterations and the step-solver time from steps.csv
+    let mut sl = steps_csv.lines();
+    let sh: Vec<&str> = sl.next().unwrap_or("").split(',').collect();
+    let col = |name: &str| sh.iter().position(|h| *h == name);
+    let (ci, cii) = (col("iterations"), col("inner_iterations"));
+    let (mut it, mut inner) = (0u64, 0u64);
+    for l in sl {
+        let f: Vec<&str> = l.split(',').collect();
+        it += ci.and_then(|c| f.get(c)?.parse::<u64>().ok()).unwrap_or(0);
+        inner += cii.and_then(|c| f.get(c)?.parse::<u64>().ok()).unwrap_or(0);
+    }
+    row.insert("iterations_total".into(), it.to_string());
+    row.insert("inner_iterations_total".into(), inner.to_string());
+    Ok(row)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    if v.is_empty() {
+        f64::NAN
+    } else {
+        v[v.len() / 2]
+    }
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let mem = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .next()
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map_or(f64::NAN, |kb| kb / 1048576.0);
+    format!("{cpu}, {cores} cores, {mem:.0} GiB")
+}
+
+fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use evhi::experiments::Ctx;
+    use evhi::output::csv::Table;
+    let ctx = Ctx {
+        quick: false,
+        data: args.data.clone(),
+        figures: args.figures.clone(),
+        verbose: true,
+    };
+    let machine = machine();
+    eprintln!("bench on {machine}");
+    let f = |row: &std::collections::HashMap<String, String>, k: &str| {
+        row.get(k)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(f64::NAN)
+    };
+    // Phase timings, Newton, medians over repeats.
+    let cols = [
+        "wall_s",
+        "assembly_s",
+        "factorisation_s",
+        "condensation_s",
+        "steps_s",
+        "one_solve_s",
+        "floor_ratio",
+        "peak_rss_mb",
+    ];
+    let mut t = Table::new();
+    let mut med: Vec<Vec<f64>> = vec![vec![]; cols.len()];
+    let mut dofs = vec![];
+    for &n in &args.levels {
+        let mut runs = vec![];
+        for r in 0..args.repeat.max(1) {
+            eprintln!("  n = steps = {n}, run {}", r + 1);
+            runs.push(child_run(n, n, "newton")?);
+        }
+        dofs.push(f(&runs[0], "dofs") as u64);
+        for (c, name) in cols.iter().enumerate() {
+            med[c].push(median(runs.iter().map(|r| f(r, name)).collect()));
+        }
+    }
+    t = t
+        .u64("n", args.levels.iter().map(|&n| n as u64).collect())
+        .u64("steps", args.levels.iter().map(|&n| n as u64).collect())
+        .u64("dofs", dofs);
+    for (c, name) in cols.iter().enumerate() {
+        t = t.f64(name, med[c].clone());
+    }
+    let params = format!(
+        "machine: {machine}; scenario figure, solver newton, h = k = 1/n; medians of {} runs, each in a fresh process",
+        args.repeat
+    );
+    ctx.write("bench.csv", &t, "bench", &params)?;
+    // Step solvers compared on the same runs.
+    let mut rows = vec![];
+    for &n in &args.solver_levels {
+        for solver in ["newton", "convexify", "proxgrad"] {
+            eprintln!("  solvers: n = steps = {n}, {solver}");
+            let runs: Vec<_> = (0..args.repeat.max(1))
+                .map(|_| child_run(n, n, solver))
+                .collect::<Result<_, _>>()?;
+            let m = |k: &str| median(runs.iter().map(|r| f(r, k)).collect());
+            rows.push((
+                n,
+                solver,
+                m("wall_s"),
+                m("steps_s"),
+                f(&runs[0], "iterations_total"),
+                f(&runs[0], "inner_iterations_total"),
+                m("max_certificate"),
+                f(&runs[0], "energy_norm_T"),
+            ));
+        }
+    }
+    let ts = Table::new()
+        .u64("n", rows.iter().map(|r| r.0 as u64).collect())
+        .str("solver", rows.iter().map(|r| r.1.to_string()).collect())
+        .f64("wall_s", rows.iter().map(|r| r.2).collect())
+        .f64("steps_s", rows.iter().map(|r| r.3).collect())
+        .f64("iterations_total", rows.iter().map(|r| r.4).collect())
+        .f64("inner_iterations_total", rows.iter().map(|r| r.5).collect())
+        .f64("max_certificate", rows.iter().map(|r| r.6).collect())
+        .f64("energy_norm_T", rows.iter().map(|r| r.7).collect());
+    ctx.write(
+        "bench_solvers.csv",
+        &ts,
+        "bench",
+        &format!(
+            "machine: {machine}; scenario figure, h = k = 1/n; medians of {} runs",
+            args.repeat
+        ),
+    )?;
+    // Work-precision: every configuration of the convergence study, timed.
+    let table1 = evhi::experiments::read_csv(&ctx.data_path("table1.csv"))?;
+    let sc = evhi::experiments::col_str(&table1, "scenario")?;
+    let fam = evhi::experiments::col_str(&table1, "family")?;
+    let n = evhi::experiments::col_f64(&table1, "n")?;
+    let st = evhi::experiments::col_f64(&table1, "steps")?;
+    let err = evhi::experiments::col_f64(&table1, "rel_err_T_percent")?;
+    let errm = evhi::experiments::col_f64(&table1, "rel_err_max_percent")?;
+    let mut wp = vec![];
+    for i in (0..sc.len()).filter(|&i| sc[i] == "figure") {
+        let (ni, si) = (n[i] as usize, st[i] as usize);
+        eprintln!("  work-precision: n = {ni}, steps = {si}");
+        let runs: Vec<_> = (0..args.repeat.max(1))
+            .map(|_| child_run(ni, si, "newton"))
+            .collect::<Result<_, _>>()?;
+        wp.push((
+            fam[i].clone(),
+            ni,
+            si,
+            median(runs.iter().map(|r| f(r, "wall_s")).collect()),
+            err[i],
+            errm[i],
+        ));
+    }
+    let tw = Table::new()
+        .str("family", wp.iter().map(|r| r.0.clone()).collect())
+        .u64("n", wp.iter().map(|r| r.1 as u64).collect())
+        .u64("steps", wp.iter().map(|r| r.2 as u64).collect())
+        .f64("wall_s", wp.iter().map(|r| r.3).collect())
+        .f64("rel_err_T_percent", wp.iter().map(|r| r.4).collect())
+        .f64("rel_err_max_percent", wp.iter().map(|r| r.5).collect());
+    let path = ctx.write("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
+    evhi::experiments::workprec::draw(&ctx, &path)?;
+    Ok(())
+}
+
 fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let wall = Instant::now();
     let scn = Scenario::load(&args.scenario)?.with_loads(args.f0, args.f2)?;
@@ -199,6 +438,7 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut solver: Box<dyn StepSolver> = match args.solver.as_str() {
         "convexify" => Box::new(Convexify::default()),
+        "proxgrad" => Box::new(Newton::proximal_gradient()),
         _ => Box::new(Newton::default()),
     };
     let mut opt = Options::new(args.n, args.steps);
@@ -254,8 +494,28 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             run.contact.len(),
             run.nnz_l
         );
+        eprintln!(
+            "one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB",
+            t.one_solve,
+            t.floor_ratio(run.steps),
+            peak_rss_mb()
+        );
     }
     Ok(())
+}
+
+/// Peak resident memory of this process (Linux `VmHWM`), MB; NaN where unknown.
+fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|v| v.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
 fn write_outputs(
@@ -342,6 +602,9 @@ fn write_outputs(
         .f64("condensation_s", vec![t.condensation])
         .f64("steps_s", vec![t.steps])
         .u64("nnz_l", vec![run.nnz_l as u64])
+        .f64("one_solve_s", vec![t.one_solve])
+        .f64("floor_ratio", vec![t.floor_ratio(run.steps)])
+        .f64("peak_rss_mb", vec![peak_rss_mb()])
         .str(
             "version",
             vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],

@@ -13,6 +13,7 @@ pub mod loads;
 pub mod plot;
 pub mod scenes;
 pub mod stability;
+pub mod workprec;
 
 use crate::output::csv::Table;
 use polars::prelude::*;

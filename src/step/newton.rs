@@ -32,6 +32,9 @@ pub struct Settings {
     pub gamma_fraction: f64,
     /// Sufficient-decrease factor in $(0, 1)$.
     pub sigma: f64,
+    /// Use Newton directions; `false` leaves the plain forward–backward
+    /// (proximal-gradient) iteration, the baseline of the benchmark.
+    pub newton: bool,
 }
 
 impl Default for Settings {
@@ -42,6 +45,7 @@ impl Default for Settings {
             max_backtracks: 12,
             gamma_fraction: 0.95,
             sigma: 0.1,
+            newton: true,
         }
     }
 }
@@ -66,6 +70,18 @@ struct Eval {
 impl Newton {
     pub fn new(settings: Settings) -> Self {
         Newton { settings }
+    }
+
+    /// The plain proximal-gradient baseline (no Newton directions), with an
+    /// iteration limit suited to its linear convergence.
+    pub fn proximal_gradient() -> Self {
+        Newton {
+            settings: Settings {
+                newton: false,
+                max_iter: 200_000,
+                ..Settings::default()
+            },
+        }
     }
 
     fn gamma(&self, p: &StepProblem) -> f64 {
@@ -178,7 +194,11 @@ fn prox_node(p: &StepProblem, i: usize, gamma: f64, v: f64) -> (f64, f64, usize)
 
 impl StepSolver for Newton {
     fn name(&self) -> &'static str {
-        "newton"
+        if self.settings.newton {
+            "newton"
+        } else {
+            "proxgrad"
+        }
     }
 
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
@@ -210,7 +230,11 @@ impl StepSolver for Newton {
                 break;
             }
             let sq: f64 = e.res.iter().map(|x| x * x).sum();
-            let dir = Self::direction(p, gamma, &e);
+            let dir = if st.newton {
+                Self::direction(p, gamma, &e)
+            } else {
+                None
+            };
             let mut accepted = None;
             if let Some(d) = dir {
                 let mut tau = 1.0;

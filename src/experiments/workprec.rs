@@ -1,0 +1,118 @@
+//! The work–precision chart: error in energy norm against wall time for the
+//! configurations of the convergence study (`evhi bench` times them).
+
+use super::plot::{Figure, both, e2s};
+use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use plotters::prelude::*;
+use std::path::Path;
+
+struct Chart {
+    series: Vec<(String, Vec<(f64, f64, String)>, RGBColor)>,
+}
+
+/// Draws `figures/work_precision.{png,svg}` from `data/work_precision.csv`.
+pub fn draw(ctx: &Ctx, path: &Path) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let fam = col_str(&df, "family")?;
+    let (n, st, wall, err) = (
+        col_f64(&df, "n")?,
+        col_f64(&df, "steps")?,
+        col_f64(&df, "wall_s")?,
+        col_f64(&df, "rel_err_max_percent")?,
+    );
+    let pick = |f: &str| -> Vec<(f64, f64, String)> {
+        (0..fam.len())
+            .filter(|&i| fam[i] == f)
+            .map(|i| (wall[i], err[i], format!("{}/{}", n[i], st[i])))
+            .collect()
+    };
+    let chart = Chart {
+        series: vec![
+            ("h = k = 1/n".into(), pick("h=k"), RGBColor(214, 39, 40)),
+            (
+                "h = 1/n, k = 1/512".into(),
+                pick("h"),
+                RGBColor(31, 119, 180),
+            ),
+            (
+                "h = 1/512, k = 1/N".into(),
+                pick("k"),
+                RGBColor(44, 160, 44),
+            ),
+        ],
+    };
+    both(&ctx.figures, "work_precision", (1000, 750), &chart)
+}
+
+impl Figure for Chart {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let pts: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.1.iter().map(|p| (p.0, p.1)))
+            .collect();
+        let (xmin, xmax) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        let (ymin, ymax) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Work against precision, scenario figure (labels: n/N)",
+                ("sans-serif", 24),
+            )
+            .margin(15)
+            .x_label_area_size(55)
+            .y_label_area_size(80)
+            .build_cartesian_2d(
+                (xmin * 0.7..xmax * 1.5).log_scale(),
+                (ymin * 0.6..ymax * 1.6).log_scale(),
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("wall time of the whole run [s] (median)")
+            .y_desc("relative error, max over t [%]")
+            .x_label_formatter(&|x| format!("{x:.3}"))
+            .label_style(("sans-serif", 16))
+            .draw()
+            .map_err(e2s)?;
+        for (label, s, c) in &self.series {
+            let c = *c;
+            let line: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
+            chart
+                .draw_series(LineSeries::new(line, c.stroke_width(2)))
+                .map_err(e2s)?
+                .label(label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                });
+            chart
+                .draw_series(
+                    s.iter()
+                        .map(move |p| Circle::new((p.0, p.1), 5, c.filled())),
+                )
+                .map_err(e2s)?;
+            chart
+                .draw_series(
+                    s.iter().map(|p| {
+                        Text::new(p.2.clone(), (p.0 * 1.05, p.1 * 1.05), ("sans-serif", 12))
+                    }),
+                )
+                .map_err(e2s)?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(e2s)?;
+        Ok(())
+    }
+}
