@@ -6,8 +6,11 @@ use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use plotters::prelude::*;
 use std::path::Path;
 
+/// A family of runs: label, points (time, error, "n/N"), colour.
+type Family = (String, Vec<(f64, f64, String)>, RGBColor);
+
 struct Chart {
-    series: Vec<(String, Vec<(f64, f64, String)>, RGBColor)>,
+    series: Vec<Family>,
 }
 
 /// Draws `figures/work_precision.{png,svg}` from `data/work_precision.csv`.
