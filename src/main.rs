@@ -61,6 +61,10 @@ struct BenchArgs {
     /// Directory of the figures.
     #[arg(long, default_value = "figures")]
     figures: PathBuf,
+    /// Measure nothing: rebuild the derived table (bench_vs_paper.csv) and the
+    /// work-precision chart from the CSV files already in --data.
+    #[arg(long)]
+    from_csv: bool,
 }
 
 #[derive(clap::Args)]
@@ -302,6 +306,11 @@ fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         figures: args.figures.clone(),
         verbose: true,
     };
+    if args.from_csv {
+        evhi::experiments::workprec::paper_comparison(&ctx)?;
+        evhi::experiments::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
+        return Ok(());
+    }
     let machine = machine();
     eprintln!("bench on {machine}");
     let f = |row: &std::collections::HashMap<String, String>, k: &str| {
@@ -346,6 +355,7 @@ fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         args.repeat
     );
     ctx.write("bench.csv", &t, "bench", &params)?;
+    evhi::experiments::workprec::paper_comparison(&ctx)?;
     // Step solvers compared on the same runs.
     let mut rows = vec![];
     for &n in &args.solver_levels {

@@ -419,69 +419,64 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             .map(|i| (hk[i], v[i]))
             .collect()
     };
-    let main = Fig5 {
-        series: vec![
-            (
-                "paper, Table 1".into(),
-                pick("literal", "h=k", &pp),
-                BLACK,
-                false,
-            ),
-            (
-                "literal, t = T".into(),
-                pick("literal", "h=k", &et),
-                RGBColor(31, 119, 180),
-                false,
-            ),
-            (
-                "literal, max over t".into(),
-                pick("literal", "h=k", &em),
-                RGBColor(20, 60, 120),
-                true,
-            ),
-            (
-                "figure, t = T".into(),
-                pick("figure", "h=k", &et),
-                RGBColor(214, 39, 40),
-                false,
-            ),
-            (
-                "figure, max over t".into(),
-                pick("figure", "h=k", &em),
-                RGBColor(120, 0, 0),
-                true,
-            ),
-        ],
-    };
-    both(&ctx.figures, "fig5_errors", (1000, 750), &main)?;
-    let split = Fig5 {
-        series: vec![
-            (
-                "literal, h part (k = k_ref)".into(),
-                pick("literal", "h", &et),
-                RGBColor(31, 119, 180),
-                false,
-            ),
-            (
-                "literal, k part (h = h_ref)".into(),
-                pick("literal", "k", &et),
-                RGBColor(120, 170, 220),
-                true,
-            ),
-            (
-                "figure, h part (k = k_ref)".into(),
-                pick("figure", "h", &et),
-                RGBColor(214, 39, 40),
-                false,
-            ),
-            (
-                "figure, k part (h = h_ref)".into(),
-                pick("figure", "k", &et),
-                RGBColor(240, 140, 140),
-                true,
-            ),
-        ],
-    };
+    // One colour pair (strong, pale) per scenario, in SCENARIOS order.
+    let colours = [
+        (
+            RGBColor(31, 119, 180),
+            RGBColor(20, 60, 120),
+            RGBColor(120, 170, 220),
+        ),
+        (
+            RGBColor(214, 39, 40),
+            RGBColor(120, 0, 0),
+            RGBColor(240, 140, 140),
+        ),
+        (
+            RGBColor(44, 160, 44),
+            RGBColor(0, 90, 0),
+            RGBColor(150, 200, 150),
+        ),
+    ];
+    let mut main = vec![(
+        "paper, Table 1".to_string(),
+        pick("literal", "h=k", &pp),
+        BLACK,
+        false,
+    )];
+    let mut split = vec![];
+    for (name, (strong, dark, pale)) in SCENARIOS.iter().zip(colours) {
+        main.push((
+            format!("{name}, t = T"),
+            pick(name, "h=k", &et),
+            strong,
+            false,
+        ));
+        main.push((
+            format!("{name}, max over t"),
+            pick(name, "h=k", &em),
+            dark,
+            true,
+        ));
+        split.push((
+            format!("{name}, h part (k = k_ref)"),
+            pick(name, "h", &et),
+            strong,
+            false,
+        ));
+        split.push((
+            format!("{name}, k part (h = h_ref)"),
+            pick(name, "k", &et),
+            pale,
+            true,
+        ));
+    }
+    both(
+        &ctx.figures,
+        "fig5_errors",
+        (1000, 750),
+        &Fig5 { series: main },
+    )?;
+    let split = Fig5 { series: split };
     both(&ctx.figures, "fig5_split", (1000, 750), &split)
 }
 
@@ -519,6 +514,7 @@ impl Figure for Fig5 {
         chart
             .configure_mesh()
             .x_desc("h + k   (for the split: the varying 1/n + 1/N)")
+            .x_labels(6)
             .x_label_formatter(&|x| format!("{x:.3}"))
             .y_label_formatter(&|y| format!("{y}"))
             .y_desc("relative error ‖u_ref − u^hk‖_E / ‖u_ref‖_E  [%]")

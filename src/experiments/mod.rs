@@ -84,11 +84,17 @@ impl Ctx {
     /// The provenance lines of a CSV: crate version, experiment, mode and the parameters.
     pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
         vec![
-            format!(
-                "produced by evhi {} `evhi reproduce {experiment}{}`",
-                env!("CARGO_PKG_VERSION"),
-                if self.quick { " --quick" } else { "" }
-            ),
+            match experiment {
+                "bench" => format!(
+                    "produced by evhi {} `evhi bench`",
+                    env!("CARGO_PKG_VERSION")
+                ),
+                _ => format!(
+                    "produced by evhi {} `evhi reproduce {experiment}{}`",
+                    env!("CARGO_PKG_VERSION"),
+                    if self.quick { " --quick" } else { "" }
+                ),
+            },
             params.to_string(),
         ]
     }

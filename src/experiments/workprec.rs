@@ -119,3 +119,39 @@ impl Figure for Chart {
         Ok(())
     }
 }
+
+/// The paper's reported CPU times (§5): (n = steps, its dof count, seconds), on a
+/// 2.33 GHz Intel core.
+pub const PAPER_TIMES: [(usize, u64, f64); 2] = [(128, 17_028, 665.0), (512, 264_508, 93_878.0)];
+
+/// Writes `data/bench_vs_paper.csv` from `data/bench.csv`: our median wall time
+/// beside the paper's CPU time at the same $h = k$.
+pub fn paper_comparison(ctx: &Ctx) -> Result<(), ExpError> {
+    let df = read_csv(&ctx.data_path("bench.csv"))?;
+    let (n, dofs, wall) = (
+        col_f64(&df, "n")?,
+        col_f64(&df, "dofs")?,
+        col_f64(&df, "wall_s")?,
+    );
+    let rows: Vec<(usize, u64, f64, f64, f64)> = PAPER_TIMES
+        .iter()
+        .filter_map(|&(pn, pd, ps)| {
+            let i = n.iter().position(|&x| x as usize == pn)?;
+            Some((pn, pd, ps, dofs[i], wall[i]))
+        })
+        .collect();
+    let t = crate::output::csv::Table::new()
+        .u64("n_and_steps", rows.iter().map(|r| r.0 as u64).collect())
+        .u64("paper_dofs", rows.iter().map(|r| r.1).collect())
+        .f64("paper_cpu_s", rows.iter().map(|r| r.2).collect())
+        .u64("our_dofs", rows.iter().map(|r| r.3 as u64).collect())
+        .f64("our_wall_s", rows.iter().map(|r| r.4).collect())
+        .f64("paper_over_ours", rows.iter().map(|r| r.2 / r.4).collect());
+    ctx.write(
+        "bench_vs_paper.csv",
+        &t,
+        "bench",
+        "paper: CPU seconds of its section 5 (2.33 GHz Intel core, its own dof count); ours: median wall seconds from data/bench.csv (machine named there)",
+    )?;
+    Ok(())
+}

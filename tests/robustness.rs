@@ -1,0 +1,198 @@
+//! Robustness: generated scenarios and laws never panic, and every rejection names a
+//! field; each failure mode of a run is reported with its status, step and residual.
+//!
+//! `cargo test` runs a bounded number of cases; a longer fuzzing run is
+//! `PROPTEST_CASES=20000 cargo test --release --test robustness`.
+
+use evhi::law::Law;
+use evhi::scenario::Scenario;
+use evhi::scheme::{Options, RunError, run};
+use evhi::step::Status;
+use evhi::step::newton::{Newton, Settings};
+use proptest::prelude::*;
+
+const GOOD: &str = include_str!("../data/scenarios/figure.toml");
+
+/// Numbers as TOML spells them, ordinary and hostile.
+fn toml_number() -> impl Strategy<Value = String> {
+    prop_oneof![
+        (-1e6f64..1e6).prop_map(|x| format!("{x:?}")),
+        (-2i64..3).prop_map(|x| format!("{x}.0")),
+        Just("nan".to_string()),
+        Just("inf".to_string()),
+        Just("-inf".to_string()),
+        Just("0.0".to_string()),
+        Just("-0.0".to_string()),
+        Just("1e308".to_string()),
+        Just("\"text\"".to_string()),
+        Just("[]".to_string()),
+    ]
+}
+
+/// The lines of the good file that hold a value we may replace.
+const FIELDS: [&str; 9] = [
+    "T = ",
+    "g = ",
+    "E = ",
+    "kappa = ",
+    "alpha = ",
+    "beta = ",
+    "f0 = ",
+    "f2 = ",
+    "slopes = ",
+];
+
+fn mutate(field: usize, value: &str) -> String {
+    GOOD.lines()
+        .map(|l| {
+            if l.starts_with(FIELDS[field]) {
+                format!("{}{value}", FIELDS[field])
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+proptest! {
+    // 2 000 cases per property in `cargo test`; PROPTEST_CASES raises it for a fuzzing run.
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(2000),
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn mutated_scenarios_never_panic_and_name_the_field(field in 0usize..FIELDS.len(), v in toml_number()) {
+        let text = mutate(field, &v);
+        match Scenario::from_toml(&text, "generated") {
+            Ok(s) => {
+                prop_assert!(s.t_end > 0.0 && s.t_end.is_finite());
+                prop_assert!(s.g > 0.0 && s.g.is_finite());
+                prop_assert!(s.kappa > -1.0 && s.kappa < 0.5);
+            }
+            Err(e) => {
+                let msg = e.to_string();
+                // A type or syntax error comes from the TOML reader with the key's name;
+                // a value error names the field through InputError.
+                let key = FIELDS[field].trim_end_matches(" = ");
+                prop_assert!(msg.contains(key) || e.field_name().is_some(), "{msg}");
+            }
+        }
+    }
+
+    #[test]
+    fn arbitrary_text_never_panics(text in ".{0,200}") {
+        let _ = Scenario::from_toml(&text, "generated");
+    }
+
+    #[test]
+    fn generated_laws_are_valid_or_rejected_with_a_field(
+        breaks in prop::collection::vec(-1.0f64..1.0, 0..5),
+        slopes in prop::collection::vec(-500.0f64..500.0, 0..7),
+        jumps in prop::collection::vec(-10.0f64..10.0, 0..6),
+        p_left in -10.0f64..10.0,
+        probe in -2.0f64..2.0,
+    ) {
+        match Law::new(&breaks, &slopes, &jumps, p_left) {
+            Ok(law) => {
+                // Valid laws evaluate to finite values, j is continuous, and the Clarke
+                // interval holds both one-sided limits.
+                let c = law.clarke(probe);
+                prop_assert!(c.lo <= c.hi && c.lo.is_finite() && c.hi.is_finite());
+                let (a, b) = law.p_sides(probe);
+                prop_assert!(c.lo <= a.min(b) && a.max(b) <= c.hi);
+                // j is Lipschitz with the local bound of |p|: no jump across the probe.
+                let dj = (law.j(probe + 1e-9) - law.j(probe - 1e-9)).abs();
+                let lip = law.p_sides(probe + 1e-9).1.abs().max(law.p_sides(probe - 1e-9).0.abs()).max(a.abs()).max(b.abs());
+                prop_assert!(dj <= 2e-9 * (lip + 1.0) * 1.01 + 1e-12 * (1.0 + law.j(probe).abs()), "j jumps by {dj}");
+            }
+            Err(e) => prop_assert!(e.field_name().is_some_and(|f| f.starts_with("law.")), "{e}"),
+        }
+    }
+}
+
+#[test]
+fn a_solver_out_of_iterations_stops_the_run_with_its_step_and_residual() {
+    let scn = Scenario::load("figure").unwrap();
+    let mut solver = Newton::new(Settings {
+        max_iter: 0,
+        ..Settings::default()
+    });
+    let err = run(&scn, &Options::new(16, 16), &mut solver, &mut |_, _, _| {})
+        .err()
+        .expect("must fail");
+    match err {
+        RunError::Step {
+            step,
+            status,
+            residual,
+            ..
+        } => {
+            assert_eq!(status, Status::MaxIterations);
+            assert!(step >= 1);
+            assert!(residual > 1e-10, "residual {residual}");
+        }
+        other => panic!("unexpected error {other}"),
+    }
+}
+
+#[test]
+fn a_certificate_over_tolerance_stops_the_run() {
+    let scn = Scenario::load("figure").unwrap();
+    let mut opt = Options::new(8, 4);
+    opt.certificate_tol = 1e-300;
+    let err = run(&scn, &opt, &mut Newton::default(), &mut |_, _, _| {})
+        .err()
+        .expect("must fail");
+    let msg = err.to_string();
+    assert!(
+        msg.contains("step 1") && msg.contains("certificate"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn the_observer_never_sees_a_failed_step() {
+    let scn = Scenario::load("figure").unwrap();
+    let mut solver = Newton::new(Settings {
+        max_iter: 0,
+        ..Settings::default()
+    });
+    let mut seen = vec![];
+    let err = run(&scn, &Options::new(16, 16), &mut solver, &mut |n, _, _| {
+        seen.push(n)
+    })
+    .err()
+    .expect("must fail");
+    let RunError::Step { step, .. } = err else {
+        panic!()
+    };
+    assert!(
+        seen.iter().all(|&n| n < step),
+        "observer saw {seen:?}, failure at {step}"
+    );
+}
+
+#[test]
+fn writes_are_atomic() {
+    let dir = std::env::temp_dir().join(format!("evhi-atomic-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("t.csv");
+    evhi::output::write_atomic(&p, b"a,b\n1,2\n").unwrap();
+    evhi::output::write_atomic(&p, b"a,b\n3,4\n").unwrap();
+    assert_eq!(std::fs::read_to_string(&p).unwrap(), "a,b\n3,4\n");
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        vec!["t.csv".to_string()],
+        "temporary files left: {names:?}"
+    );
+    // A target that cannot be written fails cleanly and leaves nothing behind.
+    let bad = dir.join("t.csv").join("inside-a-file.csv");
+    assert!(evhi::output::write_atomic(&bad, b"x").is_err());
+    std::fs::remove_dir_all(&dir).ok();
+}
