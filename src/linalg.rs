@@ -178,42 +178,32 @@ impl Cholesky {
         &self.l_cc
     }
 
+    /// The supernodal factor and a scratch buffer for one right-hand side.
+    /// (`factor` forces, and `trailing_block` checks, a supernodal factorisation.)
+    fn solve_parts(&self) -> (SupernodalLltRef<'_, usize, f64>, MemBuffer) {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            unreachable!("Cholesky::factor builds a supernodal factor")
+        };
+        let mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(1, Par::Seq));
+        (SupernodalLltRef::new(sym, &self.values), mem)
+    }
+
     /// Forward solve $x = L^{-1}\Pi b$ ($\Pi$ the fill-reducing permutation).
     pub fn forward(&self, b: &[f64]) -> Vec<f64> {
         let n = self.dim();
         let mut x: Vec<f64> = self.fwd.iter().map(|&old| b[old]).collect();
-        let sn = self.supernodal().expect("supernodal");
-        let par = Par::Seq;
-        let req = match self.symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(s) => s.solve_in_place_scratch::<f64>(1, par),
-            SymbolicCholeskyRaw::Simplicial(_) => unreachable!(),
-        };
-        let mut mem = MemBuffer::new(req);
-        sn.l_solve_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut x, n, 1),
-            par,
-            MemStack::new(&mut mem),
-        );
+        let (sn, mut mem) = self.solve_parts();
+        let rhs = MatMut::from_column_major_slice_mut(&mut x, n, 1);
+        sn.l_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
         x
     }
 
     /// Backward solve: returns $\Pi^\top L^{-\top} x$ (so `backward(forward(b))` $= K^{-1}b$).
     pub fn backward(&self, mut x: Vec<f64>) -> Vec<f64> {
         let n = self.dim();
-        let sn = self.supernodal().expect("supernodal");
-        let par = Par::Seq;
-        let req = match self.symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(s) => s.solve_in_place_scratch::<f64>(1, par),
-            SymbolicCholeskyRaw::Simplicial(_) => unreachable!(),
-        };
-        let mut mem = MemBuffer::new(req);
-        sn.l_transpose_solve_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut x, n, 1),
-            par,
-            MemStack::new(&mut mem),
-        );
+        let (sn, mut mem) = self.solve_parts();
+        let rhs = MatMut::from_column_major_slice_mut(&mut x, n, 1);
+        sn.l_transpose_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
         let mut u = vec![0.0; n];
         for (new, &old) in self.fwd.iter().enumerate() {
             u[old] = x[new];

@@ -12,8 +12,6 @@ use super::scenes::counts;
 use super::{Ctx, ExpError};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{self, Options};
-use crate::step::newton::Newton;
 
 /// The grid searched: $q_0$ (volume, N/m²) and $q_2$ (top, N/m).
 pub fn grid() -> (Vec<f64>, Vec<f64>) {
@@ -33,19 +31,10 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             let scn = base
                 .clone()
                 .with_loads(Some([0.0, -q0]), Some([0.0, -q2]))?;
-            let res = scheme::run(
-                &scn,
-                &Options::new(n, n),
-                &mut Newton::default(),
-                &mut |_, _, _| {},
-            )?;
-            let regimes: Vec<String> = res
-                .contact
-                .iter()
-                .map(|c| c.regime(&scn.law, scn.g))
-                .collect();
+            let scene = super::scenes::solve(&scn, n)?;
+            let regimes = scene.regimes;
             let c = counts(&regimes);
-            let centre = res.contact.len() / 2;
+            let centre = scene.contact.len() / 2;
             let m = regimes.len() as f64;
             // least share over branch1..3 and limit
             let spread = c[1..]
@@ -56,7 +45,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 q0,
                 q2,
                 c,
-                res.contact[centre].u_nu,
+                scene.contact[centre].u_nu,
                 regimes[centre].clone(),
                 spread,
             ));

@@ -22,7 +22,13 @@ pub struct Scene {
 
 /// Solves the `figure` scenario with limit `g` at $h = k = 1/n$.
 pub fn solve_scene(n: usize, g: f64) -> Result<Scene, ExpError> {
-    let scn = Scenario::load("figure")?.with_g(g)?;
+    solve(&Scenario::load("figure")?.with_g(g)?, n)
+}
+
+/// Solves a scenario at $h = k = 1/n$ and classifies its contact nodes at $t = T$.
+pub fn solve(scn: &Scenario, n: usize) -> Result<Scene, ExpError> {
+    let g = scn.g;
+    let scn = scn.clone();
     let res = scheme::run(
         &scn,
         &Options::new(n, n),
