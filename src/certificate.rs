@@ -37,7 +37,8 @@ pub const ON_LIMIT: f64 = 1e-8;
 pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64) -> NodeSplit {
     let sub = law.clarke(s);
     let xi = sub.clamp(zeta);
-    if g - s > ON_LIMIT * g.abs() {
+    let on_limit = g.is_finite() && g - s <= ON_LIMIT * g.abs();
+    if !on_limit {
         NodeSplit {
             xi,
             mu: 0.0,

@@ -113,6 +113,10 @@ pub struct Run {
     pub timings: Timings,
     /// Extreme eigenvalues of the condensed stiffness $S$.
     pub s_eigen: (f64, f64),
+    /// $\lambda_{\min}(S + k\,\mathrm{diag}(w)\,c_{\min})$: the smallest curvature a step
+    /// problem can have (every node on the steepest softening branch). Positive means
+    /// every step is strictly convex.
+    pub hessian_min: f64,
 }
 
 /// Why a run stopped.
@@ -201,6 +205,18 @@ pub fn run(
 
     let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
     let m = cdofs.len();
+    let cmin = scn.law.min_slope();
+    let hessian_min = if cmin < 0.0 {
+        let h = faer::Mat::from_fn(m, m, |i, j| {
+            s[(i, j)] + if i == j { kw[i] * cmin } else { 0.0 }
+        });
+        h.self_adjoint_eigenvalues(faer::Side::Lower)
+            .map_err(|e| RunError::Condense(format!("eigenvalues of the step Hessian: {e:?}")))?
+            .into_iter()
+            .fold(f64::INFINITY, f64::min)
+    } else {
+        lambda_min
+    };
     let nd = disc.dofs.count;
     let mut u = vec![0.0; nd];
     let mut r = vec![0.0; m];
@@ -287,6 +303,7 @@ pub fn run(
         contact,
         timings,
         s_eigen: (lambda_min, lambda_max),
+        hessian_min,
     })
 }
 // ANCHOR_END: run

@@ -176,11 +176,19 @@ pub fn col_str(df: &DataFrame, name: &str) -> Result<Vec<String>, ExpError> {
 /// Rounds every number in CSV text to `sig` significant digits and drops comment
 /// lines: what the snapshot tests compare.
 pub fn rounded_csv(text: &str, sig: usize) -> String {
+    rounded_csv_floor(text, sig, 0.0)
+}
+
+/// As [`rounded_csv`], with numbers of magnitude below `floor` (round-off, such as
+/// the certificate of an exact step) written as `<floor`, so that a snapshot does not
+/// pin the last bits of round-off.
+pub fn rounded_csv_floor(text: &str, sig: usize, floor: f64) -> String {
     text.lines()
         .filter(|l| !l.starts_with('#'))
         .map(|l| {
             l.split(',')
                 .map(|f| match f.parse::<f64>() {
+                    Ok(x) if x != 0.0 && x.abs() < floor => format!("<{floor:e}"),
                     Ok(x) if f.contains('.') || f.contains('e') => round_sig(x, sig),
                     _ => f.to_string(),
                 })

@@ -58,5 +58,424 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "h = 1/{n}, solver newton; du_n = (u_n - u_(n-1))/k, ||v||_V^2 = (eps(v), eps(v))"
         ),
     )?;
+    run_map(ctx)?;
+    run_penalty(ctx)
+}
+
+// ---------------------------------------------------------------------------
+// Where methods fail: a map over the time step and the softening slope.
+// ---------------------------------------------------------------------------
+
+use super::plot::{Figure, both, e2s};
+use crate::law::Law;
+use crate::step::convexify::Convexify;
+use crate::step::penalty::Penalty;
+use crate::step::{Info, Status, StepProblem, StepSolver, inf_norm};
+use plotters::prelude::*;
+
+/// Runs a solver, and also solves every step again from other starting points
+/// (zero, $g$, $r_0$), recording the largest relative distance between answers:
+/// a nonzero spread means the step has several stationary points.
+struct MultiStart<S: StepSolver> {
+    inner: S,
+    spread: f64,
+}
+
+impl<S: StepSolver> StepSolver for MultiStart<S> {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+    fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
+        let info = self.inner.solve(p, r);
+        if info.status != Status::Converged {
+            return info;
+        }
+        let m = p.m();
+        for start in [
+            vec![0.0; m],
+            vec![p.g.min(1e3); m],
+            p.r0.iter().map(|&x| x.min(p.g)).collect(),
+        ] {
+            let mut x = start;
+            if self.inner.solve(p, &mut x).status == Status::Converged {
+                let d: Vec<f64> = x.iter().zip(r.iter()).map(|(a, b)| a - b).collect();
+                self.spread = self.spread.max(inf_norm(&d) / inf_norm(r).max(1e-300));
+            }
+        }
+        info
+    }
+}
+
+/// The paper's law with the softening slope `c2`.
+fn law_with_softening(c2: f64) -> Result<Law, ExpError> {
+    Ok(Law::new(
+        &[0.0, 0.05, 0.075],
+        &[0.0, 200.0, c2, 300.0],
+        &[0.0; 3],
+        0.0,
+    )?)
+}
+
+struct Cell {
+    solver: &'static str,
+    steps: usize,
+    c2: f64,
+    outcome: String,
+    failed_step: u64,
+    mean_iterations: f64,
+    certificate: f64,
+    hessian_min: f64,
+    spread: f64,
+}
+
+fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
+    let c2 = scn.law.slopes()[2];
+    let mut opt = Options::new(n, steps);
+    let (res, spread) = match solver {
+        "newton" => {
+            let mut s = MultiStart {
+                inner: Newton::default(),
+                spread: 0.0,
+            };
+            let r = scheme::run(scn, &opt, &mut s, &mut |_, _, _| {});
+            (r, s.spread)
+        }
+        "convexify" => (
+            scheme::run(scn, &opt, &mut Convexify::default(), &mut |_, _, _| {}),
+            f64::NAN,
+        ),
+        _ => {
+            // The penalty answer overshoots g by design: judge it by its own convergence.
+            opt.certificate_tol = f64::INFINITY;
+            (
+                scheme::run(scn, &opt, &mut Penalty::new(1e6), &mut |_, _, _| {}),
+                f64::NAN,
+            )
+        }
+    };
+    match res {
+        Ok(run) => Cell {
+            solver,
+            steps,
+            c2,
+            outcome: if spread > 1e-6 {
+                "several solutions".into()
+            } else if solver == "penalty" {
+                "converged (overshoots g)".into()
+            } else {
+                "certified".into()
+            },
+            failed_step: 0,
+            mean_iterations: run.records.iter().map(|r| r.iterations as f64).sum::<f64>()
+                / steps as f64,
+            certificate: run
+                .records
+                .iter()
+                .map(|r| r.certificate.max())
+                .fold(0.0, f64::max),
+            hessian_min: run.hessian_min,
+            spread,
+        },
+        Err(crate::scheme::RunError::Step {
+            step,
+            status,
+            residual,
+            ..
+        }) => Cell {
+            solver,
+            steps,
+            c2,
+            outcome: format!("failed: {status:?}"),
+            failed_step: step as u64,
+            mean_iterations: f64::NAN,
+            certificate: residual,
+            hessian_min: f64::NAN,
+            spread,
+        },
+        Err(e) => Cell {
+            solver,
+            steps,
+            c2,
+            outcome: format!("error: {e}"),
+            failed_step: 0,
+            mean_iterations: f64::NAN,
+            certificate: f64::NAN,
+            hessian_min: f64::NAN,
+            spread,
+        },
+    }
+}
+
+pub const SOLVERS: [&str; 3] = ["newton", "convexify", "penalty"];
+
+/// The map: every solver on every (time step, softening slope) pair.
+pub fn run_map(ctx: &Ctx) -> Result<(), ExpError> {
+    let (n, steps, c2s): (usize, Vec<usize>, Vec<f64>) = if ctx.quick {
+        (8, vec![1, 8], vec![-100.0, -1e5])
+    } else {
+        (
+            32,
+            vec![1, 2, 4, 8, 16, 32, 64],
+            vec![-1e2, -1e3, -3e3, -1e4, -3e4, -1e5, -3e5],
+        )
+    };
+    let base = Scenario::load("figure")?;
+    let mut cells = vec![];
+    for &c2 in &c2s {
+        let mut scn = base.clone();
+        scn.law = law_with_softening(c2)?;
+        for &st in &steps {
+            for solver in SOLVERS {
+                ctx.log(&format!(
+                    "stability map: c2 = {c2:e}, steps = {st}, {solver}"
+                ));
+                cells.push(map_cell(&scn, n, st, solver));
+            }
+        }
+    }
+    // The convexity indicator is a property of the configuration: take it from any run that reached the end.
+    let hmin: Vec<f64> = cells
+        .iter()
+        .map(|c| {
+            cells
+                .iter()
+                .filter(|d| d.steps == c.steps && d.c2 == c.c2)
+                .map(|d| d.hessian_min)
+                .find(|h| h.is_finite())
+                .unwrap_or(f64::NAN)
+        })
+        .collect();
+    let t = Table::new()
+        .str(
+            "solver",
+            cells.iter().map(|c| c.solver.to_string()).collect(),
+        )
+        .u64("steps", cells.iter().map(|c| c.steps as u64).collect())
+        .f64("k", cells.iter().map(|c| 1.0 / c.steps as f64).collect())
+        .f64("c2", cells.iter().map(|c| c.c2).collect())
+        .f64("hessian_min", hmin)
+        .str("outcome", cells.iter().map(|c| c.outcome.clone()).collect())
+        .u64("failed_step", cells.iter().map(|c| c.failed_step).collect())
+        .f64(
+            "mean_iterations",
+            cells.iter().map(|c| c.mean_iterations).collect(),
+        )
+        .f64(
+            "max_certificate_or_residual",
+            cells.iter().map(|c| c.certificate).collect(),
+        )
+        .f64(
+            "multistart_spread",
+            cells.iter().map(|c| c.spread).collect(),
+        );
+    let path = ctx.write(
+        "stability_map.csv",
+        &t,
+        "stability",
+        &format!("scenario figure with softening slope c2, h = 1/{n}, T = 1; hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex); penalty stiffness 1e6 (judged by convergence only); multistart spread: newton from 0, g and r0 besides the warm start"),
+    )?;
+    draw_map(ctx, &path)
+}
+
+/// The penalty treatment against the exact bound as the penalty stiffens.
+pub fn run_penalty(ctx: &Ctx) -> Result<(), ExpError> {
+    let (n, stiff): (usize, Vec<f64>) = if ctx.quick {
+        (8, vec![1e3, 1e6])
+    } else {
+        (32, vec![1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e10])
+    };
+    let scn = Scenario::load("figure")?;
+    let exact = scheme::run(
+        &scn,
+        &Options::new(n, n),
+        &mut Newton::default(),
+        &mut |_, _, _| {},
+    )?;
+    let mesh = scn.mesh(n)?;
+    let dofs = Dofs::new(&mesh, true);
+    let b = stiffness(&mesh, &dofs, &scn.elasticity());
+    let k = scn.t_end / n as f64;
+    let kw_max = mesh
+        .contact_weights()
+        .iter()
+        .fold(0.0f64, |a, &w| a.max(k * w));
+    let mut rows = vec![];
+    for &s in &stiff {
+        let mut opt = Options::new(n, n);
+        opt.certificate_tol = f64::INFINITY;
+        let res = scheme::run(&scn, &opt, &mut Penalty::new(s), &mut |_, _, _| {})?;
+        let overshoot = res
+            .contact
+            .iter()
+            .map(|c| c.u_nu - scn.g)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let diff: Vec<f64> = res.u.iter().zip(&exact.u).map(|(a, e)| a - e).collect();
+        let rel = crate::norms::energy_norm(&b, &diff) / crate::norms::energy_norm(&b, &exact.u);
+        // Condition of the Newton matrix on a node pushed past g: (lambda_max(S) + k w (c3 + s)) / lambda_min(S).
+        let cond = (res.s_eigen.1 + kw_max * (scn.law.slopes()[3] + s)) / res.s_eigen.0;
+        let iters = res.records.iter().map(|r| r.iterations as f64).sum::<f64>() / n as f64;
+        rows.push((s, overshoot / scn.g, rel, cond, iters));
+    }
+    let t = Table::new()
+        .f64("penalty_stiffness", rows.iter().map(|r| r.0).collect())
+        .f64("overshoot_over_g", rows.iter().map(|r| r.1).collect())
+        .f64(
+            "rel_diff_energy_vs_exact",
+            rows.iter().map(|r| r.2).collect(),
+        )
+        .f64(
+            "newton_matrix_condition",
+            rows.iter().map(|r| r.3).collect(),
+        )
+        .f64("mean_iterations", rows.iter().map(|r| r.4).collect());
+    ctx.write(
+        "stability_penalty.csv",
+        &t,
+        "stability",
+        &format!("scenario figure, h = k = 1/{n}, t = T; penalty p += stiffness (u_nu - g)^+ replaces u_nu <= g; compared with the exact bound (newton)"),
+    )?;
     Ok(())
+}
+
+struct MapFigure {
+    cells: Vec<(String, f64, f64, String, f64, f64)>,
+}
+
+fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
+    let df = super::read_csv(path)?;
+    let solver = super::col_str(&df, "solver")?;
+    let (k, c2, hmin) = (
+        super::col_f64(&df, "k")?,
+        super::col_f64(&df, "c2")?,
+        super::col_f64(&df, "hessian_min")?,
+    );
+    let outcome = super::col_str(&df, "outcome")?;
+    let iters = super::col_f64(&df, "mean_iterations")?;
+    let cells = (0..solver.len())
+        .map(|i| {
+            (
+                solver[i].clone(),
+                k[i],
+                c2[i],
+                outcome[i].clone(),
+                iters[i],
+                hmin[i],
+            )
+        })
+        .collect();
+    both(
+        &ctx.figures,
+        "stability_map",
+        (1500, 700),
+        &MapFigure { cells },
+    )
+}
+
+impl Figure for MapFigure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let root = root
+            .titled(
+                "Where step solvers fail: outcome by time step k and softening slope c2 (numbers: mean iterations per step)",
+                ("sans-serif", 20),
+            )
+            .map_err(e2s)?;
+        let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
+        ks.sort_by(f64::total_cmp);
+        ks.dedup();
+        let mut cs: Vec<f64> = self.cells.iter().map(|c| -c.2).collect();
+        cs.sort_by(f64::total_cmp);
+        cs.dedup();
+        let (top, _legend_band) = root.split_vertically(640);
+        let panels = top.split_evenly((1, SOLVERS.len()));
+        for (solver, area) in SOLVERS.iter().zip(panels.iter()) {
+            let mut chart = ChartBuilder::on(area)
+                .caption(*solver, ("sans-serif", 20))
+                .margin(10)
+                .x_label_area_size(45)
+                .y_label_area_size(70)
+                .build_cartesian_2d(-0.5..ks.len() as f64 - 0.5, -0.5..cs.len() as f64 - 0.5)
+                .map_err(e2s)?;
+            let (kl, cl) = (ks.clone(), cs.clone());
+            chart
+                .configure_mesh()
+                .disable_mesh()
+                .x_labels(ks.len())
+                .y_labels(cs.len())
+                .x_label_formatter(&move |x| {
+                    let i = x.round();
+                    if (x - i).abs() > 1e-9 || i < 0.0 {
+                        return String::new();
+                    }
+                    kl.get(i as usize)
+                        .map_or(String::new(), |k| format!("1/{}", (1.0 / k).round()))
+                })
+                .y_label_formatter(&move |y| {
+                    let i = y.round();
+                    if (y - i).abs() > 1e-9 || i < 0.0 {
+                        return String::new();
+                    }
+                    cl.get(i as usize)
+                        .map_or(String::new(), |c| format!("-{c:.0e}"))
+                })
+                .x_desc("time step k")
+                .y_desc("softening slope c2")
+                .label_style(("sans-serif", 13))
+                .draw()
+                .map_err(e2s)?;
+            for c in self.cells.iter().filter(|c| c.0 == *solver) {
+                let x = ks.iter().position(|&k| k == c.1).unwrap_or(0) as f64;
+                let y = cs.iter().position(|&v| v == -c.2).unwrap_or(0) as f64;
+                let colour = if c.3.starts_with("failed") || c.3.starts_with("error") {
+                    RGBColor(214, 39, 40)
+                } else if c.3 == "several solutions" {
+                    RGBColor(255, 160, 40)
+                } else if c.5 > 0.0 {
+                    RGBColor(44, 160, 44)
+                } else {
+                    RGBColor(150, 210, 150)
+                };
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(x - 0.46, y - 0.46), (x + 0.46, y + 0.46)],
+                        colour.filled(),
+                    )))
+                    .map_err(e2s)?;
+                let label = if c.4.is_finite() {
+                    format!("{:.1}", c.4)
+                } else {
+                    "fail".into()
+                };
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        label,
+                        (x - 0.2, y + 0.1),
+                        ("sans-serif", 13),
+                    )))
+                    .map_err(e2s)?;
+            }
+        }
+        let legend = [
+            (
+                "certified (penalty: converged), every step convex",
+                RGBColor(44, 160, 44),
+            ),
+            (
+                "certified (penalty: converged), steps not convex",
+                RGBColor(150, 210, 150),
+            ),
+            ("several solutions (multistart)", RGBColor(255, 160, 40)),
+            ("failed", RGBColor(214, 39, 40)),
+        ];
+        for (i, (text, colour)) in legend.iter().enumerate() {
+            let x = 20 + 360 * i as i32;
+            root.draw(&Rectangle::new([(x, 642), (x + 16, 658)], colour.filled()))
+                .map_err(e2s)?;
+            root.draw(&Text::new(*text, (x + 22, 643), ("sans-serif", 15)))
+                .map_err(e2s)?;
+        }
+        Ok(())
+    }
 }

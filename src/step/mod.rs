@@ -12,6 +12,7 @@
 
 pub mod convexify;
 pub mod newton;
+pub mod penalty;
 
 use crate::law::Law;
 use faer::{Mat, MatRef};
