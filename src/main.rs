@@ -86,7 +86,8 @@ struct ReproduceArgs {
 #[derive(clap::Args)]
 struct SolveArgs {
     /// A built-in scenario (`literal`: the paper's printed loads; `figure`: loads that
-    /// reach every branch of the law) or the path of a scenario TOML file.
+    /// reach every branch of the law; `smooth`: roller sides and a clamped top, no
+    /// singular corner) or the path of a scenario TOML file (see data/scenarios/).
     #[arg(long, default_value = "figure")]
     scenario: String,
     /// Contact segments n = 1/h on Γ3 (a multiple of 4; the paper's Fig. 3 uses 128).

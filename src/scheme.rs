@@ -241,6 +241,7 @@ pub fn run(
             law: &scn.law,
             g: scn.g,
             lipschitz: lambda_max,
+            curvature_min: hessian_min,
         };
         let ts = Instant::now();
         let info = solver.solve(&prob, &mut r);

@@ -90,7 +90,12 @@ fn stability_prop31_and_map() {
         &["stability_map"],
     );
     // certificates and multistart spreads of exact steps are round-off: pinned only as "< 1e-9"
-    snapshot_outputs_floor("stability", &["stability_map.csv"], &[], 1e-9);
+    snapshot_outputs_floor(
+        "stability",
+        &["stability_map.csv", "stability_sweeps.csv"],
+        &[],
+        1e-9,
+    );
 }
 
 #[test]

@@ -196,3 +196,77 @@ fn writes_are_atomic() {
     assert!(evhi::output::write_atomic(&bad, b"x").is_err());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_stationary_point_that_is_not_a_minimum_is_reported() {
+    // One node, q(r) = r²/2 + j(r) with p(s) = -5 s on (-1, 1]: q is concave there,
+    // and r = 0 is stationary but a maximum. Started exactly there, Newton must
+    // not call it a solution.
+    let law = Law::new(&[-1.0, 1.0], &[1000.0, -5.0, 1000.0], &[0.0, 0.0], 5.0).unwrap();
+    assert!(law.p(0.0).abs() < 1e-12);
+    let s = faer::Mat::<f64>::identity(1, 1);
+    let p = evhi::step::StepProblem {
+        s: s.as_ref(),
+        r0: &[0.0],
+        kw: &[1.0],
+        law: &law,
+        g: 10.0,
+        lipschitz: 1.0,
+        curvature_min: 1.0 - 5.0,
+    };
+    let mut r = vec![0.0];
+    let info = evhi::step::StepSolver::solve(&mut Newton::default(), &p, &mut r);
+    match info.status {
+        Status::NotMinimum { lambda_min } => {
+            assert!((lambda_min + 4.0).abs() < 1e-12, "{lambda_min}")
+        }
+        other => panic!("expected NotMinimum, got {other:?} at r = {r:?}"),
+    }
+    // From elsewhere, the line search leads to a true minimiser (on a stiff branch).
+    let mut r = vec![0.5];
+    let info = evhi::step::StepSolver::solve(&mut Newton::default(), &p, &mut r);
+    assert_eq!(info.status, Status::Converged, "r = {r:?}");
+    assert!(r[0].abs() >= 1.0 - 1e-12, "r = {r:?}");
+}
+
+#[test]
+fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
+    // A cell of the stability map (h = 1/32, k = 1/16, c2 = -3000): the plain
+    // semismooth Newton runs out of iterations, the globalised one is certified.
+    let mut scn = Scenario::load("figure").unwrap();
+    scn.law = Law::new(
+        &[0.0, 0.05, 0.075],
+        &[0.0, 200.0, -3000.0, 300.0],
+        &[0.0; 3],
+        0.0,
+    )
+    .unwrap();
+    let plain = Settings {
+        line_search: false,
+        ..Settings::default()
+    };
+    let err = run(
+        &scn,
+        &Options::new(32, 16),
+        &mut Newton::new(plain),
+        &mut |_, _, _| {},
+    )
+    .err();
+    assert!(
+        matches!(
+            err,
+            Some(RunError::Step {
+                status: Status::MaxIterations,
+                ..
+            })
+        ),
+        "{err:?}"
+    );
+    let ok = run(
+        &scn,
+        &Options::new(32, 16),
+        &mut Newton::default(),
+        &mut |_, _, _| {},
+    );
+    assert!(ok.is_ok(), "{:?}", ok.err());
+}

@@ -59,7 +59,8 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         ),
     )?;
     run_map(ctx)?;
-    run_penalty(ctx)
+    run_penalty(ctx)?;
+    run_sweeps(ctx)
 }
 
 // ---------------------------------------------------------------------------
@@ -144,7 +145,17 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
             scheme::run(scn, &opt, &mut Convexify::default(), &mut |_, _, _| {}),
             f64::NAN,
         ),
-        _ => {
+        "newton, no line search" => {
+            let settings = crate::step::newton::Settings {
+                line_search: false,
+                ..Default::default()
+            };
+            (
+                scheme::run(scn, &opt, &mut Newton::new(settings), &mut |_, _, _| {}),
+                f64::NAN,
+            )
+        }
+        "penalty" => {
             // The penalty answer overshoots g by design: judge it by its own convergence.
             opt.certificate_tol = f64::INFINITY;
             (
@@ -152,6 +163,7 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
                 f64::NAN,
             )
         }
+        other => unreachable!("unknown solver {other}"),
     };
     match res {
         Ok(run) => Cell {
@@ -185,7 +197,11 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
             solver,
             steps,
             c2,
-            outcome: format!("failed: {status:?}"),
+            outcome: if status == Status::Converged {
+                "failed: certificate over tolerance".to_string()
+            } else {
+                format!("failed: {status:?}")
+            },
             failed_step: step as u64,
             mean_iterations: f64::NAN,
             certificate: residual,
@@ -206,7 +222,7 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
     }
 }
 
-pub const SOLVERS: [&str; 3] = ["newton", "convexify", "penalty"];
+pub const SOLVERS: [&str; 4] = ["newton", "newton, no line search", "convexify", "penalty"];
 
 /// The map: every solver on every (time step, softening slope) pair.
 pub fn run_map(ctx: &Ctx) -> Result<(), ExpError> {
@@ -470,7 +486,7 @@ impl Figure for MapFigure {
             ("failed", RGBColor(214, 39, 40)),
         ];
         for (i, (text, colour)) in legend.iter().enumerate() {
-            let x = 20 + 360 * i as i32;
+            let x = 20 + 460 * i as i32;
             root.draw(&Rectangle::new([(x, 642), (x + 16, 658)], colour.filled()))
                 .map_err(e2s)?;
             root.draw(&Text::new(*text, (x + 22, 643), ("sans-serif", 15)))
@@ -478,4 +494,89 @@ impl Figure for MapFigure {
         }
         Ok(())
     }
+}
+
+/// One-parameter sweeps towards the edges of the theory: Young's modulus against the
+/// smallness condition $\beta > m\|\iota\|^2$, the layer thickness $g \to 0$ and the
+/// Poisson ratio $\kappa \to 1/2$ (near-incompressible locking of P1).
+pub fn run_sweeps(ctx: &Ctx) -> Result<(), ExpError> {
+    let n = if ctx.quick { 8 } else { 16 };
+    let base = Scenario::load("figure")?;
+    type Edit = fn(&mut Scenario, f64);
+    let sweeps: [(&str, Vec<f64>, Edit); 3] = [
+        (
+            "E",
+            if ctx.quick {
+                vec![1000.0, 10.0]
+            } else {
+                vec![1000.0, 300.0, 100.0, 30.0, 10.0]
+            },
+            |s, v| s.e = v,
+        ),
+        (
+            "g",
+            if ctx.quick {
+                vec![0.1, 1e-3]
+            } else {
+                vec![0.1, 0.03, 0.01, 1e-3, 1e-4]
+            },
+            |s, v| s.g = v,
+        ),
+        (
+            "kappa",
+            if ctx.quick {
+                vec![0.4, 0.499]
+            } else {
+                vec![0.4, 0.45, 0.49, 0.499, 0.4999]
+            },
+            |s, v| s.kappa = v,
+        ),
+    ];
+    let mut rows = vec![];
+    for (param, values, edit) in &sweeps {
+        for &v in values {
+            let mut scn = base.clone();
+            edit(&mut scn, v);
+            for solver in ["newton", "convexify", "penalty"] {
+                ctx.log(&format!("stability sweep: {param} = {v}, {solver}"));
+                let c = map_cell(&scn, n, n, solver);
+                rows.push((param.to_string(), v, scn.elasticity().coercivity(), c));
+            }
+        }
+    }
+    let t = Table::new()
+        .str("parameter", rows.iter().map(|r| r.0.clone()).collect())
+        .f64("value", rows.iter().map(|r| r.1).collect())
+        .f64("beta_B", rows.iter().map(|r| r.2).collect())
+        .str(
+            "solver",
+            rows.iter().map(|r| r.3.solver.to_string()).collect(),
+        )
+        .f64(
+            "hessian_min",
+            rows.iter().map(|r| r.3.hessian_min).collect(),
+        )
+        .str(
+            "outcome",
+            rows.iter().map(|r| r.3.outcome.clone()).collect(),
+        )
+        .u64(
+            "failed_step",
+            rows.iter().map(|r| r.3.failed_step).collect(),
+        )
+        .f64(
+            "mean_iterations",
+            rows.iter().map(|r| r.3.mean_iterations).collect(),
+        )
+        .f64(
+            "max_certificate_or_residual",
+            rows.iter().map(|r| r.3.certificate).collect(),
+        );
+    ctx.write(
+        "stability_sweeps.csv",
+        &t,
+        "stability",
+        &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness 1e6"),
+    )?;
+    Ok(())
 }

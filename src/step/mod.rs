@@ -30,6 +30,9 @@ pub struct StepProblem<'a> {
     pub g: f64,
     /// An upper bound of the largest eigenvalue of $S$.
     pub lipschitz: f64,
+    /// A lower bound of the curvature of $q$, $\lambda_{\min}(S + \mathrm{diag}(k w_i)\,c_{\min})$:
+    /// when positive the step is strictly convex and needs no second-order check.
+    pub curvature_min: f64,
 }
 
 /// How a step solve ended.
@@ -41,6 +44,9 @@ pub enum Status {
     MaxIterations,
     /// A numerical failure (singular system, inner solver failure).
     Failed(String),
+    /// Stationary (the discrete inequality holds) but not a local minimiser: the
+    /// Hessian on the nodes inside branches has this negative eigenvalue.
+    NotMinimum { lambda_min: f64 },
 }
 
 /// What a step solve did.
@@ -119,6 +125,41 @@ impl StepProblem<'_> {
 
     fn disp_scale(&self, r: &[f64]) -> f64 {
         self.g.abs().max(inf_norm(r)).max(f64::MIN_POSITIVE)
+    }
+
+    /// The second-order check at a stationary point: the smallest eigenvalue of the
+    /// Hessian restricted to the nodes strictly inside a branch (pinned nodes are
+    /// fixed). `None` when the step is convex (nothing to check) or no node is free.
+    pub fn second_order(&self, r: &[f64]) -> Option<f64> {
+        if self.curvature_min > 0.0 {
+            return None;
+        }
+        let tol = 1e-12 * self.g.abs().max(inf_norm(r)).min(1e300);
+        let pieces = self.pieces_of(r, tol);
+        let bps = self.law.breakpoints();
+        let free: Vec<(usize, usize)> = pieces
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| match p {
+                // a node sitting on a breakpoint is on the boundary of two branches: not free
+                Piece::Branch(b) if !bps.iter().any(|&s| (r[i] - s).abs() <= tol) => Some((i, *b)),
+                _ => None,
+            })
+            .collect();
+        if free.is_empty() {
+            return None;
+        }
+        let h = Mat::from_fn(free.len(), free.len(), |a, c| {
+            let (i, b) = free[a];
+            self.s[(i, free[c].0)]
+                + if a == c {
+                    self.kw[i] * self.law.slopes()[b]
+                } else {
+                    0.0
+                }
+        });
+        let eig = h.self_adjoint_eigenvalues(faer::Side::Lower).ok()?;
+        Some(eig.into_iter().fold(f64::INFINITY, f64::min))
     }
 
     // ANCHOR: pieces

@@ -35,6 +35,9 @@ pub struct Settings {
     /// Use Newton directions; `false` leaves the plain forward–backward
     /// (proximal-gradient) iteration, the baseline of the benchmark.
     pub newton: bool,
+    /// Globalise: accept a trial point only if it lowers the forward–backward
+    /// envelope. `false` takes every full Newton step (to show what the line search buys).
+    pub line_search: bool,
 }
 
 impl Default for Settings {
@@ -46,6 +49,7 @@ impl Default for Settings {
             gamma_fraction: 0.95,
             sigma: 0.1,
             newton: true,
+            line_search: true,
         }
     }
 }
@@ -224,6 +228,11 @@ impl StepSolver for Newton {
                 info.status = Status::Converged;
                 info.iterations = it;
                 info.residual = p.residual(r);
+                if let Some(lambda_min) = p.second_order(r) {
+                    if lambda_min < -1e-10 * p.lipschitz {
+                        info.status = Status::NotMinimum { lambda_min };
+                    }
+                }
                 return info;
             }
             if it == st.max_iter {
@@ -244,8 +253,12 @@ impl StepSolver for Newton {
                         .map(|i| (1.0 - tau) * e.rbar[i] + tau * (r[i] + d[i]))
                         .collect();
                     let et = Self::eval(p, gamma, &trial);
-                    let done = inf_norm(&et.res) / scale(&trial) <= st.tol;
-                    if done || et.envelope <= e.envelope - sigma * sq {
+                    // A trial point that already solves the step is taken at once, but
+                    // only if it does not raise the envelope (beyond round-off): a
+                    // stationary point uphill is a maximum or a saddle, not progress.
+                    let converged = inf_norm(&et.res) / scale(&trial) <= st.tol
+                        && et.envelope <= e.envelope + 1e-12 * (1.0 + e.envelope.abs());
+                    if converged || !st.line_search || et.envelope <= e.envelope - sigma * sq {
                         accepted = Some((trial, et));
                         break;
                     }

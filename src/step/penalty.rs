@@ -77,6 +77,7 @@ impl StepSolver for Penalty {
             law,
             g: f64::INFINITY,
             lipschitz: p.lipschitz,
+            curvature_min: p.curvature_min,
         };
         self.inner.solve(&q, r)
     }
