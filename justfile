@@ -31,3 +31,9 @@ serve-book:
     bash tools/install.sh
     rm -rf book/src/figures && mkdir -p book/src/figures && cp figures/*.png book/src/figures/
     .tools/bin/mdbook serve book
+
+# Fuzz scenario parsing and law construction with libFuzzer (cargo-fuzz; the stable
+# toolchain is told to accept the sanitizer flags), e.g. `just fuzz scenario 200000`
+fuzz TARGET="scenario" RUNS="100000":
+    test -x .tools/bin/cargo-fuzz || cargo install --locked cargo-fuzz --version 0.13.2 --root .tools
+    cd fuzz && RUSTC_BOOTSTRAP=1 ../.tools/bin/cargo-fuzz run -O {{TARGET}} -- -runs={{RUNS}}
