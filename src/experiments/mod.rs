@@ -132,6 +132,22 @@ impl Ctx {
     }
 }
 
+/// Runs the scheme with the Newton step solver and no observer: the plain solve
+/// most experiments need.
+pub fn run_newton(
+    scn: &crate::scenario::Scenario,
+    n: usize,
+    steps: usize,
+) -> Result<crate::scheme::Run, ExpError> {
+    let opt = crate::scheme::Options::new(n, steps);
+    Ok(crate::scheme::run(
+        scn,
+        &opt,
+        &mut crate::step::newton::Newton::default(),
+        &mut |_, _, _| {},
+    )?)
+}
+
 /// Reads a CSV written by [`Ctx::write`] (comment lines skipped).
 pub fn read_csv(path: &Path) -> Result<DataFrame, ExpError> {
     let err = |e: PolarsError| ExpError::Table {

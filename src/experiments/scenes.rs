@@ -8,8 +8,6 @@ use crate::certificate::ContactState;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{self, Options};
-use crate::step::newton::Newton;
 use plotters::prelude::*;
 
 /// The state at $t = T$ of one scene.
@@ -28,13 +26,7 @@ pub fn solve_scene(n: usize, g: f64) -> Result<Scene, ExpError> {
 /// Solves a scenario at $h = k = 1/n$ and classifies its contact nodes at $t = T$.
 pub fn solve(scn: &Scenario, n: usize) -> Result<Scene, ExpError> {
     let g = scn.g;
-    let scn = scn.clone();
-    let res = scheme::run(
-        &scn,
-        &Options::new(n, n),
-        &mut Newton::default(),
-        &mut |_, _, _| {},
-    )?;
+    let res = super::run_newton(scn, n, n)?;
     let mesh = scn.mesh(n)?;
     let disp = Dofs::new(&mesh, true).expand(&res.u);
     let regimes = res.contact.iter().map(|c| c.regime(&scn.law, g)).collect();

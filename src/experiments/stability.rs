@@ -301,12 +301,7 @@ pub fn run_penalty(ctx: &Ctx) -> Result<(), ExpError> {
         (32, vec![1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e10])
     };
     let scn = Scenario::load("figure")?;
-    let exact = scheme::run(
-        &scn,
-        &Options::new(n, n),
-        &mut Newton::default(),
-        &mut |_, _, _| {},
-    )?;
+    let exact = super::run_newton(&scn, n, n)?;
     let mesh = scn.mesh(n)?;
     let dofs = Dofs::new(&mesh, true);
     let b = stiffness(&mesh, &dofs, &scn.elasticity());
