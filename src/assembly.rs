@@ -4,7 +4,7 @@
 //! P1 load vector $\langle f, v\rangle = \int_\Omega f_0\cdot v + \int_{\Gamma_2} f_2\cdot v$
 //! for constant $f_0$, $f_2$.
 
-use crate::element::element_matrix;
+use crate::element::{element_matrix, twice_area};
 use crate::material::Isotropic;
 use crate::mesh::{Dofs, Mesh};
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
@@ -49,9 +49,7 @@ pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2], modulation: f6
     };
     for tri in &mesh.triangles {
         let p = tri.map(|v| mesh.nodes[v]);
-        let area = 0.5
-            * ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
-                - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
+        let area = 0.5 * twice_area(p);
         for &v in tri {
             let w =
                 area / 3.0 * (1.0 + modulation * (std::f64::consts::PI * mesh.nodes[v][0]).cos());

@@ -4,11 +4,16 @@
 
 use nalgebra::{Matrix3, SMatrix};
 
+/// Twice the signed area of a triangle (positive for counter-clockwise vertices).
+pub fn twice_area(p: [[f64; 2]; 3]) -> f64 {
+    (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1])
+}
+
 /// Area and strain–displacement matrix of a triangle (vertices counter-clockwise).
 /// Columns are ordered $(u_x^0, u_y^0, u_x^1, u_y^1, u_x^2, u_y^2)$, rows
 /// $(\varepsilon_{11}, \varepsilon_{22}, 2\varepsilon_{12})$.
 pub fn strain_matrix(p: [[f64; 2]; 3]) -> (f64, SMatrix<f64, 3, 6>) {
-    let det = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+    let det = twice_area(p);
     let mut bm = SMatrix::<f64, 3, 6>::zeros();
     for i in 0..3 {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);

@@ -212,12 +212,13 @@ fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
 }
 
-/// One configuration run in a child process; returns its summary row as name -> value.
+/// One configuration run in a child process; returns the numeric columns of its
+/// summary row (and the iteration totals of steps.csv) as name -> value.
 fn child_run(
     n: usize,
     steps: usize,
     solver: &str,
-) -> Result<std::collections::HashMap<String, String>, String> {
+) -> Result<std::collections::HashMap<String, f64>, String> {
     let dir = std::env::temp_dir().join(format!(
         "evhi-bench-{}-{n}-{steps}-{solver}",
         std::process::id()
@@ -241,31 +242,27 @@ fn child_run(
             String::from_utf8_lossy(&out.stderr)
         ));
     }
-    let text = std::fs::read_to_string(dir.join("summary.csv")).map_err(|e| e.to_string())?;
-    let steps_csv = std::fs::read_to_string(dir.join("steps.csv")).map_err(|e| e.to_string())?;
+    // Both files through the project's own CSV reader (polars); string columns are skipped.
+    use evhi::experiments::{col_f64, read_csv};
+    let read = || -> Result<std::collections::HashMap<String, f64>, evhi::experiments::ExpError> {
+        let summary = read_csv(&dir.join("summary.csv"))?;
+        let mut row: std::collections::HashMap<String, f64> = summary
+            .get_column_names()
+            .iter()
+            .filter_map(|name| Some((name.to_string(), *col_f64(&summary, name).ok()?.first()?)))
+            .collect();
+        let steps_df = read_csv(&dir.join("steps.csv"))?;
+        for (col, total) in [
+            ("iterations", "iterations_total"),
+            ("inner_iterations", "inner_iterations_total"),
+        ] {
+            row.insert(total.into(), col_f64(&steps_df, col)?.iter().sum());
+        }
+        Ok(row)
+    };
+    let row = read().map_err(|e| e.to_string());
     let _ = std::fs::remove_dir_all(&dir);
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let vals: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
-    let mut row: std::collections::HashMap<String, String> = head
-        .iter()
-        .zip(&vals)
-        .map(|(h, v)| (h.to_string(), v.to_string()))
-        .collect();
-    // total inner iterations and the step-solver time from steps.csv
-    let mut sl = steps_csv.lines();
-    let sh: Vec<&str> = sl.next().unwrap_or("").split(',').collect();
-    let col = |name: &str| sh.iter().position(|h| *h == name);
-    let (ci, cii) = (col("iterations"), col("inner_iterations"));
-    let (mut it, mut inner) = (0u64, 0u64);
-    for l in sl {
-        let f: Vec<&str> = l.split(',').collect();
-        it += ci.and_then(|c| f.get(c)?.parse::<u64>().ok()).unwrap_or(0);
-        inner += cii.and_then(|c| f.get(c)?.parse::<u64>().ok()).unwrap_or(0);
-    }
-    row.insert("iterations_total".into(), it.to_string());
-    row.insert("inner_iterations_total".into(), inner.to_string());
-    Ok(row)
+    row
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -314,10 +311,8 @@ fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let machine = machine();
     eprintln!("bench on {machine}");
-    let f = |row: &std::collections::HashMap<String, String>, k: &str| {
-        row.get(k)
-            .and_then(|v| v.parse::<f64>().ok())
-            .unwrap_or(f64::NAN)
+    let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
+        row.get(k).copied().unwrap_or(f64::NAN)
     };
     // Phase timings, Newton, medians over repeats.
     let cols = [

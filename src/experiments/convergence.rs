@@ -175,6 +175,12 @@ impl Reference {
                 }
             },
         )?;
+        if let Some(step) = fail {
+            return Err(ExpError::Table {
+                path: format!("table1, scenario {}", scn.name),
+                message: format!("non-finite error at h = 1/{n}, {steps} steps, step {step}"),
+            });
+        }
         Ok(LevelError {
             family,
             n,

@@ -160,7 +160,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write("fig4_counts.csv", &t, "fig4", &params)?;
     let mut panels = vec![];
     for &g in &gs {
-        panels.push(Panel::from_csv_filtered(&cp, &np, g, n / stride)?);
+        panels.push(Panel::from_csv(&cp, &np, g, n / stride)?);
     }
     both(
         &ctx.figures,
@@ -193,15 +193,6 @@ struct Panel {
 
 impl Panel {
     fn from_csv(
-        cp: &std::path::Path,
-        np: &std::path::Path,
-        g: f64,
-        cells: usize,
-    ) -> Result<Panel, ExpError> {
-        Self::from_csv_filtered(cp, np, g, cells)
-    }
-
-    fn from_csv_filtered(
         cp: &std::path::Path,
         np: &std::path::Path,
         g: f64,
