@@ -8,29 +8,51 @@ use crate::element::{element_matrix, twice_area};
 use crate::material::Isotropic;
 use crate::mesh::{Dofs, Mesh};
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Accum, MatMut, MatRef, Par};
 
 /// Sparse symmetric matrix stored with both triangles.
 pub type SpMat = SparseColMat<usize, f64>;
 
 // ANCHOR: assemble
-/// Assembles $(\mathcal T\varepsilon(u), \varepsilon(v))_\Omega$ over the free dofs.
-pub fn stiffness(mesh: &Mesh, dofs: &Dofs, tensor: &Isotropic) -> SpMat {
-    let d = tensor.voigt();
-    let mut trip = Vec::with_capacity(36 * mesh.triangles.len());
+/// Assembles $(\mathcal T\varepsilon(u), \varepsilon(v))_\Omega$ over the free dofs
+/// for each tensor of `tensors`: one pass over the triangles, one sort of the
+/// index pairs, and the same pattern for every matrix.
+pub fn stiffness_all<const T: usize>(
+    mesh: &Mesh,
+    dofs: &Dofs,
+    tensors: [&Isotropic; T],
+) -> [SpMat; T] {
+    let d = tensors.map(|t| t.voigt());
+    let mut idx = Vec::with_capacity(36 * mesh.triangles.len());
+    let mut vals: [Vec<f64>; T] = std::array::from_fn(|_| Vec::with_capacity(idx.capacity()));
     for tri in &mesh.triangles {
-        let ke = element_matrix(tri.map(|v| mesh.nodes[v]), &d);
+        let p = tri.map(|v| mesh.nodes[v]);
+        let ke: [_; T] = std::array::from_fn(|t| element_matrix(p, &d[t]));
         let gdof: [Option<usize>; 6] = std::array::from_fn(|a| dofs.of(tri[a / 2], a % 2));
         for (a, ga) in gdof.iter().enumerate() {
             let Some(ga) = ga else { continue };
             for (b, gb) in gdof.iter().enumerate() {
                 let Some(gb) = gb else { continue };
-                trip.push(Triplet::new(*ga, *gb, ke[(a, b)]));
+                idx.push(faer::sparse::Pair::new(*ga, *gb));
+                for t in 0..T {
+                    vals[t].push(ke[t][(a, b)]);
+                }
             }
         }
     }
-    SparseColMat::try_new_from_triplets(dofs.count, dofs.count, &trip).expect("valid triplets")
+    let (symbolic, order) =
+        SymbolicSparseColMat::try_new_from_indices(dofs.count, dofs.count, &idx)
+            .expect("indices are below the dof count");
+    std::array::from_fn(|t| {
+        SparseColMat::new_from_argsort(symbolic.clone(), &order, &vals[t]).expect("allocation")
+    })
+}
+
+/// One stiffness matrix, see [`stiffness_all`].
+pub fn stiffness(mesh: &Mesh, dofs: &Dofs, tensor: &Isotropic) -> SpMat {
+    let [k] = stiffness_all(mesh, dofs, [tensor]);
+    k
 }
 // ANCHOR_END: assemble
 
@@ -77,6 +99,95 @@ pub fn matvec(k: &SpMat, x: &[f64]) -> Vec<f64> {
         Par::Seq,
     );
     y
+}
+
+/// Two symmetric matrices with the same pattern, as [`stiffness`] builds $A$ and
+/// $B$ for one mesh: their products and combinations need one pass over the pattern.
+pub struct Pair<'a> {
+    a: &'a SpMat,
+    b: &'a SpMat,
+}
+
+impl<'a> Pair<'a> {
+    /// `None` unless `a` and `b` are square with the same pattern.
+    pub fn new(a: &'a SpMat, b: &'a SpMat) -> Option<Pair<'a>> {
+        (a.nrows() == a.ncols()
+            && b.nrows() == a.nrows()
+            && a.col_ptr() == b.col_ptr()
+            && a.row_idx() == b.row_idx())
+        .then_some(Pair { a, b })
+    }
+
+    /// $\alpha A + \beta B$, on the shared pattern.
+    pub fn lin_comb(&self, alpha: f64, beta: f64) -> SpMat {
+        let val = (self.a.val().iter().zip(self.b.val()))
+            .map(|(a, b)| alpha * a + beta * b)
+            .collect();
+        SparseColMat::new(self.a.symbolic().to_owned().expect("allocation"), val)
+    }
+
+    /// $Ax$, $Bx$ and $\|\,|A + kB|\,|x|\,\|_\infty$ (the scale of a backward error). By
+    /// symmetry, column $i$ holds row $i$, so each entry of a product is a gather,
+    /// and the rows split between `threads` threads without conflicts.
+    pub fn products(&self, x: &[f64], k: f64, threads: usize) -> Products {
+        let n = self.a.nrows();
+        assert_eq!(x.len(), n, "vector length");
+        let (ptr, idx) = (self.a.col_ptr(), self.a.row_idx());
+        let (va, vb) = (self.a.val(), self.b.val());
+        let (mut ya, mut yb) = (vec![0.0; n], vec![0.0; n]);
+        let rows = |lo: usize, ya: &mut [f64], yb: &mut [f64]| {
+            let mut abs_max = 0.0f64;
+            for (i, (ya, yb)) in ya.iter_mut().zip(yb.iter_mut()).enumerate() {
+                let (mut sa, mut sb, mut sk) = (0.0, 0.0, 0.0);
+                for p in ptr[lo + i]..ptr[lo + i + 1] {
+                    let xj = x[idx[p]];
+                    sa += va[p] * xj;
+                    sb += vb[p] * xj;
+                    sk += (va[p] + k * vb[p]).abs() * xj.abs();
+                }
+                (*ya, *yb) = (sa, sb);
+                abs_max = abs_max.max(sk);
+            }
+            abs_max
+        };
+        let abs_norm = if threads < 2 {
+            rows(0, &mut ya, &mut yb)
+        } else {
+            let half = n / 2;
+            let (ya0, ya1) = ya.split_at_mut(half);
+            let (yb0, yb1) = yb.split_at_mut(half);
+            std::thread::scope(|scope| {
+                let other = scope.spawn(|| rows(half, ya1, yb1));
+                let mine = rows(0, ya0, yb0);
+                mine.max(other.join().expect("product thread"))
+            })
+        };
+        Products {
+            ax: ya,
+            bx: yb,
+            abs_norm,
+        }
+    }
+}
+
+/// The products of [`Pair::products`].
+pub struct Products {
+    pub ax: Vec<f64>,
+    pub bx: Vec<f64>,
+    /// $\|\,|A + kB|\,|x|\,\|_\infty$.
+    pub abs_norm: f64,
+}
+
+/// $\|\,|K|\,|x|\,\|_\infty$.
+pub fn abs_matvec_norm(k: &SpMat, x: &[f64]) -> f64 {
+    let (ptr, idx, val) = (k.col_ptr(), k.row_idx(), k.val());
+    let mut y = vec![0.0; k.nrows()];
+    for j in 0..k.ncols() {
+        for p in ptr[j]..ptr[j + 1] {
+            y[idx[p]] += val[p].abs() * x[j].abs();
+        }
+    }
+    y.into_iter().fold(0.0, f64::max)
 }
 
 /// $x^\top K x$.

@@ -21,6 +21,7 @@ pub mod linalg;
 pub mod material;
 pub mod mesh;
 pub mod norms;
+pub mod ordering;
 pub mod output;
 pub mod scenario;
 pub mod scheme;

@@ -1,30 +1,42 @@
 //! Sparse Cholesky factorisation $K = LL^\top$ of the step matrix $K = A + kB$,
-//! with the contact normal dofs ordered last (faer, supernodal, sequential: on
-//! two cores `Par::Seq` was as fast as rayon, see NOTES-toolchain).
+//! with the contact normal dofs ordered last: faer analyses and factorises
+//! (supernodal, sequential: on two cores `Par::Seq` was as fast as rayon, see
+//! NOTES-toolchain); the triangular solves, which a run repeats once per step,
+//! are our own.
 //!
-//! Ordering: faer's approximate minimum degree on $K$, with the $m$ contact dofs
-//! then moved to the end. Writing $K$ and $L$ in blocks (interior $I$, contact $C$),
+//! Ordering ([`crate::ordering`]): nested dissection or AMD, with the $m$ contact
+//! dofs then moved to the end. Writing $K$ and $L$ in blocks (interior $I$, contact $C$),
 //! $$K = \begin{pmatrix} K_{II} & K_{IC} \\ K_{CI} & K_{CC}\end{pmatrix},\qquad
 //! L = \begin{pmatrix} L_{II} & 0 \\ L_{CI} & L_{CC}\end{pmatrix},$$
 //! the Schur complement is $K_{CC} - K_{CI}K_{II}^{-1}K_{IC} = L_{CC}L_{CC}^\top$: the
 //! condensed stiffness comes with the factor, at no extra solve. And since
 //! $(K^{-1}b)_C = L_{CC}^{-\top}(L^{-1}b)_C$, a forward solve yields the contact values
 //! of $K^{-1}b$; the backward solve is needed only once the contact forces are known.
+//!
+//! Why our own triangular solves: a step's cost is two sweeps over the 28 M
+//! values of $L$ at $h = 1/512$, which is memory traffic, not arithmetic. Three
+//! things bring it near the machine's bandwidth: (1) with nested dissection the
+//! supernodes of the two halves of the domain are independent, so two threads
+//! sweep them at once (each collecting its updates of the shared tail rows in a
+//! buffer of its own); (2) the transposed sweep visits the supernodes from last
+//! to first, against the hardware prefetcher, so it prefetches in software; (3)
+//! most supernodes hold one or two columns, where plain loops beat calls into
+//! dense kernels. Measured in `examples/solve_probe.rs` and by `evhi bench`.
 
 use crate::assembly::SpMat;
+use crate::ordering::Ordering;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::perm::PermRef;
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Mat, MatMut, Par, Side};
 
 /// Why a factorisation failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -46,6 +58,200 @@ pub struct Cholesky {
     /// The trailing $m \times m$ block $L_{CC}$ (lower triangular), rows and
     /// columns in the order of the contact dofs given to [`Cholesky::factor`].
     l_cc: Mat<f64>,
+    /// Where the two independent halves end, if solves run them in parallel.
+    split: Option<Split>,
+    nodes: Nodes,
+}
+
+/// Supernodes `0..a` hold the columns `0..n1` (first half), `a..b` the columns
+/// `n1..tail` (second half), `b..` the rest.
+#[derive(Debug, Clone, Copy)]
+struct Split {
+    supernodes: [usize; 2],
+    rows: [usize; 2],
+}
+
+/// One supernode of $L$: columns `start..start + size`, stored column-major from
+/// `val` with `size + rows.len()` rows (the dense diagonal block, then the rows
+/// of `rows`).
+#[derive(Debug, Clone)]
+struct Node {
+    start: usize,
+    size: usize,
+    val: usize,
+    rows: std::ops::Range<usize>,
+}
+
+/// The supernodes as flat arrays, read by the hand-written triangular solves:
+/// one right-hand side makes every dense operation a vector one, and most
+/// supernodes hold one or two columns, where a plain loop beats a call into a
+/// dense kernel.
+#[derive(Debug, Clone, Default)]
+struct Nodes {
+    nodes: Vec<Node>,
+    /// Row indices below the diagonal blocks.
+    rows: Vec<u32>,
+}
+
+/// $\sum_i a_i b_i$ with four partial sums (so the compiler vectorises it).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let mut s = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = (ca.remainder().iter().zip(cb.remainder()))
+        .map(|(x, y)| x * y)
+        .sum();
+    for (x, y) in ca.zip(cb) {
+        for l in 0..4 {
+            s[l] += x[l] * y[l];
+        }
+    }
+    (s[0] + s[1]) + (s[2] + s[3]) + tail
+}
+
+/// $x_c \leftarrow x_c - \sum_i L_{ic}\, t_i$ for the `size` columns of a supernode
+/// stored in `v` (`nr` rows each, the first `size` the diagonal block), where
+/// `t` holds the values of the rows below the block. Four columns at a time, so
+/// that each value of `t` is loaded once for four independent sums.
+fn below(v: &[f64], nr: usize, size: usize, t: &[f64], x: &mut [f64]) {
+    let mut c = 0;
+    while c + 4 <= size {
+        let col = |l: usize| &v[(c + l) * nr + size..(c + l + 1) * nr];
+        let mut s = [0.0; 4];
+        for ((((t, a), b), d), e) in t.iter().zip(col(0)).zip(col(1)).zip(col(2)).zip(col(3)) {
+            s[0] += a * t;
+            s[1] += b * t;
+            s[2] += d * t;
+            s[3] += e * t;
+        }
+        for l in 0..4 {
+            x[c + l] -= s[l];
+        }
+        c += 4;
+    }
+    for c in c..size {
+        x[c] -= dot(&v[c * nr + size..(c + 1) * nr], t);
+    }
+}
+
+/// Software prefetch for a backward sweep through `values`: hardware prefetchers
+/// follow ascending addresses well and descending ones badly, and the transposed
+/// solve visits the supernodes from the last to the first.
+struct Prefetch<'a> {
+    values: &'a [f64],
+    /// Everything from here on has been asked for.
+    next: usize,
+}
+
+/// How far below the current supernode to prefetch, in values (64 KiB).
+const PREFETCH_AHEAD: usize = 8192;
+
+impl<'a> Prefetch<'a> {
+    fn new(values: &'a [f64], from: usize) -> Self {
+        Prefetch { values, next: from }
+    }
+
+    /// Asks for the cache lines down to `PREFETCH_AHEAD` values below `at`.
+    #[inline]
+    fn below(&mut self, at: usize) {
+        let target = at.saturating_sub(PREFETCH_AHEAD);
+        while self.next > target {
+            self.next = self.next.saturating_sub(8);
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `next` is in bounds, and a prefetch never faults or writes.
+            unsafe {
+                use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+                _mm_prefetch::<_MM_HINT_T0>(self.values.as_ptr().add(self.next).cast());
+            }
+        }
+    }
+}
+
+/// $x \leftarrow L^{-1} x$ over the supernodes `range`, where `own` holds the rows
+/// from `lo` on and rows from `tail` on live in `tail_x` (pass `tail = n` when `own`
+/// is the whole vector).
+fn lower_solve(
+    nodes: &Nodes,
+    values: &[f64],
+    range: std::ops::Range<usize>,
+    own: &mut [f64],
+    lo: usize,
+    tail_x: &mut [f64],
+    tail: usize,
+) {
+    let mut tmp = Vec::new();
+    for node in &nodes.nodes[range] {
+        let (size, rows) = (node.size, &nodes.rows[node.rows.clone()]);
+        let nr = size + rows.len();
+        let v = &values[node.val..node.val + nr * size];
+        let start = node.start - lo;
+        tmp.clear();
+        tmp.resize(rows.len(), 0.0);
+        for c in 0..size {
+            let col = &v[c * nr..(c + 1) * nr];
+            let xc = own[start + c] / col[c];
+            own[start + c] = xc;
+            for (x, l) in own[start + c + 1..start + size]
+                .iter_mut()
+                .zip(&col[c + 1..size])
+            {
+                *x -= l * xc;
+            }
+            for (t, l) in tmp.iter_mut().zip(&col[size..]) {
+                *t += l * xc;
+            }
+        }
+        for (&r, t) in rows.iter().zip(&tmp) {
+            let r = r as usize;
+            if r >= tail {
+                tail_x[r - tail] -= t;
+            } else {
+                own[r - lo] -= t;
+            }
+        }
+    }
+}
+
+/// $x \leftarrow L^{-\top} x$ over the supernodes `range` (taken in reverse), with
+/// `own` and `tail_x` as in [`lower_solve`]; the tail is only read.
+fn upper_solve(
+    nodes: &Nodes,
+    values: &[f64],
+    range: std::ops::Range<usize>,
+    own: &mut [f64],
+    lo: usize,
+    tail_x: &[f64],
+    tail: usize,
+) {
+    let mut tmp = Vec::new();
+    let mut ahead = Prefetch::new(
+        values,
+        nodes.nodes[range.clone()].last().map_or(0, |n| n.val),
+    );
+    for node in nodes.nodes[range].iter().rev() {
+        let (size, rows) = (node.size, &nodes.rows[node.rows.clone()]);
+        let nr = size + rows.len();
+        let v = &values[node.val..node.val + nr * size];
+        ahead.below(node.val);
+        tmp.clear();
+        tmp.extend(rows.iter().map(|&r| {
+            let r = r as usize;
+            if r >= tail {
+                tail_x[r - tail]
+            } else {
+                own[r - lo]
+            }
+        }));
+        let start = node.start - lo;
+        let x = &mut own[start..start + size];
+        // The rows below the diagonal block first, reading the columns forwards
+        // (the memory prefetcher follows ascending addresses), then the block.
+        below(v, nr, size, &tmp, x);
+        for c in (0..size).rev() {
+            let col = &v[c * nr..c * nr + size];
+            let (head, done) = x.split_at_mut(c + 1);
+            head[c] = (head[c] - dot(&col[c + 1..], done)) / col[c];
+        }
+    }
 }
 
 fn other<E: std::fmt::Debug>(e: E) -> FactorError {
@@ -53,32 +259,22 @@ fn other<E: std::fmt::Debug>(e: E) -> FactorError {
 }
 
 impl Cholesky {
-    /// Orders (AMD, then `last` at the end), analyses and factorises `k`.
-    pub fn factor(k: &SpMat, last: &[usize]) -> Result<Cholesky, FactorError> {
+    /// Analyses and factorises `k` in the given `ordering` (its last `m` dofs are
+    /// the contact dofs). With [`Ordering::halves`] set and checked against the
+    /// supernodes, triangular solves run the two halves on two threads.
+    pub fn factor(k: &SpMat, ordering: &Ordering) -> Result<Cholesky, FactorError> {
         let n = k.nrows();
-        let m = last.len();
-        // AMD on the full pattern, then the contact dofs moved to the end.
-        let (mut amd_fwd, mut amd_inv) = (vec![0usize; n], vec![0usize; n]);
-        let mut mem =
-            MemBuffer::try_new(amd::order_scratch::<usize>(n, k.compute_nnz())).map_err(other)?;
-        amd::order(
-            &mut amd_fwd,
-            &mut amd_inv,
-            k.symbolic(),
-            Default::default(),
-            MemStack::new(&mut mem),
-        )
-        .map_err(other)?;
-        let mut is_last = vec![false; n];
-        for &d in last {
-            is_last[d] = true;
+        let m = ordering.m;
+        let fwd = ordering.fwd.clone();
+        if fwd.len() != n || m > n {
+            return Err(FactorError::Other(format!(
+                "ordering of {} dofs ({} last) for a matrix of {} rows",
+                fwd.len(),
+                m,
+                n
+            )));
         }
-        let mut fwd: Vec<usize> = amd_fwd.into_iter().filter(|&d| !is_last[d]).collect();
-        fwd.extend_from_slice(last);
-        let mut inv = vec![0usize; n];
-        for (new, &old) in fwd.iter().enumerate() {
-            inv[old] = new;
-        }
+        let inv = ordering.inverse();
         let perm = PermRef::new_checked(&fwd, &inv, n);
         let params = CholeskySymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
@@ -117,9 +313,45 @@ impl Cholesky {
             values,
             fwd,
             l_cc: Mat::zeros(m, m),
+            split: None,
+            nodes: Nodes::default(),
         };
+        chol.nodes = chol.flat_nodes()?;
         chol.l_cc = chol.trailing_block(m)?;
+        chol.split = ordering.halves.and_then(|h| chol.split_at(h));
         Ok(chol)
+    }
+
+    /// The supernode ranges of the two halves, if every supernode of the first
+    /// $n_1$ columns touches only rows of that half or of the tail, and likewise for
+    /// the next $n_2$; otherwise `None` (the solves then run on one thread).
+    fn split_at(&self, (n1, n2): (usize, usize)) -> Option<Split> {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            return None;
+        };
+        let (begin, end) = (sym.supernode_begin(), sym.supernode_end());
+        let tail = n1 + n2;
+        let a = begin.iter().position(|&b| b >= n1)?;
+        let b = begin.iter().position(|&b| b >= tail).unwrap_or(begin.len());
+        // No supernode may straddle the end of the first half; one may straddle
+        // the end of the second (it then belongs to the tail, solved after both).
+        let b = if b > a && end[b - 1] > tail { b - 1 } else { b };
+        if a == 0 || b <= a || end[a - 1] > n1 {
+            return None;
+        }
+        let sn = self.supernodal().ok()?;
+        let inside = |range: std::ops::Range<usize>, lo: usize, hi: usize| {
+            range.into_iter().all(|s| {
+                sn.supernode(s)
+                    .pattern()
+                    .iter()
+                    .all(|&r| (lo..hi).contains(&r) || r >= tail)
+            })
+        };
+        (inside(0..a, 0, n1) && inside(a..b, n1, tail)).then_some(Split {
+            supernodes: [a, b],
+            rows: [n1, tail],
+        })
     }
 
     fn supernodal(&self) -> Result<SupernodalLltRef<'_, usize, f64>, FactorError> {
@@ -178,32 +410,114 @@ impl Cholesky {
         &self.l_cc
     }
 
-    /// The supernodal factor and a scratch buffer for one right-hand side.
-    /// (`factor` forces, and `trailing_block` checks, a supernodal factorisation.)
-    fn solve_parts(&self) -> (SupernodalLltRef<'_, usize, f64>, MemBuffer) {
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
-            unreachable!("Cholesky::factor builds a supernodal factor")
-        };
-        let mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(1, Par::Seq));
-        (SupernodalLltRef::new(sym, &self.values), mem)
+    fn n_supernodes(&self) -> usize {
+        self.nodes.nodes.len()
     }
 
+    fn flat_nodes(&self) -> Result<Nodes, FactorError> {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            return Err(FactorError::Other("expected a supernodal factor".into()));
+        };
+        if self.dim() > u32::MAX as usize {
+            return Err(FactorError::Other(format!(
+                "{} rows exceed u32",
+                self.dim()
+            )));
+        }
+        let mut flat = Nodes::default();
+        for s in 0..sym.n_supernodes() {
+            let node = sym.supernode(s);
+            let size = sym.supernode_end()[s] - sym.supernode_begin()[s];
+            let first = flat.rows.len();
+            flat.rows.extend(node.pattern().iter().map(|&r| r as u32));
+            flat.nodes.push(Node {
+                start: node.start(),
+                size,
+                val: sym.col_ptr_for_val()[s],
+                rows: first..flat.rows.len(),
+            });
+        }
+        Ok(flat)
+    }
+
+    /// Whether triangular solves run the two halves on two threads.
+    pub fn is_parallel(&self) -> bool {
+        self.split.is_some()
+    }
+
+    /// Makes every later triangular solve run on the calling thread alone (for
+    /// callers that already keep both cores busy).
+    pub fn sequential(&mut self) {
+        self.split = None;
+    }
+
+    // ANCHOR: forward
     /// Forward solve $x = L^{-1}\Pi b$ ($\Pi$ the fill-reducing permutation).
     pub fn forward(&self, b: &[f64]) -> Vec<f64> {
         let n = self.dim();
         let mut x: Vec<f64> = self.fwd.iter().map(|&old| b[old]).collect();
-        let (sn, mut mem) = self.solve_parts();
-        let rhs = MatMut::from_column_major_slice_mut(&mut x, n, 1);
-        sn.l_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        let mut first = 0;
+        if let Some(Split {
+            supernodes: [a, b],
+            rows: [n1, tail],
+        }) = self.split
+        {
+            // The halves are independent; each collects its updates of the
+            // tail rows in its own buffer, added once both are done.
+            let (halves, rest) = x.split_at_mut(tail);
+            let (left, right) = halves.split_at_mut(n1);
+            let (mut buf_l, mut buf_r) = (vec![0.0; n - tail], vec![0.0; n - tail]);
+            std::thread::scope(|scope| {
+                scope.spawn(|| {
+                    lower_solve(&self.nodes, &self.values, a..b, right, n1, &mut buf_r, tail)
+                });
+                lower_solve(&self.nodes, &self.values, 0..a, left, 0, &mut buf_l, tail);
+            });
+            for ((x, l), r) in rest.iter_mut().zip(&buf_l).zip(&buf_r) {
+                *x += l + r;
+            }
+            first = b;
+        }
+        lower_solve(
+            &self.nodes,
+            &self.values,
+            first..self.n_supernodes(),
+            &mut x,
+            0,
+            &mut [],
+            n,
+        );
         x
     }
+    // ANCHOR_END: forward
 
     /// Backward solve: returns $\Pi^\top L^{-\top} x$ (so `backward(forward(b))` $= K^{-1}b$).
     pub fn backward(&self, mut x: Vec<f64>) -> Vec<f64> {
         let n = self.dim();
-        let (sn, mut mem) = self.solve_parts();
-        let rhs = MatMut::from_column_major_slice_mut(&mut x, n, 1);
-        sn.l_transpose_solve_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut mem));
+        let first = self.split.map_or(0, |s| s.supernodes[1]);
+        upper_solve(
+            &self.nodes,
+            &self.values,
+            first..self.n_supernodes(),
+            &mut x,
+            0,
+            &[],
+            n,
+        );
+        if let Some(Split {
+            supernodes: [a, b],
+            rows: [n1, tail],
+        }) = self.split
+        {
+            // The tail is known; the halves only read it.
+            let (halves, rest) = x.split_at_mut(tail);
+            let (left, right) = halves.split_at_mut(n1);
+            let rest = &*rest;
+            std::thread::scope(|scope| {
+                scope.spawn(|| upper_solve(&self.nodes, &self.values, a..b, right, n1, rest, tail));
+                upper_solve(&self.nodes, &self.values, 0..a, left, 0, rest, tail);
+            });
+        }
         let mut u = vec![0.0; n];
         for (new, &old) in self.fwd.iter().enumerate() {
             u[old] = x[new];

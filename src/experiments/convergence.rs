@@ -214,58 +214,172 @@ impl Reference {
 /// and the smooth scene that satisfies the corollary's regularity hypotheses.
 pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
 
-/// The levels of one scenario's study, each tagged with the scenario name.
-type StudyResult = Result<Vec<(String, LevelError)>, ExpError>;
+/// One unit of the study's work: a reference run, or one level of one family
+/// against its scenario's reference.
+#[derive(Debug, Clone, Copy)]
+enum Task {
+    Reference(usize),
+    Level {
+        /// Row of the table (scenario, level, family order).
+        row: usize,
+        scenario: usize,
+        family: &'static str,
+        n: usize,
+        steps: usize,
+    },
+}
 
-/// All three families of one scenario against its reference.
-fn study(
-    name: &str,
-    plan: &Plan,
-    grid: usize,
-    ctx: &Ctx,
-) -> Result<Vec<(String, LevelError)>, ExpError> {
-    let scn = Scenario::load(name)?;
-    let reference = Reference::compute(&scn, plan.n_ref, grid, ctx)?;
-    let mut out = vec![];
-    for &n in &plan.levels {
-        ctx.log(&format!(
-            "{name}: h = k = 1/{n}, h = 1/{n} k = 1/{}, h = 1/{} k = 1/{n}",
-            plan.n_ref, plan.n_ref
-        ));
-        out.push((name.to_string(), reference.level(&scn, "h=k", n, n)?));
-        out.push((name.to_string(), reference.level(&scn, "h", n, plan.n_ref)?));
-        out.push((name.to_string(), reference.level(&scn, "k", plan.n_ref, n)?));
+impl Task {
+    /// Rough cost, for running the dearest first: dof-steps of the run plus the
+    /// fine-mesh error evaluations at the shared time levels.
+    fn cost(&self, plan: &Plan, grid: usize) -> usize {
+        match *self {
+            Task::Reference(_) => usize::MAX,
+            Task::Level { n, steps, .. } => {
+                steps * n * n + steps.min(grid) * plan.n_ref * plan.n_ref
+            }
+        }
     }
-    Ok(out)
+}
+
+/// What the workers share: the tasks not yet started, the references done so far,
+/// and the first error.
+struct Queue {
+    pending: Vec<Task>,
+    references: Vec<Option<std::sync::Arc<Reference>>>,
+    levels: Vec<(usize, LevelError)>,
+    error: Option<ExpError>,
+}
+
+/// All three families of all scenarios, on two threads (this machine has two
+/// cores). References go first; then the levels, dearest first, each as soon as
+/// its reference is there, so neither thread idles while work remains.
+fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)>, ExpError> {
+    let scenarios = SCENARIOS
+        .iter()
+        .map(|name| Scenario::load(name))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut levels = vec![];
+    for s in 0..scenarios.len() {
+        for &n in &plan.levels {
+            for (family, n, steps) in [("h=k", n, n), ("h", n, plan.n_ref), ("k", plan.n_ref, n)] {
+                levels.push(Task::Level {
+                    row: levels.len(),
+                    scenario: s,
+                    family,
+                    n,
+                    steps,
+                });
+            }
+        }
+    }
+    let mut pending: Vec<Task> = (0..scenarios.len()).map(Task::Reference).collect();
+    let mut by_cost = levels.clone();
+    by_cost.sort_by_key(|t| std::cmp::Reverse(t.cost(plan, grid)));
+    pending.extend(by_cost);
+    let queue = std::sync::Mutex::new(Queue {
+        pending,
+        references: vec![None; scenarios.len()],
+        levels: vec![],
+        error: None,
+    });
+    let ready = std::sync::Condvar::new();
+    let worker = || loop {
+        let (task, reference) = {
+            let mut q = queue.lock().expect("study queue");
+            loop {
+                if q.error.is_some() || q.pending.is_empty() {
+                    return;
+                }
+                let runnable = q.pending.iter().position(|t| match t {
+                    Task::Reference(_) => true,
+                    Task::Level { scenario, .. } => q.references[*scenario].is_some(),
+                });
+                match runnable {
+                    Some(i) => {
+                        let task = q.pending.remove(i);
+                        let reference = match task {
+                            Task::Level { scenario, .. } => q.references[scenario].clone(),
+                            Task::Reference(_) => None,
+                        };
+                        break (task, reference);
+                    }
+                    None => q = ready.wait(q).expect("study queue"),
+                }
+            }
+        };
+        let outcome = match (task, reference) {
+            (Task::Reference(s), _) => Reference::compute(&scenarios[s], plan.n_ref, grid, ctx)
+                .map(|r| (Some((s, std::sync::Arc::new(r))), None)),
+            (
+                Task::Level {
+                    row,
+                    scenario,
+                    family,
+                    n,
+                    steps,
+                },
+                Some(reference),
+            ) => {
+                ctx.log(&format!(
+                    "{}: {family} family, h = 1/{n}, k = 1/{steps}",
+                    scenarios[scenario].name
+                ));
+                reference
+                    .level(&scenarios[scenario], family, n, steps)
+                    .map(|e| (None, Some((row, e))))
+            }
+            (Task::Level { .. }, None) => unreachable!("levels wait for their reference"),
+        };
+        let mut q = queue.lock().expect("study queue");
+        match outcome {
+            Ok((Some((s, r)), _)) => q.references[s] = Some(r),
+            Ok((None, Some(level))) => {
+                q.levels.push(level);
+                // A reference no pending level needs is let go (its fields are
+                // large); running levels hold their own handle.
+                for s in 0..scenarios.len() {
+                    let needed = (q.pending.iter())
+                        .any(|t| matches!(t, Task::Level { scenario, .. } if *scenario == s));
+                    if !needed {
+                        q.references[s] = None;
+                    }
+                }
+            }
+            Ok(_) => {}
+            Err(e) => {
+                q.error.get_or_insert(e);
+            }
+        }
+        ready.notify_all();
+    };
+    std::thread::scope(|s| {
+        let handles: Vec<_> = (0..2).map(|_| s.spawn(worker)).collect();
+        for h in handles {
+            h.join().expect("convergence thread");
+        }
+    });
+    let q = queue.into_inner().expect("study queue");
+    if let Some(e) = q.error {
+        return Err(e);
+    }
+    let mut rows = q.levels;
+    rows.sort_by_key(|r| r.0);
+    Ok(rows
+        .into_iter()
+        .map(|(i, e)| {
+            let Task::Level { scenario, .. } = levels[i] else {
+                unreachable!("rows are levels")
+            };
+            (scenarios[scenario].name.clone(), e)
+        })
+        .collect())
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let plan = plan(ctx.quick);
     let grid = *plan.levels.last().expect("levels");
-    // The scenarios are independent: two threads (this machine has two cores).
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<(usize, StudyResult)> = std::thread::scope(|s| {
-        let worker = || {
-            let mut out = vec![];
-            loop {
-                let i = next.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                let Some(name) = SCENARIOS.get(i) else { break };
-                out.push((i, study(name, &plan, grid, ctx)));
-            }
-            out
-        };
-        let handles: Vec<_> = (0..2).map(|_| s.spawn(worker)).collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("convergence thread"))
-            .collect()
-    });
-    let mut results = results;
-    results.sort_by_key(|r| r.0);
-    let mut all: Vec<(String, LevelError)> = vec![];
-    for (_, r) in results {
-        all.extend(r?);
-    }
+    let all = study(&plan, grid, ctx)?;
     let params = format!(
         "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over t = j/{grid}; solver newton",
         plan.n_ref, plan.n_ref, plan.n_ref

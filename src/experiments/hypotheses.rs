@@ -15,6 +15,7 @@ use crate::assembly::stiffness;
 use crate::linalg::Cholesky;
 use crate::material::Isotropic;
 use crate::mesh::Dofs;
+use crate::ordering::Ordering;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use faer::{Mat, Side};
@@ -39,7 +40,8 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             .iter()
             .map(|&c| dofs.of(c, 1).expect("free"))
             .collect();
-        let chol = Cholesky::factor(&v, &cdofs).map_err(|e| ExpError::Table {
+        let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
+        let chol = Cholesky::factor(&v, &order).map_err(|e| ExpError::Table {
             path: "hypotheses".into(),
             message: e.to_string(),
         })?;
