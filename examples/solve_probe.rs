@@ -47,6 +47,23 @@ fn main() {
                 1e3 * med(b)
             );
             std::hint::black_box(&x);
+            for r in [2, 4] {
+                let bs: Vec<&[f64]> = (0..r).map(|_| disc.f.as_slice()).collect();
+                let (mut f, mut b) = (vec![], vec![]);
+                for _ in 0..15 {
+                    let t = Instant::now();
+                    let xs = chol.forward_many(&bs);
+                    f.push(t.elapsed().as_secs_f64());
+                    let t = Instant::now();
+                    std::hint::black_box(chol.backward_many(xs));
+                    b.push(t.elapsed().as_secs_f64());
+                }
+                println!(
+                    "    {r} columns: forward {:.2} ms backward {:.2} ms",
+                    1e3 * med(f),
+                    1e3 * med(b)
+                );
+            }
         }
     }
 }

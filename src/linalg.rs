@@ -63,6 +63,9 @@ pub struct Cholesky {
     nodes: Nodes,
 }
 
+/// Right-hand sides per sweep over $L$.
+pub const MAX_BATCH: usize = 4;
+
 /// Supernodes `0..a` hold the columns `0..n1` (first half), `a..b` the columns
 /// `n1..tail` (second half), `b..` the rest.
 #[derive(Debug, Clone, Copy)]
@@ -93,44 +96,29 @@ struct Nodes {
     rows: Vec<u32>,
 }
 
-/// $\sum_i a_i b_i$ with four partial sums (so the compiler vectorises it).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut s = [0.0; 4];
+/// $\sum_i a_i b_i$ for `R` right-hand sides at once ($b_i \in \mathbb R^R$), with
+/// four partial sums so that the compiler vectorises it.
+#[inline]
+fn dot<const R: usize>(a: &[f64], b: &[[f64; R]]) -> [f64; R] {
+    let mut s = [[0.0; R]; 4];
     let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = (ca.remainder().iter().zip(cb.remainder()))
-        .map(|(x, y)| x * y)
-        .sum();
+    let mut out = [0.0; R];
+    for (x, y) in ca.remainder().iter().zip(cb.remainder()) {
+        for j in 0..R {
+            out[j] += x * y[j];
+        }
+    }
     for (x, y) in ca.zip(cb) {
         for l in 0..4 {
-            s[l] += x[l] * y[l];
+            for j in 0..R {
+                s[l][j] += x[l] * y[l][j];
+            }
         }
     }
-    (s[0] + s[1]) + (s[2] + s[3]) + tail
-}
-
-/// $x_c \leftarrow x_c - \sum_i L_{ic}\, t_i$ for the `size` columns of a supernode
-/// stored in `v` (`nr` rows each, the first `size` the diagonal block), where
-/// `t` holds the values of the rows below the block. Four columns at a time, so
-/// that each value of `t` is loaded once for four independent sums.
-fn below(v: &[f64], nr: usize, size: usize, t: &[f64], x: &mut [f64]) {
-    let mut c = 0;
-    while c + 4 <= size {
-        let col = |l: usize| &v[(c + l) * nr + size..(c + l + 1) * nr];
-        let mut s = [0.0; 4];
-        for ((((t, a), b), d), e) in t.iter().zip(col(0)).zip(col(1)).zip(col(2)).zip(col(3)) {
-            s[0] += a * t;
-            s[1] += b * t;
-            s[2] += d * t;
-            s[3] += e * t;
-        }
-        for l in 0..4 {
-            x[c + l] -= s[l];
-        }
-        c += 4;
+    for j in 0..R {
+        out[j] += (s[0][j] + s[1][j]) + (s[2][j] + s[3][j]);
     }
-    for c in c..size {
-        x[c] -= dot(&v[c * nr + size..(c + 1) * nr], t);
-    }
+    out
 }
 
 /// Software prefetch for a backward sweep through `values`: hardware prefetchers
@@ -166,16 +154,16 @@ impl<'a> Prefetch<'a> {
     }
 }
 
-/// $x \leftarrow L^{-1} x$ over the supernodes `range`, where `own` holds the rows
-/// from `lo` on and rows from `tail` on live in `tail_x` (pass `tail = n` when `own`
-/// is the whole vector).
-fn lower_solve(
+/// $X \leftarrow L^{-1} X$ over the supernodes `range` for `R` right-hand sides
+/// (row $i$ of $X$ is `x[i]`), where `own` holds the rows from `lo` on and rows
+/// from `tail` on live in `tail_x` (pass `tail = n` when `own` is all of $X$).
+fn lower_solve<const R: usize>(
     nodes: &Nodes,
     values: &[f64],
     range: std::ops::Range<usize>,
-    own: &mut [f64],
+    own: &mut [[f64; R]],
     lo: usize,
-    tail_x: &mut [f64],
+    tail_x: &mut [[f64; R]],
     tail: usize,
 ) {
     let mut tmp = Vec::new();
@@ -185,41 +173,48 @@ fn lower_solve(
         let v = &values[node.val..node.val + nr * size];
         let start = node.start - lo;
         tmp.clear();
-        tmp.resize(rows.len(), 0.0);
+        tmp.resize(rows.len(), [0.0; R]);
         for c in 0..size {
             let col = &v[c * nr..(c + 1) * nr];
-            let xc = own[start + c] / col[c];
+            let xc = own[start + c].map(|x| x / col[c]);
             own[start + c] = xc;
             for (x, l) in own[start + c + 1..start + size]
                 .iter_mut()
                 .zip(&col[c + 1..size])
             {
-                *x -= l * xc;
+                for j in 0..R {
+                    x[j] -= l * xc[j];
+                }
             }
             for (t, l) in tmp.iter_mut().zip(&col[size..]) {
-                *t += l * xc;
+                for j in 0..R {
+                    t[j] += l * xc[j];
+                }
             }
         }
         for (&r, t) in rows.iter().zip(&tmp) {
             let r = r as usize;
-            if r >= tail {
-                tail_x[r - tail] -= t;
+            let x = if r >= tail {
+                &mut tail_x[r - tail]
             } else {
-                own[r - lo] -= t;
+                &mut own[r - lo]
+            };
+            for j in 0..R {
+                x[j] -= t[j];
             }
         }
     }
 }
 
-/// $x \leftarrow L^{-\top} x$ over the supernodes `range` (taken in reverse), with
+/// $X \leftarrow L^{-\top} X$ over the supernodes `range` (taken in reverse), with
 /// `own` and `tail_x` as in [`lower_solve`]; the tail is only read.
-fn upper_solve(
+fn upper_solve<const R: usize>(
     nodes: &Nodes,
     values: &[f64],
     range: std::ops::Range<usize>,
-    own: &mut [f64],
+    own: &mut [[f64; R]],
     lo: usize,
-    tail_x: &[f64],
+    tail_x: &[[f64; R]],
     tail: usize,
 ) {
     let mut tmp = Vec::new();
@@ -245,11 +240,19 @@ fn upper_solve(
         let x = &mut own[start..start + size];
         // The rows below the diagonal block first, reading the columns forwards
         // (the memory prefetcher follows ascending addresses), then the block.
-        below(v, nr, size, &tmp, x);
+        for (c, x) in x.iter_mut().enumerate() {
+            let s = dot(&v[c * nr + size..(c + 1) * nr], &tmp);
+            for j in 0..R {
+                x[j] -= s[j];
+            }
+        }
         for c in (0..size).rev() {
             let col = &v[c * nr..c * nr + size];
             let (head, done) = x.split_at_mut(c + 1);
-            head[c] = (head[c] - dot(&col[c + 1..], done)) / col[c];
+            let s = dot(&col[c + 1..], done);
+            for j in 0..R {
+                head[c][j] = (head[c][j] - s[j]) / col[c];
+            }
         }
     }
 }
@@ -454,8 +457,46 @@ impl Cholesky {
     // ANCHOR: forward
     /// Forward solve $x = L^{-1}\Pi b$ ($\Pi$ the fill-reducing permutation).
     pub fn forward(&self, b: &[f64]) -> Vec<f64> {
+        self.forward_many(&[b]).pop().expect("one column")
+    }
+
+    /// Forward solves of several right-hand sides: one sweep over $L$ per group of
+    /// up to four (the sweep costs memory traffic, which the columns share).
+    pub fn forward_many(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
+        let mut out = Vec::with_capacity(bs.len());
+        for group in bs.chunks(MAX_BATCH) {
+            let cols: Vec<Vec<f64>> = (group.iter())
+                .map(|b| self.fwd.iter().map(|&old| b[old]).collect())
+                .collect();
+            out.extend(match group.len() {
+                1 => self.columns::<1>(cols, Self::sweep_forward),
+                2 => self.columns::<2>(cols, Self::sweep_forward),
+                3 => self.columns::<3>(cols, Self::sweep_forward),
+                _ => self.columns::<4>(cols, Self::sweep_forward),
+            });
+        }
+        out
+    }
+
+    /// Runs `sweep` on the `R` columns `cols` (permuted order), interleaved so that
+    /// each value of $L$ is loaded once for all of them.
+    fn columns<const R: usize>(
+        &self,
+        cols: Vec<Vec<f64>>,
+        sweep: fn(&Self, &mut [[f64; R]]),
+    ) -> Vec<Vec<f64>> {
         let n = self.dim();
-        let mut x: Vec<f64> = self.fwd.iter().map(|&old| b[old]).collect();
+        let mut x: Vec<[f64; R]> = (0..n)
+            .map(|i| std::array::from_fn(|j| cols[j][i]))
+            .collect();
+        sweep(self, &mut x);
+        (0..R)
+            .map(|j| x.iter().map(|row| row[j]).collect())
+            .collect()
+    }
+
+    fn sweep_forward<const R: usize>(&self, x: &mut [[f64; R]]) {
+        let n = self.dim();
         let mut first = 0;
         if let Some(Split {
             supernodes: [a, b],
@@ -466,7 +507,7 @@ impl Cholesky {
             // tail rows in its own buffer, added once both are done.
             let (halves, rest) = x.split_at_mut(tail);
             let (left, right) = halves.split_at_mut(n1);
-            let (mut buf_l, mut buf_r) = (vec![0.0; n - tail], vec![0.0; n - tail]);
+            let (mut buf_l, mut buf_r) = (vec![[0.0; R]; n - tail], vec![[0.0; R]; n - tail]);
             std::thread::scope(|scope| {
                 scope.spawn(|| {
                     lower_solve(&self.nodes, &self.values, a..b, right, n1, &mut buf_r, tail)
@@ -474,36 +515,22 @@ impl Cholesky {
                 lower_solve(&self.nodes, &self.values, 0..a, left, 0, &mut buf_l, tail);
             });
             for ((x, l), r) in rest.iter_mut().zip(&buf_l).zip(&buf_r) {
-                *x += l + r;
+                for j in 0..R {
+                    x[j] += l[j] + r[j];
+                }
             }
             first = b;
         }
-        lower_solve(
-            &self.nodes,
-            &self.values,
-            first..self.n_supernodes(),
-            &mut x,
-            0,
-            &mut [],
-            n,
-        );
-        x
+        let all = first..self.n_supernodes();
+        lower_solve(&self.nodes, &self.values, all, x, 0, &mut [], n);
     }
     // ANCHOR_END: forward
 
-    /// Backward solve: returns $\Pi^\top L^{-\top} x$ (so `backward(forward(b))` $= K^{-1}b$).
-    pub fn backward(&self, mut x: Vec<f64>) -> Vec<f64> {
+    fn sweep_backward<const R: usize>(&self, x: &mut [[f64; R]]) {
         let n = self.dim();
         let first = self.split.map_or(0, |s| s.supernodes[1]);
-        upper_solve(
-            &self.nodes,
-            &self.values,
-            first..self.n_supernodes(),
-            &mut x,
-            0,
-            &[],
-            n,
-        );
+        let all = first..self.n_supernodes();
+        upper_solve(&self.nodes, &self.values, all, x, 0, &[], n);
         if let Some(Split {
             supernodes: [a, b],
             rows: [n1, tail],
@@ -518,11 +545,34 @@ impl Cholesky {
                 upper_solve(&self.nodes, &self.values, 0..a, left, 0, rest, tail);
             });
         }
-        let mut u = vec![0.0; n];
-        for (new, &old) in self.fwd.iter().enumerate() {
-            u[old] = x[new];
+    }
+
+    /// Backward solve: returns $\Pi^\top L^{-\top} x$ (so `backward(forward(b))` $= K^{-1}b$).
+    pub fn backward(&self, x: Vec<f64>) -> Vec<f64> {
+        self.backward_many(vec![x]).pop().expect("one column")
+    }
+
+    /// Backward solves of several columns, see [`Cholesky::forward_many`].
+    pub fn backward_many(&self, xs: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+        let mut out = Vec::with_capacity(xs.len());
+        let mut xs = xs.into_iter().peekable();
+        while xs.peek().is_some() {
+            let group: Vec<Vec<f64>> = xs.by_ref().take(MAX_BATCH).collect();
+            let done = match group.len() {
+                1 => self.columns::<1>(group, Self::sweep_backward),
+                2 => self.columns::<2>(group, Self::sweep_backward),
+                3 => self.columns::<3>(group, Self::sweep_backward),
+                _ => self.columns::<4>(group, Self::sweep_backward),
+            };
+            out.extend(done.into_iter().map(|x| {
+                let mut u = vec![0.0; x.len()];
+                for (new, &old) in self.fwd.iter().enumerate() {
+                    u[old] = x[new];
+                }
+                u
+            }));
         }
-        u
+        out
     }
 
     /// $K^{-1} b$.

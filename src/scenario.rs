@@ -242,6 +242,14 @@ impl Scenario {
         Ok(self)
     }
 
+    /// Whether `other` gives the same step matrix $A + kB$ for every $n$ and $N$:
+    /// the same supports, material and final time (the geometry is fixed).
+    pub fn same_operator(&self, other: &Scenario) -> bool {
+        self.supports == other.supports
+            && [self.e, self.kappa, self.alpha, self.beta, self.t_end]
+                == [other.e, other.kappa, other.alpha, other.beta, other.t_end]
+    }
+
     /// The mesh with $n$ contact segments and this scenario's supports.
     pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
         Mesh::with_supports(n, self.supports)

@@ -129,10 +129,11 @@ pub enum RunError {
     #[error("condensation failed: {0}")]
     Condense(String),
     #[error(
-        "step {step} (t = {t}) failed: solver `{solver}` ended with {status:?} after {iterations} iterations, \
+        "scenario `{scenario}`, step {step} (t = {t}) failed: solver `{solver}` ended with {status:?} after {iterations} iterations, \
          solver residual {residual:.3e}, certificate {certificate:.3e} (tolerance {tol:.1e})"
     )]
     Step {
+        scenario: String,
         step: usize,
         t: f64,
         solver: String,
@@ -190,12 +191,65 @@ pub fn run(
     solver: &mut dyn StepSolver,
     observe: &mut dyn FnMut(usize, f64, &[f64]),
 ) -> Result<Run, RunError> {
+    let runs = run_batch(
+        std::slice::from_ref(scn),
+        opt,
+        &mut [solver],
+        &mut |_, step, t, u| observe(step, t, u),
+    )?;
+    Ok(runs.into_iter().next().expect("one run"))
+}
+
+/// Runs several scenarios that share the step matrix (the same geometry, supports,
+/// material and final time; loads, law and $g$ may differ) in lockstep: one
+/// factorisation, and per step one forward and one backward sweep over $L$ for all
+/// of them (a sweep costs memory traffic, which the columns share). Each scenario
+/// has its own step solver; `observe(i, n, t_n, u_n)` is called after every step of
+/// scenario `i`. The timings are those of the whole batch.
+pub fn run_batch(
+    scns: &[Scenario],
+    opt: &Options,
+    solvers: &mut [&mut dyn StepSolver],
+    observe: &mut dyn FnMut(usize, usize, f64, &[f64]),
+) -> Result<Vec<Run>, RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
+    }
+    let Some(scn) = scns.first() else {
+        return Ok(vec![]);
+    };
+    if solvers.len() != scns.len() {
+        return Err(InputError::field(
+            "solvers",
+            solvers.len(),
+            format!("one per scenario ({})", scns.len()),
+        )
+        .into());
+    }
+    if let Some(other) = scns.iter().find(|o| !scn.same_operator(o)) {
+        return Err(InputError::field(
+            "scenarios",
+            &other.name,
+            format!(
+                "scenarios that share the step matrix of `{}` (geometry, supports, material, T)",
+                scn.name
+            ),
+        )
+        .into());
     }
     let mut timings = Timings::default();
     let clock = Instant::now();
     let disc = Discretisation::new(scn, opt.n)?;
+    let mut loads = vec![disc.f.clone()];
+    for other in &scns[1..] {
+        loads.push(assembly::load(
+            &disc.mesh,
+            &disc.dofs,
+            other.f0,
+            other.f2,
+            other.f0_modulation,
+        ));
+    }
     timings.assembly = clock.elapsed().as_secs_f64();
 
     let k = scn.t_end / opt.steps as f64;
@@ -239,7 +293,10 @@ pub fn run(
 
     let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
     let m = cdofs.len();
-    let cmin = scn.law.min_slope();
+    let cmin = scns
+        .iter()
+        .map(|s| s.law.min_slope())
+        .fold(f64::INFINITY, f64::min);
     let hessian_min = if cmin < 0.0 {
         let h = faer::Mat::from_fn(m, m, |i, j| {
             s[(i, j)] + if i == j { kw[i] * cmin } else { 0.0 }
@@ -254,103 +311,123 @@ pub fn run(
     // The condensed operator and its spectral bounds are one phase.
     timings.condensation = clock.elapsed().as_secs_f64();
     let nd = disc.dofs.count;
-    let mut u = vec![0.0; nd];
-    let mut r = vec![0.0; m];
-    let mut records = Vec::with_capacity(opt.steps);
-    let mut contact = vec![];
+    let nb = scns.len();
+    // Per scenario: u_n, A u_n (u_0 = 0), the condensed unknowns, the records.
+    let mut u = vec![vec![0.0; nd]; nb];
+    let mut au = vec![vec![0.0; nd]; nb];
+    let mut r = vec![vec![0.0; m]; nb];
+    let mut records: Vec<Vec<StepRecord>> = vec![Vec::with_capacity(opt.steps); nb];
+    let mut contact = vec![vec![]; nb];
     let clock = Instant::now();
-    // A u_{n-1}, carried from the previous step (u_0 = 0).
-    let mut au = vec![0.0; nd];
     for step in 1..=opt.steps {
         let t = step as f64 * k;
         let t0 = Instant::now();
         // b_n = A u_{n-1} + k f; forward solve x = L^{-1} b_n; r0 = P K^{-1} b_n from its contact block.
-        let b: Vec<f64> = au.iter().zip(&disc.f).map(|(au, f)| au + k * f).collect();
-        let mut x = chol.forward(&b);
-        let mut y_c = x[nd - m..].to_vec();
-        chol.contact_backward(&mut y_c);
-        let r0: Vec<f64> = y_c.iter().map(|y| -y).collect();
-        let prob = StepProblem {
-            s: s.as_ref(),
-            r0: &r0,
-            kw: &kw,
-            law: &scn.law,
-            g: scn.g,
-            lipschitz: lambda_max,
-            curvature_min: hessian_min,
-        };
-        let ts = Instant::now();
-        let info = solver.solve(&prob, &mut r);
-        timings.step_solver += ts.elapsed().as_secs_f64();
-        // Recovery: u = K^{-1}(b_n + z at the contact y-dofs), z = S (r0 - r): the forward
-        // solve changes only in its contact block, by L_CC^{-1} z; then one backward solve.
-        let diff: Vec<f64> = r0.iter().zip(&r).map(|(a, b)| a - b).collect();
-        let mut z = crate::step::sym_matvec(s.as_ref(), &diff);
-        chol.contact_forward(&mut z);
-        for (xi, zi) in x[nd - m..].iter_mut().zip(&z) {
-            *xi += zi;
-        }
-        u = chol.backward(x);
-        let time_s = t0.elapsed().as_secs_f64();
-        let tc = Instant::now();
-        // A u_n and B u_n serve the next step, the certificate (K u = A u + k B u) and the norm.
-        let (bu, ku_abs);
-        (au, bu, ku_abs) = match &pair {
-            Some(pair) => {
-                let p = pair.products(&u, k, threads);
-                (p.ax, p.bx, p.abs_norm)
+        let b: Vec<Vec<f64>> = (au.iter().zip(&loads))
+            .map(|(au, f)| au.iter().zip(f).map(|(au, f)| au + k * f).collect())
+            .collect();
+        let mut x = chol.forward_many(&b.iter().map(Vec::as_slice).collect::<Vec<_>>());
+        let mut infos = Vec::with_capacity(nb);
+        for i in 0..nb {
+            let mut y_c = x[i][nd - m..].to_vec();
+            chol.contact_backward(&mut y_c);
+            let r0: Vec<f64> = y_c.iter().map(|y| -y).collect();
+            let prob = StepProblem {
+                s: s.as_ref(),
+                r0: &r0,
+                kw: &kw,
+                law: &scns[i].law,
+                g: scns[i].g,
+                lipschitz: lambda_max,
+                curvature_min: hessian_min,
+            };
+            let ts = Instant::now();
+            infos.push(solvers[i].solve(&prob, &mut r[i]));
+            timings.step_solver += ts.elapsed().as_secs_f64();
+            // Recovery: u = K^{-1}(b_n + z at the contact y-dofs), z = S (r0 - r): the forward
+            // solve changes only in its contact block, by L_CC^{-1} z; then one backward solve.
+            let diff: Vec<f64> = r0.iter().zip(&r[i]).map(|(a, b)| a - b).collect();
+            let mut z = crate::step::sym_matvec(s.as_ref(), &diff);
+            chol.contact_forward(&mut z);
+            for (xi, zi) in x[i][nd - m..].iter_mut().zip(&z) {
+                *xi += zi;
             }
-            None => (
-                matvec(&disc.a, &u),
-                matvec(&disc.b, &u),
-                abs_matvec_norm(&kmat, &u),
-            ),
-        };
-        let ku: Vec<f64> = au.iter().zip(&bu).map(|(a, b)| a + k * b).collect();
-        let (certificate, states) = certify(&ku, ku_abs, &b, &u, &cdofs, &kw, &scn.law, scn.g);
-        timings.certificates += tc.elapsed().as_secs_f64();
-        let rec = StepRecord {
-            step,
-            t,
-            status: info.status.clone(),
-            iterations: info.iterations,
-            inner_iterations: info.inner_iterations,
-            solver_residual: info.residual,
-            certificate,
-            energy_norm: energy_norm_with(&bu, &u),
-            time_s,
-        };
-        let failed = info.status != Status::Converged
-            || certificate.max().is_nan()
-            || certificate.max() > opt.certificate_tol;
-        records.push(rec);
-        if failed {
-            return Err(RunError::Step {
+        }
+        u = chol.backward_many(x);
+        let time_s = t0.elapsed().as_secs_f64();
+        for (i, info) in infos.into_iter().enumerate() {
+            let tc = Instant::now();
+            // A u_n and B u_n serve the next step, the certificate (K u = A u + k B u) and the norm.
+            let (bu, ku_abs);
+            (au[i], bu, ku_abs) = match &pair {
+                Some(pair) => {
+                    let p = pair.products(&u[i], k, threads);
+                    (p.ax, p.bx, p.abs_norm)
+                }
+                None => (
+                    matvec(&disc.a, &u[i]),
+                    matvec(&disc.b, &u[i]),
+                    abs_matvec_norm(&kmat, &u[i]),
+                ),
+            };
+            let ku: Vec<f64> = au[i].iter().zip(&bu).map(|(a, b)| a + k * b).collect();
+            let (certificate, states) = certify(
+                &ku,
+                ku_abs,
+                &b[i],
+                &u[i],
+                &cdofs,
+                &kw,
+                &scns[i].law,
+                scns[i].g,
+            );
+            timings.certificates += tc.elapsed().as_secs_f64();
+            let rec = StepRecord {
                 step,
                 t,
-                solver: solver.name().to_string(),
-                status: info.status,
+                status: info.status.clone(),
                 iterations: info.iterations,
-                residual: info.residual,
-                certificate: certificate.max(),
-                tol: opt.certificate_tol,
-            });
+                inner_iterations: info.inner_iterations,
+                solver_residual: info.residual,
+                certificate,
+                energy_norm: energy_norm_with(&bu, &u[i]),
+                time_s,
+            };
+            let failed = info.status != Status::Converged
+                || certificate.max().is_nan()
+                || certificate.max() > opt.certificate_tol;
+            records[i].push(rec);
+            if failed {
+                return Err(RunError::Step {
+                    scenario: scns[i].name.clone(),
+                    step,
+                    t,
+                    solver: solvers[i].name().to_string(),
+                    status: info.status,
+                    iterations: info.iterations,
+                    residual: info.residual,
+                    certificate: certificate.max(),
+                    tol: opt.certificate_tol,
+                });
+            }
+            observe(i, step, t, &u[i]);
+            contact[i] = states;
         }
-        observe(step, t, &u);
-        contact = states;
     }
     timings.steps = clock.elapsed().as_secs_f64();
-    Ok(Run {
-        n: opt.n,
-        steps: opt.steps,
-        dofs: disc.dofs.count,
-        nnz_l: chol.nnz_l(),
-        u,
-        records,
-        contact,
-        timings,
-        s_eigen: (lambda_min, lambda_max),
-        hessian_min,
-    })
+    Ok((u.into_iter().zip(records).zip(contact))
+        .map(|((u, records), contact)| Run {
+            n: opt.n,
+            steps: opt.steps,
+            dofs: disc.dofs.count,
+            nnz_l: chol.nnz_l(),
+            u,
+            records,
+            contact,
+            timings: timings.clone(),
+            s_eigen: (lambda_min, lambda_max),
+            hessian_min,
+        })
+        .collect())
 }
 // ANCHOR_END: run

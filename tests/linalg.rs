@@ -197,3 +197,67 @@ fn both_orderings_give_the_same_run() {
         .fold(0.0, f64::max);
     assert!(d < 1e-12, "orderings change u_N by {d:e}");
 }
+
+#[test]
+fn a_batch_run_equals_separate_runs() {
+    let scns = [
+        Scenario::load("literal").unwrap(),
+        Scenario::load("figure").unwrap(),
+    ];
+    let opt = Options::new(32, 16);
+    let mut seen = vec![0usize; 2];
+    let (mut a, mut b) = (Newton::default(), Newton::default());
+    let batch = evhi::scheme::run_batch(&scns, &opt, &mut [&mut a, &mut b], &mut |i, _, _, _| {
+        seen[i] += 1
+    })
+    .unwrap();
+    assert_eq!(seen, vec![16, 16]);
+    for (scn, r) in scns.iter().zip(&batch) {
+        let alone = run(scn, &opt, &mut Newton::default(), &mut |_, _, _| {}).unwrap();
+        // Column j of a batched sweep does the same arithmetic as a single one.
+        assert_eq!(alone.u, r.u, "{}: batch and single runs differ", scn.name);
+        assert_eq!(alone.records.len(), r.records.len());
+    }
+}
+
+#[test]
+fn a_batch_refuses_scenarios_with_different_operators() {
+    let scns = [
+        Scenario::load("figure").unwrap(),
+        Scenario::load("smooth").unwrap(),
+    ];
+    let (mut a, mut b) = (Newton::default(), Newton::default());
+    let err = evhi::scheme::run_batch(
+        &scns,
+        &Options::new(16, 4),
+        &mut [&mut a, &mut b],
+        &mut |_, _, _, _| {},
+    )
+    .err()
+    .expect("different supports must be refused");
+    let msg = err.to_string();
+    assert!(msg.contains("scenarios") && msg.contains("smooth"), "{msg}");
+}
+
+#[test]
+fn many_columns_solve_like_one() {
+    let (disc, k) = operators("figure", 32);
+    let chol = Cholesky::factor(
+        &k,
+        &Ordering::nested_dissection(&disc.mesh, &disc.dofs, &disc.contact_dofs),
+    )
+    .unwrap();
+    // Six columns: a group of four and a group of two.
+    let bs: Vec<Vec<f64>> = (0..6)
+        .map(|j| {
+            (0..k.nrows())
+                .map(|i| ((i * (j + 3)) % 17) as f64 - 8.0)
+                .collect()
+        })
+        .collect();
+    let refs: Vec<&[f64]> = bs.iter().map(Vec::as_slice).collect();
+    let xs = chol.backward_many(chol.forward_many(&refs));
+    for (x, b) in xs.iter().zip(&bs) {
+        assert_eq!(*x, chol.solve(b));
+    }
+}

@@ -18,6 +18,7 @@ use crate::norms::energy_norm;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::{self, Options};
+use crate::step::StepSolver;
 use crate::step::newton::Newton;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
@@ -88,107 +89,148 @@ pub fn region(x: f64, y: f64) -> usize {
     }
 }
 
+/// The running error measures of one scenario in one level.
+#[derive(Default)]
+struct Accumulator {
+    max_e: f64,
+    max_u: f64,
+    e_t: f64,
+    u_t: f64,
+    regions: [f64; 3],
+    fail: Option<usize>,
+}
+
 impl Reference {
+    /// The references of a group of scenarios that share the step matrix, in one
+    /// batched run.
     fn compute(
-        scn: &Scenario,
+        scns: &[Scenario],
         n_ref: usize,
         grid: usize,
         ctx: &Ctx,
-    ) -> Result<Reference, ExpError> {
-        let mesh = scn.mesh(n_ref)?;
-        let dofs = Dofs::new(&mesh, true);
-        let tensor = scn.elasticity();
-        let b = stiffness(&mesh, &dofs, &tensor);
-        let mut fields = BTreeMap::new();
+    ) -> Result<Vec<Reference>, ExpError> {
         let every = n_ref / grid;
-        ctx.log(&format!(
-            "reference: scenario {}, h = k = 1/{n_ref}",
-            scn.name
-        ));
-        scheme::run(
-            scn,
+        let mut fields = vec![BTreeMap::new(); scns.len()];
+        let clock = std::time::Instant::now();
+        let mut newtons: Vec<Newton> = scns.iter().map(|_| Newton::default()).collect();
+        let mut solvers: Vec<&mut dyn StepSolver> = newtons
+            .iter_mut()
+            .map(|s| s as &mut dyn StepSolver)
+            .collect();
+        scheme::run_batch(
+            scns,
             &Options::new(n_ref, n_ref),
-            &mut Newton::default(),
-            &mut |step, _, u| {
+            &mut solvers,
+            &mut |i, step, _, u| {
                 if step % every == 0 {
-                    fields.insert(step / every, u.to_vec());
+                    fields[i].insert(step / every, u.to_vec());
                 }
             },
         )?;
-        let norms = fields
-            .iter()
-            .map(|(&j, u)| (j, energy_norm(&b, u)))
-            .collect();
-        Ok(Reference {
-            mesh,
-            dofs,
-            b,
-            grid,
-            fields,
-            norms,
-            tensor,
-        })
+        let names: Vec<&str> = scns.iter().map(|s| s.name.as_str()).collect();
+        ctx.log(&format!(
+            "{}: reference, h = k = 1/{n_ref} ({:.1} s)",
+            names.join(" + "),
+            clock.elapsed().as_secs_f64()
+        ));
+        scns.iter()
+            .zip(fields)
+            .map(|(scn, fields)| {
+                let mesh = scn.mesh(n_ref)?;
+                let dofs = Dofs::new(&mesh, true);
+                let tensor = scn.elasticity();
+                let b = stiffness(&mesh, &dofs, &tensor);
+                let norms = fields
+                    .iter()
+                    .map(|(&j, u)| (j, energy_norm(&b, u)))
+                    .collect();
+                Ok(Reference {
+                    mesh,
+                    dofs,
+                    b,
+                    grid,
+                    fields,
+                    norms,
+                    tensor,
+                })
+            })
+            .collect()
     }
 
-    /// Errors of the level $(n, N)$, computed on the fly at the shared time levels.
-    fn level(
-        &self,
-        scn: &Scenario,
+    /// Errors of the level $(n, N)$ for each scenario of a group (`refs[i]` is the
+    /// reference of `scns[i]`), in one batched run, computed on the fly at the
+    /// shared time levels.
+    fn levels(
+        refs: &[Reference],
+        scns: &[Scenario],
         family: &'static str,
         n: usize,
         steps: usize,
-    ) -> Result<LevelError, ExpError> {
-        let coarse = scn.mesh(n)?;
+    ) -> Result<Vec<LevelError>, ExpError> {
+        let coarse = scns[0].mesh(n)?;
         let cdofs = Dofs::new(&coarse, true);
-        let (mut max_e, mut max_u, mut e_t, mut u_t) = (0.0f64, 0.0f64, 0.0, 1.0);
-        let mut regions = [0.0; 3];
-        let mut fail = None;
-        scheme::run(
-            scn,
+        let mut acc: Vec<Accumulator> = refs
+            .iter()
+            .map(|_| Accumulator {
+                u_t: 1.0,
+                ..Default::default()
+            })
+            .collect();
+        let mut newtons: Vec<Newton> = scns.iter().map(|_| Newton::default()).collect();
+        let mut solvers: Vec<&mut dyn StepSolver> = newtons
+            .iter_mut()
+            .map(|s| s as &mut dyn StepSolver)
+            .collect();
+        scheme::run_batch(
+            scns,
             &Options::new(n, steps),
-            &mut Newton::default(),
-            &mut |step, _, u| {
-                if (step * self.grid) % steps != 0 || fail.is_some() {
+            &mut solvers,
+            &mut |i, step, _, u| {
+                let (r, a) = (&refs[i], &mut acc[i]);
+                if (step * r.grid) % steps != 0 || a.fail.is_some() {
                     return;
                 }
-                let j = step * self.grid / steps;
-                let Some(uref) = self.fields.get(&j) else {
+                let j = step * r.grid / steps;
+                let Some(uref) = r.fields.get(&j) else {
                     return;
                 };
-                let fine = if n == self.mesh.n {
+                let fine = if n == r.mesh.n {
                     u.to_vec()
                 } else {
-                    self.dofs
-                        .gather(&prolongate(&coarse, &cdofs.expand(u), &self.mesh))
+                    r.dofs
+                        .gather(&prolongate(&coarse, &cdofs.expand(u), &r.mesh))
                 };
                 let diff: Vec<f64> = uref.iter().zip(&fine).map(|(a, b)| a - b).collect();
-                let e = energy_norm(&self.b, &diff);
-                max_e = max_e.max(e);
-                max_u = max_u.max(self.norms[&j]);
-                if j == self.grid {
-                    e_t = e;
-                    u_t = self.norms[&j];
-                    regions = self.regions(&diff);
+                let e = energy_norm(&r.b, &diff);
+                a.max_e = a.max_e.max(e);
+                a.max_u = a.max_u.max(r.norms[&j]);
+                if j == r.grid {
+                    a.e_t = e;
+                    a.u_t = r.norms[&j];
+                    a.regions = r.regions(&diff);
                 }
                 if !e.is_finite() {
-                    fail = Some(step);
+                    a.fail = Some(step);
                 }
             },
         )?;
-        if let Some(step) = fail {
-            return Err(ExpError::Table {
-                path: format!("table1, scenario {}", scn.name),
-                message: format!("non-finite error at h = 1/{n}, {steps} steps, step {step}"),
-            });
-        }
-        Ok(LevelError {
-            family,
-            n,
-            steps,
-            rel_t: e_t / u_t,
-            rel_max: max_e / max_u,
-            regions,
-        })
+        scns.iter()
+            .zip(acc)
+            .map(|(scn, a)| match a.fail {
+                Some(step) => Err(ExpError::Table {
+                    path: format!("table1, scenario {}", scn.name),
+                    message: format!("non-finite error at h = 1/{n}, {steps} steps, step {step}"),
+                }),
+                None => Ok(LevelError {
+                    family,
+                    n,
+                    steps,
+                    rel_t: a.e_t / a.u_t,
+                    rel_max: a.max_e / a.max_u,
+                    regions: a.regions,
+                }),
+            })
+            .collect()
     }
 
     /// $\tfrac12(\mathcal G\varepsilon(v), \varepsilon(v))$ per region.
@@ -214,19 +256,28 @@ impl Reference {
 /// and the smooth scene that satisfies the corollary's regularity hypotheses.
 pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
 
-/// One unit of the study's work: a reference run, or one level of one family
-/// against its scenario's reference.
+/// One unit of the study's work: the references of a group of scenarios that
+/// share the step matrix, or one level of one family for such a group.
 #[derive(Debug, Clone, Copy)]
 enum Task {
     Reference(usize),
     Level {
-        /// Row of the table (scenario, level, family order).
-        row: usize,
-        scenario: usize,
-        family: &'static str,
-        n: usize,
-        steps: usize,
+        group: usize,
+        /// Index of the level in the plan and of the family in [`FAMILIES`].
+        level: usize,
+        family: usize,
     },
+}
+
+/// The three families: name, and $(n, N)$ from the level's $n$ and the reference's.
+const FAMILIES: [&str; 3] = ["h=k", "h", "k"];
+
+fn family_sizes(family: usize, n: usize, n_ref: usize) -> (usize, usize) {
+    match family {
+        0 => (n, n),
+        1 => (n, n_ref),
+        _ => (n_ref, n),
+    }
 }
 
 impl Task {
@@ -235,7 +286,8 @@ impl Task {
     fn cost(&self, plan: &Plan, grid: usize) -> usize {
         match *self {
             Task::Reference(_) => usize::MAX,
-            Task::Level { n, steps, .. } => {
+            Task::Level { level, family, .. } => {
+                let (n, steps) = family_sizes(family, plan.levels[level], plan.n_ref);
                 steps * n * n + steps.min(grid) * plan.n_ref * plan.n_ref
             }
         }
@@ -246,40 +298,56 @@ impl Task {
 /// and the first error.
 struct Queue {
     pending: Vec<Task>,
-    references: Vec<Option<std::sync::Arc<Reference>>>,
+    references: Vec<Option<std::sync::Arc<Vec<Reference>>>>,
+    /// (table row, error).
     levels: Vec<(usize, LevelError)>,
     error: Option<ExpError>,
 }
 
 /// All three families of all scenarios, on two threads (this machine has two
-/// cores). References go first; then the levels, dearest first, each as soon as
-/// its reference is there, so neither thread idles while work remains.
+/// cores). Scenarios that share the step matrix run together (`literal` and
+/// `figure`: one factorisation and one sweep over $L$ per step for both).
+/// References go first; then the levels, dearest first, each as soon as its
+/// reference is there, so neither thread idles while work remains.
 fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)>, ExpError> {
     let scenarios = SCENARIOS
         .iter()
         .map(|name| Scenario::load(name))
         .collect::<Result<Vec<_>, _>>()?;
+    let mut groups: Vec<Vec<Scenario>> = vec![];
+    for scn in &scenarios {
+        match groups.iter_mut().find(|g| g[0].same_operator(scn)) {
+            Some(g) => g.push(scn.clone()),
+            None => groups.push(vec![scn.clone()]),
+        }
+    }
+    // Table rows: scenario, level, family.
+    let nl = plan.levels.len();
+    let row = |name: &str, level: usize, family: usize| {
+        let s = scenarios
+            .iter()
+            .position(|x| x.name == name)
+            .expect("listed");
+        (s * nl + level) * FAMILIES.len() + family
+    };
+    let mut pending: Vec<Task> = (0..groups.len()).map(Task::Reference).collect();
     let mut levels = vec![];
-    for s in 0..scenarios.len() {
-        for &n in &plan.levels {
-            for (family, n, steps) in [("h=k", n, n), ("h", n, plan.n_ref), ("k", plan.n_ref, n)] {
+    for group in 0..groups.len() {
+        for level in 0..nl {
+            for family in 0..FAMILIES.len() {
                 levels.push(Task::Level {
-                    row: levels.len(),
-                    scenario: s,
+                    group,
+                    level,
                     family,
-                    n,
-                    steps,
                 });
             }
         }
     }
-    let mut pending: Vec<Task> = (0..scenarios.len()).map(Task::Reference).collect();
-    let mut by_cost = levels.clone();
-    by_cost.sort_by_key(|t| std::cmp::Reverse(t.cost(plan, grid)));
-    pending.extend(by_cost);
+    levels.sort_by_key(|t| std::cmp::Reverse(t.cost(plan, grid)));
+    pending.extend(levels);
     let queue = std::sync::Mutex::new(Queue {
         pending,
-        references: vec![None; scenarios.len()],
+        references: vec![None; groups.len()],
         levels: vec![],
         error: None,
     });
@@ -293,13 +361,13 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
                 }
                 let runnable = q.pending.iter().position(|t| match t {
                     Task::Reference(_) => true,
-                    Task::Level { scenario, .. } => q.references[*scenario].is_some(),
+                    Task::Level { group, .. } => q.references[*group].is_some(),
                 });
                 match runnable {
                     Some(i) => {
                         let task = q.pending.remove(i);
                         let reference = match task {
-                            Task::Level { scenario, .. } => q.references[scenario].clone(),
+                            Task::Level { group, .. } => q.references[group].clone(),
                             Task::Reference(_) => None,
                         };
                         break (task, reference);
@@ -309,44 +377,50 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
             }
         };
         let outcome = match (task, reference) {
-            (Task::Reference(s), _) => Reference::compute(&scenarios[s], plan.n_ref, grid, ctx)
-                .map(|r| (Some((s, std::sync::Arc::new(r))), None)),
+            (Task::Reference(g), _) => Reference::compute(&groups[g], plan.n_ref, grid, ctx)
+                .map(|r| (Some((g, std::sync::Arc::new(r))), vec![])),
             (
                 Task::Level {
-                    row,
-                    scenario,
+                    group,
+                    level,
                     family,
-                    n,
-                    steps,
                 },
-                Some(reference),
+                Some(refs),
             ) => {
+                let (n, steps) = family_sizes(family, plan.levels[level], plan.n_ref);
+                let clock = std::time::Instant::now();
+                let errors = Reference::levels(&refs, &groups[group], FAMILIES[family], n, steps);
+                let names: Vec<&str> = groups[group].iter().map(|s| s.name.as_str()).collect();
                 ctx.log(&format!(
-                    "{}: {family} family, h = 1/{n}, k = 1/{steps}",
-                    scenarios[scenario].name
+                    "{}: {} family, h = 1/{n}, k = 1/{steps} ({:.1} s)",
+                    names.join(" + "),
+                    FAMILIES[family],
+                    clock.elapsed().as_secs_f64()
                 ));
-                reference
-                    .level(&scenarios[scenario], family, n, steps)
-                    .map(|e| (None, Some((row, e))))
+                errors.map(|errors| {
+                    let rows = (groups[group].iter().zip(errors))
+                        .map(|(s, e)| (row(&s.name, level, family), e))
+                        .collect();
+                    (None, rows)
+                })
             }
             (Task::Level { .. }, None) => unreachable!("levels wait for their reference"),
         };
         let mut q = queue.lock().expect("study queue");
         match outcome {
-            Ok((Some((s, r)), _)) => q.references[s] = Some(r),
-            Ok((None, Some(level))) => {
-                q.levels.push(level);
-                // A reference no pending level needs is let go (its fields are
+            Ok((Some((g, r)), _)) => q.references[g] = Some(r),
+            Ok((None, rows)) => {
+                q.levels.extend(rows);
+                // References no pending level needs are let go (their fields are
                 // large); running levels hold their own handle.
-                for s in 0..scenarios.len() {
+                for g in 0..groups.len() {
                     let needed = (q.pending.iter())
-                        .any(|t| matches!(t, Task::Level { scenario, .. } if *scenario == s));
+                        .any(|t| matches!(t, Task::Level { group, .. } if *group == g));
                     if !needed {
-                        q.references[s] = None;
+                        q.references[g] = None;
                     }
                 }
             }
-            Ok(_) => {}
             Err(e) => {
                 q.error.get_or_insert(e);
             }
@@ -368,10 +442,8 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
     Ok(rows
         .into_iter()
         .map(|(i, e)| {
-            let Task::Level { scenario, .. } = levels[i] else {
-                unreachable!("rows are levels")
-            };
-            (scenarios[scenario].name.clone(), e)
+            let s = i / (nl * FAMILIES.len());
+            (scenarios[s].name.clone(), e)
         })
         .collect())
 }
