@@ -465,34 +465,27 @@ impl Cholesky {
     pub fn forward_many(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
         let mut out = Vec::with_capacity(bs.len());
         for group in bs.chunks(MAX_BATCH) {
-            let cols: Vec<Vec<f64>> = (group.iter())
-                .map(|b| self.fwd.iter().map(|&old| b[old]).collect())
-                .collect();
-            out.extend(match group.len() {
-                1 => self.columns::<1>(cols, Self::sweep_forward),
-                2 => self.columns::<2>(cols, Self::sweep_forward),
-                3 => self.columns::<3>(cols, Self::sweep_forward),
-                _ => self.columns::<4>(cols, Self::sweep_forward),
-            });
+            // Permuted and interleaved: row i of the group is x[i*r..(i+1)*r].
+            let r = group.len();
+            let mut x = vec![0.0; self.dim() * r];
+            for (row, &old) in x.chunks_exact_mut(r).zip(&self.fwd) {
+                for (v, b) in row.iter_mut().zip(group) {
+                    *v = b[old];
+                }
+            }
+            match r {
+                1 => self.sweep_forward::<1>(x.as_chunks_mut().0),
+                2 => self.sweep_forward::<2>(x.as_chunks_mut().0),
+                3 => self.sweep_forward::<3>(x.as_chunks_mut().0),
+                _ => self.sweep_forward::<4>(x.as_chunks_mut().0),
+            }
+            if r == 1 {
+                out.push(x);
+            } else {
+                out.extend((0..r).map(|j| x.iter().skip(j).step_by(r).copied().collect()));
+            }
         }
         out
-    }
-
-    /// Runs `sweep` on the `R` columns `cols` (permuted order), interleaved so that
-    /// each value of $L$ is loaded once for all of them.
-    fn columns<const R: usize>(
-        &self,
-        cols: Vec<Vec<f64>>,
-        sweep: fn(&Self, &mut [[f64; R]]),
-    ) -> Vec<Vec<f64>> {
-        let n = self.dim();
-        let mut x: Vec<[f64; R]> = (0..n)
-            .map(|i| std::array::from_fn(|j| cols[j][i]))
-            .collect();
-        sweep(self, &mut x);
-        (0..R)
-            .map(|j| x.iter().map(|row| row[j]).collect())
-            .collect()
     }
 
     fn sweep_forward<const R: usize>(&self, x: &mut [[f64; R]]) {
@@ -554,23 +547,36 @@ impl Cholesky {
 
     /// Backward solves of several columns, see [`Cholesky::forward_many`].
     pub fn backward_many(&self, xs: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+        let n = self.dim();
         let mut out = Vec::with_capacity(xs.len());
         let mut xs = xs.into_iter().peekable();
         while xs.peek().is_some() {
             let group: Vec<Vec<f64>> = xs.by_ref().take(MAX_BATCH).collect();
-            let done = match group.len() {
-                1 => self.columns::<1>(group, Self::sweep_backward),
-                2 => self.columns::<2>(group, Self::sweep_backward),
-                3 => self.columns::<3>(group, Self::sweep_backward),
-                _ => self.columns::<4>(group, Self::sweep_backward),
-            };
-            out.extend(done.into_iter().map(|x| {
-                let mut u = vec![0.0; x.len()];
-                for (new, &old) in self.fwd.iter().enumerate() {
-                    u[old] = x[new];
+            let r = group.len();
+            let mut x = if r == 1 {
+                group.into_iter().next().expect("one column")
+            } else {
+                let mut x = vec![0.0; n * r];
+                for (i, row) in x.chunks_exact_mut(r).enumerate() {
+                    for (v, col) in row.iter_mut().zip(&group) {
+                        *v = col[i];
+                    }
                 }
-                u
-            }));
+                x
+            };
+            match r {
+                1 => self.sweep_backward::<1>(x.as_chunks_mut().0),
+                2 => self.sweep_backward::<2>(x.as_chunks_mut().0),
+                3 => self.sweep_backward::<3>(x.as_chunks_mut().0),
+                _ => self.sweep_backward::<4>(x.as_chunks_mut().0),
+            }
+            for j in 0..r {
+                let mut u = vec![0.0; n];
+                for (row, &old) in x.chunks_exact(r).zip(&self.fwd) {
+                    u[old] = row[j];
+                }
+                out.push(u);
+            }
         }
         out
     }

@@ -200,6 +200,9 @@ pub fn run(
     Ok(runs.into_iter().next().expect("one run"))
 }
 
+/// `observe(i, n, t_n, u_n)` of a batch: scenario `i` finished step `n`.
+pub type BatchObserver<'a> = dyn FnMut(usize, usize, f64, &[f64]) + 'a;
+
 /// Runs several scenarios that share the step matrix (the same geometry, supports,
 /// material and final time; loads, law and $g$ may differ) in lockstep: one
 /// factorisation, and per step one forward and one backward sweep over $L$ for all
@@ -210,7 +213,7 @@ pub fn run_batch(
     scns: &[Scenario],
     opt: &Options,
     solvers: &mut [&mut dyn StepSolver],
-    observe: &mut dyn FnMut(usize, usize, f64, &[f64]),
+    observe: &mut BatchObserver<'_>,
 ) -> Result<Vec<Run>, RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
