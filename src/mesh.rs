@@ -46,7 +46,7 @@ impl Mesh {
 
     /// The mesh with $n$ contact segments and the given supports.
     pub fn with_supports(n: usize, supports: Supports) -> Result<Mesh, InputError> {
-        if n == 0 || n % 4 != 0 {
+        if n == 0 || !n.is_multiple_of(4) {
             return Err(InputError::field(
                 "n",
                 n,
@@ -153,7 +153,7 @@ impl Dofs {
 /// is the exact embedding of the coarse P1 space in the fine one.
 pub fn prolongate(coarse: &Mesh, vals: &[[f64; 2]], fine: &Mesh) -> Vec<[f64; 2]> {
     assert!(
-        fine.n % coarse.n == 0,
+        fine.n.is_multiple_of(coarse.n),
         "fine mesh must refine the coarse one"
     );
     let r = fine.n / coarse.n;

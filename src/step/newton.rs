@@ -228,10 +228,10 @@ impl StepSolver for Newton {
                 info.status = Status::Converged;
                 info.iterations = it;
                 info.residual = p.residual(r);
-                if let Some(lambda_min) = p.second_order(r) {
-                    if lambda_min < -1e-10 * p.lipschitz {
-                        info.status = Status::NotMinimum { lambda_min };
-                    }
+                if let Some(lambda_min) = p.second_order(r)
+                    && lambda_min < -1e-10 * p.lipschitz
+                {
+                    info.status = Status::NotMinimum { lambda_min };
                 }
                 return info;
             }
