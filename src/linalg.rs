@@ -61,6 +61,8 @@ pub struct Cholesky {
     /// Where the two independent halves end, if solves run them in parallel.
     split: Option<Split>,
     nodes: Nodes,
+    /// Whether the backward sweep prefetches in software (on by default).
+    prefetch: bool,
 }
 
 /// Right-hand sides per sweep over $L$.
@@ -128,21 +130,26 @@ struct Prefetch<'a> {
     values: &'a [f64],
     /// Everything from here on has been asked for.
     next: usize,
+    on: bool,
 }
 
 /// How far below the current supernode to prefetch, in values (64 KiB).
 const PREFETCH_AHEAD: usize = 8192;
 
 impl<'a> Prefetch<'a> {
-    fn new(values: &'a [f64], from: usize) -> Self {
-        Prefetch { values, next: from }
+    fn new(values: &'a [f64], from: usize, on: bool) -> Self {
+        Prefetch {
+            values,
+            next: from,
+            on,
+        }
     }
 
     /// Asks for the cache lines down to `PREFETCH_AHEAD` values below `at`.
     #[inline]
     fn below(&mut self, at: usize) {
         let target = at.saturating_sub(PREFETCH_AHEAD);
-        while self.next > target {
+        while self.on && self.next > target {
             self.next = self.next.saturating_sub(8);
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `next` is in bounds, and a prefetch never faults or writes.
@@ -208,7 +215,9 @@ fn lower_solve<const R: usize>(
 
 /// $X \leftarrow L^{-\top} X$ over the supernodes `range` (taken in reverse), with
 /// `own` and `tail_x` as in [`lower_solve`]; the tail is only read.
+#[allow(clippy::too_many_arguments)]
 fn upper_solve<const R: usize>(
+    prefetch: bool,
     nodes: &Nodes,
     values: &[f64],
     range: std::ops::Range<usize>,
@@ -221,6 +230,7 @@ fn upper_solve<const R: usize>(
     let mut ahead = Prefetch::new(
         values,
         nodes.nodes[range.clone()].last().map_or(0, |n| n.val),
+        prefetch,
     );
     for node in nodes.nodes[range].iter().rev() {
         let (size, rows) = (node.size, &nodes.rows[node.rows.clone()]);
@@ -318,6 +328,7 @@ impl Cholesky {
             l_cc: Mat::zeros(m, m),
             split: None,
             nodes: Nodes::default(),
+            prefetch: true,
         };
         chol.nodes = chol.flat_nodes()?;
         chol.l_cc = chol.trailing_block(m)?;
@@ -448,6 +459,11 @@ impl Cholesky {
         self.split.is_some()
     }
 
+    /// Turns the software prefetch of the backward sweep on or off (to measure it).
+    pub fn set_prefetch(&mut self, on: bool) {
+        self.prefetch = on;
+    }
+
     /// Makes every later triangular solve run on the calling thread alone (for
     /// callers that already keep both cores busy).
     pub fn sequential(&mut self) {
@@ -523,7 +539,7 @@ impl Cholesky {
         let n = self.dim();
         let first = self.split.map_or(0, |s| s.supernodes[1]);
         let all = first..self.n_supernodes();
-        upper_solve(&self.nodes, &self.values, all, x, 0, &[], n);
+        upper_solve(self.prefetch, &self.nodes, &self.values, all, x, 0, &[], n);
         if let Some(Split {
             supernodes: [a, b],
             rows: [n1, tail],
@@ -534,8 +550,28 @@ impl Cholesky {
             let (left, right) = halves.split_at_mut(n1);
             let rest = &*rest;
             std::thread::scope(|scope| {
-                scope.spawn(|| upper_solve(&self.nodes, &self.values, a..b, right, n1, rest, tail));
-                upper_solve(&self.nodes, &self.values, 0..a, left, 0, rest, tail);
+                scope.spawn(|| {
+                    upper_solve(
+                        self.prefetch,
+                        &self.nodes,
+                        &self.values,
+                        a..b,
+                        right,
+                        n1,
+                        rest,
+                        tail,
+                    )
+                });
+                upper_solve(
+                    self.prefetch,
+                    &self.nodes,
+                    &self.values,
+                    0..a,
+                    left,
+                    0,
+                    rest,
+                    tail,
+                );
             });
         }
     }

@@ -65,6 +65,14 @@ struct BenchArgs {
     /// work-precision chart from the CSV files already in --data.
     #[arg(long)]
     from_csv: bool,
+    /// Only the sweep study: faer's solve against ours with the ordering, threads,
+    /// prefetch and number of right-hand sides varied, beside the machine's
+    /// streaming rate (data/bench_sweeps.csv; the full bench ends with it).
+    #[arg(long)]
+    sweeps: bool,
+    /// Level n of the sweep study.
+    #[arg(long, default_value_t = 512)]
+    sweeps_n: usize,
 }
 
 #[derive(clap::Args)]
@@ -311,6 +319,10 @@ fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let machine = machine();
     eprintln!("bench on {machine}");
+    if args.sweeps {
+        evhi::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+        return Ok(());
+    }
     let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
         row.get(k).copied().unwrap_or(f64::NAN)
     };
@@ -424,6 +436,7 @@ fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         .f64("rel_err_max_percent", wp.iter().map(|r| r.5).collect());
     let path = ctx.write("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
     evhi::experiments::workprec::draw(&ctx, &path)?;
+    evhi::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
     Ok(())
 }
 

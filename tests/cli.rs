@@ -73,3 +73,36 @@ fn bad_arguments_fail_with_the_field_named() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("two"));
 }
+
+#[test]
+fn bench_sweeps_writes_every_variant() {
+    let dir = std::env::temp_dir().join(format!("evhi-sweeps-{}", std::process::id()));
+    let out = evhi()
+        .args(["bench", "--sweeps", "--sweeps-n", "16", "--data"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.join("bench_sweeps.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    assert!(rows[0].starts_with("variant,ordering,threads,prefetch,columns,nnz_l,"));
+    // faer, seven of ours, two streaming rates.
+    assert_eq!(rows.len(), 1 + 10, "{csv}");
+    for row in &rows[1..] {
+        let total: f64 = row.split(',').nth(8).unwrap().parse().unwrap();
+        assert!(total > 0.0 && total.is_finite(), "{row}");
+    }
+    // A level the mesh does not allow is refused with the field named.
+    let out = evhi()
+        .args(["bench", "--sweeps", "--sweeps-n", "10", "--data"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("`n`"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -13,6 +13,7 @@ pub mod loads;
 pub mod plot;
 pub mod scenes;
 pub mod stability;
+pub mod sweeps;
 pub mod workprec;
 
 use crate::output::csv::Table;
@@ -85,8 +86,8 @@ impl Ctx {
     pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
         vec![
             match experiment {
-                "bench" => format!(
-                    "produced by evhi {} `evhi bench`",
+                "bench" | "bench --sweeps" => format!(
+                    "produced by evhi {} `evhi {experiment}`",
                     env!("CARGO_PKG_VERSION")
                 ),
                 _ => format!(
