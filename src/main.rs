@@ -4,7 +4,7 @@ use clap::{Parser, Subcommand};
 use evhi::output::csv::Table;
 use evhi::output::{vtu, write_atomic};
 use evhi::scenario::Scenario;
-use evhi::scheme::{self, Options, Run};
+use evhi::scheme::{self, Options, OrderingKind, Run};
 use evhi::step::{StepSolver, convexify::Convexify, newton::Newton};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -127,6 +127,14 @@ struct SolveArgs {
     /// Fail a step whose certificate exceeds this relative residual.
     #[arg(long, default_value_t = 1e-10)]
     certificate_tol: f64,
+    /// Fill-reducing ordering of A + kB: `nd` (nested dissection of the grid, whose
+    /// two halves two threads solve at once) or `amd` (approximate minimum degree).
+    #[arg(long, default_value = "nd", value_parser = ["nd", "amd"])]
+    ordering: String,
+    /// Threads for the triangular sweeps (1 or 2; 2 needs `--ordering nd`, and small
+    /// meshes, where a second thread does not pay, use one anyway).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
+    threads: u8,
 }
 
 fn parse_pair(s: &str) -> Result<[f64; 2], String> {
@@ -462,6 +470,11 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     };
     let mut opt = Options::new(args.n, args.steps);
     opt.certificate_tol = args.certificate_tol;
+    opt.ordering = match args.ordering.as_str() {
+        "amd" => OrderingKind::Amd,
+        _ => OrderingKind::NestedDissection,
+    };
+    opt.parallel = args.threads == 2;
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
     let steps = args.steps as u64;
@@ -508,10 +521,12 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             wall.elapsed().as_secs_f64()
         );
         eprintln!(
-            "dofs {}  contact nodes {}  nnz(L) {}",
+            "dofs {}  contact nodes {}  nnz(L) {} ({}, {} sweep thread(s))",
             run.dofs,
             run.contact.len(),
-            run.nnz_l
+            run.nnz_l,
+            args.ordering,
+            run.sweep_threads
         );
         eprintln!(
             "one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB",
@@ -624,6 +639,8 @@ fn write_outputs(
         .f64("one_solve_s", vec![t.one_solve])
         .f64("floor_ratio", vec![t.floor_ratio(run.steps)])
         .f64("peak_rss_mb", vec![peak_rss_mb()])
+        .str("ordering", vec![args.ordering.clone()])
+        .u64("sweep_threads", vec![run.sweep_threads as u64])
         .str(
             "version",
             vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],

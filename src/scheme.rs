@@ -105,6 +105,9 @@ pub struct Run {
     pub steps: usize,
     pub dofs: usize,
     pub nnz_l: usize,
+    /// Threads of the triangular sweeps (2 only with nested dissection on a mesh
+    /// large enough to pay).
+    pub sweep_threads: usize,
     /// $u_N$ at $t = T$ (free dofs).
     pub u: Vec<f64>,
     pub records: Vec<StepRecord>,
@@ -424,6 +427,7 @@ pub fn run_batch(
             steps: opt.steps,
             dofs: disc.dofs.count,
             nnz_l: chol.nnz_l(),
+            sweep_threads: threads,
             u,
             records,
             contact,
