@@ -149,6 +149,30 @@ pub fn run_newton(
     )?)
 }
 
+/// [`run_newton`] for scenarios that share the step matrix, as one batched run
+/// ([`crate::scheme::run_batch`]: one factorisation, one sweep per step for all).
+pub fn run_newton_batch(
+    scns: &[crate::scenario::Scenario],
+    n: usize,
+    steps: usize,
+) -> Result<Vec<crate::scheme::Run>, ExpError> {
+    let opt = crate::scheme::Options::new(n, steps);
+    let mut newtons: Vec<_> = scns
+        .iter()
+        .map(|_| crate::step::newton::Newton::default())
+        .collect();
+    let mut solvers: Vec<&mut dyn crate::step::StepSolver> = newtons
+        .iter_mut()
+        .map(|s| s as &mut dyn crate::step::StepSolver)
+        .collect();
+    Ok(crate::scheme::run_batch(
+        scns,
+        &opt,
+        &mut solvers,
+        &mut |_, _, _, _| {},
+    )?)
+}
+
 /// Reads a CSV written by [`Ctx::write`] (comment lines skipped).
 pub fn read_csv(path: &Path) -> Result<DataFrame, ExpError> {
     let err = |e: PolarsError| ExpError::Table {

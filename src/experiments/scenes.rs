@@ -25,11 +25,24 @@ pub fn solve_scene(n: usize, g: f64) -> Result<Scene, ExpError> {
 
 /// Solves a scenario at $h = k = 1/n$ and classifies its contact nodes at $t = T$.
 pub fn solve(scn: &Scenario, n: usize) -> Result<Scene, ExpError> {
-    let g = scn.g;
     let res = super::run_newton(scn, n, n)?;
+    scene(scn, n, res)
+}
+
+/// [`solve`] for scenarios that share the step matrix, in one batched run.
+pub fn solve_all(scns: &[Scenario], n: usize) -> Result<Vec<Scene>, ExpError> {
+    let runs = super::run_newton_batch(scns, n, n)?;
+    scns.iter().zip(runs).map(|(s, r)| scene(s, n, r)).collect()
+}
+
+fn scene(scn: &Scenario, n: usize, res: crate::scheme::Run) -> Result<Scene, ExpError> {
     let mesh = scn.mesh(n)?;
     let disp = Dofs::new(&mesh, true).expand(&res.u);
-    let regimes = res.contact.iter().map(|c| c.regime(&scn.law, g)).collect();
+    let regimes = res
+        .contact
+        .iter()
+        .map(|c| c.regime(&scn.law, scn.g))
+        .collect();
     Ok(Scene {
         mesh,
         disp,
@@ -135,11 +148,13 @@ pub fn fig4_gs() -> [f64; 4] {
 pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     let n = scene_n(ctx);
     let gs = fig4_gs();
-    let mut scenes = vec![];
-    for &g in &gs {
-        ctx.log(&format!("fig4: figure scenario, h = k = 1/{n}, g = {g}"));
-        scenes.push((g, solve_scene(n, g)?));
-    }
+    // The four limits share the step matrix: one batched run.
+    ctx.log(&format!("fig4: figure scenario, h = k = 1/{n}, g = {gs:?}"));
+    let scns = gs
+        .iter()
+        .map(|&g| Scenario::load("figure")?.with_g(g))
+        .collect::<Result<Vec<_>, _>>()?;
+    let scenes: Vec<(f64, Scene)> = gs.iter().copied().zip(solve_all(&scns, n)?).collect();
     let refs: Vec<(f64, &Scene)> = scenes.iter().map(|(g, s)| (*g, s)).collect();
     let params = format!("scenario figure, h = k = 1/{n}, g in {gs:?}, solver newton, t = T = 1");
     let cp = ctx.write("fig4_contact.csv", &contact_table(&refs), "fig4", &params)?;
