@@ -491,12 +491,7 @@ impl Cholesky {
                     *v = b[old];
                 }
             }
-            match r {
-                1 => self.sweep_forward::<1>(x.as_chunks_mut().0),
-                2 => self.sweep_forward::<2>(x.as_chunks_mut().0),
-                3 => self.sweep_forward::<3>(x.as_chunks_mut().0),
-                _ => self.sweep_forward::<4>(x.as_chunks_mut().0),
-            }
+            self.sweep(&mut x, r, true);
             if r == 1 {
                 out.push(x);
             } else {
@@ -504,6 +499,24 @@ impl Cholesky {
             }
         }
         out
+    }
+
+    /// One sweep (forward or backward) over the `r` interleaved columns of `x`.
+    fn sweep(&self, x: &mut [f64], r: usize, forward: bool) {
+        fn run<const R: usize>(c: &Cholesky, x: &mut [f64], forward: bool) {
+            let rows = x.as_chunks_mut::<R>().0;
+            if forward {
+                c.sweep_forward(rows)
+            } else {
+                c.sweep_backward(rows)
+            }
+        }
+        match r {
+            1 => run::<1>(self, x, forward),
+            2 => run::<2>(self, x, forward),
+            3 => run::<3>(self, x, forward),
+            _ => run::<4>(self, x, forward),
+        }
     }
 
     fn sweep_forward<const R: usize>(&self, x: &mut [[f64; R]]) {
@@ -602,12 +615,7 @@ impl Cholesky {
                 }
                 x
             };
-            match r {
-                1 => self.sweep_backward::<1>(x.as_chunks_mut().0),
-                2 => self.sweep_backward::<2>(x.as_chunks_mut().0),
-                3 => self.sweep_backward::<3>(x.as_chunks_mut().0),
-                _ => self.sweep_backward::<4>(x.as_chunks_mut().0),
-            }
+            self.sweep(&mut x, r, false);
             for j in 0..r {
                 let mut u = vec![0.0; n];
                 for (row, &old) in x.chunks_exact(r).zip(&self.fwd) {

@@ -6,27 +6,32 @@ fn evhi() -> Command {
     Command::new(env!("CARGO_BIN_EXE_evhi"))
 }
 
-#[test]
-fn solve_writes_all_outputs() {
-    let dir = std::env::temp_dir().join(format!("evhi-cli-{}", std::process::id()));
-    let out = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "figure",
-            "--n",
-            "16",
-            "--steps",
-            "8",
-            "--out",
-        ])
-        .arg(&dir)
-        .output()
-        .unwrap();
+/// Runs `cmd`, which must succeed (its stderr is shown otherwise).
+fn succeed(cmd: &mut Command) {
+    let out = cmd.output().unwrap();
     assert!(
         out.status.success(),
         "{}",
         String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn solve_writes_all_outputs() {
+    let dir = std::env::temp_dir().join(format!("evhi-cli-{}", std::process::id()));
+    succeed(
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--n",
+                "16",
+                "--steps",
+                "8",
+                "--out",
+            ])
+            .arg(&dir),
     );
     let contact = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
     assert!(contact.starts_with("x,u_nu,sigma_nu1,sigma_nu2,regime\n"));
@@ -77,15 +82,10 @@ fn bad_arguments_fail_with_the_field_named() {
 #[test]
 fn bench_sweeps_writes_every_variant() {
     let dir = std::env::temp_dir().join(format!("evhi-sweeps-{}", std::process::id()));
-    let out = evhi()
-        .args(["bench", "--sweeps", "--sweeps-n", "16", "--data"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    succeed(
+        evhi()
+            .args(["bench", "--sweeps", "--sweeps-n", "16", "--data"])
+            .arg(&dir),
     );
     let csv = std::fs::read_to_string(dir.join("bench_sweeps.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();

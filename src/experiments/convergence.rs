@@ -10,16 +10,14 @@
 //! $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$ (the norm of Corollary 4.1's left side).
 
 use super::plot::{Figure, both, e2s};
-use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use super::{Ctx, ExpError, col_f64, col_str, read_csv, run_newton_batch_with};
 use crate::assembly::stiffness;
 use crate::element::strain_matrix;
 use crate::mesh::{Dofs, Mesh, prolongate};
 use crate::norms::energy_norm;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{self, Options};
-use crate::step::StepSolver;
-use crate::step::newton::Newton;
+use crate::scheme::Options;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 
@@ -112,21 +110,11 @@ impl Reference {
         let every = n_ref / grid;
         let mut fields = vec![BTreeMap::new(); scns.len()];
         let clock = std::time::Instant::now();
-        let mut newtons: Vec<Newton> = scns.iter().map(|_| Newton::default()).collect();
-        let mut solvers: Vec<&mut dyn StepSolver> = newtons
-            .iter_mut()
-            .map(|s| s as &mut dyn StepSolver)
-            .collect();
-        scheme::run_batch(
-            scns,
-            &Options::new(n_ref, n_ref),
-            &mut solvers,
-            &mut |i, step, _, u| {
-                if step % every == 0 {
-                    fields[i].insert(step / every, u.to_vec());
-                }
-            },
-        )?;
+        run_newton_batch_with(scns, &Options::new(n_ref, n_ref), &mut |i, step, _, u| {
+            if step % every == 0 {
+                fields[i].insert(step / every, u.to_vec());
+            }
+        })?;
         let names: Vec<&str> = scns.iter().map(|s| s.name.as_str()).collect();
         ctx.log(&format!(
             "{}: reference, h = k = 1/{n_ref} ({:.1} s)",
@@ -176,12 +164,7 @@ impl Reference {
                 ..Default::default()
             })
             .collect();
-        let mut newtons: Vec<Newton> = scns.iter().map(|_| Newton::default()).collect();
-        let mut solvers: Vec<&mut dyn StepSolver> = newtons
-            .iter_mut()
-            .map(|s| s as &mut dyn StepSolver)
-            .collect();
-        scheme::run_batch(
+        run_newton_batch_with(
             scns,
             // Two workers already keep both cores busy with levels; a second sweep
             // thread per run only waits for a core. Measured once each: table1 in
@@ -190,7 +173,6 @@ impl Reference {
                 parallel: false,
                 ..Options::new(n, steps)
             },
-            &mut solvers,
             &mut |i, step, _, u| {
                 let (r, a) = (&refs[i], &mut acc[i]);
                 if (step * r.grid) % steps != 0 || a.fail.is_some() {

@@ -157,6 +157,16 @@ pub fn run_newton_batch(
     steps: usize,
 ) -> Result<Vec<crate::scheme::Run>, ExpError> {
     let opt = crate::scheme::Options::new(n, steps);
+    run_newton_batch_with(scns, &opt, &mut |_, _, _, _| {})
+}
+
+/// A batched run with a Newton step solver per scenario, options `opt` and an
+/// observer.
+pub fn run_newton_batch_with(
+    scns: &[crate::scenario::Scenario],
+    opt: &crate::scheme::Options,
+    observe: &mut crate::scheme::BatchObserver<'_>,
+) -> Result<Vec<crate::scheme::Run>, ExpError> {
     let mut newtons: Vec<_> = scns
         .iter()
         .map(|_| crate::step::newton::Newton::default())
@@ -165,12 +175,7 @@ pub fn run_newton_batch(
         .iter_mut()
         .map(|s| s as &mut dyn crate::step::StepSolver)
         .collect();
-    Ok(crate::scheme::run_batch(
-        scns,
-        &opt,
-        &mut solvers,
-        &mut |_, _, _, _| {},
-    )?)
+    Ok(crate::scheme::run_batch(scns, opt, &mut solvers, observe)?)
 }
 
 /// Reads a CSV written by [`Ctx::write`] (comment lines skipped).
