@@ -78,6 +78,16 @@ struct Split {
     rows: [usize; 2],
 }
 
+impl Split {
+    /// `x` cut into its first half, second half and tail rows.
+    fn cut<T>(self, x: &mut [T]) -> (&mut [T], &mut [T], &mut [T]) {
+        let [n1, tail] = self.rows;
+        let (halves, rest) = x.split_at_mut(tail);
+        let (left, right) = halves.split_at_mut(n1);
+        (left, right, rest)
+    }
+}
+
 /// One supernode of $L$: columns `start..start + size`, stored column-major from
 /// `val` with `size + rows.len()` rows (the dense diagonal block, then the rows
 /// of `rows`).
@@ -522,15 +532,11 @@ impl Cholesky {
     fn sweep_forward<const R: usize>(&self, x: &mut [[f64; R]]) {
         let n = self.dim();
         let mut first = 0;
-        if let Some(Split {
-            supernodes: [a, b],
-            rows: [n1, tail],
-        }) = self.split
-        {
+        if let Some(split) = self.split {
+            let ([a, b], [n1, tail]) = (split.supernodes, split.rows);
             // The halves are independent; each collects its updates of the
             // tail rows in its own buffer, added once both are done.
-            let (halves, rest) = x.split_at_mut(tail);
-            let (left, right) = halves.split_at_mut(n1);
+            let (left, right, rest) = split.cut(x);
             let (mut buf_l, mut buf_r) = (vec![[0.0; R]; n - tail], vec![[0.0; R]; n - tail]);
             std::thread::scope(|scope| {
                 scope.spawn(|| {
@@ -555,14 +561,10 @@ impl Cholesky {
         let first = self.split.map_or(0, |s| s.supernodes[1]);
         let all = first..self.n_supernodes();
         upper_solve(self.prefetch, &self.nodes, &self.values, all, x, 0, &[], n);
-        if let Some(Split {
-            supernodes: [a, b],
-            rows: [n1, tail],
-        }) = self.split
-        {
+        if let Some(split) = self.split {
+            let ([a, b], [n1, tail]) = (split.supernodes, split.rows);
             // The tail is known; the halves only read it.
-            let (halves, rest) = x.split_at_mut(tail);
-            let (left, right) = halves.split_at_mut(n1);
+            let (left, right, rest) = split.cut(x);
             let rest = &*rest;
             std::thread::scope(|scope| {
                 scope.spawn(|| {

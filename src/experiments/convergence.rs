@@ -52,13 +52,16 @@ pub fn plan(quick: bool) -> Plan {
 }
 
 /// The reference solution at the time levels $t = j/N_{grid}$.
+/// The reference solutions of a group of scenarios that share the step matrix
+/// (so the mesh and the energy norm too), at the time levels $t = j/N_{grid}$.
 struct Reference {
     mesh: Mesh,
     dofs: Dofs,
     b: crate::assembly::SpMat,
     grid: usize,
-    fields: BTreeMap<usize, Vec<f64>>,
-    norms: BTreeMap<usize, f64>,
+    /// Per scenario of the group: the fields and their energy norms, by level $j$.
+    fields: Vec<BTreeMap<usize, Vec<f64>>>,
+    norms: Vec<BTreeMap<usize, f64>>,
     tensor: crate::material::Isotropic,
 }
 
@@ -106,7 +109,7 @@ impl Reference {
         n_ref: usize,
         grid: usize,
         ctx: &Ctx,
-    ) -> Result<Vec<Reference>, ExpError> {
+    ) -> Result<Reference, ExpError> {
         let every = n_ref / grid;
         let mut fields = vec![BTreeMap::new(); scns.len()];
         let clock = std::time::Instant::now();
@@ -121,35 +124,28 @@ impl Reference {
             names.join(" + "),
             clock.elapsed().as_secs_f64()
         ));
-        scns.iter()
-            .zip(fields)
-            .map(|(scn, fields)| {
-                let mesh = scn.mesh(n_ref)?;
-                let dofs = Dofs::new(&mesh, true);
-                let tensor = scn.elasticity();
-                let b = stiffness(&mesh, &dofs, &tensor);
-                let norms = fields
-                    .iter()
-                    .map(|(&j, u)| (j, energy_norm(&b, u)))
-                    .collect();
-                Ok(Reference {
-                    mesh,
-                    dofs,
-                    b,
-                    grid,
-                    fields,
-                    norms,
-                    tensor,
-                })
-            })
-            .collect()
+        let mesh = scns[0].mesh(n_ref)?;
+        let dofs = Dofs::new(&mesh, true);
+        let tensor = scns[0].elasticity();
+        let b = stiffness(&mesh, &dofs, &tensor);
+        let norms = (fields.iter())
+            .map(|f| f.iter().map(|(&j, u)| (j, energy_norm(&b, u))).collect())
+            .collect();
+        Ok(Reference {
+            mesh,
+            dofs,
+            b,
+            grid,
+            fields,
+            norms,
+            tensor,
+        })
     }
 
-    /// Errors of the level $(n, N)$ for each scenario of a group (`refs[i]` is the
-    /// reference of `scns[i]`), in one batched run, computed on the fly at the
-    /// shared time levels.
+    /// Errors of the level $(n, N)$ for each scenario of the group, in one batched
+    /// run, computed on the fly at the shared time levels.
     fn levels(
-        refs: &[Reference],
+        &self,
         scns: &[Scenario],
         family: &'static str,
         n: usize,
@@ -157,7 +153,7 @@ impl Reference {
     ) -> Result<Vec<LevelError>, ExpError> {
         let coarse = scns[0].mesh(n)?;
         let cdofs = Dofs::new(&coarse, true);
-        let mut acc: Vec<Accumulator> = refs
+        let mut acc: Vec<Accumulator> = scns
             .iter()
             .map(|_| Accumulator {
                 u_t: 1.0,
@@ -174,28 +170,28 @@ impl Reference {
                 ..Options::new(n, steps)
             },
             &mut |i, step, _, u| {
-                let (r, a) = (&refs[i], &mut acc[i]);
-                if (step * r.grid) % steps != 0 || a.fail.is_some() {
+                let a = &mut acc[i];
+                if !(step * self.grid).is_multiple_of(steps) || a.fail.is_some() {
                     return;
                 }
-                let j = step * r.grid / steps;
-                let Some(uref) = r.fields.get(&j) else {
+                let j = step * self.grid / steps;
+                let Some(uref) = self.fields[i].get(&j) else {
                     return;
                 };
-                let fine = if n == r.mesh.n {
+                let fine = if n == self.mesh.n {
                     u.to_vec()
                 } else {
-                    r.dofs
-                        .gather(&prolongate(&coarse, &cdofs.expand(u), &r.mesh))
+                    self.dofs
+                        .gather(&prolongate(&coarse, &cdofs.expand(u), &self.mesh))
                 };
                 let diff: Vec<f64> = uref.iter().zip(&fine).map(|(a, b)| a - b).collect();
-                let e = energy_norm(&r.b, &diff);
+                let e = energy_norm(&self.b, &diff);
                 a.max_e = a.max_e.max(e);
-                a.max_u = a.max_u.max(r.norms[&j]);
-                if j == r.grid {
+                a.max_u = a.max_u.max(self.norms[i][&j]);
+                if j == self.grid {
                     a.e_t = e;
-                    a.u_t = r.norms[&j];
-                    a.regions = r.regions(&diff);
+                    a.u_t = self.norms[i][&j];
+                    a.regions = self.regions(&diff);
                 }
                 if !e.is_finite() {
                     a.fail = Some(step);
@@ -286,7 +282,7 @@ impl Task {
 /// and the first error.
 struct Queue {
     pending: Vec<Task>,
-    references: Vec<Option<std::sync::Arc<Vec<Reference>>>>,
+    references: Vec<Option<std::sync::Arc<Reference>>>,
     /// (table row, error).
     levels: Vec<(usize, LevelError)>,
     error: Option<ExpError>,
@@ -373,11 +369,11 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
                     level,
                     family,
                 },
-                Some(refs),
+                Some(reference),
             ) => {
                 let (n, steps) = family_sizes(family, plan.levels[level], plan.n_ref);
                 let clock = std::time::Instant::now();
-                let errors = Reference::levels(&refs, &groups[group], FAMILIES[family], n, steps);
+                let errors = reference.levels(&groups[group], FAMILIES[family], n, steps);
                 let names: Vec<&str> = groups[group].iter().map(|s| s.name.as_str()).collect();
                 ctx.log(&format!(
                     "{}: {} family, h = 1/{n}, k = 1/{steps} ({:.1} s)",
