@@ -16,6 +16,7 @@ pub mod condense;
 pub mod element;
 pub mod error;
 pub mod experiments;
+pub mod history;
 pub mod law;
 pub mod linalg;
 pub mod material;

@@ -118,6 +118,11 @@ struct SolveArgs {
     /// Override the top traction f2 as FX,FY (N/m).
     #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
     f2: Option<[f64; 2]>,
+    /// Override the load history with a ramp: both loads grow as min(t/T_R, 1), so the
+    /// data start at zero as the paper's H(f) and H(0) ask (T_R > 0, seconds). Without
+    /// it the scenario's `loads.history` holds (default: constant, full load at t = 0).
+    #[arg(long, value_name = "T_R", allow_hyphen_values = true)]
+    ramp: Option<f64>,
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
@@ -455,6 +460,18 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(g) => scn.with_g(g)?,
         None => scn,
     };
+    let scn = match args.ramp {
+        Some(t_r) => scn.with_ramp(t_r)?,
+        None => scn,
+    };
+    let hyp = scn.time_hypotheses();
+    for why in hyp.failures() {
+        eprintln!(
+            "warning: scenario `{}` (load history: {}): {why}; the paper's error bounds assume it \
+             (see the book, \"Time\"). Solving anyway.",
+            scn.name, scn.history
+        );
+    }
     if args.certificate_tol.is_nan() || args.certificate_tol <= 0.0 {
         return Err(evhi::error::InputError::field(
             "certificate-tol",
@@ -552,6 +569,34 @@ fn peak_rss_mb() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// The `#` lines that open every CSV of a run: the command and the data it solved.
+fn provenance(args: &SolveArgs, scn: &Scenario, solver: &str, run: &Run) -> Vec<String> {
+    let cmd: Vec<String> = std::env::args().skip(1).collect();
+    vec![
+        format!(
+            "produced by evhi {} `evhi {}`",
+            env!("CARGO_PKG_VERSION"),
+            cmd.join(" ")
+        ),
+        format!(
+            "scenario {}; n = {}, steps = {}, T = {}; solver {solver}, ordering {}; g = {}; \
+             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}; load history: {}",
+            scn.name,
+            run.n,
+            run.steps,
+            scn.t_end,
+            args.ordering,
+            scn.g,
+            scn.f0[0],
+            scn.f0[1],
+            scn.f2[0],
+            scn.f2[1],
+            scn.f0_modulation,
+            scn.history
+        ),
+    ]
+}
+
 fn write_outputs(
     args: &SolveArgs,
     scn: &Scenario,
@@ -561,6 +606,7 @@ fn write_outputs(
 ) -> std::io::Result<()> {
     let mesh = scn.mesh(run.n).map_err(std::io::Error::other)?;
     let dofs = evhi::mesh::Dofs::new(&mesh, true);
+    let header = provenance(args, scn, solver, run);
     let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
     let c = &run.contact;
     Table::new()
@@ -572,7 +618,7 @@ fn write_outputs(
             "regime",
             c.iter().map(|s| s.regime(&scn.law, scn.g)).collect(),
         )
-        .write(&args.out.join("contact.csv"), &[])?;
+        .write(&args.out.join("contact.csv"), &header)?;
     let r = &run.records;
     Table::new()
         .u64("step", r.iter().map(|s| s.step as u64).collect())
@@ -607,7 +653,7 @@ fn write_outputs(
         )
         .f64("energy_norm", r.iter().map(|s| s.energy_norm).collect())
         .f64("time_s", r.iter().map(|s| s.time_s).collect())
-        .write(&args.out.join("steps.csv"), &[])?;
+        .write(&args.out.join("steps.csv"), &header)?;
     let max_cert = r.iter().map(|s| s.certificate.max()).fold(0.0, f64::max);
     let iters: usize = r.iter().map(|s| s.iterations).sum();
     let t = &run.timings;
@@ -630,6 +676,11 @@ fn write_outputs(
         .f64("f0_y", vec![scn.f0[1]])
         .f64("f2_x", vec![scn.f2[0]])
         .f64("f2_y", vec![scn.f2[1]])
+        .str("load_history", vec![scn.history.to_string()])
+        .str(
+            "compatible_data",
+            vec![scn.time_hypotheses().h_0().to_string()],
+        )
         .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
         .f64("assembly_s", vec![t.assembly])
         .f64("factorisation_s", vec![t.factorisation])
@@ -645,7 +696,7 @@ fn write_outputs(
             "version",
             vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
         )
-        .write(&args.out.join("summary.csv"), &[])?;
+        .write(&args.out.join("summary.csv"), &header)?;
     let disp = dofs.expand(&run.u);
     write_atomic(
         &args.out.join("solution.vtu"),

@@ -4,6 +4,7 @@
 //! value and what is allowed, and unknown keys are errors.
 
 use crate::error::InputError;
+use crate::history::History;
 use crate::law::Law;
 use crate::material::Isotropic;
 use crate::mesh::{Mesh, Supports};
@@ -45,10 +46,12 @@ struct RawMaterial {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLoads {
-    f0: [f64; 2],
-    f2: [f64; 2],
+    f0: Vec<f64>,
+    f2: Vec<f64>,
     #[serde(default)]
     f0_modulation: f64,
+    #[serde(default)]
+    history: Option<toml::Value>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -82,8 +85,54 @@ pub struct Scenario {
     pub f2: [f64; 2],
     /// $a$ in the volume force $f_0 (1 + a \cos \pi x)$ (0: constant, the paper's case).
     pub f0_modulation: f64,
+    /// The load history: $f(t) = \varphi(t)\,(f_0, f_2)$.
+    pub history: History,
     pub law: Law,
     pub supports: Supports,
+}
+
+/// The data's hypotheses at $t = 0$: see [`Scenario::time_hypotheses`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeHypotheses {
+    /// $\varphi(0)$.
+    pub phi0: f64,
+    /// $f_2(0) = 0$.
+    pub f2_zero: bool,
+    /// $f_0(0) \in V$.
+    pub f0_in_v: bool,
+    /// $0 \in \partial_{Cl} j(0)$.
+    pub zero_in_clarke: bool,
+}
+
+impl TimeHypotheses {
+    /// H(f) at $t = 0$: $f_0(0) \in V$ and $f_2(0) = 0$.
+    pub fn h_f(&self) -> bool {
+        self.f0_in_v && self.f2_zero
+    }
+    /// H(0)'s compatibility condition at $u_0 = 0$.
+    pub fn h_0(&self) -> bool {
+        self.h_f() && self.zero_in_clarke
+    }
+    /// What fails, in words (empty when both hold).
+    pub fn failures(&self) -> Vec<String> {
+        let mut out = vec![];
+        if !self.f2_zero {
+            out.push(format!(
+                "f2(0) = {} * f2 is not zero (H(f) asks f2(0) = 0)",
+                self.phi0
+            ));
+        }
+        if !self.f0_in_v {
+            out.push(format!(
+                "f0(0) = {} * f0 does not vanish on the supports, so it is not in V (H(f))",
+                self.phi0
+            ));
+        }
+        if !self.zero_in_clarke {
+            out.push("0 is not in the Clarke subdifferential of j at 0 (H(0) at u0 = 0)".into());
+        }
+        out
+    }
 }
 
 /// The scenarios shipped in `data/scenarios/`, compiled in.
@@ -99,6 +148,21 @@ fn finite(field: &str, v: f64) -> Result<f64, InputError> {
     } else {
         Err(InputError::field(field, v, "a finite number"))
     }
+}
+
+/// A load vector: exactly two finite components.
+fn vector(field: &str, v: &[f64]) -> Result<[f64; 2], InputError> {
+    let [x, y] = v else {
+        return Err(InputError::field(
+            field,
+            format!("{} component(s)", v.len()),
+            "exactly two components [x, y] (the problem is two-dimensional)",
+        ));
+    };
+    Ok([
+        finite(&format!("{field}[0]"), *x)?,
+        finite(&format!("{field}[1]"), *y)?,
+    ])
 }
 
 fn positive(field: &str, v: f64) -> Result<f64, InputError> {
@@ -169,11 +233,13 @@ impl Scenario {
                 ),
             ));
         }
-        for (name, v) in [("loads.f0", raw.loads.f0), ("loads.f2", raw.loads.f2)] {
-            for (c, x) in v.iter().enumerate() {
-                finite(&format!("{name}[{c}]"), *x)?;
-            }
-        }
+        let f0 = vector("loads.f0", &raw.loads.f0)?;
+        let f2 = vector("loads.f2", &raw.loads.f2)?;
+        let history = match &raw.loads.history {
+            None => History::Constant,
+            Some(v) => History::from_toml("loads.history", v)?,
+        };
+        history.validate("loads.history", t_end)?;
         let f0_modulation = finite("loads.f0_modulation", raw.loads.f0_modulation)?;
         let supports = match raw.geometry.as_ref().map(|g| g.supports.as_str()) {
             None | Some("paper") => Supports::Paper,
@@ -206,9 +272,10 @@ impl Scenario {
             kappa: m.kappa,
             alpha: m.alpha,
             beta,
-            f0: raw.loads.f0,
-            f2: raw.loads.f2,
+            f0,
+            f2,
             f0_modulation,
+            history,
             law,
             supports,
         })
@@ -241,6 +308,59 @@ impl Scenario {
         }
         Ok(self)
     }
+
+    /// Overrides the load history with a ramp $\varphi(t) = \min(t/t_r, 1)$ (validated).
+    pub fn with_ramp(mut self, t_r: f64) -> Result<Self, InputError> {
+        if !(t_r.is_finite() && t_r > 0.0) {
+            return Err(InputError::field(
+                "ramp",
+                t_r,
+                "a ramp time T_R, a finite number > 0",
+            ));
+        }
+        self.history = History::Ramp { t_r };
+        Ok(self)
+    }
+
+    /// Overrides the load history (validated).
+    pub fn with_history(mut self, history: History) -> Result<Self, InputError> {
+        history.validate("loads.history", self.t_end)?;
+        self.history = history;
+        Ok(self)
+    }
+
+    // ANCHOR: time_hypotheses
+    /// The paper's hypotheses on the data at $t = 0$ (§4 H(f), §2 H(0) with $u_0 = 0$).
+    ///
+    /// With $f(0) = \varphi(0)(f_0, f_2)$: H(f) asks $f_2(0) = 0$ and $f_0(0) \in V$, i.e.
+    /// $f_0(0)$ vanishes wherever a displacement component is prescribed. H(0) asks for
+    /// $\xi_0 \in \partial_{Cl} J(0)$ and $\eta_0 \in \partial\Phi(0)$ with
+    /// $\iota^*\xi_0 + \eta_0 - f(0) \in V$; since $g > 0$, $\partial\Phi(0) = \{0\}$, and a
+    /// nonzero $\xi_0$ is a functional on $\Gamma_3$ that no element of $V$ represents,
+    /// so it holds exactly when H(f)'s two conditions hold and $0 \in \partial_{Cl} j(0)$.
+    pub fn time_hypotheses(&self) -> TimeHypotheses {
+        let phi0 = self.history.phi(0.0);
+        let f2_zero = self.f2.iter().all(|&c| phi0 * c == 0.0);
+        // The body force is smooth in x; it lies in V when it vanishes on the
+        // prescribed components of the boundary (sampled at the nodes of a mesh whose
+        // nodes include every support's end points).
+        let mesh = self.mesh(8).expect("n = 8 is a valid mesh");
+        let f0_in_v = mesh.nodes.iter().zip(&mesh.fixed).all(|(x, fixed)| {
+            let shape = 1.0 + self.f0_modulation * (std::f64::consts::PI * x[0]).cos();
+            (0..2).all(|c| !fixed[c] || phi0 * self.f0[c] * shape == 0.0)
+        });
+        let zero_in_clarke = {
+            let d = self.law.clarke(0.0);
+            d.lo <= 0.0 && 0.0 <= d.hi
+        };
+        TimeHypotheses {
+            phi0,
+            f2_zero,
+            f0_in_v,
+            zero_in_clarke,
+        }
+    }
+    // ANCHOR_END: time_hypotheses
 
     /// Whether `other` gives the same step matrix $A + kB$ for every $n$ and $N$:
     /// the same supports, material and final time (the geometry is fixed).

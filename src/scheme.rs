@@ -1,5 +1,6 @@
 //! The fully discrete scheme (paper (4.12)–(4.13), problem $(P^{V,hk,*}_M)$):
-//! backward Euler with $k = T/N$, $u_0 = 0$, and at each step
+//! backward Euler with $k = T/N$, $u_0 = 0$, $f_n = \varphi(t_n) f$ (see [`crate::history`]),
+//! and at each step
 //! $$\langle A u_n + kB u_n + k\iota^*\xi_n, v - u_n\rangle \ge \langle A u_{n-1} + k f_n, v - u_n\rangle
 //! \quad \forall v \in U^h, \qquad \xi_n \in \partial_{Cl} J(u_n),$$
 //! the optimality condition of minimising $\mathcal E$ of [`crate::step`]. $K = A + kB$
@@ -27,7 +28,7 @@ pub struct Discretisation {
     pub a: SpMat,
     /// Elasticity operator $B$.
     pub b: SpMat,
-    /// Load vector $f$ (constant in time).
+    /// Load vector $f$ of the loads $(f_0, f_2)$; step $n$ uses $\varphi(t_n) f$.
     pub f: Vec<f64>,
     /// $y$-dof of each contact node.
     pub contact_dofs: Vec<usize>,
@@ -328,9 +329,13 @@ pub fn run_batch(
     for step in 1..=opt.steps {
         let t = step as f64 * k;
         let t0 = Instant::now();
-        // b_n = A u_{n-1} + k f; forward solve x = L^{-1} b_n; r0 = P K^{-1} b_n from its contact block.
-        let b: Vec<Vec<f64>> = (au.iter().zip(&loads))
-            .map(|(au, f)| au.iter().zip(f).map(|(au, f)| au + k * f).collect())
+        // b_n = A u_{n-1} + k f_n with f_n = phi(t_n) f; forward solve x = L^{-1} b_n;
+        // r0 = P K^{-1} b_n from its contact block.
+        let b: Vec<Vec<f64>> = (au.iter().zip(&loads).zip(scns))
+            .map(|((au, f), scn)| {
+                let kf = k * scn.history.phi(t);
+                au.iter().zip(f).map(|(au, f)| au + kf * f).collect()
+            })
             .collect();
         let mut x = chol.forward_many(&b.iter().map(Vec::as_slice).collect::<Vec<_>>());
         let mut infos = Vec::with_capacity(nb);

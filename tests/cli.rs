@@ -33,12 +33,29 @@ fn solve_writes_all_outputs() {
             ])
             .arg(&dir),
     );
-    let contact = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    // Every CSV opens with two provenance lines: the command, then the data solved.
+    let body = |f: &str| -> String {
+        let text = std::fs::read_to_string(dir.join(f)).unwrap();
+        let mut lines = text.lines();
+        assert!(
+            lines.next().unwrap().starts_with("# produced by evhi"),
+            "{f}"
+        );
+        let data = lines.next().unwrap();
+        assert!(
+            data.starts_with("# scenario figure;") && data.contains("load history: constant"),
+            "{f}: {data}"
+        );
+        lines.map(|l| format!("{l}\n")).collect()
+    };
+    let contact = body("contact.csv");
     assert!(contact.starts_with("x,u_nu,sigma_nu1,sigma_nu2,regime\n"));
     assert_eq!(contact.lines().count(), 1 + 17);
-    let summary = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
+    let summary = body("summary.csv");
     assert!(summary.starts_with("n,steps,dofs,energy_norm_T,max_certificate,wall_s,"));
-    let steps = std::fs::read_to_string(dir.join("steps.csv")).unwrap();
+    assert!(summary.contains(",load_history,compatible_data,"));
+    assert!(summary.contains(",constant,false,"));
+    let steps = body("steps.csv");
     assert_eq!(steps.lines().count(), 1 + 8);
     let vtu = std::fs::read_to_string(dir.join("solution.vtu")).unwrap();
     assert!(vtu.contains("NumberOfPoints=\"153\"") && vtu.contains("NumberOfCells=\"256\""));
@@ -51,6 +68,69 @@ fn solve_writes_all_outputs() {
             .starts_with('.'))
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A load history from the command line (`--ramp`) or the scenario file gives the same
+/// run; compatible data print no warning, constant loads print one naming H(f).
+#[test]
+fn load_histories_from_the_cli_and_the_file() {
+    let base = std::env::temp_dir().join(format!("evhi-cli-hist-{}", std::process::id()));
+    let toml = base.join("ramp.toml");
+    std::fs::create_dir_all(&base).unwrap();
+    let text = std::fs::read_to_string("data/scenarios/figure.toml")
+        .unwrap()
+        .replace("[loads]\n", "[loads]\nhistory = { ramp = 0.25 }\n");
+    std::fs::write(&toml, text).unwrap();
+    let run = |scenario: &str, extra: &[&str], out: &str| -> (String, String) {
+        let dir = base.join(out);
+        let o = evhi()
+            .args([
+                "solve",
+                "--scenario",
+                scenario,
+                "--n",
+                "16",
+                "--steps",
+                "16",
+            ])
+            .args(extra)
+            .arg("--out")
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        assert!(o.status.success(), "{err}");
+        let summary = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
+        (summary, err)
+    };
+    let (from_file, warn_file) = run(toml.to_str().unwrap(), &[], "file");
+    let (from_cli, warn_cli) = run("figure", &["--ramp", "0.25"], "cli");
+    let (constant, warn_constant) = run("figure", &[], "constant");
+    assert!(
+        !warn_file.contains("warning") && !warn_cli.contains("warning"),
+        "{warn_cli}"
+    );
+    assert!(
+        warn_constant.contains("warning") && warn_constant.contains("H(f)"),
+        "{warn_constant}"
+    );
+    let energy = |s: &str| -> f64 {
+        let rows: Vec<&str> = s.lines().filter(|l| !l.starts_with('#')).collect();
+        rows[1].split(',').nth(3).unwrap().parse().unwrap()
+    };
+    assert_eq!(energy(&from_file), energy(&from_cli));
+    assert!(from_cli.contains("ramp t_r = 0.25") && from_cli.contains(",true,"));
+    // The ramp has reached the full load by t = 0.25, yet the body lags behind it.
+    assert!(energy(&from_cli) < energy(&constant));
+    // A bad ramp names the option.
+    let o = evhi()
+        .args(["solve", "--ramp", "-1", "--out"])
+        .arg(base.join("bad"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`ramp`"));
+    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]

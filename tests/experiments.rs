@@ -46,7 +46,11 @@ fn snapshot_outputs_floor(name: &str, files: &[&str], figures: &[&str], floor: f
 
 #[test]
 fn hypotheses_check() {
-    snapshot_outputs("hypotheses", &["hypotheses.csv"], &[]);
+    snapshot_outputs(
+        "hypotheses",
+        &["hypotheses.csv", "hypotheses_compat.csv"],
+        &[],
+    );
 }
 
 #[test]
@@ -80,6 +84,60 @@ fn fig4_several_g() {
 #[test]
 fn table1_convergence() {
     snapshot_outputs("table1", &["table1.csv"], &["fig5_errors", "fig5_split"]);
+}
+
+#[test]
+fn time_study() {
+    snapshot_outputs(
+        "time",
+        &["time_study.csv"],
+        &["time_study_max", "time_study_T"],
+    );
+}
+
+/// The time study's claims, checked on its quick mode (n = 16, N = 4 ... 256 against
+/// N_ref = 16384): a compatible history converges at order 1 in the maximum over time
+/// once k is well below the relaxation time 0.07; the constant load shows a plateau
+/// first; the scalar model predicts `literal`'s errors.
+#[test]
+fn time_study_orders_and_plateau() {
+    use evhi::experiments::time::{Plan, plan, study};
+    let c = ctx("time-orders");
+    let p: Plan = plan(true);
+    let rows = study(&p, &c).unwrap();
+    let series = |scn: &str, hist: &str| -> Vec<(f64, f64, f64)> {
+        rows.iter()
+            .filter(|r| r.scenario == scn && r.history == hist)
+            .map(|r| (r.err_max, r.err_t, r.model_max))
+            .collect()
+    };
+    for scn in ["figure", "literal"] {
+        for hist in ["b_ramp1", "c_ramp0.25"] {
+            let e: Vec<f64> = series(scn, hist).iter().map(|r| r.0).collect();
+            assert_eq!(e.len(), p.levels.len());
+            // Orders between the last three levels (k = 1/64, 1/128, 1/256).
+            for w in e[e.len() - 3..].windows(2) {
+                let order = (w[0] / w[1]).log2();
+                assert!(
+                    (0.85..=1.15).contains(&order),
+                    "{scn}, {hist}: order {order} over the last three levels ({e:?})"
+                );
+            }
+        }
+        // The constant load: a plateau, the first halving of k gains almost nothing.
+        let e: Vec<f64> = series(scn, "a_constant").iter().map(|r| r.0).collect();
+        assert!(e[0] / e[1] < 1.3, "{scn}: no plateau, {e:?}");
+    }
+    // The scalar model of the layer predicts `literal` (nearly linear: its contact nodes
+    // stay on the first branch) within 3 % at every level and for every history.
+    for hist in ["a_constant", "b_ramp1", "c_ramp0.25"] {
+        for (e, _, m) in series("literal", hist) {
+            assert!(
+                (e / m - 1.0).abs() < 0.03,
+                "{hist}: measured {e}, model {m}"
+            );
+        }
+    }
 }
 
 #[test]

@@ -82,5 +82,48 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         "hypotheses",
         "material and law of the paper (E = 1000, kappa = 0.4, alpha = 100, beta = 50, c2 = -100); ||v||_V^2 = (eps(v), eps(v)); alpha_A, beta_B: coercivity of C and G; m = max(0, -min slope of p); paper's supports",
     )?;
+    compatibility(ctx)
+}
+
+// ANCHOR: compat
+/// H(f) and H(0) at $t = 0$ for every built-in scenario under the load histories of the
+/// time study ([`super::time::histories`]).
+pub fn compatibility(ctx: &Ctx) -> Result<(), ExpError> {
+    let mut rows = vec![];
+    for (name, _) in crate::scenario::BUILTIN {
+        for (label, h) in super::time::histories() {
+            let scn = Scenario::load(name)?.with_history(h)?;
+            rows.push((name, label, scn.history.to_string(), scn.time_hypotheses()));
+        }
+    }
+    let t = Table::new()
+        .str("scenario", rows.iter().map(|r| r.0.to_string()).collect())
+        .str("history", rows.iter().map(|r| r.1.to_string()).collect())
+        .str("phi", rows.iter().map(|r| r.2.clone()).collect())
+        .f64("phi0", rows.iter().map(|r| r.3.phi0).collect())
+        .str(
+            "f2_0_zero",
+            rows.iter().map(|r| r.3.f2_zero.to_string()).collect(),
+        )
+        .str(
+            "f0_0_in_V",
+            rows.iter().map(|r| r.3.f0_in_v.to_string()).collect(),
+        )
+        .str(
+            "zero_in_clarke_j_0",
+            rows.iter()
+                .map(|r| r.3.zero_in_clarke.to_string())
+                .collect(),
+        )
+        .str("H_f", rows.iter().map(|r| r.3.h_f().to_string()).collect())
+        .str("H_0", rows.iter().map(|r| r.3.h_0().to_string()).collect());
+    ctx.write(
+        "hypotheses_compat.csv",
+        &t,
+        "hypotheses",
+        "H(f) at t = 0: f2(0) = 0 and f0(0) in V (f0(0) vanishes on every prescribed displacement component); \
+         H(0) at u0 = 0: additionally 0 in the Clarke subdifferential of j at 0; f(t) = phi(t) (f0, f2)",
+    )?;
     Ok(())
 }
+// ANCHOR_END: compat

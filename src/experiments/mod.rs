@@ -14,6 +14,7 @@ pub mod plot;
 pub mod scenes;
 pub mod stability;
 pub mod sweeps;
+pub mod time;
 pub mod workprec;
 
 use crate::output::csv::Table;
@@ -52,13 +53,14 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 7] = [
+pub const NAMES: [&str; 8] = [
     "hypotheses",
     "fig2",
     "loads",
     "fig3",
     "fig4",
     "table1",
+    "time",
     "stability",
 ];
 
@@ -71,6 +73,7 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         "fig3" => scenes::run_fig3(ctx),
         "fig4" => scenes::run_fig4(ctx),
         "table1" => convergence::run(ctx),
+        "time" => time::run(ctx),
         "stability" => stability::run(ctx),
         other => Err(crate::error::InputError::field(
             "experiment",
