@@ -31,15 +31,23 @@ pub struct NodeSplit {
 /// Relative distance to $g$ below which a node counts as on the unilateral limit.
 pub const ON_LIMIT: f64 = 1e-8;
 
+/// Distance, relative to the displacement scale $\max(g, \|u\|_\infty)$, below which a
+/// node counts as sitting on a breakpoint of the law or on the limit: the recovery
+/// solve returns a node that the step solver put exactly there a few units of
+/// rounding times $\|u\|$ away (about $10^{-17}$ at $\|u\| = 0.1$).
+pub const ROUNDING: f64 = 1e-13;
+
 /// Splits the pressure $\zeta$ at a node with normal displacement $s$ into
-/// $\xi \in \partial_{Cl} j(s)$ and $\mu \ge 0$. Off the limit ($g - s > 10^{-8} g$)
-/// $\mu = 0$ and all of $\zeta$ must lie in $\partial_{Cl} j(s)$; on it, the excess
+/// $\xi \in \partial_{Cl} j(s)$ and $\mu \ge 0$; `delta` is the rounding tolerance in
+/// displacement ([`ROUNDING`] times the displacement scale). Off the limit
+/// ($g - s > \max(10^{-8} g, \delta)$) $\mu = 0$ and all of $\zeta$ must lie in
+/// $\partial_{Cl} j$ at $s$ (widened by the breakpoints within $\delta$); on it, the excess
 /// $\mu = (\zeta - \xi)^+$ is the unilateral pressure, paid for in
 /// complementarity by $\mu\,|g - s|$.
-pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64) -> NodeSplit {
-    let sub = law.clarke(s);
+pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64, delta: f64) -> NodeSplit {
+    let sub = law.clarke_near(s, delta);
     let xi = sub.clamp(zeta);
-    let on_limit = g.is_finite() && g - s <= ON_LIMIT * g.abs();
+    let on_limit = at_limit(g, s, delta);
     if !on_limit {
         NodeSplit {
             xi,
@@ -58,6 +66,12 @@ pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64) -> NodeSplit {
     }
 }
 // ANCHOR_END: split
+
+/// Whether $s$ sits on the limit $g$: within $10^{-8} g$ or within the rounding
+/// tolerance `delta`.
+pub fn at_limit(g: f64, s: f64, delta: f64) -> bool {
+    g.is_finite() && g - s <= (ON_LIMIT * g.abs()).max(delta)
+}
 
 /// The certificate of one step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -82,6 +96,8 @@ pub struct ContactState {
     pub u_nu: f64,
     pub sigma_nu1: f64,
     pub sigma_nu2: f64,
+    /// Whether the node sits on the limit $g$ (see [`at_limit`]).
+    pub at_limit: bool,
 }
 
 // ANCHOR: certify
@@ -117,7 +133,7 @@ pub fn certify(
     let mut states = Vec::with_capacity(contact_dofs.len());
     for (i, &d) in contact_dofs.iter().enumerate() {
         let s = -u[d];
-        let split = split_node(law, g, s, rho[d] / kw[i]);
+        let split = split_node(law, g, s, rho[d] / kw[i], ROUNDING * dscale);
         rho[d] -= kw[i] * (split.xi + split.mu);
         cert.feasibility = cert.feasibility.max((s - g).max(0.0) / dscale);
         cert.complementarity = cert
@@ -127,6 +143,7 @@ pub fn certify(
             u_nu: s,
             sigma_nu1: 0.0 - split.xi,
             sigma_nu2: 0.0 - split.mu,
+            at_limit: at_limit(g, s, ROUNDING * dscale),
         });
     }
     cert.stationarity = crate::step::inf_norm(&rho) / backward_scale;
@@ -135,11 +152,11 @@ pub fn certify(
 // ANCHOR_END: certify
 
 impl ContactState {
-    /// The node's regime: `limit` when $u_\nu$ is at $g$ (to $10^{-8} g$),
+    /// The node's regime: `limit` when $u_\nu$ is at $g$ (see [`at_limit`]),
     /// otherwise `no_contact` on a branch where $p \equiv 0$ left of the first
     /// breakpoint, and `branch{b}` on branch $b$ of the law.
     pub fn regime(&self, law: &Law, g: f64) -> String {
-        if g - self.u_nu <= ON_LIMIT * g.abs() {
+        if self.at_limit || at_limit(g, self.u_nu, 0.0) {
             return "limit".into();
         }
         let b = law.branch(self.u_nu);

@@ -28,7 +28,7 @@ impl InputError {
     ) -> Self {
         InputError::Field {
             field: field.into(),
-            value: value.to_string(),
+            value: readable(value.to_string()),
             allowed: allowed.into(),
         }
     }
@@ -38,5 +38,52 @@ impl InputError {
             InputError::Field { field, .. } => Some(field),
             InputError::Parse { .. } => None,
         }
+    }
+}
+
+/// A value as a reader wants it echoed: long numbers (`1e308` prints 309 digits) in
+/// exponent notation, anything else cut to 200 characters.
+fn readable(v: String) -> String {
+    if v.len() > 24 {
+        if let Ok(x) = v.parse::<f64>() {
+            return format!("{x:e}");
+        }
+    }
+    match v.char_indices().nth(200) {
+        None => v,
+        Some((i, _)) => format!("{} … ({} characters)", &v[..i], v.chars().count()),
+    }
+}
+
+/// Magnitude bound of forces, moduli and slopes: beyond it products in the step
+/// problem (stiffness times displacement squared) leave the range where a double
+/// precision solve can be certified.
+pub const MAX_MAGNITUDE: f64 = 1e12;
+
+/// `v` if finite with $|v| \le$ `max`, else an error naming `field`.
+pub fn bounded(field: &str, v: f64, max: f64) -> Result<f64, InputError> {
+    if v.is_finite() && v.abs() <= max {
+        Ok(v)
+    } else {
+        Err(InputError::field(
+            field,
+            v,
+            format!(
+                "a finite number with |x| <= {max:e} (what a double-precision solve can certify)"
+            ),
+        ))
+    }
+}
+
+/// `v` if `lo` $\le v \le$ `hi`, else an error naming `field`.
+pub fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<f64, InputError> {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(InputError::field(
+            field,
+            v,
+            format!("a number in [{lo:e}, {hi:e}] (what a double-precision solve can certify)"),
+        ))
     }
 }

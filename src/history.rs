@@ -59,15 +59,8 @@ impl History {
         match self {
             History::Constant => Ok(()),
             History::Ramp { t_r } => {
-                if t_r.is_finite() && *t_r > 0.0 {
-                    Ok(())
-                } else {
-                    Err(InputError::field(
-                        format!("{field}.ramp"),
-                        t_r,
-                        "a ramp time t_r, a finite number > 0",
-                    ))
-                }
+                crate::error::in_range(&format!("{field}.ramp"), *t_r, 1e-12 * t_end, 1e12 * t_end)
+                    .map(|_| ())
             }
             History::Table { points } => {
                 let field = format!("{field}.table");
@@ -79,11 +72,11 @@ impl History {
                     ));
                 }
                 for (i, &(t, p)) in points.iter().enumerate() {
-                    if !t.is_finite() || !p.is_finite() {
+                    if !t.is_finite() || !p.is_finite() || p.abs() > 1e12 {
                         return Err(InputError::field(
                             format!("{field}[{i}]"),
                             format!("[{t}, {p}]"),
-                            "a point [t, phi] of finite numbers",
+                            "a point [t, phi] of finite numbers, |phi| <= 1e12",
                         ));
                     }
                     if i > 0 && t <= points[i - 1].0 {

@@ -12,7 +12,16 @@
 //! $\partial_{Cl} j(s) = [\min(p(s^-), p(s^+)), \max(p(s^-), p(s^+))]$, a single
 //! point wherever $p$ is continuous.
 
-use crate::error::InputError;
+use crate::error::{InputError, bounded};
+
+/// Bound on the law's slopes: beyond it the contact terms dwarf the body's stiffness
+/// by so much that the step loses the digits its certificate asks for (measured with
+/// the paper's material by `tests/extremes.rs`: 1e12 fails, 1e9 passes).
+pub const MAX_LAW: f64 = 1e9;
+
+/// Bound on the law's jumps and `p_left` (pressures): measured the same way, a
+/// jump of -1e9 leaves a certificate of 5e-10, -1e6 passes.
+pub const MAX_LAW_VALUE: f64 = 1e6;
 
 /// A closed interval $[lo, hi]$ of the real line; `hi` may be $+\infty$.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -75,13 +84,7 @@ impl Law {
         p_left: f64,
     ) -> Result<Law, InputError> {
         for (i, &s) in breaks.iter().enumerate() {
-            if !s.is_finite() {
-                return Err(InputError::field(
-                    format!("law.breakpoints[{i}]"),
-                    s,
-                    "a finite number",
-                ));
-            }
+            bounded(&format!("law.breakpoints[{i}]"), s, 1e6)?;
             if i > 0 && s <= breaks[i - 1] {
                 return Err(InputError::field(
                     format!("law.breakpoints[{i}]"),
@@ -112,26 +115,12 @@ impl Law {
             ));
         }
         for (i, &c) in slopes.iter().enumerate() {
-            if !c.is_finite() {
-                return Err(InputError::field(
-                    format!("law.slopes[{i}]"),
-                    c,
-                    "a finite number",
-                ));
-            }
+            bounded(&format!("law.slopes[{i}]"), c, MAX_LAW)?;
         }
         for (i, &d) in jumps.iter().enumerate() {
-            if !d.is_finite() {
-                return Err(InputError::field(
-                    format!("law.jumps[{i}]"),
-                    d,
-                    "a finite number",
-                ));
-            }
+            bounded(&format!("law.jumps[{i}]"), d, MAX_LAW_VALUE)?;
         }
-        if !p_left.is_finite() {
-            return Err(InputError::field("law.p_left", p_left, "a finite number"));
-        }
+        bounded("law.p_left", p_left, MAX_LAW_VALUE)?;
         let nb = slopes.len();
         let mut start = vec![p_left; nb];
         let mut prim_start = vec![0.0; nb];
@@ -209,6 +198,21 @@ impl Law {
         }
     }
     // ANCHOR_END: clarke
+
+    /// [`Law::clarke`] widened by the breakpoints within `delta` of `s`: the hull of
+    /// $\partial_{Cl} j(s)$ and $\partial_{Cl} j(s_b)$ for every $|s_b - s| \le \delta$. A node that
+    /// a solver put exactly on a kink comes back from the recovery solve a few units of
+    /// rounding away from it; this is the subdifferential it was solved with.
+    pub fn clarke_near(&self, s: f64, delta: f64) -> Interval {
+        let mut out = self.clarke(s);
+        let from = self.breaks.partition_point(|&b| b < s - delta);
+        for &b in self.breaks[from..].iter().take_while(|&&b| b <= s + delta) {
+            let c = self.clarke(b);
+            out.lo = out.lo.min(c.lo);
+            out.hi = out.hi.max(c.hi);
+        }
+        out
+    }
 
     fn prim(&self, s: f64) -> f64 {
         let b = self.branch(s);

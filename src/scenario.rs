@@ -3,7 +3,7 @@
 //! Every field is checked; a bad value is rejected with the field's name, the
 //! value and what is allowed, and unknown keys are errors.
 
-use crate::error::InputError;
+use crate::error::{InputError, MAX_MAGNITUDE, bounded, in_range};
 use crate::history::History;
 use crate::law::Law;
 use crate::material::Isotropic;
@@ -142,12 +142,24 @@ pub const BUILTIN: [(&str, &str); 3] = [
     ("smooth", include_str!("../data/scenarios/smooth.toml")),
 ];
 
-fn finite(field: &str, v: f64) -> Result<f64, InputError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(InputError::field(field, v, "a finite number"))
+/// Scenario files are a few hundred bytes; anything this large is a mistake.
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
+/// `text` cut to at most `max` characters, marking the cut.
+fn truncate(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        None => text.to_string(),
+        Some((i, _)) => format!(
+            "{} … ({} more characters)",
+            &text[..i],
+            text[i..].chars().count()
+        ),
     }
+}
+
+/// A load component or coefficient: finite and at most [`MAX_MAGNITUDE`] in size.
+fn finite(field: &str, v: f64) -> Result<f64, InputError> {
+    bounded(field, v, MAX_MAGNITUDE)
 }
 
 /// A load vector: exactly two finite components.
@@ -165,12 +177,9 @@ fn vector(field: &str, v: &[f64]) -> Result<[f64; 2], InputError> {
     ])
 }
 
+/// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`].
 fn positive(field: &str, v: f64) -> Result<f64, InputError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(InputError::field(field, v, "a finite number > 0"))
-    }
+    in_range(field, v, 1.0 / MAX_MAGNITUDE, MAX_MAGNITUDE)
 }
 
 impl Scenario {
@@ -178,7 +187,7 @@ impl Scenario {
     pub fn from_toml(text: &str, source: &str) -> Result<Scenario, InputError> {
         let raw: RawScenario = toml::from_str(text).map_err(|e| InputError::Parse {
             source_name: source.to_string(),
-            message: e.to_string().trim().to_string(),
+            message: truncate(e.to_string().trim(), 600),
         })?;
         Scenario::validate(raw)
     }
@@ -190,10 +199,19 @@ impl Scenario {
         }
         let path = Path::new(name_or_path);
         if path.extension().is_some_and(|e| e == "toml") || path.exists() {
-            let text = std::fs::read_to_string(path).map_err(|e| InputError::Parse {
+            let read_err = |e: std::io::Error| InputError::Parse {
                 source_name: name_or_path.to_string(),
                 message: e.to_string(),
-            })?;
+            };
+            let size = std::fs::metadata(path).map_err(read_err)?.len();
+            if size > MAX_FILE_BYTES {
+                return Err(InputError::field(
+                    "scenario",
+                    format!("{name_or_path} ({size} bytes)"),
+                    format!("a scenario file of at most {MAX_FILE_BYTES} bytes"),
+                ));
+            }
+            let text = std::fs::read_to_string(path).map_err(read_err)?;
             return Scenario::from_toml(&text, name_or_path);
         }
         Err(InputError::field(
@@ -210,8 +228,8 @@ impl Scenario {
         if raw.name.trim().is_empty() {
             return Err(InputError::field("name", "\"\"", "a non-empty name"));
         }
-        let t_end = positive("T", raw.t_end)?;
-        let g = positive("g", raw.g)?;
+        let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
+        let g = in_range("g", raw.g, 1e-12, 1e6)?;
         let m = &raw.material;
         let e = positive("material.E", m.e)?;
         if !(m.kappa.is_finite() && m.kappa > -1.0 && m.kappa < 0.5) {
@@ -240,7 +258,7 @@ impl Scenario {
             Some(v) => History::from_toml("loads.history", v)?,
         };
         history.validate("loads.history", t_end)?;
-        let f0_modulation = finite("loads.f0_modulation", raw.loads.f0_modulation)?;
+        let f0_modulation = bounded("loads.f0_modulation", raw.loads.f0_modulation, 1e6)?;
         let supports = match raw.geometry.as_ref().map(|g| g.supports.as_str()) {
             None | Some("paper") => Supports::Paper,
             Some("rollers") => Supports::Rollers,
@@ -283,7 +301,7 @@ impl Scenario {
 
     /// Overrides $g$ (validated).
     pub fn with_g(mut self, g: f64) -> Result<Self, InputError> {
-        self.g = positive("g", g)?;
+        self.g = in_range("g", g, 1e-12, 1e6)?;
         Ok(self)
     }
 
@@ -311,13 +329,7 @@ impl Scenario {
 
     /// Overrides the load history with a ramp $\varphi(t) = \min(t/t_r, 1)$ (validated).
     pub fn with_ramp(mut self, t_r: f64) -> Result<Self, InputError> {
-        if !(t_r.is_finite() && t_r > 0.0) {
-            return Err(InputError::field(
-                "ramp",
-                t_r,
-                "a ramp time T_R, a finite number > 0",
-            ));
-        }
+        in_range("ramp", t_r, 1e-12 * self.t_end, 1e12 * self.t_end)?;
         self.history = History::Ramp { t_r };
         Ok(self)
     }

@@ -133,8 +133,8 @@ pub enum RunError {
     #[error("condensation failed: {0}")]
     Condense(String),
     #[error(
-        "scenario `{scenario}`, step {step} (t = {t}) failed: solver `{solver}` ended with {status:?} after {iterations} iterations, \
-         solver residual {residual:.3e}, certificate {certificate:.3e} (tolerance {tol:.1e})"
+        "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}",
+        step_failure(.solver, .status, .iterations, .residual, .certificate, .tol)
     )]
     Step {
         scenario: String,
@@ -147,6 +147,67 @@ pub enum RunError {
         certificate: f64,
         tol: f64,
     },
+}
+
+/// Estimated peak memory of a run with $n$ contact segments, bytes. Nested dissection
+/// of the $n \times n/2$ grid fills the factor to about $6\,N\log_2 N$ entries for $N$ dofs
+/// (28.5 M at $n = 512$), and a run peaks at about 20 bytes per entry of the factor
+/// (529 MB at $n = 512$, `data/bench.csv`), plus 30 MB.
+pub fn memory_estimate(n: usize) -> f64 {
+    let dofs = (2 * (n + 1) * (n / 2 + 1)) as f64;
+    30e6 + 20.0 * 6.0 * dofs * dofs.log2()
+}
+
+/// Memory the kernel can give this process now (Linux `MemAvailable`), bytes.
+pub fn available_memory() -> Option<f64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024.0)
+}
+
+/// Refuses a mesh whose run would not fit in the available memory, before any work.
+pub fn check_memory(n: usize) -> Result<(), InputError> {
+    let need = memory_estimate(n);
+    match available_memory() {
+        Some(have) if need > 0.9 * have => Err(InputError::field(
+            "n",
+            n,
+            format!(
+                "a mesh that fits in memory: n = {n} needs about {:.1} GB (factor of about {:.2e} \
+                 entries), but {:.1} GB are available",
+                need / 1e9,
+                6.0 * (2 * (n + 1) * (n / 2 + 1)) as f64
+                    * ((2 * (n + 1) * (n / 2 + 1)) as f64).log2(),
+                have / 1e9
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Why a step failed, in words: the solver's own verdict, or the certificate that
+/// refused a step the solver called converged.
+fn step_failure(
+    solver: &str,
+    status: &Status,
+    iterations: &usize,
+    residual: &f64,
+    certificate: &f64,
+    tol: &f64,
+) -> String {
+    if *status == Status::Converged {
+        format!(
+            "solver `{solver}` reported convergence after {iterations} iterations (its residual \
+             {residual:.3e}), but the independent certificate of the step is {certificate:.3e}, \
+             above the tolerance {tol:.1e}"
+        )
+    } else {
+        format!(
+            "solver `{solver}` did not converge: it stopped with {status:?} after {iterations} \
+             iterations, residual {residual:.3e} (certificate {certificate:.3e}, tolerance {tol:.1e})"
+        )
+    }
 }
 
 /// Options of a run.
@@ -244,6 +305,7 @@ pub fn run_batch(
         )
         .into());
     }
+    check_memory(opt.n)?;
     let mut timings = Timings::default();
     let clock = Instant::now();
     let disc = Discretisation::new(scn, opt.n)?;

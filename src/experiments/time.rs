@@ -203,7 +203,7 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path, plan: &Plan) -> Result<(), 
     };
     let with_order = |e: f64, o: f64| {
         if o.is_finite() {
-            format!("{} ({})", sig3(e), sig3(o))
+            format!("{} ({:.2})", sig3(e), o)
         } else {
             sig3(e)
         }
@@ -218,8 +218,9 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path, plan: &Plan) -> Result<(), 
     for s in SCENARIOS {
         md += &format!(
             "**`{s}`, maximum over time.** Relative error in percent (observed order), \
-             and the scalar model's prediction; h = 1/{}, reference N = {}.\n\n\
-             | k | k/τ | (a) constant | model | (b) ramp to t = 1 | model | (c) ramp to t = 1/4 | model |\n\
+             and the scalar model's prediction, for (a) the constant load, (b) the ramp to \
+             t = 1, (c) the ramp to t = 1/4; h = 1/{}, reference N = {}.\n\n\
+             | k | k/τ | (a) | model | (b) | model | (c) | model |\n\
              |---|---|---|---|---|---|---|---|\n",
             plan.n, plan.n_ref
         );
@@ -425,7 +426,7 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             series,
             title: title.into(),
             levels: levels.clone(),
-            headroom: if which == "max" { 3.0 } else { 1000.0 },
+            headroom: if which == "max" { 40.0 } else { 1000.0 },
         };
         both(
             &ctx.figures,

@@ -109,7 +109,13 @@ impl StepProblem<'_> {
             .zip(&grad)
             .zip(self.kw)
             .map(|((&ri, &gi), &kw)| {
-                let split = crate::certificate::split_node(self.law, self.g, ri, -gi / kw);
+                let split = crate::certificate::split_node(
+                    self.law,
+                    self.g,
+                    ri,
+                    -gi / kw,
+                    crate::certificate::ROUNDING * dscale,
+                );
                 (split.stationarity * kw / fscale)
                     .max(split.complementarity * kw / (fscale * dscale))
                     .max((ri - self.g).max(0.0) / dscale)
