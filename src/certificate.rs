@@ -67,6 +67,13 @@ pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64, delta: f64) -> NodeSplit
 }
 // ANCHOR_END: split
 
+/// The rounding tolerance in displacement: [`ROUNDING`] times $\max(g, \|u\|_\infty)$,
+/// with an infinite $g$ (no limit, as in the penalty method) left out.
+pub fn rounding_delta(g: f64, u_norm: f64) -> f64 {
+    let g = if g.is_finite() { g.abs() } else { 0.0 };
+    ROUNDING * g.max(u_norm)
+}
+
 /// Whether $s$ sits on the limit $g$: within $10^{-8} g$ or within the rounding
 /// tolerance `delta`.
 pub fn at_limit(g: f64, s: f64, delta: f64) -> bool {
@@ -128,12 +135,13 @@ pub fn certify(
         .max(f64::MIN_POSITIVE);
     let backward_scale = crate::step::inf_norm(b).max(ku_abs).max(f64::MIN_POSITIVE);
     let dscale = g.abs().max(crate::step::inf_norm(u)).max(f64::MIN_POSITIVE);
+    let delta = rounding_delta(g, crate::step::inf_norm(u));
     let mut rho: Vec<f64> = ku.iter().zip(b).map(|(a, c)| a - c).collect();
     let mut cert = Certificate::default();
     let mut states = Vec::with_capacity(contact_dofs.len());
     for (i, &d) in contact_dofs.iter().enumerate() {
         let s = -u[d];
-        let split = split_node(law, g, s, rho[d] / kw[i], ROUNDING * dscale);
+        let split = split_node(law, g, s, rho[d] / kw[i], delta);
         rho[d] -= kw[i] * (split.xi + split.mu);
         cert.feasibility = cert.feasibility.max((s - g).max(0.0) / dscale);
         cert.complementarity = cert
@@ -143,7 +151,7 @@ pub fn certify(
             u_nu: s,
             sigma_nu1: 0.0 - split.xi,
             sigma_nu2: 0.0 - split.mu,
-            at_limit: at_limit(g, s, ROUNDING * dscale),
+            at_limit: at_limit(g, s, delta),
         });
     }
     cert.stationarity = crate::step::inf_norm(&rho) / backward_scale;

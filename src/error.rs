@@ -44,10 +44,8 @@ impl InputError {
 /// A value as a reader wants it echoed: long numbers (`1e308` prints 309 digits) in
 /// exponent notation, anything else cut to 200 characters.
 fn readable(v: String) -> String {
-    if v.len() > 24 {
-        if let Ok(x) = v.parse::<f64>() {
-            return format!("{x:e}");
-        }
+    if let Some(x) = (v.len() > 24).then(|| v.parse::<f64>().ok()).flatten() {
+        return format!("{x:e}");
     }
     match v.char_indices().nth(200) {
         None => v,
@@ -68,9 +66,13 @@ pub fn bounded(field: &str, v: f64, max: f64) -> Result<f64, InputError> {
         Err(InputError::field(
             field,
             v,
-            format!(
-                "a finite number with |x| <= {max:e} (what a double-precision solve can certify)"
-            ),
+            if max == f64::MAX {
+                "a finite number".to_string()
+            } else {
+                format!(
+                    "a finite number with |x| <= {max:e} (what a double-precision solve can certify)"
+                )
+            },
         ))
     }
 }

@@ -2,7 +2,8 @@
 
 use clap::{Parser, Subcommand};
 use evhi::output::csv::Table;
-use evhi::output::{vtu, write_atomic};
+use evhi::output::rundir::RunDir;
+use evhi::output::vtu;
 use evhi::scenario::Scenario;
 use evhi::scheme::{self, Options, OrderingKind, Run};
 use evhi::step::{StepSolver, convexify::Convexify, newton::Newton};
@@ -465,11 +466,14 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         None => scn,
     };
     let hyp = scn.time_hypotheses();
-    for why in hyp.failures() {
+    let failures = hyp.failures();
+    if !failures.is_empty() {
         eprintln!(
-            "warning: scenario `{}` (load history: {}): {why}; the paper's error bounds assume it \
-             (see the book, \"Time\"). Solving anyway.",
-            scn.name, scn.history
+            "warning: scenario `{}` (load history: {}) breaks the paper's hypotheses at t = 0: {}. \
+             The error bounds assume them (the book, chapter \"Time\"); solving anyway.",
+            scn.name,
+            scn.history,
+            failures.join("; ")
         );
     }
     if !(1e-15..=1e-4).contains(&args.certificate_tol) {
@@ -493,6 +497,8 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         _ => OrderingKind::NestedDissection,
     };
     opt.parallel = args.threads == 2;
+    // The output directory is checked and locked before any work.
+    let out = RunDir::open(&args.out)?;
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
     let steps = args.steps as u64;
@@ -527,12 +533,14 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let t_out = Instant::now();
     write_outputs(
+        &out,
         &args,
         &scn,
         solver.name(),
         &run,
         wall.elapsed().as_secs_f64(),
     )?;
+    out.publish()?;
     if args.timings {
         let t = &run.timings;
         eprintln!(
@@ -608,18 +616,19 @@ fn provenance(args: &SolveArgs, scn: &Scenario, solver: &str, run: &Run) -> Vec<
 }
 
 fn write_outputs(
+    out: &RunDir,
     args: &SolveArgs,
     scn: &Scenario,
     solver: &str,
     run: &Run,
     wall_s: f64,
-) -> std::io::Result<()> {
-    let mesh = scn.mesh(run.n).map_err(std::io::Error::other)?;
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mesh = scn.mesh(run.n)?;
     let dofs = evhi::mesh::Dofs::new(&mesh, true);
     let header = provenance(args, scn, solver, run);
     let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
     let c = &run.contact;
-    Table::new()
+    let contact = Table::new()
         .f64("x", x)
         .f64("u_nu", c.iter().map(|s| s.u_nu).collect())
         .f64("sigma_nu1", c.iter().map(|s| s.sigma_nu1).collect())
@@ -627,10 +636,10 @@ fn write_outputs(
         .str(
             "regime",
             c.iter().map(|s| s.regime(&scn.law, scn.g)).collect(),
-        )
-        .write(&args.out.join("contact.csv"), &header)?;
+        );
+    out.write_table("contact.csv", &contact, &header)?;
     let r = &run.records;
-    Table::new()
+    let steps = Table::new()
         .u64("step", r.iter().map(|s| s.step as u64).collect())
         .f64("t", r.iter().map(|s| s.t).collect())
         .u64(
@@ -662,12 +671,12 @@ fn write_outputs(
             r.iter().map(|s| s.certificate.complementarity).collect(),
         )
         .f64("energy_norm", r.iter().map(|s| s.energy_norm).collect())
-        .f64("time_s", r.iter().map(|s| s.time_s).collect())
-        .write(&args.out.join("steps.csv"), &header)?;
+        .f64("time_s", r.iter().map(|s| s.time_s).collect());
+    out.write_table("steps.csv", &steps, &header)?;
     let max_cert = r.iter().map(|s| s.certificate.max()).fold(0.0, f64::max);
     let iters: usize = r.iter().map(|s| s.iterations).sum();
     let t = &run.timings;
-    Table::new()
+    let summary = Table::new()
         .u64("n", vec![run.n as u64])
         .u64("steps", vec![run.steps as u64])
         .u64("dofs", vec![run.dofs as u64])
@@ -706,11 +715,12 @@ fn write_outputs(
         .str(
             "version",
             vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
-        )
-        .write(&args.out.join("summary.csv"), &header)?;
+        );
+    out.write_table("summary.csv", &summary, &header)?;
     let disp = dofs.expand(&run.u);
-    write_atomic(
-        &args.out.join("solution.vtu"),
+    out.write(
+        "solution.vtu",
         vtu::vtu(&mesh, &disp, &run.contact).as_bytes(),
-    )
+    )?;
+    Ok(())
 }

@@ -59,14 +59,13 @@ fn solve_writes_all_outputs() {
     assert_eq!(steps.lines().count(), 1 + 8);
     let vtu = std::fs::read_to_string(dir.join("solution.vtu")).unwrap();
     assert!(vtu.contains("NumberOfPoints=\"153\"") && vtu.contains("NumberOfCells=\"256\""));
-    // No temporary files are left behind.
-    assert!(
-        std::fs::read_dir(&dir).unwrap().all(|e| !e
-            .unwrap()
-            .file_name()
-            .to_string_lossy()
-            .starts_with('.'))
-    );
+    // No temporary files are left behind: the only hidden file is the run marker.
+    let hidden: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert_eq!(hidden, vec![".evhi-run".to_string()]);
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -140,6 +139,15 @@ fn bad_arguments_fail_with_the_field_named() {
         (vec!["--g", "-0.1"], "`g`"),
         (vec!["--steps", "0"], "`steps`"),
         (vec!["--scenario", "nope"], "`scenario`"),
+        // issue 12: negative counts name their option; absurd tolerances are refused
+        (vec!["--n", "-4"], "--n"),
+        (vec!["--steps", "-1"], "--steps"),
+        (vec!["--certificate-tol", "inf"], "`certificate-tol`"),
+        (vec!["--certificate-tol", "1e300"], "`certificate-tol`"),
+        (vec!["--certificate-tol", "1e-20"], "`certificate-tol`"),
+        (vec!["--g", "1e308"], "`g`"),
+        (vec!["--n", "4096"], "needs about"),
+        (vec!["--ramp", "1e-300"], "`ramp`"),
     ] {
         let out = evhi()
             .args(["solve", "--out", "/tmp/evhi-never"])
@@ -184,5 +192,102 @@ fn bench_sweeps_writes_every_variant() {
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("`n`"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A scenario file: `figure` with `from` replaced by `to`.
+fn figure_file(dir: &std::path::Path, name: &str, from: &str, to: &str) -> std::path::PathBuf {
+    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    assert!(text.contains(from));
+    let p = dir.join(name);
+    std::fs::write(&p, text.replace(from, to)).unwrap();
+    p
+}
+
+/// Issue 12's cases that used to look right and were not, or were refused though valid.
+#[test]
+fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
+    let dir = std::env::temp_dir().join(format!("evhi-cli-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |scenario: &std::path::Path, extra: &[&str]| {
+        evhi()
+            .args(["solve", "--n", "32", "--steps", "32", "--scenario"])
+            .arg(scenario)
+            .args(extra)
+            .arg("--out")
+            .arg(dir.join("out"))
+            .output()
+            .unwrap()
+    };
+    let slopes = "slopes = [0.0, 200.0, -100.0, 300.0]";
+    // An upward jump: nodes sit on the breakpoint up to rounding; it certifies.
+    let jump = figure_file(
+        &dir,
+        "jump.toml",
+        slopes,
+        &format!("{slopes}\njumps = [0.0, 5.0, 0.0]"),
+    );
+    let o = run(&jump, &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // A very thin layer: nodes at g(1 - 1e-8) are on the limit, not on branch 1.
+    let o = run(&std::path::PathBuf::from("figure"), &["--g", "1e-9"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let contact = std::fs::read_to_string(dir.join("out/contact.csv")).unwrap();
+    assert!(
+        contact.lines().filter(|l| l.ends_with(",limit")).count() > 16,
+        "{contact}"
+    );
+    // A certificate stricter than rounding: the refusal says what refused.
+    let o = run(
+        &std::path::PathBuf::from("figure"),
+        &["--certificate-tol", "1e-15"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    if !o.status.success() {
+        assert!(
+            err.contains("reported convergence") && err.contains("independent certificate"),
+            "{err}"
+        );
+        assert!(!err.contains("ended with Converged"), "{err}");
+    }
+    // A strongly softening law: the step can be nonconvex; solve warns and reports it.
+    let soft = figure_file(
+        &dir,
+        "soft.toml",
+        slopes,
+        "slopes = [0.0, 200.0, -100000.0, 300.0]",
+    );
+    let o = run(&soft, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("not convex") || !o.status.success(), "{err}");
+    if o.status.success() {
+        let summary = std::fs::read_to_string(dir.join("out/summary.csv")).unwrap();
+        assert!(summary.contains("step_curvature_min"));
+    }
+    // Values that overflow the solve are refused by name, echoed in exponent form.
+    let huge = figure_file(&dir, "huge.toml", "T = 1.0", "T = 1e300");
+    let err = String::from_utf8_lossy(&run(&huge, &[]).stderr).to_string();
+    assert!(
+        err.contains("`T`") && err.contains("1e300") && err.len() < 400,
+        "{err}"
+    );
+    let kappa = figure_file(&dir, "kappa.toml", "kappa = 0.4", "kappa = 1e308");
+    let err = String::from_utf8_lossy(&run(&kappa, &[]).stderr).to_string();
+    assert!(
+        err.contains("`material.kappa`") && err.contains("1e308") && err.len() < 400,
+        "{err}"
+    );
+    // A 10 MB line with a parse error is echoed in part; a file over 1 MiB is refused.
+    let long = dir.join("long.toml");
+    std::fs::write(&long, format!("name = \"{}", "x".repeat(900_000))).unwrap();
+    let err = String::from_utf8_lossy(&run(&long, &[]).stderr).to_string();
+    assert!(err.len() < 2000, "{} bytes of error", err.len());
+    let big = dir.join("big.toml");
+    std::fs::write(&big, "#".repeat(2 << 20)).unwrap();
+    let err = String::from_utf8_lossy(&run(&big, &[]).stderr).to_string();
+    assert!(
+        err.contains("`scenario`") && err.contains("at most"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

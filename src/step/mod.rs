@@ -105,17 +105,12 @@ impl StepProblem<'_> {
         let grad = self.grad(r);
         let fscale = self.force_scale(r);
         let dscale = self.disp_scale(r);
+        let delta = crate::certificate::rounding_delta(self.g, inf_norm(r));
         r.iter()
             .zip(&grad)
             .zip(self.kw)
             .map(|((&ri, &gi), &kw)| {
-                let split = crate::certificate::split_node(
-                    self.law,
-                    self.g,
-                    ri,
-                    -gi / kw,
-                    crate::certificate::ROUNDING * dscale,
-                );
+                let split = crate::certificate::split_node(self.law, self.g, ri, -gi / kw, delta);
                 (split.stationarity * kw / fscale)
                     .max(split.complementarity * kw / (fscale * dscale))
                     .max((ri - self.g).max(0.0) / dscale)

@@ -1,0 +1,258 @@
+//! A run's output directory, published as one set.
+//!
+//! A run writes every file into a staging directory beside the target
+//! (`.NAME.staging-PID`), then swaps the two in one atomic rename (Linux
+//! `renameat2(RENAME_EXCHANGE)`; elsewhere two renames). A reader of the target
+//! therefore sees the previous set or the new one, never a mix, whatever interrupts
+//! the run. A lock beside the target (`.NAME.lock`, released by the kernel when
+//! the process dies) makes a second writer fail at once. Leftovers of a killed run
+//! (staging directories, an old set that was swapped out) are removed by the next
+//! run that takes the lock.
+//!
+//! The target must be absent, empty, or a directory this program wrote (it holds
+//! the marker `.evhi-run`): a directory holding other files is refused, so that a
+//! mistyped `--out` can never replace the user's files.
+
+use std::fs::File;
+use std::path::{Path, PathBuf};
+
+/// Marks a directory as a run directory written by this program.
+pub const MARKER: &str = ".evhi-run";
+
+/// Test hook: milliseconds to sleep after each file written, so that a test can
+/// interrupt the write phase (`EVHI_WRITE_DELAY_MS`).
+pub const DELAY_ENV: &str = "EVHI_WRITE_DELAY_MS";
+
+/// Why the output directory cannot be used.
+#[derive(Debug, thiserror::Error)]
+pub enum OutError {
+    #[error("--out `{path}`: {message}")]
+    Unusable { path: String, message: String },
+    #[error(
+        "--out `{path}`: another evhi run is writing to it (lock `{lock}`); wait for it or choose another directory"
+    )]
+    Busy { path: String, lock: String },
+    #[error("writing `{path}`: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutError + '_ {
+    move |source| OutError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// An output directory being written: files go to [`RunDir::path`], and
+/// [`RunDir::publish`] makes them the target's content at once.
+pub struct RunDir {
+    target: PathBuf,
+    staging: PathBuf,
+    lock_path: PathBuf,
+    _lock: File,
+    delay: Option<std::time::Duration>,
+}
+
+impl RunDir {
+    /// Checks `target`, takes its lock and creates the staging directory: every
+    /// reason the output cannot be written shows here, before any computation.
+    pub fn open(target: &Path) -> Result<RunDir, OutError> {
+        let unusable = |message: String| OutError::Unusable {
+            path: target.display().to_string(),
+            message,
+        };
+        let name = target
+            .file_name()
+            .filter(|n| !n.is_empty() && *n != "." && *n != "..")
+            .ok_or_else(|| unusable("name a directory (not `.`, `..` or `/`)".into()))?
+            .to_string_lossy()
+            .into_owned();
+        let parent = match target.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        if let Ok(meta) = std::fs::symlink_metadata(target) {
+            if !meta.is_dir() {
+                return Err(unusable(
+                    "exists and is not a directory; choose a directory path".into(),
+                ));
+            }
+            let foreign: Vec<String> = std::fs::read_dir(target)
+                .map_err(|e| unusable(format!("cannot be read: {e}")))?
+                .filter_map(|e| e.ok())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect();
+            if !foreign.is_empty() && !target.join(MARKER).exists() {
+                return Err(unusable(format!(
+                    "holds files evhi did not write (for example `{}`); choose a new or empty directory",
+                    foreign[0]
+                )));
+            }
+        }
+        std::fs::create_dir_all(&parent)
+            .map_err(|e| unusable(format!("its parent cannot be created: {e}")))?;
+        let lock_path = parent.join(format!(".{name}.lock"));
+        let lock = File::options()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(|e| {
+                unusable(format!(
+                    "cannot create a file beside it (`{}`): {e}",
+                    lock_path.display()
+                ))
+            })?;
+        if lock.try_lock().is_err() {
+            return Err(OutError::Busy {
+                path: target.display().to_string(),
+                lock: lock_path.display().to_string(),
+            });
+        }
+        clean_leftovers(&parent, &name, target);
+        let staging = parent.join(format!(".{name}.staging-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&staging);
+        std::fs::create_dir(&staging).map_err(|e| {
+            unusable(format!(
+                "cannot create a directory beside it (`{}`): {e}",
+                staging.display()
+            ))
+        })?;
+        let delay = std::env::var(DELAY_ENV)
+            .ok()
+            .and_then(|v| v.parse::<u64>().ok())
+            .map(std::time::Duration::from_millis);
+        Ok(RunDir {
+            target: target.to_path_buf(),
+            staging,
+            lock_path,
+            _lock: lock,
+            delay,
+        })
+    }
+
+    /// Where to write `file` of the set.
+    pub fn path(&self, file: &str) -> PathBuf {
+        self.staging.join(file)
+    }
+
+    /// Writes `bytes` as `file` of the set.
+    pub fn write(&self, file: &str, bytes: &[u8]) -> Result<(), OutError> {
+        let path = self.path(file);
+        std::fs::write(&path, bytes).map_err(io(&path))?;
+        self.pause();
+        Ok(())
+    }
+
+    /// The test hook's pause after a file (see [`DELAY_ENV`]).
+    pub fn pause(&self) {
+        if let Some(d) = self.delay {
+            std::thread::sleep(d);
+        }
+    }
+
+    /// Writes a table as `file` of the set, with its `#` comment lines.
+    pub fn write_table(
+        &self,
+        file: &str,
+        table: &super::csv::Table,
+        comments: &[String],
+    ) -> Result<(), OutError> {
+        let path = self.path(file);
+        table.write(&path, comments).map_err(io(&path))?;
+        self.pause();
+        Ok(())
+    }
+
+    /// Makes the staged set the target's content in one step and removes the old set.
+    pub fn publish(self) -> Result<(), OutError> {
+        let marker = self.staging.join(MARKER);
+        std::fs::write(&marker, b"written by evhi\n").map_err(io(&marker))?;
+        // Flush every file and the directory before the swap makes them visible.
+        for entry in std::fs::read_dir(&self.staging).map_err(io(&self.staging))? {
+            let p = entry.map_err(io(&self.staging))?.path();
+            File::open(&p).and_then(|f| f.sync_all()).map_err(io(&p))?;
+        }
+        if let Ok(d) = File::open(&self.staging) {
+            let _ = d.sync_all();
+        }
+        if self.target.exists() {
+            exchange(&self.staging, &self.target).map_err(io(&self.target))?;
+            // The staging path now holds the previous set.
+            let _ = std::fs::remove_dir_all(&self.staging);
+        } else {
+            std::fs::rename(&self.staging, &self.target).map_err(io(&self.target))?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for RunDir {
+    /// A run that fails before publishing leaves the target untouched and removes
+    /// its staging directory (a published one is already gone).
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.staging);
+        let _ = std::fs::remove_file(&self.lock_path);
+    }
+}
+
+/// Removes what a killed run left beside `target`: staging directories whose
+/// process is gone. Called with the lock held.
+fn clean_leftovers(parent: &Path, name: &str, target: &Path) {
+    let prefix = format!(".{name}.staging-");
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    for e in entries.filter_map(|e| e.ok()) {
+        let file = e.file_name().to_string_lossy().into_owned();
+        if file.starts_with(&prefix) && e.path() != target {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
+}
+
+/// Swaps two directories atomically.
+#[cfg(target_os = "linux")]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    use std::ffi::CString;
+    use std::os::unix::ffi::OsStrExt;
+    let ca = CString::new(a.as_os_str().as_bytes())?;
+    let cb = CString::new(b.as_os_str().as_bytes())?;
+    // SAFETY: both paths are valid NUL-terminated strings for the duration of the call.
+    let rc = unsafe {
+        libc::renameat2(
+            libc::AT_FDCWD,
+            ca.as_ptr(),
+            libc::AT_FDCWD,
+            cb.as_ptr(),
+            libc::RENAME_EXCHANGE,
+        )
+    };
+    if rc == 0 {
+        Ok(())
+    } else {
+        let err = std::io::Error::last_os_error();
+        // Filesystems without RENAME_EXCHANGE: fall back to two renames.
+        if err.raw_os_error() == Some(libc::EINVAL) || err.raw_os_error() == Some(libc::ENOSYS) {
+            swap_by_renames(a, b)
+        } else {
+            Err(err)
+        }
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    swap_by_renames(a, b)
+}
+
+/// Two renames: the target is briefly absent (not atomic; the fallback only).
+fn swap_by_renames(staging: &Path, target: &Path) -> std::io::Result<()> {
+    let old = staging.with_extension("old");
+    std::fs::rename(target, &old)?;
+    std::fs::rename(staging, target)?;
+    std::fs::rename(&old, staging)
+}

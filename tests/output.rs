@@ -1,0 +1,185 @@
+//! A run's output set: written whole or not at all, never mixed, never lost.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn evhi() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_evhi"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("evhi-out-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn solve(n: usize, out: &Path) -> Command {
+    solve_steps(n, 8, out)
+}
+
+fn solve_steps(n: usize, steps: usize, out: &Path) -> Command {
+    let mut c = evhi();
+    c.args([
+        "solve",
+        "--scenario",
+        "figure",
+        "--n",
+        &n.to_string(),
+        "--steps",
+        &steps.to_string(),
+        "--out",
+    ])
+    .arg(out)
+    .stdout(Stdio::null())
+    .stderr(Stdio::piped());
+    c
+}
+
+/// The mesh size of a whole, consistent set in `dir`, or why it is not one.
+fn whole_set(dir: &Path) -> Result<usize, String> {
+    let read = |f: &str| std::fs::read_to_string(dir.join(f)).map_err(|e| format!("{f}: {e}"));
+    let header = |text: &str| text.lines().take(2).collect::<Vec<_>>().join("\n");
+    let (contact, steps, summary, vtu) = (
+        read("contact.csv")?,
+        read("steps.csv")?,
+        read("summary.csv")?,
+        read("solution.vtu")?,
+    );
+    if !dir.join(".evhi-run").exists() {
+        return Err("no marker".into());
+    }
+    if header(&contact) != header(&steps) || header(&steps) != header(&summary) {
+        return Err("CSV headers of different runs".into());
+    }
+    let n = contact.lines().filter(|l| !l.starts_with('#')).count() - 2;
+    let points = (n + 1) * (n / 2 + 1);
+    if !vtu.contains(&format!("NumberOfPoints=\"{points}\"")) {
+        return Err(format!("solution.vtu is not of the run with n = {n}"));
+    }
+    if !summary.contains(&format!("\n{n},8,")) {
+        return Err(format!("summary.csv is not of the run with n = {n}"));
+    }
+    Ok(n)
+}
+
+/// Hidden leftovers beside the target (staging directories, lock files).
+fn leftovers(parent: &Path) -> Vec<String> {
+    std::fs::read_dir(parent)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect()
+}
+
+#[test]
+fn a_second_writer_fails_at_once() {
+    let root = scratch("busy");
+    let out = root.join("run");
+    let mut first = solve_steps(64, 64, &out)
+        .env("EVHI_WRITE_DELAY_MS", "400")
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    let t = Instant::now();
+    let second = solve(16, &out).output().unwrap();
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(!second.status.success());
+    assert!(
+        err.contains("another evhi run is writing") && err.contains("run"),
+        "{err}"
+    );
+    assert!(
+        t.elapsed() < Duration::from_secs(2),
+        "the refusal must not wait"
+    );
+    assert!(first.wait().unwrap().success());
+    assert!(
+        std::fs::read_to_string(out.join("summary.csv"))
+            .unwrap()
+            .contains("\n64,64,")
+    );
+    assert!(leftovers(&root).is_empty(), "{:?}", leftovers(&root));
+    std::fs::remove_dir_all(&root).ok();
+}
+
+#[test]
+fn bad_out_paths_fail_before_the_solve_naming_the_path() {
+    let root = scratch("bad");
+    let file = root.join("a_file");
+    std::fs::write(&file, "x").unwrap();
+    let foreign = root.join("mine");
+    std::fs::create_dir(&foreign).unwrap();
+    std::fs::write(foreign.join("notes.txt"), "keep me").unwrap();
+    for (out, needle) in [
+        (file.clone(), "is not a directory"),
+        (PathBuf::from("/dev/full"), "is not a directory"),
+        (foreign.clone(), "holds files evhi did not write"),
+    ] {
+        let t = Instant::now();
+        // A mesh that takes seconds to solve: the refusal must come before it.
+        let o = solve_steps(256, 256, &out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success());
+        assert!(
+            err.contains(&out.display().to_string()) && err.contains(needle),
+            "{err}"
+        );
+        assert!(
+            t.elapsed() < Duration::from_millis(500),
+            "{err}: not before the solve"
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("notes.txt")).unwrap(),
+        "keep me"
+    );
+    std::fs::remove_dir_all(&root).ok();
+}
+
+/// Kills `solve` at pseudo-random moments of its write phase (slowed by the test hook)
+/// with SIGKILL or SIGINT, alternating the mesh so that old and new sets differ. After
+/// every kill the target holds one whole set, old or new; the next run clears what the
+/// killed one left.
+#[test]
+fn interrupted_writes_leave_a_whole_set() {
+    let root = scratch("kill");
+    let out = root.join("run");
+    assert!(solve(16, &out).status().unwrap().success());
+    assert_eq!(whole_set(&out), Ok(16));
+    let mut seed: u64 = 0x9e3779b97f4a7c15;
+    let (mut old_kept, mut new_whole) = (0, 0);
+    for trial in 0..24 {
+        let previous = whole_set(&out).unwrap();
+        let n = if previous == 16 { 20 } else { 16 };
+        let mut child = solve(n, &out)
+            .env("EVHI_WRITE_DELAY_MS", "25")
+            .spawn()
+            .unwrap();
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        // The solve takes a few ms, each of the five files 25 ms more.
+        let wait = 5 + (seed >> 33) % 180;
+        std::thread::sleep(Duration::from_millis(wait));
+        let signal = if trial % 2 == 0 { "-KILL" } else { "-INT" };
+        let _ = Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status();
+        let _ = child.wait();
+        match whole_set(&out) {
+            Ok(m) if m == previous => old_kept += 1,
+            Ok(m) if m == n => new_whole += 1,
+            other => panic!("trial {trial} ({signal} after {wait} ms): {other:?}"),
+        }
+    }
+    // A complete run afterwards cleans every leftover of the killed ones.
+    assert!(solve(16, &out).status().unwrap().success());
+    assert_eq!(whole_set(&out), Ok(16));
+    assert!(leftovers(&root).is_empty(), "{:?}", leftovers(&root));
+    eprintln!("24 interrupted writes: {old_kept} kept the old set, {new_whole} the new");
+    assert!(old_kept > 0, "no kill landed inside the write phase");
+    std::fs::remove_dir_all(&root).ok();
+}
