@@ -522,6 +522,19 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         b.finish_and_clear();
     }
     let run = run?;
+    // H(s), beta_B > m ||iota||^2, with the trace constant of a mesh of at most 64
+    // segments (it grows slowly with n: data/hypotheses.csv).
+    let m_j = -scn.law.min_slope();
+    let beta_b = scn.elasticity().coercivity();
+    let trace_sq = evhi::norms::trace_norm_sq(&scn, args.n.min(64)).unwrap_or(f64::NAN);
+    if m_j * trace_sq >= beta_b {
+        eprintln!(
+            "warning: the smallness condition H(s) fails: beta_B = {beta_b:.4e} <= m ||iota_h||^2 = \
+             {m_j:.4e} * {trace_sq:.4e} (n = {}); the paper's existence and error theory assume it. \
+             Certified steps still solve the discrete problem.",
+            args.n.min(64)
+        );
+    }
     if run.hessian_min <= 0.0 {
         eprintln!(
             "warning: the step problem is not convex: its smallest possible curvature is {:.3e} \
@@ -539,6 +552,7 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         solver.name(),
         &run,
         wall.elapsed().as_secs_f64(),
+        (beta_b, m_j * trace_sq),
     )?;
     out.publish()?;
     if args.timings {
@@ -615,6 +629,7 @@ fn provenance(args: &SolveArgs, scn: &Scenario, solver: &str, run: &Run) -> Vec<
     ]
 }
 
+#[allow(clippy::too_many_arguments)]
 fn write_outputs(
     out: &RunDir,
     args: &SolveArgs,
@@ -622,6 +637,7 @@ fn write_outputs(
     solver: &str,
     run: &Run,
     wall_s: f64,
+    (beta_b, m_trace_sq): (f64, f64),
 ) -> Result<(), Box<dyn std::error::Error>> {
     let mesh = scn.mesh(run.n)?;
     let dofs = evhi::mesh::Dofs::new(&mesh, true);
@@ -702,6 +718,8 @@ fn write_outputs(
         )
         .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
         .f64("step_curvature_min", vec![run.hessian_min])
+        .f64("beta_B", vec![beta_b])
+        .f64("m_trace_norm_sq", vec![m_trace_sq])
         .f64("assembly_s", vec![t.assembly])
         .f64("factorisation_s", vec![t.factorisation])
         .f64("condensation_s", vec![t.condensation])

@@ -264,6 +264,13 @@ fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
         let summary = std::fs::read_to_string(dir.join("out/summary.csv")).unwrap();
         assert!(summary.contains("step_curvature_min"));
     }
+    // A very soft material breaks H(s): solve says so.
+    let soft_e = figure_file(&dir, "soft_e.toml", "E = 1000.0", "E = 1e-3");
+    let o = run(&soft_e, &[]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && err.contains("H(s) fails"), "{err}");
+    let summary = std::fs::read_to_string(dir.join("out/summary.csv")).unwrap();
+    assert!(summary.contains(",beta_B,m_trace_norm_sq,"));
     // Values that overflow the solve are refused by name, echoed in exponent form.
     let huge = figure_file(&dir, "huge.toml", "T = 1.0", "T = 1e300");
     let err = String::from_utf8_lossy(&run(&huge, &[]).stderr).to_string();

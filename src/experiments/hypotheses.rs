@@ -11,14 +11,8 @@
 //! $\int_{\Gamma_3} v_\nu^2$ is exact up to $O(h^2)$ for P1, and $\|\iota_h\| \to \|\iota\|$ from below.
 
 use super::{Ctx, ExpError};
-use crate::assembly::stiffness;
-use crate::linalg::Cholesky;
-use crate::material::Isotropic;
-use crate::mesh::Dofs;
-use crate::ordering::Ordering;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use faer::{Mat, Side};
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
@@ -32,36 +26,10 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let m = -scn.law.min_slope();
     let mut rows = vec![];
     for &n in &levels {
-        let mesh = scn.mesh(n)?;
-        let dofs = Dofs::new(&mesh, true);
-        let v = stiffness(&mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });
-        let cdofs: Vec<usize> = mesh
-            .contact
-            .iter()
-            .map(|&c| dofs.of(c, 1).expect("free"))
-            .collect();
-        let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
-        let chol = Cholesky::factor(&v, &order).map_err(|e| ExpError::Table {
+        let trace_sq = crate::norms::trace_norm_sq(&scn, n).map_err(|message| ExpError::Table {
             path: "hypotheses".into(),
-            message: e.to_string(),
+            message,
         })?;
-        // F_V = (L_CC L_CC^T)^{-1}; the eigenvalues of W^{1/2} F_V W^{1/2} are the
-        // inverses of those of W^{-1/2} S_V W^{-1/2}.
-        let l = chol.l_cc();
-        let s = l * l.transpose();
-        let w = mesh.contact_weights();
-        let k = s.nrows();
-        let scaled = Mat::from_fn(k, k, |i, j| {
-            0.5 * (s[(i, j)] + s[(j, i)]) / (w[i] * w[j]).sqrt()
-        });
-        let eig = scaled
-            .self_adjoint_eigenvalues(Side::Lower)
-            .map_err(|e| ExpError::Table {
-                path: "hypotheses".into(),
-                message: format!("{e:?}"),
-            })?;
-        let lam_min = eig.iter().copied().fold(f64::INFINITY, f64::min);
-        let trace_sq = 1.0 / lam_min;
         rows.push((n, trace_sq.sqrt(), m * trace_sq));
     }
     let beta = elas.coercivity();
