@@ -141,6 +141,35 @@ fn time_study_orders_and_plateau() {
 }
 
 #[test]
+fn static_control() {
+    snapshot_outputs("static", &["static_control.csv"], &["static_control"]);
+}
+
+/// The static control's orders on its quick levels (n = 4 ... 128): `smooth` reaches
+/// order 1 (0.96 or more on its last difference), the paper's supports stay near the
+/// clamp end's exponent 1/2 and far from 1 (at most 0.65 on the last difference).
+#[test]
+fn static_control_orders() {
+    let c = ctx("static-orders");
+    evhi::experiments::singular::run(&c).unwrap();
+    let df = evhi::experiments::read_csv(&c.data.join("static_control.csv")).unwrap();
+    let sc = evhi::experiments::col_str(&df, "scenario").unwrap();
+    let od = evhi::experiments::col_f64(&df, "order_diff").unwrap();
+    let last = |s: &str| {
+        (0..sc.len())
+            .filter(|&i| sc[i] == s && od[i].is_finite())
+            .map(|i| od[i])
+            .next_back()
+            .unwrap()
+    };
+    assert!(last("smooth") >= 0.95, "smooth: {}", last("smooth"));
+    for s in ["literal", "figure"] {
+        assert!((0.45..=0.65).contains(&last(s)), "{s}: {}", last(s));
+    }
+    std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
+}
+
+#[test]
 fn stability_prop31_and_map() {
     snapshot_outputs(
         "stability",

@@ -12,6 +12,7 @@ pub mod hypotheses;
 pub mod loads;
 pub mod plot;
 pub mod scenes;
+pub mod singular;
 pub mod stability;
 pub mod sweeps;
 pub mod time;
@@ -53,7 +54,7 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 8] = [
+pub const NAMES: [&str; 9] = [
     "hypotheses",
     "fig2",
     "loads",
@@ -61,6 +62,7 @@ pub const NAMES: [&str; 8] = [
     "fig4",
     "table1",
     "time",
+    "static",
     "stability",
 ];
 
@@ -74,6 +76,7 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         "fig4" => scenes::run_fig4(ctx),
         "table1" => convergence::run(ctx),
         "time" => time::run(ctx),
+        "static" => singular::run(ctx),
         "stability" => stability::run(ctx),
         other => Err(crate::error::InputError::field(
             "experiment",

@@ -1,0 +1,402 @@
+//! The static control of Table 1: the paper's geometry and supports, linear
+//! elasticity only (no contact, no time: the steady state $Bu = f$), on the uniform
+//! family up to $n = 1/h = 1024$. No reference solution is needed. The spaces are nested
+//! and $u_h$ is the $B$-orthogonal projection of $u$, so
+//! $$\|u - u_h\|_E^2 = \|u\|_E^2 - \|u_h\|_E^2, \qquad \|u_{h/2} - u_h\|_E^2 = \|u_{h/2}\|_E^2 - \|u_h\|_E^2,$$
+//! with $\|u_h\|_E^2 = \tfrac12 u_h^\top B u_h = \tfrac12 f^\top u_h$. The differences give the
+//! observed order directly; $\|u\|_E^2$ is extrapolated from the last three levels.
+//!
+//! The observed orders are set against the corner exponents of the Lamé system: near a
+//! corner of opening $\omega$ the solution behaves like $r^\lambda$, with $\lambda$ the
+//! smallest root with positive real part of the corner's characteristic equation
+//! ([`wedge_exponents`]); on uniform meshes the energy error then decays like
+//! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
+
+use super::plot::{Figure, both, e2s};
+use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::assembly::{load, stiffness};
+use crate::linalg::Cholesky;
+use crate::mesh::Dofs;
+use crate::ordering::Ordering;
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use plotters::prelude::*;
+
+/// The scenarios of the control: the paper's supports with both loads, and `smooth`.
+pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
+
+/// How one edge of a wedge is held.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Edge {
+    Clamped,
+    Free,
+}
+
+// ANCHOR: wedge
+/// The real $4\times4$ matrix of the edge conditions on the wedge $0 < \theta < \omega$
+/// for the Kolosov–Muskhelishvili potentials $\varphi = A z^\lambda$, $\psi = B z^\lambda$
+/// (unknowns $\operatorname{Re}A, \operatorname{Im}A, \operatorname{Re}B, \operatorname{Im}B$),
+/// real $\lambda$, with $\kappa_M = 3 - 4\nu$ (plane strain). On a ray $\theta$:
+/// $2\mu(u_x + i u_y) = r^\lambda(\kappa_M A e^{i\lambda\theta} - \lambda\bar A e^{i(2-\lambda)\theta} - \bar B e^{-i\lambda\theta})$ and
+/// $\sigma_{\theta\theta} + i\sigma_{r\theta} = \lambda r^{\lambda-1}(\lambda A e^{i(\lambda-1)\theta} + \bar A e^{-i(\lambda-1)\theta} + B e^{i(\lambda+1)\theta})$.
+fn edge_matrix(lambda: f64, omega: f64, kappa_m: f64, edges: [Edge; 2]) -> nalgebra::Matrix4<f64> {
+    type C = nalgebra::Complex<f64>;
+    let e = |x: f64| C::new(x.cos(), x.sin());
+    let mut m = nalgebra::Matrix4::zeros();
+    for (row, (theta, edge)) in [(0.0, edges[0]), (omega, edges[1])].into_iter().enumerate() {
+        // The condition is linear in (A, conj A, B, conj B): coefficients (ca, cab, cb, cbb).
+        let (ca, cab, cb, cbb) = match edge {
+            Edge::Clamped => (
+                kappa_m * e(lambda * theta),
+                -lambda * e((2.0 - lambda) * theta),
+                C::new(0.0, 0.0),
+                -e(-lambda * theta),
+            ),
+            Edge::Free => (
+                lambda * e((lambda - 1.0) * theta),
+                e(-(lambda - 1.0) * theta),
+                e((lambda + 1.0) * theta),
+                C::new(0.0, 0.0),
+            ),
+        };
+        // x = a1 + i a2 enters as ca x + cab conj(x) = (ca + cab) a1 + i (ca - cab) a2.
+        let cols = [
+            ca + cab,
+            (ca - cab) * C::new(0.0, 1.0),
+            cb + cbb,
+            (cb - cbb) * C::new(0.0, 1.0),
+        ];
+        for (j, c) in cols.iter().enumerate() {
+            m[(2 * row, j)] = c.re;
+            m[(2 * row + 1, j)] = c.im;
+        }
+    }
+    m
+}
+
+/// The real exponents $\lambda \in (0, 1)$ of a wedge of opening $\omega$ with the given
+/// edges: the sign changes of the determinant on a fine grid, refined by bisection.
+/// A corner with no real root in $(0, 1)$ has either complex roots there (the clamp
+/// ending on a straight edge, [`clamp_end_exponent`]) or none below 1.
+pub fn wedge_exponents(omega: f64, kappa_m: f64, edges: [Edge; 2]) -> Vec<f64> {
+    let det = |l: f64| edge_matrix(l, omega, kappa_m, edges).determinant();
+    let grid: Vec<f64> = (1..1000).map(|i| i as f64 / 1000.0).collect();
+    let mut roots = vec![];
+    for w in grid.windows(2) {
+        let (mut a, mut b) = (w[0], w[1]);
+        if det(a).signum() == det(b).signum() {
+            continue;
+        }
+        for _ in 0..60 {
+            let c = 0.5 * (a + b);
+            if det(a).signum() == det(c).signum() {
+                a = c;
+            } else {
+                b = c;
+            }
+        }
+        roots.push(0.5 * (a + b));
+    }
+    roots
+}
+
+/// Where the clamp ends on a straight edge ($\omega = \pi$, clamped–free) the same
+/// equations reduce to $e^{-2i\pi\lambda} = -\kappa_M$, so
+/// $\lambda = \tfrac12 + i\,\ln\kappa_M/(2\pi)$: real part exactly $\tfrac12$, with a slow
+/// oscillation. Returns (real part, imaginary part).
+pub fn clamp_end_exponent(kappa_m: f64) -> (f64, f64) {
+    (0.5, kappa_m.ln() / (2.0 * std::f64::consts::PI))
+}
+// ANCHOR_END: wedge
+
+/// Per scenario and level: $\|u_h\|_E^2$.
+fn energies(scn: &Scenario, levels: &[usize], ctx: &Ctx) -> Result<Vec<f64>, ExpError> {
+    let mut out = vec![];
+    for &n in levels {
+        ctx.log(&format!("static control: {} n = {n}", scn.name));
+        crate::scheme::check_memory(n)?;
+        let mesh = scn.mesh(n)?;
+        let dofs = Dofs::new(&mesh, true);
+        let b = stiffness(&mesh, &dofs, &scn.elasticity());
+        let f = load(&mesh, &dofs, scn.f0, scn.f2, scn.f0_modulation);
+        let cdofs: Vec<usize> = mesh
+            .contact
+            .iter()
+            .map(|&c| dofs.of(c, 1).expect("contact nodes are free"))
+            .collect();
+        let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
+        let chol = Cholesky::factor(&b, &order).map_err(|e| ExpError::Table {
+            path: "static_control".into(),
+            message: e.to_string(),
+        })?;
+        let u = chol.solve(&f);
+        out.push(0.5 * f.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>());
+    }
+    Ok(out)
+}
+
+pub fn levels(quick: bool) -> Vec<usize> {
+    if quick {
+        vec![4, 8, 16, 32, 64, 128]
+    } else {
+        vec![4, 8, 16, 32, 64, 128, 256, 512, 1024]
+    }
+}
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let levels = levels(ctx.quick);
+    let paper = Scenario::load("literal")?;
+    let nu = paper.kappa;
+    let kappa_m = 3.0 - 4.0 * nu;
+    let (re_end, im_end) = clamp_end_exponent(kappa_m);
+    let top = wedge_exponents(
+        std::f64::consts::FRAC_PI_2,
+        kappa_m,
+        [Edge::Clamped, Edge::Free],
+    );
+    let lambda_top = top.first().copied().unwrap_or(f64::NAN);
+    let mut t = Table::new();
+    let (mut sc, mut ns, mut es, mut ds, mut od, mut errs, mut oe, mut e512) = (
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+        vec![],
+    );
+    for name in SCENARIOS {
+        let scn = Scenario::load(name)?;
+        let e = energies(&scn, &levels, ctx)?;
+        let l = e.len();
+        // Differences to the next finer level: ||u_{h/2} - u_h||_E^2.
+        let d: Vec<f64> = (0..l)
+            .map(|i| if i + 1 < l { e[i + 1] - e[i] } else { f64::NAN })
+            .collect();
+        // Aitken's extrapolation of ||u||_E^2 from the last three levels.
+        let r = d[l - 2] / d[l - 3];
+        let e_inf = e[l - 1] + d[l - 2] * r / (1.0 - r);
+        // Table 1's measure: against the n = 512 solution instead of u.
+        let at_512 = levels.iter().position(|&n| n == 512).map(|j| e[j]);
+        for i in 0..l {
+            sc.push(name.to_string());
+            ns.push(levels[i] as u64);
+            es.push(e[i]);
+            ds.push(d[i].sqrt() / e_inf.sqrt());
+            od.push(if i >= 1 && i + 1 < l {
+                0.5 * (d[i - 1] / d[i]).log2()
+            } else {
+                f64::NAN
+            });
+            errs.push(((e_inf - e[i]).max(0.0) / e_inf).sqrt());
+            e512.push(match at_512 {
+                Some(r) if levels[i] < 512 => ((r - e[i]) / r).sqrt(),
+                _ => f64::NAN,
+            });
+            oe.push(if i >= 1 {
+                0.5 * ((e_inf - e[i - 1]) / (e_inf - e[i])).log2()
+            } else {
+                f64::NAN
+            });
+        }
+    }
+    t = t
+        .str("scenario", sc)
+        .u64("n", ns)
+        .f64("energy_sq", es)
+        .f64("rel_diff_next", ds)
+        .f64("order_diff", od)
+        .f64("rel_err_extrapolated", errs)
+        .f64("order_err", oe)
+        .f64("rel_err_vs_n512", e512);
+    let params = format!(
+        "steady state B u = f (no contact, no time), P1 on the uniform family n = 1/h; energy_sq = ||u_h||_E^2 = f.u_h/2; \
+         rel_diff_next = ||u_(h/2) - u_h||_E / ||u||_E (Galerkin orthogonality, nested spaces); order_diff = observed order of \
+         the differences between successive rows; rel_err_extrapolated = ||u - u_h||_E / ||u||_E with ||u||_E^2 from Aitken's \
+         extrapolation of the last three levels; rel_err_vs_n512 = ||u_512 - u_h||_E / ||u_512||_E, Table 1's measure; exponents (plane strain, kappa_M = 3 - 4 nu = {kappa_m}): clamp end on a straight \
+         edge lambda = {re_end} + {im_end:.5} i; clamped top corner (pi/2, clamped-free) lambda = {lambda_top:.5}"
+    );
+    let path = ctx.write("static_control.csv", &t, "static", &params)?;
+    write_markdown(ctx, &path)?;
+    draw(ctx, &path, re_end, lambda_top)
+}
+
+/// `data/static_control.md`: the differences and their orders, for the book.
+fn write_markdown(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
+    use super::time::sig3;
+    let df = read_csv(path)?;
+    let (sc, n) = (col_str(&df, "scenario")?, col_f64(&df, "n")?);
+    let (d, o, e512) = (
+        col_f64(&df, "rel_diff_next")?,
+        col_f64(&df, "order_diff")?,
+        col_f64(&df, "rel_err_vs_n512")?,
+    );
+    let mut md = format!("<!-- {} -->\n\n", ctx.provenance("static", "").join(" "));
+    md += "Relative energy norm of the difference to the next level, \
+           ‖u<sub>2n</sub> − u<sub>n</sub>‖<sub>E</sub> / ‖u‖<sub>E</sub> in percent (observed order), \
+           and `literal` measured as Table 1 measures (against n = 512).\n\n\
+           | n | `literal` | `figure` | `smooth` | `literal` against n = 512 |\n|---|---|---|---|---|\n";
+    let levels: Vec<f64> = (0..sc.len())
+        .filter(|&i| sc[i] == SCENARIOS[0] && d[i].is_finite())
+        .map(|i| n[i])
+        .collect();
+    for &level in &levels {
+        let mut row = format!("| {level} |");
+        for s in SCENARIOS {
+            let i = (0..sc.len())
+                .find(|&i| sc[i] == s && n[i] == level)
+                .expect("every level");
+            row += &if !d[i].is_finite() {
+                " – |".to_string()
+            } else if o[i].is_finite() {
+                format!(" {} ({:.2}) |", sig3(100.0 * d[i]), o[i])
+            } else {
+                format!(" {} |", sig3(100.0 * d[i]))
+            };
+        }
+        let i = (0..sc.len())
+            .find(|&i| sc[i] == SCENARIOS[0] && n[i] == level)
+            .expect("level");
+        row += &format!(
+            " {} |\n",
+            if e512[i].is_finite() {
+                sig3(100.0 * e512[i])
+            } else {
+                "–".into()
+            }
+        );
+        md += &row;
+    }
+    let p = ctx.data_path("static_control.md");
+    crate::output::write_atomic(&p, md.as_bytes()).map_err(|e| ExpError::Io {
+        path: p.display().to_string(),
+        source: e,
+    })
+}
+
+struct StaticFig {
+    series: Vec<(String, Vec<(f64, f64)>, RGBColor)>,
+    guides: Vec<(f64, String)>,
+}
+
+fn draw(
+    ctx: &Ctx,
+    path: &std::path::Path,
+    lambda_end: f64,
+    lambda_top: f64,
+) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let (sc, n, d) = (
+        col_str(&df, "scenario")?,
+        col_f64(&df, "n")?,
+        col_f64(&df, "rel_diff_next")?,
+    );
+    let colours = [
+        RGBColor(213, 94, 0),
+        RGBColor(0, 114, 178),
+        RGBColor(0, 158, 115),
+    ];
+    let series = SCENARIOS
+        .iter()
+        .zip(colours)
+        .map(|(s, c)| {
+            let pts = (0..sc.len())
+                .filter(|&i| sc[i] == *s && d[i].is_finite() && d[i] > 0.0)
+                .map(|i| (n[i], d[i]))
+                .collect();
+            (format!("{s}: ||u_h/2 - u_h||_E / ||u||_E"), pts, c)
+        })
+        .collect();
+    let fig = StaticFig {
+        series,
+        guides: vec![
+            (lambda_end, format!("slope -{lambda_end} (clamp end)")),
+            (lambda_top, format!("slope -{lambda_top:.3} (top corner)")),
+            (1.0, "slope -1 (smooth)".into()),
+        ],
+    };
+    both(&ctx.figures, "static_control", (900, 700), &fig)
+}
+
+impl Figure for StaticFig {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let pts: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.1.iter().copied())
+            .collect();
+        let xmax = pts.iter().map(|p| p.0).fold(0.0, f64::max);
+        let ymin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let ymax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+        let keys: Vec<f64> = (2..=12)
+            .map(|e| 2f64.powi(e))
+            .filter(|x| *x <= xmax)
+            .collect();
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                "Static control: the paper's supports, no contact",
+                ("sans-serif", 26),
+            )
+            .margin(15)
+            .x_label_area_size(60)
+            .y_label_area_size(90)
+            .build_cartesian_2d(
+                (3.0..xmax * 1.3).log_scale().with_key_points(keys),
+                (ymin / 3.0..ymax * 30.0).log_scale(),
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("n = 1/h (the difference to the next level, 2n)")
+            .y_desc("relative energy norm")
+            .x_label_formatter(&|x| format!("{}", x.round()))
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .label_style(("sans-serif", 20))
+            .axis_desc_style(("sans-serif", 20))
+            .draw()
+            .map_err(e2s)?;
+        for (label, s, c) in &self.series {
+            let c = *c;
+            chart
+                .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
+                .map_err(e2s)?;
+            chart
+                .draw_series(s.iter().map(|&p| Circle::new(p, 6, c.filled())))
+                .map_err(e2s)?
+                .label(label.clone())
+                .legend(move |(x, y)| {
+                    EmptyElement::at((x + 12, y))
+                        + PathElement::new(vec![(-12, 0), (12, 0)], c.stroke_width(3))
+                        + Circle::new((0, 0), 6, c.filled())
+                });
+        }
+        // Slope guides through the first point of the first series, below it.
+        if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
+            for (i, (slope, label)) in self.guides.iter().enumerate() {
+                let y0 = y0 * 0.5f64.powi(i as i32 + 1);
+                let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
+                let grey = RGBColor(60 + 50 * i as u8, 60 + 50 * i as u8, 60 + 50 * i as u8);
+                chart
+                    .draw_series(DashedLineSeries::new(pts, 6, 4, grey.stroke_width(2)))
+                    .map_err(e2s)?
+                    .label(label.clone())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], grey.stroke_width(2))
+                    });
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 18))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(e2s)?;
+        Ok(())
+    }
+}
