@@ -9,7 +9,7 @@ reproduce *ARGS:
 
 # Run every test (numerical tests are compiled optimised)
 test:
-    cargo test
+    cargo test --release
 
 # Everything CI checks
 ci:
