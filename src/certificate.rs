@@ -174,4 +174,15 @@ impl ContactState {
             format!("branch{b}")
         }
     }
+
+    /// The regime as an integer for field output: 0 no contact, $b$ on branch $b$
+    /// ($1 \le b \le K$ for a law with $K$ breakpoints), $K + 1$ at the limit.
+    pub fn regime_code(&self, law: &Law, g: f64) -> i32 {
+        let r = self.regime(law, g);
+        match r.as_str() {
+            "limit" => law.breakpoints().len() as i32 + 1,
+            "no_contact" => 0,
+            _ => law.branch(self.u_nu) as i32,
+        }
+    }
 }

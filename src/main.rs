@@ -127,6 +127,11 @@ struct SolveArgs {
     /// Output directory (created if missing).
     #[arg(long)]
     out: PathBuf,
+    /// Also write the evolution for ParaView: solution_NNNNNN.vtu every K steps (and at
+    /// T) with displacement, sigma_nu1, sigma_nu2 and the regime code, plus
+    /// solution.pvd, the collection with the times (open it to animate).
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
+    vtk_every: Option<u64>,
     /// Print the wall time of each phase (assembly, factorisation, condensation, steps).
     #[arg(long)]
     timings: bool,
@@ -502,7 +507,31 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
     let steps = args.steps as u64;
-    let mut observe = |n: usize, _t: f64, _u: &[f64]| {
+    // The evolution for ParaView, written as the run goes (--vtk-every).
+    let series_mesh = match args.vtk_every {
+        Some(_) => Some(scn.mesh(args.n)?),
+        None => None,
+    };
+    let series_dofs = series_mesh.as_ref().map(|m| evhi::mesh::Dofs::new(m, true));
+    let mut series: Vec<(f64, String)> = vec![];
+    let mut series_error: Option<String> = None;
+    let mut observe = |n: usize, t: f64, u: &[f64], contact: &[evhi::certificate::ContactState]| {
+        if let (Some(k), Some(mesh), Some(dofs)) = (args.vtk_every, &series_mesh, &series_dofs) {
+            if (n as u64).is_multiple_of(k) || n as u64 == steps {
+                let file = format!("solution_{n:06}.vtu");
+                let codes: Vec<i32> = contact
+                    .iter()
+                    .map(|c| c.regime_code(&scn.law, scn.g))
+                    .collect();
+                let text = vtu::vtu(mesh, &dofs.expand(u), contact, &codes);
+                match out.write(&file, text.as_bytes()) {
+                    Ok(()) => series.push((t, file)),
+                    Err(e) => {
+                        series_error.get_or_insert(e.to_string());
+                    }
+                }
+            }
+        }
         if bar.is_none() && started.elapsed() > Duration::from_secs(1) {
             let b = ProgressBar::new(steps).with_style(
                 ProgressStyle::with_template(
@@ -517,11 +546,17 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             b.set_position(n as u64);
         }
     };
-    let run = scheme::run(&scn, &opt, solver.as_mut(), &mut observe);
+    let run = scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut observe);
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
     let run = run?;
+    if let Some(e) = series_error {
+        return Err(e.into());
+    }
+    if args.vtk_every.is_some() {
+        out.write("solution.pvd", vtu::pvd(&series).as_bytes())?;
+    }
     // H(s), beta_B > m ||iota||^2, with the trace constant of a mesh of at most 64
     // segments (it grows slowly with n: data/hypotheses.csv).
     let m_j = -scn.law.min_slope();
@@ -736,9 +771,30 @@ fn write_outputs(
         );
     out.write_table("summary.csv", &summary, &header)?;
     let disp = dofs.expand(&run.u);
+    let codes: Vec<i32> = (run.contact.iter())
+        .map(|c| c.regime_code(&scn.law, scn.g))
+        .collect();
     out.write(
         "solution.vtu",
-        vtu::vtu(&mesh, &disp, &run.contact).as_bytes(),
+        vtu::vtu(&mesh, &disp, &run.contact, &codes).as_bytes(),
+    )?;
+    // The scenario as solved: its TOML, with the command line that may override it.
+    let toml = match evhi::scenario::BUILTIN
+        .iter()
+        .find(|b| b.0 == args.scenario)
+    {
+        Some((_, text)) => text.to_string(),
+        None => std::fs::read_to_string(&args.scenario)?,
+    };
+    let cmd: Vec<String> = std::env::args().skip(1).collect();
+    out.write(
+        "scenario.toml",
+        format!(
+            "# The scenario of this run, as read. Command-line overrides apply on top of it:\n\
+             # evhi {}\n# (summary.csv records the values solved.)\n{toml}",
+            cmd.join(" ")
+        )
+        .as_bytes(),
     )?;
     Ok(())
 }

@@ -268,6 +268,26 @@ pub fn run(
 /// `observe(i, n, t_n, u_n)` of a batch: scenario `i` finished step `n`.
 pub type BatchObserver<'a> = dyn FnMut(usize, usize, f64, &[f64]) + 'a;
 
+/// An observer that also sees the contact states of the step.
+pub type StateObserver<'a> = dyn FnMut(usize, usize, f64, &[f64], &[ContactState]) + 'a;
+
+/// [`run`] with an observer `observe(n, t_n, u_n, contact_n)` that also receives the
+/// contact states of every step (for output of the evolution).
+pub fn run_with_states(
+    scn: &Scenario,
+    opt: &Options,
+    solver: &mut dyn StepSolver,
+    observe: &mut dyn FnMut(usize, f64, &[f64], &[ContactState]),
+) -> Result<Run, RunError> {
+    let runs = run_batch_states(
+        std::slice::from_ref(scn),
+        opt,
+        &mut [solver],
+        &mut |_, step, t, u, c| observe(step, t, u, c),
+    )?;
+    Ok(runs.into_iter().next().expect("one run"))
+}
+
 /// Runs several scenarios that share the step matrix (the same geometry, supports,
 /// material and final time; loads, law and $g$ may differ) in lockstep: one
 /// factorisation, and per step one forward and one backward sweep over $L$ for all
@@ -279,6 +299,18 @@ pub fn run_batch(
     opt: &Options,
     solvers: &mut [&mut dyn StepSolver],
     observe: &mut BatchObserver<'_>,
+) -> Result<Vec<Run>, RunError> {
+    run_batch_states(scns, opt, solvers, &mut |i, step, t, u, _| {
+        observe(i, step, t, u)
+    })
+}
+
+/// [`run_batch`] with an observer that also receives each step's contact states.
+pub fn run_batch_states(
+    scns: &[Scenario],
+    opt: &Options,
+    solvers: &mut [&mut dyn StepSolver],
+    observe: &mut StateObserver<'_>,
 ) -> Result<Vec<Run>, RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
@@ -483,7 +515,7 @@ pub fn run_batch(
                     tol: opt.certificate_tol,
                 });
             }
-            observe(i, step, t, &u[i]);
+            observe(i, step, t, &u[i], &states);
             contact[i] = states;
         }
     }

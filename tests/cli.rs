@@ -298,3 +298,87 @@ fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The evolution for ParaView: one VTU per written step and a .pvd with their times;
+/// the last VTU's point fields equal contact.csv at the contact nodes.
+#[test]
+fn vtk_time_series_matches_the_contact_table() {
+    let dir = std::env::temp_dir().join(format!("evhi-cli-pvd-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let o = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "figure",
+            "--n",
+            "16",
+            "--steps",
+            "8",
+            "--vtk-every",
+            "3",
+        ])
+        .arg("--out")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Steps 3, 6 and the last, 8.
+    let pvd = std::fs::read_to_string(dir.join("solution.pvd")).unwrap();
+    let sets: Vec<(f64, String)> = pvd
+        .lines()
+        .filter(|l| l.starts_with("<DataSet"))
+        .map(|l| {
+            let attr = |name: &str| {
+                let start = l.find(&format!("{name}=\"")).unwrap() + name.len() + 2;
+                l[start..].split('"').next().unwrap().to_string()
+            };
+            (attr("timestep").parse().unwrap(), attr("file"))
+        })
+        .collect();
+    assert_eq!(sets.len(), 3, "{pvd}");
+    assert_eq!(
+        sets.iter().map(|s| s.0).collect::<Vec<_>>(),
+        vec![0.375, 0.75, 1.0]
+    );
+    for (_, f) in &sets {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    // The last dataset against contact.csv (the contact nodes are the first 17 points).
+    let vtu = std::fs::read_to_string(dir.join(&sets[2].1)).unwrap();
+    let array = |name: &str| -> Vec<f64> {
+        let start = vtu.find(&format!("Name=\"{name}\"")).unwrap();
+        let body = &vtu[start..];
+        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+        body.split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let (sigma1, regime) = (array("sigma_nu1"), array("regime"));
+    let contact = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    let rows: Vec<Vec<String>> = contact
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    assert_eq!(rows.len(), 17);
+    let mut limit = 0;
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(sigma1[i], r[2].parse::<f64>().unwrap(), "node {i}");
+        let code = match r[4].as_str() {
+            "no_contact" => 0.0,
+            "limit" => {
+                limit += 1;
+                4.0
+            }
+            b => b.trim_start_matches("branch").parse().unwrap(),
+        };
+        assert_eq!(regime[i], code, "node {i}: {}", r[4]);
+    }
+    assert!(limit > 0, "figure has nodes at the limit at T");
+    // Off the contact boundary the regime is -1; the run directory describes itself.
+    assert_eq!(regime[17], -1.0);
+    let toml = std::fs::read_to_string(dir.join("scenario.toml")).unwrap();
+    assert!(toml.contains("--vtk-every 3") && toml.contains("name = \"figure\""));
+    std::fs::remove_dir_all(&dir).ok();
+}

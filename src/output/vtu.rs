@@ -6,9 +6,26 @@ use crate::certificate::ContactState;
 use crate::mesh::Mesh;
 use std::fmt::Write;
 
+/// A ParaView collection (`.pvd`) of `(time, file)` pairs: one dataset per time step,
+/// so that ParaView animates the evolution.
+pub fn pvd(steps: &[(f64, String)]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n",
+    );
+    for (t, file) in steps {
+        let _ = writeln!(
+            s,
+            "<DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{file}\"/>"
+        );
+    }
+    s.push_str("</Collection>\n</VTKFile>\n");
+    s
+}
+
 /// The grid as VTU text. `disp` holds one displacement per node; `contact` the
-/// states of the contact nodes (in `mesh.contact` order).
-pub fn vtu(mesh: &Mesh, disp: &[[f64; 2]], contact: &[ContactState]) -> String {
+/// states of the contact nodes (in `mesh.contact` order) and `regimes` their regime
+/// codes ([`ContactState::regime_code`]; written as `regime`, $-1$ off $\Gamma_3$).
+pub fn vtu(mesh: &Mesh, disp: &[[f64; 2]], contact: &[ContactState], regimes: &[i32]) -> String {
     let (np, nc) = (mesh.nodes.len(), mesh.triangles.len());
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0"?>"#);
@@ -75,6 +92,20 @@ pub fn vtu(mesh: &Mesh, disp: &[[f64; 2]], contact: &[ContactState]) -> String {
         }
         let _ = writeln!(s, "\n</DataArray>");
     }
+    let mut code = vec![-1i32; np];
+    for (i, &v) in mesh.contact.iter().enumerate() {
+        if let Some(&r) = regimes.get(i) {
+            code[v] = r;
+        }
+    }
+    let _ = writeln!(
+        s,
+        r#"<DataArray type="Int32" Name="regime" format="ascii">"#
+    );
+    for r in &code {
+        let _ = write!(s, "{r} ");
+    }
+    let _ = writeln!(s, "\n</DataArray>");
     let _ = writeln!(s, "</PointData></Piece></UnstructuredGrid></VTKFile>");
     s
 }
