@@ -26,4 +26,5 @@ pub mod ordering;
 pub mod output;
 pub mod scenario;
 pub mod scheme;
+pub mod show;
 pub mod step;

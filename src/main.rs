@@ -43,6 +43,25 @@ enum Command {
     /// --repeat runs), compare the step solvers, and write data/bench.csv,
     /// data/bench_solvers.csv and the work-precision chart figures/work_precision.png.
     Bench(BenchArgs),
+    /// List the built-in scenarios with their descriptions.
+    Scenarios,
+    /// Print a scenario (built-in name or TOML file): its law, material, loads and load
+    /// history, and check the paper's hypotheses for it: H(j), H(s) (beta_B > m
+    /// ||iota_h||^2), the step convexity for the chosen n and steps, and H(f)/H(0) at
+    /// t = 0. A failed hypothesis is a warning line; nothing is solved.
+    Show(ShowArgs),
+}
+
+#[derive(clap::Args)]
+struct ShowArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    scenario: String,
+    /// Contact segments n = 1/h of the run to check (a multiple of 4).
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+    n: usize,
+    /// Time steps N of the run to check.
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+    steps: usize,
 }
 
 #[derive(clap::Args)]
@@ -171,6 +190,17 @@ fn main() -> ExitCode {
         Command::Solve(args) => solve(args),
         Command::Reproduce(args) => reproduce(args),
         Command::Bench(args) => bench(args),
+        Command::Scenarios => {
+            for (name, text) in evhi::scenario::BUILTIN {
+                match Scenario::from_toml(text, name) {
+                    Ok(s) => println!("{name:10} {}", s.description),
+                    Err(e) => println!("{name:10} (invalid: {e})"),
+                }
+            }
+            println!("(`evhi show NAME` prints one; the TOML files are in data/scenarios/)");
+            Ok(())
+        }
+        Command::Show(args) => show(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -179,6 +209,28 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+fn show(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let scn = Scenario::load(&args.scenario)?;
+    if args.n == 0 || !args.n.is_multiple_of(4) {
+        return Err(evhi::error::InputError::field(
+            "n",
+            args.n,
+            "a positive multiple of 4 (so that y = 0.5 is a mesh line)",
+        )
+        .into());
+    }
+    evhi::scheme::check_memory(args.n)?;
+    if args.steps == 0 {
+        return Err(evhi::error::InputError::field("steps", 0, "an integer >= 1").into());
+    }
+    let (text, warnings) = evhi::show::report(&scn, args.n, args.steps);
+    print!("{text}");
+    if warnings > 0 {
+        eprintln!("{warnings} warning(s)");
+    }
+    Ok(())
 }
 
 fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
@@ -516,8 +568,10 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut series: Vec<(f64, String)> = vec![];
     let mut series_error: Option<String> = None;
     let mut observe = |n: usize, t: f64, u: &[f64], contact: &[evhi::certificate::ContactState]| {
-        if let (Some(k), Some(mesh), Some(dofs)) = (args.vtk_every, &series_mesh, &series_dofs) {
-            if (n as u64).is_multiple_of(k) || n as u64 == steps {
+        if let (Some(k), Some(mesh), Some(dofs)) = (args.vtk_every, &series_mesh, &series_dofs)
+            && ((n as u64).is_multiple_of(k) || n as u64 == steps)
+        {
+            {
                 let file = format!("solution_{n:06}.vtu");
                 let codes: Vec<i32> = contact
                     .iter()

@@ -186,6 +186,44 @@ pub fn check_memory(n: usize) -> Result<(), InputError> {
     }
 }
 
+/// $\lambda_{\min}(S + k\,\mathrm{diag}(w)\,c_{\min})$: the smallest curvature a step can
+/// have, every node on the steepest softening branch ($\lambda_{\min}(S)$ when no slope
+/// is negative).
+fn step_hessian_min(
+    s: faer::MatRef<'_, f64>,
+    kw: &[f64],
+    cmin: f64,
+    lambda_min: f64,
+) -> Result<f64, RunError> {
+    if cmin >= 0.0 {
+        return Ok(lambda_min);
+    }
+    let m = kw.len();
+    let h = faer::Mat::from_fn(m, m, |i, j| {
+        s[(i, j)] + if i == j { kw[i] * cmin } else { 0.0 }
+    });
+    Ok(h.self_adjoint_eigenvalues(faer::Side::Lower)
+        .map_err(|e| RunError::Condense(format!("eigenvalues of the step Hessian: {e:?}")))?
+        .into_iter()
+        .fold(f64::INFINITY, f64::min))
+}
+
+/// The step operator's curvature bound for `steps` steps on the mesh with `n`
+/// segments, without running the scheme: $\lambda_{\min}$ of the step Hessian in the
+/// worst case (see [`Run::hessian_min`]). Positive: every step is strictly convex.
+pub fn step_curvature(scn: &Scenario, n: usize, steps: usize) -> Result<f64, RunError> {
+    check_memory(n)?;
+    let disc = Discretisation::new(scn, n)?;
+    let k = scn.t_end / steps as f64;
+    let kmat = lin_comb(1.0, &disc.a, k, &disc.b);
+    let order = Ordering::nested_dissection(&disc.mesh, &disc.dofs, &disc.contact_dofs);
+    let mut chol = Cholesky::factor(&kmat, &order)?;
+    chol.sequential();
+    let c = condense(&chol).map_err(RunError::Condense)?;
+    let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
+    step_hessian_min(c.s.as_ref(), &kw, scn.law.min_slope(), c.lambda_min)
+}
+
 /// Why a step failed, in words: the solver's own verdict, or the certificate that
 /// refused a step the solver called converged.
 fn step_failure(
@@ -268,6 +306,9 @@ pub fn run(
 /// `observe(i, n, t_n, u_n)` of a batch: scenario `i` finished step `n`.
 pub type BatchObserver<'a> = dyn FnMut(usize, usize, f64, &[f64]) + 'a;
 
+/// `observe(n, t_n, u_n, contact_n)` of a single run.
+pub type Observer<'a> = dyn FnMut(usize, f64, &[f64], &[ContactState]) + 'a;
+
 /// An observer that also sees the contact states of the step.
 pub type StateObserver<'a> = dyn FnMut(usize, usize, f64, &[f64], &[ContactState]) + 'a;
 
@@ -277,7 +318,7 @@ pub fn run_with_states(
     scn: &Scenario,
     opt: &Options,
     solver: &mut dyn StepSolver,
-    observe: &mut dyn FnMut(usize, f64, &[f64], &[ContactState]),
+    observe: &mut Observer<'_>,
 ) -> Result<Run, RunError> {
     let runs = run_batch_states(
         std::slice::from_ref(scn),
@@ -398,17 +439,7 @@ pub fn run_batch_states(
         .iter()
         .map(|s| s.law.min_slope())
         .fold(f64::INFINITY, f64::min);
-    let hessian_min = if cmin < 0.0 {
-        let h = faer::Mat::from_fn(m, m, |i, j| {
-            s[(i, j)] + if i == j { kw[i] * cmin } else { 0.0 }
-        });
-        h.self_adjoint_eigenvalues(faer::Side::Lower)
-            .map_err(|e| RunError::Condense(format!("eigenvalues of the step Hessian: {e:?}")))?
-            .into_iter()
-            .fold(f64::INFINITY, f64::min)
-    } else {
-        lambda_min
-    };
+    let hessian_min = step_hessian_min(s.as_ref(), &kw, cmin, lambda_min)?;
     // The condensed operator and its spectral bounds are one phase.
     timings.condensation = clock.elapsed().as_secs_f64();
     let nd = disc.dofs.count;

@@ -382,3 +382,67 @@ fn vtk_time_series_matches_the_contact_table() {
     assert!(toml.contains("--vtk-every 3") && toml.contains("name = \"figure\""));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `evhi scenarios` lists the built-ins; `evhi show` prints a scenario and warns where
+/// a hypothesis of the paper fails.
+#[test]
+fn scenarios_and_show() {
+    let o = evhi().arg("scenarios").output().unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success());
+    for name in ["literal", "figure", "smooth"] {
+        assert!(out.lines().any(|l| l.starts_with(name)), "{out}");
+    }
+    let o = evhi().args(["show", "figure"]).output().unwrap();
+    let (out, err) = (
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr),
+    );
+    assert!(o.status.success(), "{err}");
+    assert!(
+        out.contains("H(s): beta_B") && out.contains(": holds"),
+        "{out}"
+    );
+    assert!(
+        out.contains("step convexity") && out.contains("tau = 0.07"),
+        "{out}"
+    );
+    assert!(
+        out.contains("warning: at t = 0") && err.contains("2 warning(s)"),
+        "{out}{err}"
+    );
+    // A downward jump breaks H(j); a ramp makes the data compatible.
+    let dir = std::env::temp_dir().join(format!("evhi-cli-show-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let slopes = "slopes = [0.0, 200.0, -100.0, 300.0]";
+    let jump = figure_file(
+        &dir,
+        "down.toml",
+        slopes,
+        &format!("{slopes}\njumps = [0.0, -5.0, 0.0]"),
+    );
+    let text = std::fs::read_to_string(&jump)
+        .unwrap()
+        .replace("[loads]\n", "[loads]\nhistory = { ramp = 0.5 }\n");
+    std::fs::write(&jump, text).unwrap();
+    let o = evhi()
+        .arg("show")
+        .arg(&jump)
+        .args(["--n", "16", "--steps", "16"])
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("warning: H(j) fails") && out.contains("(a jump)"),
+        "{out}"
+    );
+    assert!(out.contains("H(f), H(0) at t = 0: hold"), "{out}");
+    // A bad mesh is an error naming the option.
+    let o = evhi()
+        .args(["show", "figure", "--n", "10"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`n`"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -278,8 +278,11 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
     })
 }
 
+/// A plotted series: label, points, colour.
+type Series = (String, Vec<(f64, f64)>, RGBColor);
+
 struct StaticFig {
-    series: Vec<(String, Vec<(f64, f64)>, RGBColor)>,
+    series: Vec<Series>,
     guides: Vec<(f64, String)>,
 }
 

@@ -1,0 +1,140 @@
+//! What a scenario is, and what it asks of the paper's theory: the text `evhi show`
+//! prints. Every hypothesis the code can decide is checked, and each that fails is
+//! a `warning:` line (a warning, not an error: the discrete problem may still be
+//! solved and certified).
+
+use crate::scenario::Scenario;
+use std::fmt::Write;
+
+/// The report of a scenario, for a run with `n` segments and `steps` time steps.
+/// Returns the text and the number of warnings.
+pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
+    let mut s = String::new();
+    let mut warnings = 0;
+    let mut warn = |s: &mut String, msg: String| {
+        warnings += 1;
+        let _ = writeln!(s, "warning: {msg}");
+    };
+    let _ = writeln!(s, "scenario `{}`: {}", scn.name, scn.description);
+    let _ = writeln!(
+        s,
+        "  T = {}, g = {}, supports: {:?}",
+        scn.t_end, scn.g, scn.supports
+    );
+    let (g_t, c_t) = (scn.elasticity(), scn.viscosity());
+    let _ = writeln!(
+        s,
+        "material: E = {}, kappa = {}, alpha = {}, beta = {}\n  elasticity G: a = {:.6e}, b = {:.6e} (coercivity {:.6e}); viscosity C: a = {}, b = {} (coercivity {:.6e})",
+        scn.e,
+        scn.kappa,
+        scn.alpha,
+        scn.beta,
+        g_t.a,
+        g_t.b,
+        g_t.coercivity(),
+        c_t.a,
+        c_t.b,
+        c_t.coercivity()
+    );
+    match crate::experiments::time::relaxation_time(scn) {
+        Some(tau) => {
+            let _ = writeln!(
+                s,
+                "  C = {tau:.6} G: proportional damping, one relaxation time tau = {tau:.6} s (backward \
+                 Euler resolves the initial layer only for k well below tau; k = {})",
+                scn.t_end / steps as f64
+            );
+        }
+        None => {
+            let _ = writeln!(s, "  C is not a multiple of G: several relaxation times");
+        }
+    }
+    let law = &scn.law;
+    let _ = writeln!(
+        s,
+        "law: breakpoints {:?}, slopes {:?}",
+        law.breakpoints(),
+        law.slopes()
+    );
+    for &b in law.breakpoints() {
+        let (l, r) = law.p_sides(b);
+        let _ = writeln!(
+            s,
+            "  at s = {b}: p(s-) = {l}, p(s+) = {r}{}",
+            if l == r { "" } else { " (a jump)" }
+        );
+    }
+    let m = -law.min_slope();
+    let _ = writeln!(
+        s,
+        "  H(j): constant m = max(0, -min slope) = {m} (relaxed monotonicity)"
+    );
+    for (at, jump) in law.down_jumps() {
+        warn(
+            &mut s,
+            format!(
+                "H(j) fails: p jumps down by {} at s = {at}, so no finite m makes j relaxed monotone",
+                -jump
+            ),
+        );
+    }
+    let _ = writeln!(
+        s,
+        "loads: f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}, history: {}",
+        scn.f0[0], scn.f0[1], scn.f2[0], scn.f2[1], scn.f0_modulation, scn.history
+    );
+    // H(s) with the trace constant of the run's mesh (at most 64 segments).
+    let beta_b = g_t.coercivity();
+    match crate::norms::trace_norm_sq(scn, n.min(64)) {
+        Ok(trace_sq) => {
+            let holds = m * trace_sq < beta_b;
+            let _ = writeln!(
+                s,
+                "H(s): beta_B = {beta_b:.6e} {} m ||iota_h||^2 = {m} * {trace_sq:.6e} = {:.6e} (n = {}): {}",
+                if holds { ">" } else { "<=" },
+                m * trace_sq,
+                n.min(64),
+                if holds { "holds" } else { "fails" }
+            );
+            if !holds {
+                warn(
+                    &mut s,
+                    "H(s) fails: the paper's existence and error theory assume it".into(),
+                );
+            }
+        }
+        Err(e) => warn(
+            &mut s,
+            format!("the trace constant could not be computed: {e}"),
+        ),
+    }
+    match crate::scheme::step_curvature(scn, n, steps) {
+        Ok(c) => {
+            let _ = writeln!(
+                s,
+                "step convexity (n = {n}, steps = {steps}): smallest step curvature {c:.6e}"
+            );
+            if c <= 0.0 {
+                warn(
+                    &mut s,
+                    format!(
+                        "a step can be nonconvex at n = {n}, steps = {steps}: a certified step is then \
+                         a stationary point, not necessarily the minimiser"
+                    ),
+                );
+            }
+        }
+        Err(e) => warn(
+            &mut s,
+            format!("the step curvature could not be computed: {e}"),
+        ),
+    }
+    let h = scn.time_hypotheses();
+    if h.h_0() {
+        let _ = writeln!(s, "H(f), H(0) at t = 0: hold (f(0) = {} (f0, f2))", h.phi0);
+    }
+    for why in h.failures() {
+        warn(&mut s, format!("at t = 0: {why}"));
+    }
+    (s, warnings)
+}
