@@ -45,6 +45,11 @@ enum Command {
     Bench(BenchArgs),
     /// List the built-in scenarios with their descriptions.
     Scenarios,
+    /// Redraw a run directory's figures (deformed.png/svg, evolution.png/svg) from its CSVs.
+    Plot {
+        /// A directory written by `evhi solve`.
+        run_dir: PathBuf,
+    },
     /// Print a scenario (built-in name or TOML file): its law, material, loads and load
     /// history, and check the paper's hypotheses for it: H(j), H(s) (beta_B > m
     /// ||iota_h||^2), the step convexity for the chosen n and steps, and H(f)/H(0) at
@@ -201,6 +206,8 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Show(args) => show(args),
+        Command::Plot { run_dir } => evhi::experiments::runplot::draw(&run_dir)
+            .map_err(|e| format!("{}: {e}", run_dir.display()).into()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -566,8 +573,22 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     };
     let series_dofs = series_mesh.as_ref().map(|m| evhi::mesh::Dofs::new(m, true));
     let mut series: Vec<(f64, String)> = vec![];
+    // The evolution at five contact nodes and the regime counts, every step.
+    let watch: Vec<usize> = (0..5).map(|q| q * args.n / 4).collect();
+    let mut evolution: Vec<(usize, f64, usize, evhi::certificate::ContactState, String)> = vec![];
+    let mut regime_counts: Vec<(usize, f64, std::collections::BTreeMap<String, u64>)> = vec![];
     let mut series_error: Option<String> = None;
     let mut observe = |n: usize, t: f64, u: &[f64], contact: &[evhi::certificate::ContactState]| {
+        let mut counts = std::collections::BTreeMap::new();
+        for c in contact {
+            *counts.entry(c.regime(&scn.law, scn.g)).or_insert(0) += 1;
+        }
+        regime_counts.push((n, t, counts));
+        for &i in &watch {
+            if let Some(c) = contact.get(i) {
+                evolution.push((n, t, i, *c, c.regime(&scn.law, scn.g)));
+            }
+        }
         if let (Some(k), Some(mesh), Some(dofs)) = (args.vtk_every, &series_mesh, &series_dofs)
             && ((n as u64).is_multiple_of(k) || n as u64 == steps)
         {
@@ -611,6 +632,56 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     if args.vtk_every.is_some() {
         out.write("solution.pvd", vtu::pvd(&series).as_bytes())?;
     }
+    let header_evo = vec![
+        format!(
+            "produced by evhi {} `evhi {}`",
+            env!("CARGO_PKG_VERSION"),
+            std::env::args().skip(1).collect::<Vec<_>>().join(" ")
+        ),
+        format!(
+            "scenario {}; five contact nodes (x = 0, 1/2, 1, 3/2, 2) every step; load history: {}",
+            scn.name, scn.history
+        ),
+    ];
+    let h = 2.0 / args.n as f64;
+    out.write_table(
+        "evolution.csv",
+        &Table::new()
+            .u64("step", evolution.iter().map(|e| e.0 as u64).collect())
+            .f64("t", evolution.iter().map(|e| e.1).collect())
+            .f64("x", evolution.iter().map(|e| e.2 as f64 * h).collect())
+            .f64("u_nu", evolution.iter().map(|e| e.3.u_nu).collect())
+            .f64(
+                "sigma_nu1",
+                evolution.iter().map(|e| e.3.sigma_nu1).collect(),
+            )
+            .f64(
+                "sigma_nu2",
+                evolution.iter().map(|e| e.3.sigma_nu2).collect(),
+            )
+            .str("regime", evolution.iter().map(|e| e.4.clone()).collect()),
+        &header_evo,
+    )?;
+    let names: Vec<String> = {
+        let all: Vec<String> = regime_counts
+            .iter()
+            .flat_map(|r| r.2.keys().cloned())
+            .collect();
+        evhi::experiments::scenes::present(&all)
+    };
+    let mut regimes_table = Table::new()
+        .u64("step", regime_counts.iter().map(|r| r.0 as u64).collect())
+        .f64("t", regime_counts.iter().map(|r| r.1).collect());
+    for name in &names {
+        regimes_table = regimes_table.u64(
+            name,
+            regime_counts
+                .iter()
+                .map(|r| *r.2.get(name).unwrap_or(&0))
+                .collect(),
+        );
+    }
+    out.write_table("regimes.csv", &regimes_table, &header_evo)?;
     // H(s), beta_B > m ||iota||^2, with the trace constant of a mesh of at most 64
     // segments (it grows slowly with n: data/hypotheses.csv).
     let m_j = -scn.law.min_slope();
@@ -643,6 +714,8 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         wall.elapsed().as_secs_f64(),
         (beta_b, m_j * trace_sq),
     )?;
+    // The run's figures, drawn from the tables just written.
+    evhi::experiments::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
         let t = &run.timings;
@@ -831,6 +904,11 @@ fn write_outputs(
     out.write(
         "solution.vtu",
         vtu::vtu(&mesh, &disp, &run.contact, &codes).as_bytes(),
+    )?;
+    out.write_table(
+        "nodes.csv",
+        &evhi::experiments::scenes::run_nodes_table(&mesh, &disp, (run.n / 32).max(1)),
+        &header,
     )?;
     // The scenario as solved: its TOML, with the command line that may override it.
     let toml = match evhi::scenario::BUILTIN

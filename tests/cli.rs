@@ -446,3 +446,67 @@ fn scenarios_and_show() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("`n`"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A user scenario with a five-branch law and a jump, end to end: solve writes its
+/// tables and figures, and `evhi plot` redraws the figures from the tables alone.
+#[test]
+fn a_user_scenario_runs_and_draws() {
+    let dir = std::env::temp_dir().join(format!("evhi-cli-five-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let o = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "data/scenarios/examples/five_branch.toml",
+        ])
+        .args(["--n", "32", "--steps", "32", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        !err.contains("warning"),
+        "compatible data, H(s) holds: {err}"
+    );
+    let contact = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    assert!(
+        contact.contains(",branch4\n") && contact.contains(",limit\n"),
+        "{contact}"
+    );
+    let regimes = std::fs::read_to_string(dir.join("regimes.csv")).unwrap();
+    assert!(
+        regimes.contains("step,t,branch1,branch2,branch3,branch4,limit")
+            || regimes.contains(",branch4,"),
+        "{regimes}"
+    );
+    let evolution = std::fs::read_to_string(dir.join("evolution.csv")).unwrap();
+    assert_eq!(
+        evolution.lines().filter(|l| !l.starts_with('#')).count(),
+        1 + 5 * 32
+    );
+    let size = |f: &str| std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
+    for f in [
+        "deformed.png",
+        "deformed.svg",
+        "evolution.png",
+        "evolution.svg",
+    ] {
+        assert!(size(f) > 10_000, "{f}: {} bytes", size(f));
+        std::fs::remove_file(dir.join(f)).unwrap();
+    }
+    let o = evhi().arg("plot").arg(&dir).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "deformed.png",
+        "deformed.svg",
+        "evolution.png",
+        "evolution.svg",
+    ] {
+        assert!(size(f) > 10_000, "redrawn {f}");
+    }
+    let o = evhi().args(["plot", "/nonexistent-run"]).output().unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent-run"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -11,6 +11,7 @@ pub mod fig2;
 pub mod hypotheses;
 pub mod loads;
 pub mod plot;
+pub mod runplot;
 pub mod scenes;
 pub mod singular;
 pub mod stability;

@@ -20,15 +20,28 @@ pub fn init_font() {
     });
 }
 
-/// Colour of a contact regime.
+/// Colour of a contact regime (`branch4` and beyond cycle through further colours, so
+/// a law with more branches draws too).
 pub fn regime_colour(regime: &str) -> RGBColor {
+    const MORE: [RGBColor; 4] = [
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
+        RGBColor(23, 190, 207),
+    ];
     match regime {
         "no_contact" => RGBColor(150, 150, 150),
         "branch1" => RGBColor(31, 119, 180),
         "branch2" => RGBColor(255, 127, 14),
         "branch3" => RGBColor(44, 160, 44),
         "limit" => RGBColor(214, 39, 40),
-        _ => RGBColor(0, 0, 0),
+        other => match other
+            .strip_prefix("branch")
+            .and_then(|b| b.parse::<usize>().ok())
+        {
+            Some(b) => MORE[(b - 4) % MORE.len()],
+            None => RGBColor(0, 0, 0),
+        },
     }
 }
 

@@ -55,6 +55,22 @@ fn scene_n(ctx: &Ctx) -> usize {
     if ctx.quick { 16 } else { 128 }
 }
 
+/// The regimes present, in the order no contact, branches, limit.
+pub fn present(regimes: &[String]) -> Vec<String> {
+    let key = |r: &String| match r.as_str() {
+        "no_contact" => 0,
+        "limit" => usize::MAX,
+        b => b
+            .trim_start_matches("branch")
+            .parse::<usize>()
+            .unwrap_or(usize::MAX - 1),
+    };
+    let mut out: Vec<String> = regimes.to_vec();
+    out.sort_by_key(key);
+    out.dedup();
+    out
+}
+
 /// Regime counts in `REGIMES` order.
 pub fn counts(regimes: &[String]) -> Vec<u64> {
     REGIMES
@@ -83,6 +99,52 @@ fn contact_table(scenes: &[(f64, &Scene)]) -> Table {
         .f64("sigma_nu1", s1)
         .f64("sigma_nu2", s2)
         .str("regime", reg)
+}
+
+/// The deformed body and interface forces of one run directory (`contact.csv` and
+/// `nodes.csv` as `evhi solve` writes them) into `dir/deformed.{png,svg}`.
+pub fn draw_run(
+    dir: &std::path::Path,
+    g: f64,
+    cells: usize,
+    title: String,
+) -> Result<(), ExpError> {
+    let panels = vec![Panel::from_csv(
+        &dir.join("contact.csv"),
+        &dir.join("nodes.csv"),
+        g,
+        cells,
+    )?];
+    both(
+        dir,
+        "deformed",
+        (1400, 1100),
+        &SceneFigure {
+            panels,
+            title,
+            paper_law: false,
+        },
+    )
+}
+
+/// The lattice of a run's mesh every `stride` cells, with the displacement (`nodes.csv`).
+pub fn run_nodes_table(mesh: &Mesh, disp: &[[f64; 2]], stride: usize) -> Table {
+    let (mut x, mut y, mut ux, mut uy) = (vec![], vec![], vec![], vec![]);
+    let n = mesh.n;
+    for j in (0..=n / 2).step_by(stride) {
+        for i in (0..=n).step_by(stride) {
+            let v = j * (n + 1) + i;
+            x.push(mesh.nodes[v][0]);
+            y.push(mesh.nodes[v][1]);
+            ux.push(disp[v][0]);
+            uy.push(disp[v][1]);
+        }
+    }
+    Table::new()
+        .f64("x", x)
+        .f64("y", y)
+        .f64("ux", ux)
+        .f64("uy", uy)
 }
 
 /// Nodes of the lattice with spacing `stride` (in mesh cells), with their displacement.
@@ -133,6 +195,7 @@ pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
         "fig3_deformed",
         (1400, 1100),
         &SceneFigure {
+            paper_law: true,
             panels,
             title: format!(
                 "Fig. 3: deformed body at t = T (true scale) and interface forces on Γ3, h = k = 1/{n}, g = {g}"
@@ -182,6 +245,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
         "fig4_several_g",
         (1400, 1800),
         &SceneFigure {
+            paper_law: true,
             panels,
             title: format!(
                 "Fig. 4: deformed body and interface forces for several g, h = k = 1/{n} (mesh drawn every {stride} cells)"
@@ -215,8 +279,12 @@ impl Panel {
     ) -> Result<Panel, ExpError> {
         let c = read_csv(cp)?;
         let nd = read_csv(np)?;
-        let cg = col_f64(&c, "g")?;
-        let ng = col_f64(&nd, "g")?;
+        // A run directory's tables have no `g` column: every row is this panel's.
+        let g_col = |df: &polars::prelude::DataFrame| {
+            col_f64(df, "g").unwrap_or_else(|_| vec![g; df.height()])
+        };
+        let cg = g_col(&c);
+        let ng = g_col(&nd);
         let pick = |v: Vec<f64>, gg: &[f64]| {
             v.into_iter()
                 .zip(gg)
@@ -249,6 +317,8 @@ impl Panel {
 struct SceneFigure {
     panels: Vec<Panel>,
     title: String,
+    /// Label the branches with the paper's law (5.1); otherwise "branch b".
+    paper_law: bool,
 }
 
 impl Figure for SceneFigure {
@@ -261,7 +331,7 @@ impl Figure for SceneFigure {
         for (p, area) in self.panels.iter().zip(rows.iter()) {
             let (top, bottom) = area.split_vertically(area.dim_in_pixel().1 * 58 / 100);
             draw_mesh(p, &top)?;
-            draw_forces(p, &bottom)?;
+            draw_forces(p, &bottom, self.paper_law)?;
         }
         Ok(())
     }
@@ -271,15 +341,12 @@ fn draw_mesh<DB: DrawingBackend>(
     p: &Panel,
     area: &DrawingArea<DB, plotters::coord::Shift>,
 ) -> Result<(), String> {
-    let counts = counts(&p.regime);
     let caption = format!(
         "g = {}: deformed mesh (true scale); contact nodes: {}",
         p.g,
-        REGIMES
+        present(&p.regime)
             .iter()
-            .zip(&counts)
-            .filter(|(_, c)| **c > 0)
-            .map(|(r, c)| format!("{r} {c}"))
+            .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
             .collect::<Vec<_>>()
             .join(", ")
     );
@@ -352,6 +419,7 @@ fn draw_mesh<DB: DrawingBackend>(
 fn draw_forces<DB: DrawingBackend>(
     p: &Panel,
     area: &DrawingArea<DB, plotters::coord::Shift>,
+    paper_law: bool,
 ) -> Result<(), String> {
     let total: Vec<f64> = p.s1.iter().zip(&p.s2).map(|(a, b)| -(a + b)).collect();
     let ymax = total.iter().fold(1.0f64, |a, &b| a.max(b)) * 1.1;
@@ -393,18 +461,23 @@ fn draw_forces<DB: DrawingBackend>(
                 .map_err(e2s)?;
         }
     }
-    for r in REGIMES {
-        if p.regime.iter().any(|x| x == r) {
+    for r in present(&p.regime) {
+        {
+            let label = match (paper_law, r.as_str()) {
+                (true, _) | (false, "limit" | "no_contact") => regime_label(&r).to_string(),
+                _ => r.replace("branch", "branch "),
+            };
+            let colour = regime_colour(&r);
             chart
                 .draw_series(std::iter::once(Circle::new(
                     (-10.0, -10.0),
                     0,
-                    regime_colour(r).filled(),
+                    colour.filled(),
                 )))
                 .map_err(e2s)?
-                .label(regime_label(r))
+                .label(label)
                 .legend(move |(x, y)| {
-                    Rectangle::new([(x, y - 5), (x + 14, y + 5)], regime_colour(r).filled())
+                    Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled())
                 });
         }
     }

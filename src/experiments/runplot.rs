@@ -1,0 +1,234 @@
+//! The figures of one run directory, drawn from its CSVs (`evhi solve` draws them;
+//! `evhi plot RUN_DIR` redraws them): `deformed` (the body at $t = T$ and the
+//! interface forces, in the style of Fig. 3) and `evolution` (the normal displacement
+//! and force at five contact nodes over time, and the number of nodes in each regime).
+
+use super::plot::{Figure, both, e2s, regime_colour};
+use super::scenes::present;
+use super::{ExpError, col_f64, col_str, read_csv};
+use plotters::prelude::*;
+use std::path::Path;
+
+/// Draws both figures of the run directory `dir` into it.
+pub fn draw(dir: &Path) -> Result<(), ExpError> {
+    let summary = read_csv(&dir.join("summary.csv"))?;
+    let first = |c: &str| -> Result<f64, ExpError> {
+        col_f64(&summary, c)?
+            .first()
+            .copied()
+            .ok_or_else(|| ExpError::Table {
+                path: dir.join("summary.csv").display().to_string(),
+                message: format!("no value in column {c}"),
+            })
+    };
+    let (n, steps, g) = (first("n")? as usize, first("steps")? as usize, first("g")?);
+    let scenario = col_str(&summary, "scenario")?
+        .first()
+        .cloned()
+        .unwrap_or_default();
+    let stride = (n / 32).max(1);
+    super::scenes::draw_run(
+        dir,
+        g,
+        n / stride,
+        format!(
+            "`{scenario}`: deformed body at t = T (true scale) and interface forces, h = 1/{n}, {steps} steps, g = {g}{}",
+            if stride > 1 {
+                format!(" (mesh drawn every {stride} cells)")
+            } else {
+                String::new()
+            }
+        ),
+    )?;
+    let ev = read_csv(&dir.join("evolution.csv"))?;
+    let (t, x, u, s1, s2) = (
+        col_f64(&ev, "t")?,
+        col_f64(&ev, "x")?,
+        col_f64(&ev, "u_nu")?,
+        col_f64(&ev, "sigma_nu1")?,
+        col_f64(&ev, "sigma_nu2")?,
+    );
+    let mut xs: Vec<f64> = x.clone();
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    let nodes = xs
+        .iter()
+        .map(|&x0| {
+            let idx: Vec<usize> = (0..x.len()).filter(|&i| x[i] == x0).collect();
+            (
+                x0,
+                idx.iter().map(|&i| (t[i], u[i])).collect(),
+                idx.iter().map(|&i| (t[i], -(s1[i] + s2[i]))).collect(),
+            )
+        })
+        .collect();
+    let rg = read_csv(&dir.join("regimes.csv"))?;
+    let tr = col_f64(&rg, "t")?;
+    let names: Vec<String> = rg
+        .get_column_names()
+        .iter()
+        .map(|c| c.to_string())
+        .filter(|c| c != "step" && c != "t")
+        .collect();
+    let ordered = present(&names);
+    let counts = ordered
+        .iter()
+        .map(|r| {
+            Ok((
+                r.clone(),
+                tr.iter().copied().zip(col_f64(&rg, r)?).collect(),
+            ))
+        })
+        .collect::<Result<Vec<_>, ExpError>>()?;
+    both(
+        dir,
+        "evolution",
+        (1200, 1300),
+        &Evolution {
+            title: format!("`{scenario}`: evolution on Γ3, h = 1/{n}, {steps} steps"),
+            g,
+            nodes,
+            counts,
+        },
+    )
+}
+
+/// One watched node: x, its (t, u_nu) and its (t, -sigma_nu).
+type NodeSeries = (f64, Vec<(f64, f64)>, Vec<(f64, f64)>);
+
+struct Evolution {
+    title: String,
+    g: f64,
+    /// Per node: x, (t, u_nu), (t, -sigma_nu).
+    nodes: Vec<NodeSeries>,
+    /// Per regime: name, (t, count).
+    counts: Vec<(String, Vec<(f64, f64)>)>,
+}
+
+/// Okabe–Ito colours for the five nodes.
+const NODE_COLOURS: [RGBColor; 5] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+];
+
+impl Figure for Evolution {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let root = root.titled(&self.title, ("sans-serif", 26)).map_err(e2s)?;
+        let panels = root.split_evenly((3, 1));
+        let t_max = self
+            .nodes
+            .iter()
+            .flat_map(|n| n.1.iter().map(|p| p.0))
+            .fold(0.0, f64::max);
+        let series: [(&str, &str, usize); 2] = [
+            ("normal displacement u_ν", "u_ν [m]", 1),
+            ("interface force -σ_ν", "-σ_ν [N/m²]", 2),
+        ];
+        for (panel, (caption, ylabel, which)) in panels.iter().zip(series) {
+            let pick = |n: &NodeSeries| {
+                if which == 1 { n.1.clone() } else { n.2.clone() }
+            };
+            let ys: Vec<f64> = self.nodes.iter().flat_map(pick).map(|p| p.1).collect();
+            let mut lo = ys.iter().copied().fold(0.0, f64::min);
+            let mut hi = ys.iter().copied().fold(0.0, f64::max);
+            if which == 1 {
+                hi = hi.max(self.g);
+            }
+            let pad = 0.08 * (hi - lo).max(1e-300);
+            (lo, hi) = (lo - pad, hi + pad);
+            let mut chart = ChartBuilder::on(panel)
+                .caption(caption, ("sans-serif", 22))
+                .margin(12)
+                .x_label_area_size(45)
+                .y_label_area_size(95)
+                .build_cartesian_2d(0.0..t_max, lo..hi)
+                .map_err(e2s)?;
+            chart
+                .configure_mesh()
+                .x_desc("t [s]")
+                .y_desc(ylabel)
+                .label_style(("sans-serif", 18))
+                .axis_desc_style(("sans-serif", 18))
+                .draw()
+                .map_err(e2s)?;
+            if which == 1 {
+                let grey = RGBColor(120, 120, 120);
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        vec![(0.0, self.g), (t_max, self.g)],
+                        6,
+                        4,
+                        grey.stroke_width(2),
+                    ))
+                    .map_err(e2s)?
+                    .label("the limit g")
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], grey.stroke_width(2))
+                    });
+            }
+            for (k, node) in self.nodes.iter().enumerate() {
+                let c = NODE_COLOURS[k % NODE_COLOURS.len()];
+                chart
+                    .draw_series(LineSeries::new(pick(node), c.stroke_width(3)))
+                    .map_err(e2s)?
+                    .label(format!("x = {}", node.0))
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
+                    });
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerRight)
+                .label_font(("sans-serif", 17))
+                .background_style(WHITE.mix(0.9))
+                .border_style(BLACK)
+                .draw()
+                .map_err(e2s)?;
+        }
+        let n_max = self
+            .counts
+            .iter()
+            .flat_map(|c| c.1.iter().map(|p| p.1))
+            .fold(1.0, f64::max);
+        let mut chart = ChartBuilder::on(&panels[2])
+            .caption("contact nodes in each regime", ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(95)
+            .build_cartesian_2d(0.0..t_max, 0.0..n_max * 1.08)
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("t [s]")
+            .y_desc("nodes")
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(e2s)?;
+        for (name, pts) in &self.counts {
+            let c = regime_colour(name);
+            chart
+                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
+                .map_err(e2s)?
+                .label(name.replace('_', " "))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font(("sans-serif", 17))
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(e2s)?;
+        Ok(())
+    }
+}
