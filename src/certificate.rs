@@ -159,6 +159,22 @@ pub fn certify(
 }
 // ANCHOR_END: certify
 
+/// Regime names in the order no contact, branches by number, limit (deduplicated).
+pub fn regime_order(regimes: &[String]) -> Vec<String> {
+    let key = |r: &String| match r.as_str() {
+        "no_contact" => 0,
+        "limit" => usize::MAX,
+        b => b
+            .trim_start_matches("branch")
+            .parse::<usize>()
+            .map_or(usize::MAX - 1, |b| b + 1),
+    };
+    let mut out: Vec<String> = regimes.to_vec();
+    out.sort_by_key(key);
+    out.dedup();
+    out
+}
+
 impl ContactState {
     /// The node's regime: `limit` when $u_\nu$ is at $g$ (see [`at_limit`]),
     /// otherwise `no_contact` on a branch where $p \equiv 0$ left of the first

@@ -1,11 +1,10 @@
 //! The `evhi` command line: solve one scenario, write CSV and VTU results.
 
 use clap::{Parser, Subcommand};
-use evhi::output::csv::Table;
+use evhi::output::run::{Provenance, Recorder};
 use evhi::output::rundir::RunDir;
-use evhi::output::vtu;
 use evhi::scenario::Scenario;
-use evhi::scheme::{self, Options, OrderingKind, Run};
+use evhi::scheme::{self, Options, OrderingKind};
 use evhi::step::{StepSolver, convexify::Convexify, newton::Newton};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -566,47 +565,9 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
     let steps = args.steps as u64;
-    // The evolution for ParaView, written as the run goes (--vtk-every).
-    let series_mesh = match args.vtk_every {
-        Some(_) => Some(scn.mesh(args.n)?),
-        None => None,
-    };
-    let series_dofs = series_mesh.as_ref().map(|m| evhi::mesh::Dofs::new(m, true));
-    let mut series: Vec<(f64, String)> = vec![];
-    // The evolution at five contact nodes and the regime counts, every step.
-    let watch: Vec<usize> = (0..5).map(|q| q * args.n / 4).collect();
-    let mut evolution: Vec<(usize, f64, usize, evhi::certificate::ContactState, String)> = vec![];
-    let mut regime_counts: Vec<(usize, f64, std::collections::BTreeMap<String, u64>)> = vec![];
-    let mut series_error: Option<String> = None;
+    let mut recorder = Recorder::new(&scn, args.n, args.steps, args.vtk_every)?;
     let mut observe = |n: usize, t: f64, u: &[f64], contact: &[evhi::certificate::ContactState]| {
-        let mut counts = std::collections::BTreeMap::new();
-        for c in contact {
-            *counts.entry(c.regime(&scn.law, scn.g)).or_insert(0) += 1;
-        }
-        regime_counts.push((n, t, counts));
-        for &i in &watch {
-            if let Some(c) = contact.get(i) {
-                evolution.push((n, t, i, *c, c.regime(&scn.law, scn.g)));
-            }
-        }
-        if let (Some(k), Some(mesh), Some(dofs)) = (args.vtk_every, &series_mesh, &series_dofs)
-            && ((n as u64).is_multiple_of(k) || n as u64 == steps)
-        {
-            {
-                let file = format!("solution_{n:06}.vtu");
-                let codes: Vec<i32> = contact
-                    .iter()
-                    .map(|c| c.regime_code(&scn.law, scn.g))
-                    .collect();
-                let text = vtu::vtu(mesh, &dofs.expand(u), contact, &codes);
-                match out.write(&file, text.as_bytes()) {
-                    Ok(()) => series.push((t, file)),
-                    Err(e) => {
-                        series_error.get_or_insert(e.to_string());
-                    }
-                }
-            }
-        }
+        recorder.observe(&out, n, t, u, contact);
         if bar.is_none() && started.elapsed() > Duration::from_secs(1) {
             let b = ProgressBar::new(steps).with_style(
                 ProgressStyle::with_template(
@@ -626,62 +587,6 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         b.finish_and_clear();
     }
     let run = run?;
-    if let Some(e) = series_error {
-        return Err(e.into());
-    }
-    if args.vtk_every.is_some() {
-        out.write("solution.pvd", vtu::pvd(&series).as_bytes())?;
-    }
-    let header_evo = vec![
-        format!(
-            "produced by evhi {} `evhi {}`",
-            env!("CARGO_PKG_VERSION"),
-            std::env::args().skip(1).collect::<Vec<_>>().join(" ")
-        ),
-        format!(
-            "scenario {}; five contact nodes (x = 0, 1/2, 1, 3/2, 2) every step; load history: {}",
-            scn.name, scn.history
-        ),
-    ];
-    let h = 2.0 / args.n as f64;
-    out.write_table(
-        "evolution.csv",
-        &Table::new()
-            .u64("step", evolution.iter().map(|e| e.0 as u64).collect())
-            .f64("t", evolution.iter().map(|e| e.1).collect())
-            .f64("x", evolution.iter().map(|e| e.2 as f64 * h).collect())
-            .f64("u_nu", evolution.iter().map(|e| e.3.u_nu).collect())
-            .f64(
-                "sigma_nu1",
-                evolution.iter().map(|e| e.3.sigma_nu1).collect(),
-            )
-            .f64(
-                "sigma_nu2",
-                evolution.iter().map(|e| e.3.sigma_nu2).collect(),
-            )
-            .str("regime", evolution.iter().map(|e| e.4.clone()).collect()),
-        &header_evo,
-    )?;
-    let names: Vec<String> = {
-        let all: Vec<String> = regime_counts
-            .iter()
-            .flat_map(|r| r.2.keys().cloned())
-            .collect();
-        evhi::experiments::scenes::present(&all)
-    };
-    let mut regimes_table = Table::new()
-        .u64("step", regime_counts.iter().map(|r| r.0 as u64).collect())
-        .f64("t", regime_counts.iter().map(|r| r.1).collect());
-    for name in &names {
-        regimes_table = regimes_table.u64(
-            name,
-            regime_counts
-                .iter()
-                .map(|r| *r.2.get(name).unwrap_or(&0))
-                .collect(),
-        );
-    }
-    out.write_table("regimes.csv", &regimes_table, &header_evo)?;
     // H(s), beta_B > m ||iota||^2, with the trace constant of a mesh of at most 64
     // segments (it grows slowly with n: data/hypotheses.csv).
     let m_j = -scn.law.min_slope();
@@ -705,12 +610,25 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let t_out = Instant::now();
-    write_outputs(
+    let toml = match evhi::scenario::BUILTIN
+        .iter()
+        .find(|b| b.0 == args.scenario)
+    {
+        Some((_, text)) => text.to_string(),
+        None => std::fs::read_to_string(&args.scenario)?,
+    };
+    let prov = Provenance {
+        command: std::env::args().skip(1).collect::<Vec<_>>().join(" "),
+        solver: solver.name().to_string(),
+        ordering: args.ordering.clone(),
+    };
+    evhi::output::run::write(
         &out,
-        &args,
         &scn,
-        solver.name(),
+        &toml,
         &run,
+        recorder,
+        &prov,
         wall.elapsed().as_secs_f64(),
         (beta_b, m_j * trace_sq),
     )?;
@@ -743,190 +661,8 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             "one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB",
             t.one_solve,
             t.floor_ratio(run.steps),
-            peak_rss_mb()
+            evhi::output::run::peak_rss_mb()
         );
     }
-    Ok(())
-}
-
-/// Peak resident memory of this process (Linux `VmHWM`), MB; NaN where unknown.
-fn peak_rss_mb() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|v| v.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kb| kb / 1024.0)
-}
-
-/// The `#` lines that open every CSV of a run: the command and the data it solved.
-fn provenance(args: &SolveArgs, scn: &Scenario, solver: &str, run: &Run) -> Vec<String> {
-    let cmd: Vec<String> = std::env::args().skip(1).collect();
-    vec![
-        format!(
-            "produced by evhi {} `evhi {}`",
-            env!("CARGO_PKG_VERSION"),
-            cmd.join(" ")
-        ),
-        format!(
-            "scenario {}; n = {}, steps = {}, T = {}; solver {solver}, ordering {}; g = {}; \
-             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}; load history: {}",
-            scn.name,
-            run.n,
-            run.steps,
-            scn.t_end,
-            args.ordering,
-            scn.g,
-            scn.f0[0],
-            scn.f0[1],
-            scn.f2[0],
-            scn.f2[1],
-            scn.f0_modulation,
-            scn.history
-        ),
-    ]
-}
-
-#[allow(clippy::too_many_arguments)]
-fn write_outputs(
-    out: &RunDir,
-    args: &SolveArgs,
-    scn: &Scenario,
-    solver: &str,
-    run: &Run,
-    wall_s: f64,
-    (beta_b, m_trace_sq): (f64, f64),
-) -> Result<(), Box<dyn std::error::Error>> {
-    let mesh = scn.mesh(run.n)?;
-    let dofs = evhi::mesh::Dofs::new(&mesh, true);
-    let header = provenance(args, scn, solver, run);
-    let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
-    let c = &run.contact;
-    let contact = Table::new()
-        .f64("x", x)
-        .f64("u_nu", c.iter().map(|s| s.u_nu).collect())
-        .f64("sigma_nu1", c.iter().map(|s| s.sigma_nu1).collect())
-        .f64("sigma_nu2", c.iter().map(|s| s.sigma_nu2).collect())
-        .str(
-            "regime",
-            c.iter().map(|s| s.regime(&scn.law, scn.g)).collect(),
-        );
-    out.write_table("contact.csv", &contact, &header)?;
-    let r = &run.records;
-    let steps = Table::new()
-        .u64("step", r.iter().map(|s| s.step as u64).collect())
-        .f64("t", r.iter().map(|s| s.t).collect())
-        .u64(
-            "iterations",
-            r.iter().map(|s| s.iterations as u64).collect(),
-        )
-        .u64(
-            "inner_iterations",
-            r.iter().map(|s| s.inner_iterations as u64).collect(),
-        )
-        .f64(
-            "solver_residual",
-            r.iter().map(|s| s.solver_residual).collect(),
-        )
-        .f64(
-            "certificate",
-            r.iter().map(|s| s.certificate.max()).collect(),
-        )
-        .f64(
-            "stationarity",
-            r.iter().map(|s| s.certificate.stationarity).collect(),
-        )
-        .f64(
-            "feasibility",
-            r.iter().map(|s| s.certificate.feasibility).collect(),
-        )
-        .f64(
-            "complementarity",
-            r.iter().map(|s| s.certificate.complementarity).collect(),
-        )
-        .f64("energy_norm", r.iter().map(|s| s.energy_norm).collect())
-        .f64("time_s", r.iter().map(|s| s.time_s).collect());
-    out.write_table("steps.csv", &steps, &header)?;
-    let max_cert = r.iter().map(|s| s.certificate.max()).fold(0.0, f64::max);
-    let iters: usize = r.iter().map(|s| s.iterations).sum();
-    let t = &run.timings;
-    let summary = Table::new()
-        .u64("n", vec![run.n as u64])
-        .u64("steps", vec![run.steps as u64])
-        .u64("dofs", vec![run.dofs as u64])
-        .f64(
-            "energy_norm_T",
-            vec![r.last().map_or(0.0, |s| s.energy_norm)],
-        )
-        .f64("max_certificate", vec![max_cert])
-        .f64("wall_s", vec![wall_s])
-        .str("scenario", vec![scn.name.clone()])
-        .str("solver", vec![solver.to_string()])
-        .f64("h", vec![1.0 / run.n as f64])
-        .f64("k", vec![scn.t_end / run.steps as f64])
-        .f64("g", vec![scn.g])
-        .f64("f0_x", vec![scn.f0[0]])
-        .f64("f0_y", vec![scn.f0[1]])
-        .f64("f2_x", vec![scn.f2[0]])
-        .f64("f2_y", vec![scn.f2[1]])
-        .str("load_history", vec![scn.history.to_string()])
-        .str(
-            "compatible_data",
-            vec![scn.time_hypotheses().h_0().to_string()],
-        )
-        .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
-        .f64("step_curvature_min", vec![run.hessian_min])
-        .f64("beta_B", vec![beta_b])
-        .f64("m_trace_norm_sq", vec![m_trace_sq])
-        .f64("assembly_s", vec![t.assembly])
-        .f64("factorisation_s", vec![t.factorisation])
-        .f64("condensation_s", vec![t.condensation])
-        .f64("steps_s", vec![t.steps])
-        .u64("nnz_l", vec![run.nnz_l as u64])
-        .f64("one_solve_s", vec![t.one_solve])
-        .f64("floor_ratio", vec![t.floor_ratio(run.steps)])
-        .f64("peak_rss_mb", vec![peak_rss_mb()])
-        .str("ordering", vec![args.ordering.clone()])
-        .u64("sweep_threads", vec![run.sweep_threads as u64])
-        .str(
-            "version",
-            vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
-        );
-    out.write_table("summary.csv", &summary, &header)?;
-    let disp = dofs.expand(&run.u);
-    let codes: Vec<i32> = (run.contact.iter())
-        .map(|c| c.regime_code(&scn.law, scn.g))
-        .collect();
-    out.write(
-        "solution.vtu",
-        vtu::vtu(&mesh, &disp, &run.contact, &codes).as_bytes(),
-    )?;
-    out.write_table(
-        "nodes.csv",
-        &evhi::experiments::scenes::run_nodes_table(&mesh, &disp, (run.n / 32).max(1)),
-        &header,
-    )?;
-    // The scenario as solved: its TOML, with the command line that may override it.
-    let toml = match evhi::scenario::BUILTIN
-        .iter()
-        .find(|b| b.0 == args.scenario)
-    {
-        Some((_, text)) => text.to_string(),
-        None => std::fs::read_to_string(&args.scenario)?,
-    };
-    let cmd: Vec<String> = std::env::args().skip(1).collect();
-    out.write(
-        "scenario.toml",
-        format!(
-            "# The scenario of this run, as read. Command-line overrides apply on top of it:\n\
-             # evhi {}\n# (summary.csv records the values solved.)\n{toml}",
-            cmd.join(" ")
-        )
-        .as_bytes(),
-    )?;
     Ok(())
 }

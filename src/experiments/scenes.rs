@@ -57,18 +57,7 @@ fn scene_n(ctx: &Ctx) -> usize {
 
 /// The regimes present, in the order no contact, branches, limit.
 pub fn present(regimes: &[String]) -> Vec<String> {
-    let key = |r: &String| match r.as_str() {
-        "no_contact" => 0,
-        "limit" => usize::MAX,
-        b => b
-            .trim_start_matches("branch")
-            .parse::<usize>()
-            .unwrap_or(usize::MAX - 1),
-    };
-    let mut out: Vec<String> = regimes.to_vec();
-    out.sort_by_key(key);
-    out.dedup();
-    out
+    crate::certificate::regime_order(regimes)
 }
 
 /// Regime counts in `REGIMES` order.
@@ -125,26 +114,6 @@ pub fn draw_run(
             paper_law: false,
         },
     )
-}
-
-/// The lattice of a run's mesh every `stride` cells, with the displacement (`nodes.csv`).
-pub fn run_nodes_table(mesh: &Mesh, disp: &[[f64; 2]], stride: usize) -> Table {
-    let (mut x, mut y, mut ux, mut uy) = (vec![], vec![], vec![], vec![]);
-    let n = mesh.n;
-    for j in (0..=n / 2).step_by(stride) {
-        for i in (0..=n).step_by(stride) {
-            let v = j * (n + 1) + i;
-            x.push(mesh.nodes[v][0]);
-            y.push(mesh.nodes[v][1]);
-            ux.push(disp[v][0]);
-            uy.push(disp[v][1]);
-        }
-    }
-    Table::new()
-        .f64("x", x)
-        .f64("y", y)
-        .f64("ux", ux)
-        .f64("uy", uy)
 }
 
 /// Nodes of the lattice with spacing `stride` (in mesh cells), with their displacement.

@@ -1,0 +1,343 @@
+//! A run directory's content, as `evhi solve` writes it: the tables of the run at
+//! $t = T$ (`contact.csv`, `nodes.csv`, `solution.vtu`), per step (`steps.csv`,
+//! `evolution.csv`, `regimes.csv`, with `--vtk-every` a VTU series and
+//! `solution.pvd`), the run's summary and the scenario it solved. Every CSV opens
+//! with the same two provenance lines.
+
+use super::csv::Table;
+use super::rundir::{OutError, RunDir};
+use super::vtu;
+use crate::certificate::ContactState;
+use crate::mesh::{Dofs, Mesh};
+use crate::scenario::Scenario;
+use crate::scheme::Run;
+use std::collections::BTreeMap;
+
+/// Who produced a run: the command line, the step solver and the ordering.
+#[derive(Debug, Clone)]
+pub struct Provenance {
+    pub command: String,
+    pub solver: String,
+    pub ordering: String,
+}
+
+/// The `#` lines that open every CSV of a run: the command and the data it solved.
+pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<String> {
+    vec![
+        format!(
+            "produced by evhi {} `evhi {}`",
+            env!("CARGO_PKG_VERSION"),
+            p.command
+        ),
+        format!(
+            "scenario {}; n = {n}, steps = {steps}, T = {}; solver {}, ordering {}; g = {}; \
+             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}; load history: {}",
+            scn.name,
+            scn.t_end,
+            p.solver,
+            p.ordering,
+            scn.g,
+            scn.f0[0],
+            scn.f0[1],
+            scn.f2[0],
+            scn.f2[1],
+            scn.f0_modulation,
+            scn.history
+        ),
+    ]
+}
+
+/// Peak resident memory of this process (Linux `VmHWM`), MB; NaN where unknown.
+pub fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|v| v.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+/// What a run records as it goes: the state at five contact nodes and the regime
+/// counts every step, and (with `vtk_every`) a VTU every so many steps.
+pub struct Recorder {
+    law: crate::law::Law,
+    g: f64,
+    n: usize,
+    steps: usize,
+    watch: Vec<usize>,
+    evolution: Vec<(usize, f64, usize, ContactState, String)>,
+    counts: Vec<(usize, f64, BTreeMap<String, u64>)>,
+    vtk: Option<(u64, Mesh, Dofs)>,
+    series: Vec<(f64, String)>,
+    error: Option<OutError>,
+}
+
+impl Recorder {
+    pub fn new(
+        scn: &Scenario,
+        n: usize,
+        steps: usize,
+        vtk_every: Option<u64>,
+    ) -> Result<Recorder, crate::error::InputError> {
+        let vtk = match vtk_every {
+            Some(k) => {
+                let mesh = scn.mesh(n)?;
+                let dofs = Dofs::new(&mesh, true);
+                Some((k, mesh, dofs))
+            }
+            None => None,
+        };
+        Ok(Recorder {
+            law: scn.law.clone(),
+            g: scn.g,
+            n,
+            steps,
+            watch: (0..5).map(|q| q * n / 4).collect(),
+            evolution: vec![],
+            counts: vec![],
+            vtk,
+            series: vec![],
+            error: None,
+        })
+    }
+
+    /// Records step `step` (time `t`, field `u`, contact states `contact`).
+    pub fn observe(
+        &mut self,
+        out: &RunDir,
+        step: usize,
+        t: f64,
+        u: &[f64],
+        contact: &[ContactState],
+    ) {
+        let mut counts = BTreeMap::new();
+        for c in contact {
+            *counts.entry(c.regime(&self.law, self.g)).or_insert(0) += 1;
+        }
+        self.counts.push((step, t, counts));
+        for &i in &self.watch {
+            if let Some(c) = contact.get(i) {
+                self.evolution
+                    .push((step, t, i, *c, c.regime(&self.law, self.g)));
+            }
+        }
+        if let Some((k, mesh, dofs)) = &self.vtk
+            && ((step as u64).is_multiple_of(*k) || step == self.steps)
+            && self.error.is_none()
+        {
+            let file = format!("solution_{step:06}.vtu");
+            let codes: Vec<i32> = contact
+                .iter()
+                .map(|c| c.regime_code(&self.law, self.g))
+                .collect();
+            let text = vtu::vtu(mesh, &dofs.expand(u), contact, &codes);
+            match out.write(&file, text.as_bytes()) {
+                Ok(()) => self.series.push((t, file)),
+                Err(e) => self.error = Some(e),
+            }
+        }
+    }
+}
+
+/// Writes the whole set of a finished run into `out` (not yet published): `toml` is
+/// the scenario's text as read, `wall_s` the run's wall time so far, `h_s` the two
+/// sides of H(s), $(\beta_B, m\|\iota_h\|^2)$.
+#[allow(clippy::too_many_arguments)]
+pub fn write(
+    out: &RunDir,
+    scn: &Scenario,
+    toml: &str,
+    run: &Run,
+    rec: Recorder,
+    prov: &Provenance,
+    wall_s: f64,
+    (beta_b, m_trace_sq): (f64, f64),
+) -> Result<(), OutError> {
+    if let Some(e) = rec.error {
+        return Err(e);
+    }
+    let header = header(prov, scn, run.n, run.steps);
+    if rec.vtk.is_some() {
+        out.write("solution.pvd", vtu::pvd(&rec.series).as_bytes())?;
+    }
+    let mesh = scn.mesh(run.n).map_err(|e| OutError::Io {
+        path: "mesh".into(),
+        source: std::io::Error::other(e.to_string()),
+    })?;
+    let dofs = Dofs::new(&mesh, true);
+    let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
+    let c = &run.contact;
+    let contact = Table::new()
+        .f64("x", x)
+        .f64("u_nu", c.iter().map(|s| s.u_nu).collect())
+        .f64("sigma_nu1", c.iter().map(|s| s.sigma_nu1).collect())
+        .f64("sigma_nu2", c.iter().map(|s| s.sigma_nu2).collect())
+        .str(
+            "regime",
+            c.iter().map(|s| s.regime(&scn.law, scn.g)).collect(),
+        );
+    out.write_table("contact.csv", &contact, &header)?;
+    let r = &run.records;
+    let steps = Table::new()
+        .u64("step", r.iter().map(|s| s.step as u64).collect())
+        .f64("t", r.iter().map(|s| s.t).collect())
+        .u64(
+            "iterations",
+            r.iter().map(|s| s.iterations as u64).collect(),
+        )
+        .u64(
+            "inner_iterations",
+            r.iter().map(|s| s.inner_iterations as u64).collect(),
+        )
+        .f64(
+            "solver_residual",
+            r.iter().map(|s| s.solver_residual).collect(),
+        )
+        .f64(
+            "certificate",
+            r.iter().map(|s| s.certificate.max()).collect(),
+        )
+        .f64(
+            "stationarity",
+            r.iter().map(|s| s.certificate.stationarity).collect(),
+        )
+        .f64(
+            "feasibility",
+            r.iter().map(|s| s.certificate.feasibility).collect(),
+        )
+        .f64(
+            "complementarity",
+            r.iter().map(|s| s.certificate.complementarity).collect(),
+        )
+        .f64("energy_norm", r.iter().map(|s| s.energy_norm).collect())
+        .f64("time_s", r.iter().map(|s| s.time_s).collect());
+    out.write_table("steps.csv", &steps, &header)?;
+    let max_cert = r.iter().map(|s| s.certificate.max()).fold(0.0, f64::max);
+    let iters: usize = r.iter().map(|s| s.iterations).sum();
+    let t = &run.timings;
+    let summary = Table::new()
+        .u64("n", vec![run.n as u64])
+        .u64("steps", vec![run.steps as u64])
+        .u64("dofs", vec![run.dofs as u64])
+        .f64(
+            "energy_norm_T",
+            vec![r.last().map_or(0.0, |s| s.energy_norm)],
+        )
+        .f64("max_certificate", vec![max_cert])
+        .f64("wall_s", vec![wall_s])
+        .str("scenario", vec![scn.name.clone()])
+        .str("solver", vec![prov.solver.clone()])
+        .f64("h", vec![1.0 / run.n as f64])
+        .f64("k", vec![scn.t_end / run.steps as f64])
+        .f64("g", vec![scn.g])
+        .f64("f0_x", vec![scn.f0[0]])
+        .f64("f0_y", vec![scn.f0[1]])
+        .f64("f2_x", vec![scn.f2[0]])
+        .f64("f2_y", vec![scn.f2[1]])
+        .str("load_history", vec![scn.history.to_string()])
+        .str(
+            "compatible_data",
+            vec![scn.time_hypotheses().h_0().to_string()],
+        )
+        .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
+        .f64("step_curvature_min", vec![run.hessian_min])
+        .f64("beta_B", vec![beta_b])
+        .f64("m_trace_norm_sq", vec![m_trace_sq])
+        .f64("assembly_s", vec![t.assembly])
+        .f64("factorisation_s", vec![t.factorisation])
+        .f64("condensation_s", vec![t.condensation])
+        .f64("steps_s", vec![t.steps])
+        .u64("nnz_l", vec![run.nnz_l as u64])
+        .f64("one_solve_s", vec![t.one_solve])
+        .f64("floor_ratio", vec![t.floor_ratio(run.steps)])
+        .f64("peak_rss_mb", vec![peak_rss_mb()])
+        .str("ordering", vec![prov.ordering.clone()])
+        .u64("sweep_threads", vec![run.sweep_threads as u64])
+        .str(
+            "version",
+            vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
+        );
+    out.write_table("summary.csv", &summary, &header)?;
+    let disp = dofs.expand(&run.u);
+    let codes: Vec<i32> = run
+        .contact
+        .iter()
+        .map(|c| c.regime_code(&scn.law, scn.g))
+        .collect();
+    out.write(
+        "solution.vtu",
+        vtu::vtu(&mesh, &disp, &run.contact, &codes).as_bytes(),
+    )?;
+    out.write_table(
+        "nodes.csv",
+        &nodes_table(&mesh, &disp, (run.n / 32).max(1)),
+        &header,
+    )?;
+    // The evolution at five contact nodes, and the regime counts.
+    let h = 2.0 / rec.n as f64;
+    let ev = &rec.evolution;
+    out.write_table(
+        "evolution.csv",
+        &Table::new()
+            .u64("step", ev.iter().map(|e| e.0 as u64).collect())
+            .f64("t", ev.iter().map(|e| e.1).collect())
+            .f64("x", ev.iter().map(|e| e.2 as f64 * h).collect())
+            .f64("u_nu", ev.iter().map(|e| e.3.u_nu).collect())
+            .f64("sigma_nu1", ev.iter().map(|e| e.3.sigma_nu1).collect())
+            .f64("sigma_nu2", ev.iter().map(|e| e.3.sigma_nu2).collect())
+            .str("regime", ev.iter().map(|e| e.4.clone()).collect()),
+        &header,
+    )?;
+    let all: Vec<String> = rec
+        .counts
+        .iter()
+        .flat_map(|r| r.2.keys().cloned())
+        .collect();
+    let mut regimes = Table::new()
+        .u64("step", rec.counts.iter().map(|r| r.0 as u64).collect())
+        .f64("t", rec.counts.iter().map(|r| r.1).collect());
+    for name in crate::certificate::regime_order(&all) {
+        let col = rec
+            .counts
+            .iter()
+            .map(|r| *r.2.get(&name).unwrap_or(&0))
+            .collect();
+        regimes = regimes.u64(&name, col);
+    }
+    out.write_table("regimes.csv", &regimes, &header)?;
+    // The scenario as solved: its TOML, with the command line that may override it.
+    out.write(
+        "scenario.toml",
+        format!(
+            "# The scenario of this run, as read. Command-line overrides apply on top of it:\n\
+             # evhi {}\n# (summary.csv records the values solved.)\n{toml}",
+            prov.command
+        )
+        .as_bytes(),
+    )?;
+    Ok(())
+}
+
+/// The lattice of a run's mesh every `stride` cells, with the displacement (`nodes.csv`).
+pub fn nodes_table(mesh: &Mesh, disp: &[[f64; 2]], stride: usize) -> Table {
+    let (mut x, mut y, mut ux, mut uy) = (vec![], vec![], vec![], vec![]);
+    let n = mesh.n;
+    for j in (0..=n / 2).step_by(stride) {
+        for i in (0..=n).step_by(stride) {
+            let v = j * (n + 1) + i;
+            x.push(mesh.nodes[v][0]);
+            y.push(mesh.nodes[v][1]);
+            ux.push(disp[v][0]);
+            uy.push(disp[v][1]);
+        }
+    }
+    Table::new()
+        .f64("x", x)
+        .f64("y", y)
+        .f64("ux", ux)
+        .f64("uy", uy)
+}
