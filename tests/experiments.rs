@@ -170,6 +170,21 @@ fn static_control_orders() {
 }
 
 #[test]
+fn example_five_branch() {
+    snapshot_outputs(
+        "example",
+        &[
+            "example_five_branch_contact.csv",
+            "example_five_branch_regimes.csv",
+        ],
+        &[
+            "example_five_branch_deformed",
+            "example_five_branch_evolution",
+        ],
+    );
+}
+
+#[test]
 fn stability_prop31_and_map() {
     snapshot_outputs(
         "stability",

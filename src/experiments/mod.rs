@@ -7,6 +7,7 @@
 //! snapshot; the full mode is what `evhi reproduce` runs.
 
 pub mod convergence;
+pub mod example;
 pub mod fig2;
 pub mod hypotheses;
 pub mod loads;
@@ -55,7 +56,7 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 9] = [
+pub const NAMES: [&str; 10] = [
     "hypotheses",
     "fig2",
     "loads",
@@ -64,6 +65,7 @@ pub const NAMES: [&str; 9] = [
     "table1",
     "time",
     "static",
+    "example",
     "stability",
 ];
 
@@ -78,6 +80,7 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         "table1" => convergence::run(ctx),
         "time" => time::run(ctx),
         "static" => singular::run(ctx),
+        "example" => example::run(ctx),
         "stability" => stability::run(ctx),
         other => Err(crate::error::InputError::field(
             "experiment",

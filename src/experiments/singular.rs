@@ -352,7 +352,7 @@ impl Figure for StaticFig {
             .y_label_area_size(90)
             .build_cartesian_2d(
                 (3.0..xmax * 1.3).log_scale().with_key_points(keys),
-                (ymin / 3.0..ymax * 30.0).log_scale(),
+                (ymin / 3.0..ymax * 8.0).log_scale(),
             )
             .map_err(e2s)?;
         chart
