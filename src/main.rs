@@ -107,6 +107,9 @@ struct ReproduceArgs {
     /// Coarse levels only (seconds; what the tests snapshot).
     #[arg(long)]
     quick: bool,
+    /// No progress bars and no summary; errors still go to stderr.
+    #[arg(short, long)]
+    quiet: bool,
     /// Directory of the CSV tables.
     #[arg(long, default_value = "data")]
     data: PathBuf,
@@ -246,6 +249,7 @@ fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         data: args.data,
         figures: args.figures,
         verbose: true,
+        progress: None,
     };
     let names: Vec<String> = if args.names.is_empty() {
         NAMES.iter().map(|s| s.to_string()).collect()
@@ -253,18 +257,50 @@ fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         args.names
     };
     let total = Instant::now();
+    // One progress bar per experiment (drawn only on a terminal), with its ETA.
+    let multi = indicatif::MultiProgress::new();
+    if args.quiet {
+        multi.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let style = ProgressStyle::with_template(
+        "{prefix:>10} [{bar:30}] {pos}/{len} {elapsed:>4} eta {eta:>4} {wide_msg}",
+    )
+    .expect("valid template")
+    .progress_chars("=> ");
+    let bars: std::collections::HashMap<String, ProgressBar> = names
+        .iter()
+        .map(|n| {
+            let bar = multi.add(
+                ProgressBar::new(0)
+                    .with_style(style.clone())
+                    .with_prefix(n.clone()),
+            );
+            (n.clone(), bar)
+        })
+        .collect();
     // The convergence study dominates; it runs on one core, everything else on the other.
     let (heavy, light): (Vec<String>, Vec<String>) = names.into_iter().partition(|n| n == "table1");
     let results: Vec<(String, f64, Result<(), String>)> = std::thread::scope(|s| {
         let work = |list: Vec<String>| {
             let ctx = ctx.clone();
+            let bars = &bars;
             move || {
                 list.into_iter()
                     .map(|name| {
                         let t = Instant::now();
-                        eprintln!("reproduce {name} ...");
+                        let bar = bars[&name].clone();
+                        bar.reset();
+                        let ctx = Ctx {
+                            progress: Some(bar.clone()),
+                            ..ctx.clone()
+                        };
                         let r = run(&name, &ctx).map_err(|e| e.to_string());
-                        (name, t.elapsed().as_secs_f64(), r)
+                        let secs = t.elapsed().as_secs_f64();
+                        match &r {
+                            Ok(()) => bar.finish_with_message(format!("done in {secs:.1} s")),
+                            Err(_) => bar.abandon_with_message(format!("FAILED after {secs:.1} s")),
+                        }
+                        (name, secs, r)
                     })
                     .collect::<Vec<_>>()
             }
@@ -278,18 +314,21 @@ fn reproduce(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut failed = vec![];
     for (name, secs, r) in &results {
         match r {
-            Ok(()) => eprintln!("  {name}: done in {secs:.1} s"),
+            Ok(()) if !args.quiet => eprintln!("  {name}: done in {secs:.1} s"),
+            Ok(()) => {}
             Err(e) => {
                 eprintln!("  {name}: FAILED after {secs:.1} s: {e}");
                 failed.push(name.clone());
             }
         }
     }
-    eprintln!(
-        "reproduce: {} experiment(s) in {:.1} s wall",
-        results.len(),
-        total.elapsed().as_secs_f64()
-    );
+    if !args.quiet {
+        eprintln!(
+            "reproduce: {} experiment(s) in {:.1} s wall",
+            results.len(),
+            total.elapsed().as_secs_f64()
+        );
+    }
     if failed.is_empty() {
         Ok(())
     } else {
@@ -388,6 +427,7 @@ fn bench(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         data: args.data.clone(),
         figures: args.figures.clone(),
         verbose: true,
+        progress: None,
     };
     if args.from_csv {
         evhi::experiments::workprec::paper_comparison(&ctx)?;

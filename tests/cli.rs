@@ -510,3 +510,24 @@ fn a_user_scenario_runs_and_draws() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent-run"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `reproduce -q` prints nothing on success.
+#[test]
+fn reproduce_quiet_prints_nothing() {
+    let dir = std::env::temp_dir().join(format!("evhi-cli-quiet-{}", std::process::id()));
+    let o = evhi()
+        .args(["reproduce", "fig2", "loads", "--quick", "-q", "--data"])
+        .arg(dir.join("data"))
+        .arg("--figures")
+        .arg(dir.join("figures"))
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    assert!(
+        o.stderr.is_empty() && o.stdout.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(dir.join("data/loads_search.csv").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}

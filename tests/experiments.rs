@@ -11,6 +11,7 @@ fn ctx(name: &str) -> Ctx {
         data: root.join("data"),
         figures: root.join("figures"),
         verbose: false,
+        progress: None,
     }
 }
 
@@ -209,5 +210,37 @@ fn every_experiment_is_tested_here() {
             src.contains(&format!("snapshot_outputs(\"{name}\"")),
             "experiment {name} has no snapshot test"
         );
+    }
+}
+
+/// Every experiment announces the work it then does: its progress bar ends full
+/// (`reproduce` shows one bar per experiment, with an ETA from these units).
+#[test]
+fn progress_units_match_the_work_done() {
+    for name in [
+        "loads",
+        "fig3",
+        "table1",
+        "time",
+        "static",
+        "example",
+        "stability",
+    ] {
+        let bar = indicatif::ProgressBar::with_draw_target(
+            Some(0),
+            indicatif::ProgressDrawTarget::hidden(),
+        );
+        let c = Ctx {
+            progress: Some(bar.clone()),
+            ..ctx(&format!("progress-{name}"))
+        };
+        run(name, &c).unwrap_or_else(|e| panic!("{name}: {e}"));
+        // (`loads` reports only its choice, and the quick search may choose none.)
+        assert!(
+            name == "loads" || bar.length().unwrap_or(0) > 0,
+            "{name} announced no work"
+        );
+        assert_eq!(Some(bar.position()), bar.length(), "{name}");
+        std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
     }
 }

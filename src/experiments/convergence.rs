@@ -328,6 +328,8 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
         }
     }
     levels.sort_by_key(|t| std::cmp::Reverse(t.cost(plan, grid)));
+    // One unit per reference and per level run.
+    ctx.add_units(pending.len() + levels.len());
     pending.extend(levels);
     let queue = std::sync::Mutex::new(Queue {
         pending,

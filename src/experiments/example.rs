@@ -25,6 +25,7 @@ fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> ExpError + '_ {
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::from_toml(TOML, "data/scenarios/examples/five_branch.toml")?;
     let n = if ctx.quick { 16 } else { 64 };
+    ctx.add_units(1);
     ctx.log(&format!("example: five_branch, h = k = 1/{n}"));
     let (report, _) = crate::show::report(&scn, n, n);
     let show_path = ctx.data_path("example_five_branch_show.txt");

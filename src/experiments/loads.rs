@@ -89,6 +89,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     );
     ctx.write("loads_search.csv", &t, "loads", &params)?;
     if let Some(i) = best {
+        ctx.add_units(1);
         ctx.log(&format!(
             "loads: chosen q0 = {}, q2 = {} (scenario figure has q0 = {}, q2 = {})",
             rows[i].0, rows[i].1, -base.f0[1], -base.f2[1]

@@ -33,8 +33,11 @@ pub struct Ctx {
     pub data: PathBuf,
     /// Directory of the figures.
     pub figures: PathBuf,
-    /// Print progress lines on stderr.
+    /// Print progress lines on stderr (when there is no progress bar).
     pub verbose: bool,
+    /// The experiment's progress bar: [`Ctx::add_units`] announces work, each
+    /// [`Ctx::log`] completes one unit.
+    pub progress: Option<indicatif::ProgressBar>,
 }
 
 /// An experiment's failure.
@@ -136,9 +139,22 @@ impl Ctx {
         Ok(path)
     }
 
+    /// Reports one finished unit of work (a run, a level, a cell).
     pub fn log(&self, msg: &str) {
-        if self.verbose {
-            eprintln!("  {msg}");
+        match &self.progress {
+            Some(bar) => {
+                bar.set_message(msg.to_string());
+                bar.inc(1);
+            }
+            None if self.verbose => eprintln!("  {msg}"),
+            None => {}
+        }
+    }
+
+    /// Announces `n` more units of work (calls of [`Ctx::log`]) to the progress bar.
+    pub fn add_units(&self, n: usize) {
+        if let Some(bar) = &self.progress {
+            bar.inc_length(n as u64);
         }
     }
 }

@@ -143,6 +143,7 @@ fn nodes_table(scenes: &[(f64, &Scene)], stride: usize) -> Table {
 pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
     let n = scene_n(ctx);
     let g = 0.1;
+    ctx.add_units(1);
     ctx.log(&format!("fig3: figure scenario, h = k = 1/{n}, g = {g}"));
     let sc = solve_scene(n, g)?;
     let params = format!("scenario figure, h = k = 1/{n}, g = {g}, solver newton, t = T = 1");
@@ -181,6 +182,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     let n = scene_n(ctx);
     let gs = fig4_gs();
     // The four limits share the step matrix: one batched run.
+    ctx.add_units(1);
     ctx.log(&format!("fig4: figure scenario, h = k = 1/{n}, g = {gs:?}"));
     let scns = gs
         .iter()

@@ -113,6 +113,7 @@ pub fn clamp_end_exponent(kappa_m: f64) -> (f64, f64) {
 
 /// Per scenario and level: $\|u_h\|_E^2$.
 fn energies(scn: &Scenario, levels: &[usize], ctx: &Ctx) -> Result<Vec<f64>, ExpError> {
+    ctx.add_units(levels.len());
     let mut out = vec![];
     for &n in levels {
         ctx.log(&format!("static control: {} n = {n}", scn.name));

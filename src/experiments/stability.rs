@@ -237,6 +237,7 @@ pub fn run_map(ctx: &Ctx) -> Result<(), ExpError> {
     };
     let base = Scenario::load("figure")?;
     let mut cells = vec![];
+    ctx.add_units(c2s.len() * steps.len() * SOLVERS.len());
     for &c2 in &c2s {
         let mut scn = base.clone();
         scn.law = law_with_softening(c2)?;
@@ -528,6 +529,7 @@ pub fn run_sweeps(ctx: &Ctx) -> Result<(), ExpError> {
         ),
     ];
     let mut rows = vec![];
+    ctx.add_units(sweeps.iter().map(|s| s.1.len() * 3).sum());
     for (param, values, edit) in &sweeps {
         for &v in values {
             let mut scn = base.clone();

@@ -290,6 +290,7 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
         .into());
     }
     // The reference at the times of the finest level, and when nodes first reach g.
+    ctx.add_units(1 + plan.levels.len());
     ctx.log(&format!(
         "time study: reference N = {} at n = {}",
         plan.n_ref, plan.n
