@@ -640,6 +640,13 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             args.n.min(64)
         );
     }
+    for (at, jump) in scn.law.down_jumps() {
+        eprintln!(
+            "warning: H(j) fails: p jumps down by {:e} at s = {at:e}, so no finite m makes j relaxed \
+             monotone; the paper's theory does not cover this law",
+            -jump
+        );
+    }
     if run.hessian_min <= 0.0 {
         eprintln!(
             "warning: the step problem is not convex: its smallest possible curvature is {:.3e} \

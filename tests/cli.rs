@@ -437,6 +437,17 @@ fn scenarios_and_show() {
         "{out}"
     );
     assert!(out.contains("H(f), H(0) at t = 0: hold"), "{out}");
+    // solve warns about the downward jump too.
+    let o = evhi()
+        .arg("solve")
+        .arg("--scenario")
+        .arg(&jump)
+        .args(["--n", "16", "--steps", "16", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("warning: H(j) fails"), "{err}");
     // A bad mesh is an error naming the option.
     let o = evhi()
         .args(["show", "figure", "--n", "10"])
