@@ -58,10 +58,7 @@ impl History {
     pub fn validate(&self, field: &str, t_end: f64) -> Result<(), InputError> {
         match self {
             History::Constant => Ok(()),
-            History::Ramp { t_r } => {
-                crate::error::in_range(&format!("{field}.ramp"), *t_r, 1e-12 * t_end, 1e12 * t_end)
-                    .map(|_| ())
-            }
+            History::Ramp { t_r } => check_ramp(&format!("{field}.ramp"), *t_r, t_end).map(|_| ()),
             History::Table { points } => {
                 let field = format!("{field}.table");
                 if points.len() < 2 {
@@ -156,6 +153,11 @@ impl History {
             History::Table { .. } => "table".into(),
         }
     }
+}
+
+/// A ramp time $t_r$ for a run of length $T$: in $[10^{-12}T, 10^{12}T]$.
+pub fn check_ramp(field: &str, t_r: f64, t_end: f64) -> Result<f64, InputError> {
+    crate::error::in_range(field, t_r, 1e-12 * t_end, 1e12 * t_end)
 }
 
 /// The history as a reader would write it in TOML (no commas, so it fits a CSV cell).

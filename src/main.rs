@@ -222,14 +222,7 @@ fn main() -> ExitCode {
 
 fn show(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
-    if args.n == 0 || !args.n.is_multiple_of(4) {
-        return Err(evhi::error::InputError::field(
-            "n",
-            args.n,
-            "a positive multiple of 4 (so that y = 0.5 is a mesh line)",
-        )
-        .into());
-    }
+    evhi::mesh::check_n(args.n)?;
     evhi::scheme::check_memory(args.n)?;
     if args.steps == 0 {
         return Err(evhi::error::InputError::field("steps", 0, "an integer >= 1").into());
@@ -627,17 +620,16 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         b.finish_and_clear();
     }
     let run = run?;
-    // H(s), beta_B > m ||iota||^2, with the trace constant of a mesh of at most 64
-    // segments (it grows slowly with n: data/hypotheses.csv).
-    let m_j = -scn.law.min_slope();
-    let beta_b = scn.elasticity().coercivity();
-    let trace_sq = evhi::norms::trace_norm_sq(&scn, args.n.min(64)).unwrap_or(f64::NAN);
-    if m_j * trace_sq >= beta_b {
+    let h_s = evhi::show::Smallness::of(&scn, args.n).unwrap_or_else(|e| {
+        eprintln!("warning: the trace constant could not be computed ({e}); H(s) is unchecked");
+        evhi::show::Smallness::unknown(&scn, args.n)
+    });
+    if h_s.rhs() >= h_s.beta_b {
         eprintln!(
-            "warning: the smallness condition H(s) fails: beta_B = {beta_b:.4e} <= m ||iota_h||^2 = \
-             {m_j:.4e} * {trace_sq:.4e} (n = {}); the paper's existence and error theory assume it. \
+            "warning: the smallness condition H(s) fails: beta_B = {:.4e} <= m ||iota_h||^2 = \
+             {:.4e} * {:.4e} (n = {}); the paper's existence and error theory assume it. \
              Certified steps still solve the discrete problem.",
-            args.n.min(64)
+            h_s.beta_b, h_s.m, h_s.trace_sq, h_s.n
         );
     }
     for (at, jump) in scn.law.down_jumps() {
@@ -677,7 +669,7 @@ fn solve(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         recorder,
         &prov,
         wall.elapsed().as_secs_f64(),
-        (beta_b, m_j * trace_sq),
+        &h_s,
     )?;
     // The run's figures, drawn from the tables just written.
     evhi::experiments::runplot::draw(&out.path(""))?;

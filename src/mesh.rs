@@ -37,6 +37,19 @@ pub struct Mesh {
     pub top_edges: Vec<[usize; 2]>,
 }
 
+/// Checks a number of contact segments: a positive multiple of 4, so that $y = 1/2$
+/// is a mesh line.
+pub fn check_n(n: usize) -> Result<(), InputError> {
+    if n == 0 || !n.is_multiple_of(4) {
+        return Err(InputError::field(
+            "n",
+            n,
+            "a positive multiple of 4 (so that y = 0.5 is a mesh line)",
+        ));
+    }
+    Ok(())
+}
+
 impl Mesh {
     /// The mesh with $n$ contact segments; $n$ must be a positive multiple of 4
     /// so that $y = 1/2$ is a mesh line.
@@ -46,13 +59,7 @@ impl Mesh {
 
     /// The mesh with $n$ contact segments and the given supports.
     pub fn with_supports(n: usize, supports: Supports) -> Result<Mesh, InputError> {
-        if n == 0 || !n.is_multiple_of(4) {
-            return Err(InputError::field(
-                "n",
-                n,
-                "a positive multiple of 4 (so that y = 0.5 is a mesh line)",
-            ));
-        }
+        check_n(n)?;
         if n > 4096 {
             return Err(InputError::field("n", n, "at most 4096 (memory)"));
         }

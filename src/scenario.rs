@@ -183,6 +183,11 @@ fn vector(field: &str, v: &[f64]) -> Result<[f64; 2], InputError> {
     ])
 }
 
+/// The limit $g$: in $[10^{-12}, 10^{6}]$.
+fn limit(field: &str, g: f64) -> Result<f64, InputError> {
+    in_range(field, g, 1e-12, 1e6)
+}
+
 /// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`].
 fn positive(field: &str, v: f64) -> Result<f64, InputError> {
     in_range(field, v, 1.0 / MAX_MAGNITUDE, MAX_MAGNITUDE)
@@ -235,7 +240,7 @@ impl Scenario {
             return Err(InputError::field("name", "\"\"", "a non-empty name"));
         }
         let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
-        let g = in_range("g", raw.g, 1e-12, 1e6)?;
+        let g = limit("g", raw.g)?;
         let m = &raw.material;
         let e = positive("material.E", m.e)?;
         if !(m.kappa.is_finite() && m.kappa > -1.0 && m.kappa < 0.5) {
@@ -319,7 +324,7 @@ impl Scenario {
 
     /// Overrides $g$ (validated).
     pub fn with_g(mut self, g: f64) -> Result<Self, InputError> {
-        self.g = in_range("g", g, 1e-12, 1e6)?;
+        self.g = limit("g", g)?;
         Ok(self)
     }
 
@@ -347,7 +352,7 @@ impl Scenario {
 
     /// Overrides the load history with a ramp $\varphi(t) = \min(t/t_r, 1)$ (validated).
     pub fn with_ramp(mut self, t_r: f64) -> Result<Self, InputError> {
-        in_range("ramp", t_r, 1e-12 * self.t_end, 1e12 * self.t_end)?;
+        crate::history::check_ramp("ramp", t_r, self.t_end)?;
         self.history = History::Ramp { t_r };
         Ok(self)
     }

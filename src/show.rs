@@ -6,6 +6,46 @@
 use crate::scenario::Scenario;
 use std::fmt::Write;
 
+/// The two sides of H(s), $\beta_B > m\|\iota_h\|^2$, for a run with $n$ segments: $\beta_B$
+/// the coercivity of $\mathcal G$, $m = \max(0, -\min_b c_b)$, and the trace constant on a
+/// mesh of $\min(n, 64)$ segments (it grows slowly with $n$: `data/hypotheses.csv`).
+#[derive(Debug, Clone, Copy)]
+pub struct Smallness {
+    pub beta_b: f64,
+    pub m: f64,
+    pub trace_sq: f64,
+    /// The mesh the trace constant was computed on.
+    pub n: usize,
+}
+
+impl Smallness {
+    pub fn of(scn: &Scenario, n: usize) -> Result<Smallness, String> {
+        let n = n.min(64);
+        Ok(Smallness {
+            beta_b: scn.elasticity().coercivity(),
+            m: -scn.law.min_slope(),
+            trace_sq: crate::norms::trace_norm_sq(scn, n)?,
+            n,
+        })
+    }
+    /// The sides with the trace constant unknown (NaN), when it cannot be computed.
+    pub fn unknown(scn: &Scenario, n: usize) -> Smallness {
+        Smallness {
+            beta_b: scn.elasticity().coercivity(),
+            m: -scn.law.min_slope(),
+            trace_sq: f64::NAN,
+            n: n.min(64),
+        }
+    }
+    /// $m\|\iota_h\|^2$.
+    pub fn rhs(&self) -> f64 {
+        self.m * self.trace_sq
+    }
+    pub fn holds(&self) -> bool {
+        self.rhs() < self.beta_b
+    }
+}
+
 /// The report of a scenario, for a run with `n` segments and `steps` time steps.
 /// Returns the text and the number of warnings.
 pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
@@ -83,17 +123,17 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         "loads: f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}, history: {}",
         scn.f0[0], scn.f0[1], scn.f2[0], scn.f2[1], scn.f0_modulation, scn.history
     );
-    // H(s) with the trace constant of the run's mesh (at most 64 segments).
-    let beta_b = g_t.coercivity();
-    match crate::norms::trace_norm_sq(scn, n.min(64)) {
-        Ok(trace_sq) => {
-            let holds = m * trace_sq < beta_b;
+    match Smallness::of(scn, n) {
+        Ok(h) => {
+            let holds = h.holds();
             let _ = writeln!(
                 s,
-                "H(s): beta_B = {beta_b:.6e} {} m ||iota_h||^2 = {m} * {trace_sq:.6e} = {:.6e} (n = {}): {}",
+                "H(s): beta_B = {:.6e} {} m ||iota_h||^2 = {m} * {:.6e} = {:.6e} (n = {}): {}",
+                h.beta_b,
                 if holds { ">" } else { "<=" },
-                m * trace_sq,
-                n.min(64),
+                h.trace_sq,
+                h.rhs(),
+                h.n,
                 if holds { "holds" } else { "fails" }
             );
             if !holds {

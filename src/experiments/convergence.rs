@@ -9,7 +9,7 @@
 //! the maximum over the time levels shared with the reference,
 //! $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$ (the norm of Corollary 4.1's left side).
 
-use super::plot::{Figure, both, e2s};
+use super::plot::{Figure, both, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv, run_newton_batch_with};
 use crate::assembly::stiffness;
 use crate::element::strain_matrix;
@@ -568,11 +568,7 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path, params: &str) -> Result<(),
         }
         md += "\n";
     }
-    let p = ctx.data_path("table1.md");
-    crate::output::write_atomic(&p, md.as_bytes()).map_err(|e| ExpError::Io {
-        path: p.display().to_string(),
-        source: e,
-    })
+    ctx.write_file(&ctx.data_path("table1.md"), md.as_bytes())
 }
 
 /// A plotted series: label, points, colour, and whether it is the thin (second) style.
@@ -743,14 +739,7 @@ impl Figure for Fig5 {
                     PathElement::new(vec![(x, y), (x + 20, y)], RGBColor(120, 120, 120))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e2s)?;
+        legend(&mut chart, SeriesLabelPosition::LowerRight, 16, 0.9)?;
         Ok(())
     }
 }

@@ -28,18 +28,15 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.add_units(1);
     ctx.log(&format!("example: five_branch, h = k = 1/{n}"));
     let (report, _) = crate::show::report(&scn, n, n);
-    let show_path = ctx.data_path("example_five_branch_show.txt");
-    std::fs::create_dir_all(&ctx.data).map_err(io(&ctx.data))?;
-    crate::output::write_atomic(
-        &show_path,
+    ctx.write_file(
+        &ctx.data_path("example_five_branch_show.txt"),
         format!(
             "# produced by evhi {} `evhi reproduce example{}` (the report of `evhi show`)\n{report}",
             env!("CARGO_PKG_VERSION"),
             if ctx.quick { " --quick" } else { "" }
         )
         .as_bytes(),
-    )
-    .map_err(io(&show_path))?;
+    )?;
     // The run, written exactly as `evhi solve` writes it, in a scratch directory.
     let scratch = std::env::temp_dir().join(format!("evhi-example-{}", std::process::id()));
     let out = RunDir::open(&scratch).map_err(|e| ExpError::Table {
@@ -61,20 +58,19 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         solver: "newton".into(),
         ordering: "nd".into(),
     };
-    let m = -scn.law.min_slope();
-    let trace_sq = crate::norms::trace_norm_sq(&scn, n.min(64)).unwrap_or(f64::NAN);
-    let hs = (scn.elasticity().coercivity(), m * trace_sq);
+    let h_s = crate::show::Smallness::of(&scn, n)
+        .unwrap_or_else(|_| crate::show::Smallness::unknown(&scn, n));
     let err = |e: crate::output::rundir::OutError| ExpError::Table {
         path: scratch.display().to_string(),
         message: e.to_string(),
     };
-    crate::output::run::write(&out, &scn, TOML, &res, rec, &prov, 0.0, hs).map_err(err)?;
+    crate::output::run::write(&out, &scn, TOML, &res, rec, &prov, 0.0, &h_s).map_err(err)?;
     super::runplot::draw(&out.path(""))?;
     out.publish().map_err(err)?;
     // Tables into data/ (timing columns are not kept: they change from run to run).
     let copy = |from: std::path::PathBuf, to: std::path::PathBuf| -> Result<(), ExpError> {
         let bytes = std::fs::read(&from).map_err(io(&from))?;
-        crate::output::write_atomic(&to, &bytes).map_err(io(&to))
+        ctx.write_file(&to, &bytes)
     };
     for f in ["contact.csv", "regimes.csv"] {
         copy(

@@ -2,7 +2,7 @@
 //! compliance (5.1) up to $g$, then the vertical wall of the unilateral limit (5.2),
 //! where $-\sigma_\nu = p(g) + \mu$ with any $\mu \ge 0$.
 
-use super::plot::{Figure, both, e2s};
+use super::plot::{Figure, both, e2s, legend};
 use super::{Ctx, ExpError, col_f64, read_csv};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
@@ -124,14 +124,7 @@ impl Figure for Fig2 {
             .map_err(e2s)?
             .label("branch points 0, u1 = 0.05, u2 = 0.075, g")
             .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font(("sans-serif", 18))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e2s)?;
+        legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())
     }
 }

@@ -139,6 +139,15 @@ impl Ctx {
         Ok(path)
     }
 
+    /// Writes `bytes` to `path` atomically (a Markdown fragment, a report, a copied
+    /// figure); the error names the path.
+    pub fn write_file(&self, path: &Path, bytes: &[u8]) -> Result<(), ExpError> {
+        crate::output::write_atomic(path, bytes).map_err(|e| ExpError::Io {
+            path: path.display().to_string(),
+            source: e,
+        })
+    }
+
     /// Reports one finished unit of work (a run, a level, a cell).
     pub fn log(&self, msg: &str) {
         match &self.progress {

@@ -67,6 +67,28 @@ pub trait Figure {
     ) -> Result<(), String>;
 }
 
+/// The legend box of every figure: `font`-point labels on white of the given opacity,
+/// with a black border, at `position`.
+pub fn legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+    font: u32,
+    opacity: f64,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    CT: plotters::coord::CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font(("sans-serif", font))
+        .background_style(WHITE.mix(opacity))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e2s)
+}
+
 /// Maps any displayable error to a string.
 pub fn e2s<E: std::fmt::Display>(e: E) -> String {
     e.to_string()

@@ -3,9 +3,9 @@
 //! interface forces, in the style of Fig. 3) and `evolution` (the normal displacement
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
-use super::plot::{Figure, both, e2s, regime_colour};
-use super::scenes::present;
+use super::plot::{Figure, both, e2s, legend, regime_colour};
 use super::{ExpError, col_f64, col_str, read_csv};
+use crate::certificate::regime_order;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -70,7 +70,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         .map(|c| c.to_string())
         .filter(|c| c != "step" && c != "t")
         .collect();
-    let ordered = present(&names);
+    let ordered = regime_order(&names);
     let counts = ordered
         .iter()
         .map(|r| {
@@ -182,14 +182,7 @@ impl Figure for Evolution {
                         PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
                     });
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerRight)
-                .label_font(("sans-serif", 17))
-                .background_style(WHITE.mix(0.9))
-                .border_style(BLACK)
-                .draw()
-                .map_err(e2s)?;
+            legend(&mut chart, SeriesLabelPosition::LowerRight, 17, 0.9)?;
         }
         let n_max = self
             .counts
@@ -221,14 +214,7 @@ impl Figure for Evolution {
                     PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 17))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e2s)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 17, 0.9)?;
         Ok(())
     }
 }

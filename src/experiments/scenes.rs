@@ -2,9 +2,9 @@
 //! forces on $\Gamma_3$, nodes coloured by their regime, for the `figure` scenario
 //! ($h = k = 1/128$); Fig. 4 repeats it for several $g$.
 
-use super::plot::{Figure, REGIMES, both, e2s, regime_colour, regime_label};
+use super::plot::{Figure, REGIMES, both, e2s, legend, regime_colour, regime_label};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::certificate::ContactState;
+use crate::certificate::{ContactState, regime_order};
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
@@ -53,11 +53,6 @@ fn scene(scn: &Scenario, n: usize, res: crate::scheme::Run) -> Result<Scene, Exp
 
 fn scene_n(ctx: &Ctx) -> usize {
     if ctx.quick { 16 } else { 128 }
-}
-
-/// The regimes present, in the order no contact, branches, limit.
-pub fn present(regimes: &[String]) -> Vec<String> {
-    crate::certificate::regime_order(regimes)
 }
 
 /// Regime counts in `REGIMES` order.
@@ -315,7 +310,7 @@ fn draw_mesh<DB: DrawingBackend>(
     let caption = format!(
         "g = {}: deformed mesh (true scale); contact nodes: {}",
         p.g,
-        present(&p.regime)
+        regime_order(&p.regime)
             .iter()
             .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
             .collect::<Vec<_>>()
@@ -432,7 +427,7 @@ fn draw_forces<DB: DrawingBackend>(
                 .map_err(e2s)?;
         }
     }
-    for r in present(&p.regime) {
+    for r in regime_order(&p.regime) {
         {
             let label = match (paper_law, r.as_str()) {
                 (true, _) | (false, "limit" | "no_contact") => regime_label(&r).to_string(),
@@ -452,13 +447,6 @@ fn draw_forces<DB: DrawingBackend>(
                 });
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 13))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e2s)?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight, 13, 0.85)?;
     Ok(())
 }

@@ -14,7 +14,7 @@
 //! ([`wedge_exponents`]); on uniform meshes the energy error then decays like
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
-use super::plot::{Figure, both, e2s};
+use super::plot::{Figure, both, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::assembly::{load, stiffness};
 use crate::linalg::Cholesky;
@@ -272,11 +272,7 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
         );
         md += &row;
     }
-    let p = ctx.data_path("static_control.md");
-    crate::output::write_atomic(&p, md.as_bytes()).map_err(|e| ExpError::Io {
-        path: p.display().to_string(),
-        source: e,
-    })
+    ctx.write_file(&ctx.data_path("static_control.md"), md.as_bytes())
 }
 
 /// A plotted series: label, points, colour.
@@ -396,14 +392,7 @@ impl Figure for StaticFig {
                     });
             }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 18))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e2s)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 18, 0.9)?;
         Ok(())
     }
 }

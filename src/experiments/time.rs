@@ -12,7 +12,7 @@
 //! $y_n = 1 - (1 + k/\tau)^{-n}$, predicts the relative error without any mesh; the
 //! table carries it beside the measurement.
 
-use super::plot::{Figure, both, e2s};
+use super::plot::{Figure, both, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::history::History;
 use crate::norms::energy_norm;
@@ -261,11 +261,7 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path, plan: &Plan) -> Result<(), 
         );
     }
     md += "\n";
-    let p = ctx.data_path("time_study.md");
-    crate::output::write_atomic(&p, md.as_bytes()).map_err(|e| ExpError::Io {
-        path: p.display().to_string(),
-        source: e,
-    })
+    ctx.write_file(&ctx.data_path("time_study.md"), md.as_bytes())
 }
 
 /// Runs every scenario and history at every level (one batched run per level).
@@ -567,14 +563,7 @@ impl Figure for TimeFig {
                 .label("slope 1")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], RGBColor(90, 90, 90)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .label_font(("sans-serif", 18))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e2s)?;
+        legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())
     }
 }

@@ -1,7 +1,7 @@
 //! The work–precision chart: error in energy norm against wall time for the
 //! configurations of the convergence study (`evhi bench` times them).
 
-use super::plot::{Figure, both, e2s};
+use super::plot::{Figure, both, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use plotters::prelude::*;
 use std::path::Path;
@@ -108,14 +108,7 @@ impl Figure for Chart {
                 )
                 .map_err(e2s)?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e2s)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)?;
         Ok(())
     }
 }

@@ -145,7 +145,7 @@ impl Recorder {
 
 /// Writes the whole set of a finished run into `out` (not yet published): `toml` is
 /// the scenario's text as read, `wall_s` the run's wall time so far, `h_s` the two
-/// sides of H(s), $(\beta_B, m\|\iota_h\|^2)$.
+/// sides of H(s).
 #[allow(clippy::too_many_arguments)]
 pub fn write(
     out: &RunDir,
@@ -155,7 +155,7 @@ pub fn write(
     rec: Recorder,
     prov: &Provenance,
     wall_s: f64,
-    (beta_b, m_trace_sq): (f64, f64),
+    h_s: &crate::show::Smallness,
 ) -> Result<(), OutError> {
     if let Some(e) = rec.error {
         return Err(e);
@@ -245,8 +245,8 @@ pub fn write(
         )
         .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
         .f64("step_curvature_min", vec![run.hessian_min])
-        .f64("beta_B", vec![beta_b])
-        .f64("m_trace_norm_sq", vec![m_trace_sq])
+        .f64("beta_B", vec![h_s.beta_b])
+        .f64("m_trace_norm_sq", vec![h_s.rhs()])
         .f64("assembly_s", vec![t.assembly])
         .f64("factorisation_s", vec![t.factorisation])
         .f64("condensation_s", vec![t.condensation])
