@@ -6,6 +6,14 @@ fn evhi() -> Command {
     Command::new(env!("CARGO_BIN_EXE_evhi"))
 }
 
+/// A fresh, empty scratch directory for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("evhi-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// Runs `cmd`, which must succeed (its stderr is shown otherwise).
 fn succeed(cmd: &mut Command) {
     let out = cmd.output().unwrap();
@@ -18,7 +26,7 @@ fn succeed(cmd: &mut Command) {
 
 #[test]
 fn solve_writes_all_outputs() {
-    let dir = std::env::temp_dir().join(format!("evhi-cli-{}", std::process::id()));
+    let dir = scratch("cli");
     succeed(
         evhi()
             .args([
@@ -73,9 +81,8 @@ fn solve_writes_all_outputs() {
 /// run; compatible data print no warning, constant loads print one naming H(f).
 #[test]
 fn load_histories_from_the_cli_and_the_file() {
-    let base = std::env::temp_dir().join(format!("evhi-cli-hist-{}", std::process::id()));
+    let base = scratch("cli-hist");
     let toml = base.join("ramp.toml");
-    std::fs::create_dir_all(&base).unwrap();
     let text = std::fs::read_to_string("data/scenarios/figure.toml")
         .unwrap()
         .replace("[loads]\n", "[loads]\nhistory = { ramp = 0.25 }\n");
@@ -169,7 +176,7 @@ fn bad_arguments_fail_with_the_field_named() {
 
 #[test]
 fn bench_sweeps_writes_every_variant() {
-    let dir = std::env::temp_dir().join(format!("evhi-sweeps-{}", std::process::id()));
+    let dir = scratch("sweeps");
     succeed(
         evhi()
             .args(["bench", "--sweeps", "--sweeps-n", "16", "--data"])
@@ -207,8 +214,7 @@ fn figure_file(dir: &std::path::Path, name: &str, from: &str, to: &str) -> std::
 /// Issue 12's cases that used to look right and were not, or were refused though valid.
 #[test]
 fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
-    let dir = std::env::temp_dir().join(format!("evhi-cli-hostile-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("cli-hostile");
     let run = |scenario: &std::path::Path, extra: &[&str]| {
         evhi()
             .args(["solve", "--n", "32", "--steps", "32", "--scenario"])
@@ -303,8 +309,7 @@ fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
 /// the last VTU's point fields equal contact.csv at the contact nodes.
 #[test]
 fn vtk_time_series_matches_the_contact_table() {
-    let dir = std::env::temp_dir().join(format!("evhi-cli-pvd-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = scratch("cli-pvd");
     let o = evhi()
         .args([
             "solve",
@@ -412,8 +417,7 @@ fn scenarios_and_show() {
         "{out}{err}"
     );
     // A downward jump breaks H(j); a ramp makes the data compatible.
-    let dir = std::env::temp_dir().join(format!("evhi-cli-show-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("cli-show");
     let slopes = "slopes = [0.0, 200.0, -100.0, 300.0]";
     let jump = figure_file(
         &dir,
@@ -462,8 +466,7 @@ fn scenarios_and_show() {
 /// tables and figures, and `evhi plot` redraws the figures from the tables alone.
 #[test]
 fn a_user_scenario_runs_and_draws() {
-    let dir = std::env::temp_dir().join(format!("evhi-cli-five-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = scratch("cli-five");
     let o = evhi()
         .args([
             "solve",
@@ -525,7 +528,7 @@ fn a_user_scenario_runs_and_draws() {
 /// `reproduce -q` prints nothing on success.
 #[test]
 fn reproduce_quiet_prints_nothing() {
-    let dir = std::env::temp_dir().join(format!("evhi-cli-quiet-{}", std::process::id()));
+    let dir = scratch("cli-quiet");
     let o = evhi()
         .args(["reproduce", "fig2", "loads", "--quick", "-q", "--data"])
         .arg(dir.join("data"))
