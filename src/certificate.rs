@@ -6,8 +6,9 @@
 //! $k w_i(\xi_i + \mu_i)$ with $-\sigma_\nu = \xi_i + \mu_i$. The certificate splits the
 //! reaction into $\xi_i \in \partial_{Cl} j(u_{\nu,i})$ (so $\sigma^1_\nu = -\xi_i$) and
 //! $\mu_i \ge 0$ (so $\sigma^2_\nu = -\mu_i \le 0$) and reports
-//! - stationarity: $\|\rho - P^\top(\text{admissible reaction})\|_\infty / \max(\|b\|_\infty, \|\,|K|\,|u|\,\|_\infty)$,
-//!   a normwise backward error: $u$ solves the step exactly with $K$ and $b$ perturbed
+//! - stationarity: $\|\rho - E_C^\top(\text{admissible reaction})\|_\infty / \max(\|b\|_\infty, \|\,|K|\,|u|\,\|_\infty)$
+//!   ($E_C^\top$ puts a value at each contact $y$-dof; $u_\nu = -u_y$),
+//!   a bound on the normwise backward error: $u$ solves the step exactly with $K$ and $b$ perturbed
 //!   by about this relative amount (why not $\|b\|_\infty$ alone: see [`certify`]),
 //! - feasibility: $\max_i (u_{\nu,i} - g)^+ / \max(g, \|u\|_\infty)$,
 //! - complementarity: $\max_i k w_i \mu_i (g - u_{\nu,i})$, scaled by the product of both scales.

@@ -8,7 +8,9 @@
 //! $\|\iota_h\|^2 = \lambda_{\max}(W^{1/2} F_V W^{1/2})$, where $F_V = P V^{-1} P^\top$ is the
 //! flexibility of $V$ on the contact normal dofs ($= (L_{CC}L_{CC}^\top)^{-1}$ of its
 //! factor) and $W$ the trapezoidal weights. Trapezoidal quadrature of
-//! $\int_{\Gamma_3} v_\nu^2$ is exact up to $O(h^2)$ for P1, and $\|\iota_h\| \to \|\iota\|$ from below.
+//! $\int_{\Gamma_3} v_\nu^2$ is exact up to $O(h^2)$ for P1. The values grow with $n$ in
+//! `data/hypotheses.csv`; with quadrature weights nothing guarantees that they bound
+//! $\|\iota\|$ from below.
 
 use super::{Ctx, ExpError};
 use crate::output::csv::Table;
