@@ -79,7 +79,7 @@ pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2], modulation: f6
         }
     }
     for e in &mesh.top_edges {
-        let len = mesh.nodes[e[1]][0] - mesh.nodes[e[0]][0];
+        let len = (mesh.nodes[e[1]][0] - mesh.nodes[e[0]][0]).abs();
         for &v in e {
             add(v, [f2[0] * len / 2.0, f2[1] * len / 2.0]);
         }

@@ -11,6 +11,7 @@
 //! [`step`] (per-step solvers) → [`certificate`] → [`output`].
 
 pub mod assembly;
+pub mod bisection;
 pub mod certificate;
 pub mod condense;
 pub mod element;

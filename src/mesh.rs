@@ -21,10 +21,40 @@ pub enum Supports {
     Rollers,
 }
 
+/// How each square cell is cut into triangles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pattern {
+    /// The paper's: one diagonal, lower-left to upper-right.
+    #[default]
+    Diagonal,
+    /// One diagonal, lower-right to upper-left.
+    Antidiagonal,
+    /// Both diagonals: a node at each cell's centre and four triangles per cell.
+    /// The centre nodes are numbered after the grid nodes, cell by cell.
+    CrissCross,
+    /// Not a grid: a mesh of newest-vertex bisection ([`crate::bisection`]), whose
+    /// contact segments may differ in length.
+    Bisected,
+}
+
+impl Pattern {
+    /// The name used in scenario files (`geometry.pattern`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Pattern::Diagonal => "diagonal",
+            Pattern::Antidiagonal => "antidiagonal",
+            Pattern::CrissCross => "crisscross",
+            Pattern::Bisected => "bisected",
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct Mesh {
     /// Number of contact segments, $n = 1/h$.
     pub n: usize,
+    /// How the cells are cut.
+    pub pattern: Pattern,
     /// Node coordinates.
     pub nodes: Vec<[f64; 2]>,
     /// Triangles, counter-clockwise node triples.
@@ -59,7 +89,19 @@ impl Mesh {
 
     /// The mesh with $n$ contact segments and the given supports.
     pub fn with_supports(n: usize, supports: Supports) -> Result<Mesh, InputError> {
+        Mesh::build(n, supports, Pattern::Diagonal)
+    }
+
+    /// The mesh with $n$ contact segments, the given supports and cell pattern.
+    pub fn build(n: usize, supports: Supports, pattern: Pattern) -> Result<Mesh, InputError> {
         check_n(n)?;
+        if pattern == Pattern::Bisected {
+            return Err(InputError::field(
+                "pattern",
+                "bisected",
+                "a grid pattern (bisected meshes come from crate::bisection)",
+            ));
+        }
         if n > 4096 {
             return Err(InputError::field("n", n, "at most 4096 (memory)"));
         }
@@ -78,18 +120,43 @@ impl Mesh {
                 });
             }
         }
-        let mut triangles = Vec::with_capacity(2 * nx * ny);
+        let grid = nodes.len();
+        let mut triangles = Vec::with_capacity(4 * nx * ny);
         for j in 0..ny {
             for i in 0..nx {
                 let (ll, lr, ur, ul) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-                triangles.push([ll, lr, ur]);
-                triangles.push([ll, ur, ul]);
+                match pattern {
+                    Pattern::Diagonal => {
+                        triangles.push([ll, lr, ur]);
+                        triangles.push([ll, ur, ul]);
+                    }
+                    Pattern::Antidiagonal => {
+                        triangles.push([ll, lr, ul]);
+                        triangles.push([lr, ur, ul]);
+                    }
+                    Pattern::CrissCross | Pattern::Bisected => {
+                        let c = grid + j * nx + i;
+                        triangles.push([ll, lr, c]);
+                        triangles.push([lr, ur, c]);
+                        triangles.push([ur, ul, c]);
+                        triangles.push([ul, ll, c]);
+                    }
+                }
+            }
+        }
+        if pattern == Pattern::CrissCross {
+            for j in 0..ny {
+                for i in 0..nx {
+                    nodes.push([(i as f64 + 0.5) * side, (j as f64 + 0.5) * side]);
+                    fixed.push([false; 2]);
+                }
             }
         }
         let contact = (0..=nx).map(|i| id(i, 0)).collect();
         let top_edges = (0..nx).map(|i| [id(i, ny), id(i + 1, ny)]).collect();
         Ok(Mesh {
             n,
+            pattern,
             nodes,
             triangles,
             fixed,
@@ -104,10 +171,17 @@ impl Mesh {
     }
 
     // ANCHOR: weights
-    /// Trapezoidal weights of the contact nodes: $2h$ inside $\Gamma_3$, $h$ at its ends.
+    /// Trapezoidal weights of the contact nodes: $2h$ inside $\Gamma_3$, $h$ at its ends
+    /// (on a bisected mesh, half the length of the segments at each node).
     pub fn contact_weights(&self) -> Vec<f64> {
-        let h = self.h();
         let m = self.contact.len();
+        if self.pattern == Pattern::Bisected {
+            let x: Vec<f64> = self.contact.iter().map(|&c| self.nodes[c][0]).collect();
+            return (0..m)
+                .map(|i| 0.5 * (x[(i + 1).min(m - 1)] - x[i.saturating_sub(1)]))
+                .collect();
+        }
+        let h = self.h();
         (0..m)
             .map(|i| if i == 0 || i == m - 1 { h } else { 2.0 * h })
             .collect()
@@ -159,6 +233,10 @@ impl Dofs {
 /// meshes are nested (each fine triangle lies in one coarse triangle), so this
 /// is the exact embedding of the coarse P1 space in the fine one.
 pub fn prolongate(coarse: &Mesh, vals: &[[f64; 2]], fine: &Mesh) -> Vec<[f64; 2]> {
+    assert!(
+        coarse.pattern == Pattern::Diagonal && fine.pattern == Pattern::Diagonal,
+        "the structured prolongation knows the paper's pattern only (see Interpolation)"
+    );
     assert!(
         fine.n.is_multiple_of(coarse.n),
         "fine mesh must refine the coarse one"
@@ -213,5 +291,99 @@ impl Dofs {
             }
         }
         u
+    }
+}
+
+/// The P1 interpolation from a coarse mesh to the nodes of a finer one of any
+/// pattern: for each fine node, the coarse triangle that holds it and its
+/// barycentric weights. When the spaces are nested this is the exact embedding of
+/// the coarse P1 space in the fine one; for fields sampled at many times it is
+/// built once.
+#[derive(Debug, Clone)]
+pub struct Interpolation {
+    /// Per fine node: three (coarse node, weight) pairs.
+    pub weights: Vec<[(usize, f64); 3]>,
+}
+
+impl Interpolation {
+    pub fn new(coarse: &Mesh, fine: &Mesh) -> Interpolation {
+        // Bucket the coarse triangles by the cell of their centroid.
+        let (nx, ny) = (coarse.n, coarse.n / 2);
+        let side = 2.0 / coarse.n as f64;
+        let mut cells: Vec<Vec<usize>> = vec![vec![]; nx * ny];
+        let cell = |x: f64, y: f64| {
+            let i = ((x / side).floor() as isize).clamp(0, nx as isize - 1) as usize;
+            let j = ((y / side).floor() as isize).clamp(0, ny as isize - 1) as usize;
+            (i, j)
+        };
+        for (t, tri) in coarse.triangles.iter().enumerate() {
+            let c = tri.iter().fold([0.0; 2], |a, &v| {
+                [
+                    a[0] + coarse.nodes[v][0] / 3.0,
+                    a[1] + coarse.nodes[v][1] / 3.0,
+                ]
+            });
+            let (i, j) = cell(c[0], c[1]);
+            cells[j * nx + i].push(t);
+        }
+        let weights = fine
+            .nodes
+            .iter()
+            .map(|&p| {
+                let (i, j) = cell(p[0], p[1]);
+                // A point on a cell edge may lie in the neighbour's triangles only
+                // up to rounding: take the triangle whose smallest weight is largest.
+                let mut best = ([(0, 0.0); 3], f64::NEG_INFINITY);
+                const AROUND: [(isize, isize); 9] = [
+                    (0, 0),
+                    (-1, 0),
+                    (1, 0),
+                    (0, -1),
+                    (0, 1),
+                    (-1, -1),
+                    (1, -1),
+                    (-1, 1),
+                    (1, 1),
+                ];
+                for (di, dj) in AROUND {
+                    if best.1 >= -1e-12 {
+                        break;
+                    }
+                    let (ci, cj) = (i as isize + di, j as isize + dj);
+                    if ci < 0 || cj < 0 || ci >= nx as isize || cj >= ny as isize {
+                        continue;
+                    }
+                    for &t in &cells[cj as usize * nx + ci as usize] {
+                        let tri = coarse.triangles[t];
+                        let q = tri.map(|v| coarse.nodes[v]);
+                        let det = crate::element::twice_area(q);
+                        let l1 = crate::element::twice_area([q[0], p, q[2]]) / det;
+                        let l2 = crate::element::twice_area([q[0], q[1], p]) / det;
+                        let l0 = 1.0 - l1 - l2;
+                        let worst = l0.min(l1).min(l2);
+                        if worst > best.1 {
+                            best = ([(tri[0], l0), (tri[1], l1), (tri[2], l2)], worst);
+                        }
+                    }
+                }
+                best.0
+            })
+            .collect();
+        Interpolation { weights }
+    }
+
+    /// The interpolated field at the fine nodes.
+    pub fn apply(&self, vals: &[[f64; 2]]) -> Vec<[f64; 2]> {
+        self.weights
+            .iter()
+            .map(|w| {
+                let mut v = [0.0; 2];
+                for &(node, wt) in w {
+                    v[0] += wt * vals[node][0];
+                    v[1] += wt * vals[node][1];
+                }
+                v
+            })
+            .collect()
     }
 }

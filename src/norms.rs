@@ -46,3 +46,73 @@ pub fn trace_norm_sq(scn: &crate::scenario::Scenario, n: usize) -> Result<f64, S
         .map_err(|e| format!("{e:?}"))?;
     Ok(1.0 / eig.iter().copied().fold(f64::INFINITY, f64::min))
 }
+
+/// The squared norms of a P1 displacement field (one value pair per node) that the
+/// Table 1 forensics compares: the energy $\tfrac12(\mathcal G\varepsilon(v), \varepsilon(v))$,
+/// $\|v\|^2_{L^2(\Omega)}$, the $H^1$ seminorm $\|\nabla v\|^2_{L^2(\Omega)}$, the largest
+/// nodal length $\max_i |v(x_i)|$ (not squared), and $\|v_\nu\|^2_{L^2(\Gamma_3)}$ with
+/// $v_\nu = -v_y$, all exact for P1.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FieldNorms {
+    pub energy_sq: f64,
+    pub l2_sq: f64,
+    pub h1_sq: f64,
+    pub max: f64,
+    pub gamma_sq: f64,
+}
+
+/// [`FieldNorms`] of the nodal field `v` on `mesh` with the elasticity tensor `g`.
+pub fn field_norms(
+    mesh: &crate::mesh::Mesh,
+    g: &crate::material::Isotropic,
+    v: &[[f64; 2]],
+) -> FieldNorms {
+    let d = g.voigt();
+    let mut out = FieldNorms::default();
+    for tri in &mesh.triangles {
+        let p = tri.map(|k| mesh.nodes[k]);
+        let (area, bm) = crate::element::strain_matrix(p);
+        let ue = nalgebra::SVector::<f64, 6>::from_fn(|a, _| v[tri[a / 2]][a % 2]);
+        let eps = bm * ue;
+        out.energy_sq += 0.5 * (eps.transpose() * d * eps)[(0, 0)] * area;
+        // Rows 0 and 1 of the strain matrix hold d/dx on x-columns and d/dy on
+        // y-columns; row 2 holds the other two derivatives.
+        let (mut gx, mut gy) = ([0.0; 2], [0.0; 2]);
+        for a in 0..3 {
+            let (dx, dy) = (bm[(0, 2 * a)], bm[(1, 2 * a + 1)]);
+            for c in 0..2 {
+                gx[c] += dx * v[tri[a]][c];
+                gy[c] += dy * v[tri[a]][c];
+            }
+        }
+        out.h1_sq += area * (gx[0] * gx[0] + gx[1] * gx[1] + gy[0] * gy[0] + gy[1] * gy[1]);
+        // Exact P1 mass: |T|/12 (sum of squares + square of the sum), per component.
+        let vals = tri.map(|k| v[k]);
+        for comp in [vals.map(|x| x[0]), vals.map(|x| x[1])] {
+            let (s, q) = comp.iter().fold((0.0, 0.0), |(s, q), &x| (s + x, q + x * x));
+            out.l2_sq += area / 12.0 * (q + s * s);
+        }
+    }
+    out.max = v.iter().map(|x| x[0].hypot(x[1])).fold(0.0, f64::max);
+    let nu: Vec<f64> = mesh.contact.iter().map(|&c| -v[c][1]).collect();
+    out.gamma_sq = gamma_l2_sq(mesh, &nu);
+    out
+}
+
+/// $\|w\|^2_{L^2(\Gamma_3)}$ of the P1 function with values `w` at the contact nodes
+/// (exact: $\tfrac{|e|}{3}(a^2 + ab + b^2)$ on each segment).
+pub fn gamma_l2_sq(mesh: &crate::mesh::Mesh, w: &[f64]) -> f64 {
+    let uniform = 2.0 * mesh.h();
+    let bisected = mesh.pattern == crate::mesh::Pattern::Bisected;
+    w.windows(2)
+        .zip(mesh.contact.windows(2))
+        .map(|(p, c)| {
+            let len = if bisected {
+                mesh.nodes[c[1]][0] - mesh.nodes[c[0]][0]
+            } else {
+                uniform
+            };
+            len / 3.0 * (p[0] * p[0] + p[0] * p[1] + p[1] * p[1])
+        })
+        .sum()
+}

@@ -76,11 +76,29 @@ impl Ordering {
                 }
             }
         };
+        // Criss-cross cells have a centre node coupled only to the cell's corners:
+        // eliminated first, each makes its cell a clique, which no grid line crosses.
+        // The centres of the cells left of x = 1 go with the left half, the others
+        // with the right.
+        let grid = (nx + 1) * (ny + 1);
+        let centres = |fwd: &mut Vec<usize>, cols: std::ops::Range<usize>| {
+            if mesh.pattern != crate::mesh::Pattern::CrissCross {
+                return;
+            }
+            for j in 0..ny {
+                for i in cols.clone() {
+                    let node = grid + j * nx + i;
+                    fwd.extend((0..2).filter_map(|c| dofs.of(node, c)));
+                }
+            }
+        };
         // Top level by hand, to record where the halves end: the middle column
         // i = nx/2 (the line x = 1) separates left from right.
         let mid = nx / 2;
+        centres(&mut fwd, 0..mid);
         dissect(&mut fwd, &mut emit, (0, mid - 1), (0, ny));
         let n1 = fwd.len();
+        centres(&mut fwd, mid..nx);
         dissect(&mut fwd, &mut emit, (mid + 1, nx), (0, ny));
         let n2 = fwd.len() - n1;
         for j in 0..=ny {

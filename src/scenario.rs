@@ -7,7 +7,7 @@ use crate::error::{InputError, MAX_MAGNITUDE, bounded, in_range};
 use crate::history::History;
 use crate::law::Law;
 use crate::material::Isotropic;
-use crate::mesh::{Mesh, Supports};
+use crate::mesh::{Mesh, Pattern, Supports};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -30,7 +30,18 @@ struct RawScenario {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawGeometry {
+    #[serde(default = "paper_supports")]
     supports: String,
+    #[serde(default = "diagonal")]
+    pattern: String,
+}
+
+fn paper_supports() -> String {
+    "paper".into()
+}
+
+fn diagonal() -> String {
+    "diagonal".into()
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -89,6 +100,8 @@ pub struct Scenario {
     pub history: History,
     pub law: Law,
     pub supports: Supports,
+    /// How the mesh cuts its cells (the paper's diagonal unless a study varies it).
+    pub pattern: Pattern,
 }
 
 /// The data's hypotheses at $t = 0$: see [`Scenario::time_hypotheses`].
@@ -281,6 +294,18 @@ impl Scenario {
                 ));
             }
         };
+        let pattern = match raw.geometry.as_ref().map(|g| g.pattern.as_str()) {
+            None | Some("diagonal") => Pattern::Diagonal,
+            Some("antidiagonal") => Pattern::Antidiagonal,
+            Some("crisscross") => Pattern::CrissCross,
+            Some(other) => {
+                return Err(InputError::field(
+                    "geometry.pattern",
+                    other,
+                    "\"diagonal\" (the paper's), \"antidiagonal\" or \"crisscross\"",
+                ));
+            }
+        };
         // Magnitudes a double-precision solve can certify (the law itself accepts any
         // finite values: the penalty method builds steeper ones internally).
         for (i, &s) in raw.law.breakpoints.iter().enumerate() {
@@ -319,6 +344,7 @@ impl Scenario {
             history,
             law,
             supports,
+            pattern,
         })
     }
 
@@ -401,13 +427,34 @@ impl Scenario {
     /// the same supports, material and final time (the geometry is fixed).
     pub fn same_operator(&self, other: &Scenario) -> bool {
         self.supports == other.supports
+            && self.pattern == other.pattern
             && [self.e, self.kappa, self.alpha, self.beta, self.t_end]
                 == [other.e, other.kappa, other.alpha, other.beta, other.t_end]
     }
 
-    /// The mesh with $n$ contact segments and this scenario's supports.
+    /// The mesh with $n$ contact segments and this scenario's supports and pattern.
     pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
-        Mesh::with_supports(n, self.supports)
+        Mesh::build(n, self.supports, self.pattern)
+    }
+
+    /// The same scenario on meshes of another pattern.
+    pub fn with_pattern(mut self, pattern: Pattern) -> Self {
+        self.pattern = pattern;
+        self
+    }
+
+    /// Replaces the elasticity constants (validated like the file's).
+    pub fn with_elasticity(mut self, e: f64, kappa: f64) -> Result<Self, InputError> {
+        self.e = positive("material.E", e)?;
+        if !(kappa.is_finite() && kappa > -1.0 && kappa < 0.5) {
+            return Err(InputError::field(
+                "material.kappa",
+                kappa,
+                "a Poisson ratio in (-1, 0.5)",
+            ));
+        }
+        self.kappa = kappa;
+        Ok(self)
     }
 
     pub fn elasticity(&self) -> Isotropic {

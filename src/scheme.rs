@@ -38,7 +38,11 @@ pub struct Discretisation {
 
 impl Discretisation {
     pub fn new(scn: &Scenario, n: usize) -> Result<Self, InputError> {
-        let mesh = scn.mesh(n)?;
+        Ok(Discretisation::on(scn, scn.mesh(n)?))
+    }
+
+    /// The discretisation of `scn` on a given mesh.
+    pub fn on(scn: &Scenario, mesh: Mesh) -> Self {
         let dofs = Dofs::new(&mesh, true);
         let [a, b] = assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
         let f = assembly::load(&mesh, &dofs, scn.f0, scn.f2, scn.f0_modulation);
@@ -48,7 +52,7 @@ impl Discretisation {
             .map(|&v| dofs.of(v, 1).expect("contact nodes are free"))
             .collect();
         let weights = mesh.contact_weights();
-        Ok(Discretisation {
+        Discretisation {
             mesh,
             dofs,
             a,
@@ -56,7 +60,7 @@ impl Discretisation {
             f,
             contact_dofs,
             weights,
-        })
+        }
     }
 }
 
@@ -259,6 +263,9 @@ pub struct Options {
     pub ordering: OrderingKind,
     /// Whether triangular solves may use a second thread (large meshes only).
     pub parallel: bool,
+    /// A mesh to use instead of the scenario's structured mesh with `n` segments
+    /// (a bisected one, [`crate::bisection`]); it is ordered by AMD.
+    pub mesh: Option<std::sync::Arc<Mesh>>,
 }
 
 /// Which fill-reducing ordering the factorisation uses.
@@ -282,6 +289,7 @@ impl Options {
             certificate_tol: 1e-10,
             ordering: OrderingKind::NestedDissection,
             parallel: true,
+            mesh: None,
         }
     }
 }
@@ -381,7 +389,10 @@ pub fn run_batch_states(
     check_memory(opt.n)?;
     let mut timings = Timings::default();
     let clock = Instant::now();
-    let disc = Discretisation::new(scn, opt.n)?;
+    let disc = match &opt.mesh {
+        Some(mesh) => Discretisation::on(scn, (**mesh).clone()),
+        None => Discretisation::new(scn, opt.n)?,
+    };
     let mut loads = vec![disc.f.clone()];
     for other in &scns[1..] {
         loads.push(assembly::load(
@@ -404,11 +415,12 @@ pub fn run_batch_states(
         None => lin_comb(1.0, &disc.a, k, &disc.b),
     };
     let cdofs = disc.contact_dofs.clone();
+    let grid = disc.mesh.pattern != crate::mesh::Pattern::Bisected;
     let order = match opt.ordering {
-        OrderingKind::NestedDissection => {
+        OrderingKind::NestedDissection if grid => {
             Ordering::nested_dissection(&disc.mesh, &disc.dofs, &cdofs)
         }
-        OrderingKind::Amd => Ordering::amd(&kmat, &cdofs)?,
+        _ => Ordering::amd(&kmat, &cdofs)?,
     };
     let mut chol = Cholesky::factor(&kmat, &order)?;
     if !opt.parallel || chol.nnz_l() < PARALLEL_MIN_NNZ {

@@ -142,6 +142,104 @@ fn time_study_orders_and_plateau() {
 }
 
 #[test]
+fn table1_forensics() {
+    snapshot_outputs(
+        "forensics",
+        &[
+            "table1_forensics.csv",
+            "table1_increments.csv",
+            "table1_reference_error.csv",
+        ],
+        &[],
+    );
+}
+
+/// The forensics' reading of the paper's own description (energy norm, t = T or the
+/// maximum over t, against the reference) is Table 1's computation: its rows equal
+/// `table1.csv` for `literal` and `figure` at every quick level.
+#[test]
+fn forensics_energy_rows_equal_table1() {
+    use evhi::experiments::{col_f64, col_str, read_csv};
+    let c = ctx("forensics-vs-table1");
+    run("table1", &c).unwrap();
+    run("forensics", &c).unwrap();
+    let t1 = read_csv(&c.data.join("table1.csv")).unwrap();
+    let (sc, fam) = (
+        col_str(&t1, "scenario").unwrap(),
+        col_str(&t1, "family").unwrap(),
+    );
+    let n = col_f64(&t1, "n").unwrap();
+    let fo = read_csv(&c.data.join("table1_forensics.csv")).unwrap();
+    let cand = col_str(&fo, "candidate").unwrap();
+    let mut checked = 0;
+    for (time, column) in [("T", "rel_err_T_percent"), ("max_t", "rel_err_max_percent")] {
+        let ours = col_f64(&t1, column).unwrap();
+        for load in ["literal", "figure"] {
+            let name = format!("{load}/plane_strain/diagonal/energy/{time}/reference");
+            let row = cand
+                .iter()
+                .position(|x| *x == name)
+                .unwrap_or_else(|| panic!("{name}"));
+            for level in [4, 8, 16] {
+                let forensic = col_f64(&fo, &format!("err_n{level}_percent")).unwrap()[row];
+                let i = (0..sc.len())
+                    .find(|&i| sc[i] == load && fam[i] == "h=k" && n[i] == level as f64)
+                    .unwrap();
+                assert!(
+                    (forensic - ours[i]).abs() <= 1e-9 * ours[i],
+                    "{name} at n = {level}: {forensic} against table1's {}",
+                    ours[i]
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 12);
+    std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
+}
+
+#[test]
+fn graded_meshes() {
+    snapshot_outputs(
+        "graded",
+        &["graded_convergence.csv"],
+        &["graded_convergence"],
+    );
+}
+
+/// Graded meshes restore order 1 where uniform ones cannot: on the quick levels
+/// (n = 4 ... 32, reference graded n = 128), with contact and time, the graded
+/// family's orders in N^(-1/2) over its last three levels are at least 0.85 for
+/// both loads, and the uniform family's last order stays at most 0.7.
+#[test]
+fn graded_orders() {
+    use evhi::experiments::{col_f64, col_str, read_csv};
+    let c = ctx("graded-orders");
+    run("graded", &c).unwrap();
+    let df = read_csv(&c.data.join("graded_convergence.csv")).unwrap();
+    let (load, family) = (
+        col_str(&df, "load").unwrap(),
+        col_str(&df, "family").unwrap(),
+    );
+    let order = col_f64(&df, "order_dofs").unwrap();
+    for l in ["literal", "figure"] {
+        let of = |f: &str| -> Vec<f64> {
+            (0..load.len())
+                .filter(|&i| load[i] == l && family[i] == f && order[i].is_finite())
+                .map(|i| order[i])
+                .collect()
+        };
+        let graded = of("graded");
+        for o in &graded[graded.len() - 2..] {
+            assert!(*o >= 0.85, "{l} graded: {graded:?}");
+        }
+        let uniform = of("uniform");
+        assert!(*uniform.last().unwrap() <= 0.7, "{l} uniform: {uniform:?}");
+    }
+    std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
+}
+
+#[test]
 fn static_control() {
     snapshot_outputs("static", &["static_control.csv"], &["static_control"]);
 }
@@ -221,6 +319,8 @@ fn progress_units_match_the_work_done() {
         "loads",
         "fig3",
         "table1",
+        "forensics",
+        "graded",
         "time",
         "static",
         "example",

@@ -9,6 +9,8 @@
 pub mod convergence;
 pub mod example;
 pub mod fig2;
+pub mod forensics;
+pub mod graded;
 pub mod hypotheses;
 pub mod loads;
 pub mod plot;
@@ -59,13 +61,15 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 10] = [
+pub const NAMES: [&str; 12] = [
     "hypotheses",
     "fig2",
     "loads",
     "fig3",
     "fig4",
     "table1",
+    "forensics",
+    "graded",
     "time",
     "static",
     "example",
@@ -81,6 +85,8 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         "fig3" => scenes::run_fig3(ctx),
         "fig4" => scenes::run_fig4(ctx),
         "table1" => convergence::run(ctx),
+        "forensics" => forensics::run(ctx),
+        "graded" => graded::run(ctx),
         "time" => time::run(ctx),
         "static" => singular::run(ctx),
         "example" => example::run(ctx),

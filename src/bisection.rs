@@ -1,0 +1,357 @@
+//! Newest-vertex bisection of the paper's structured mesh: nested families of
+//! conforming meshes, uniform or graded towards chosen points.
+//!
+//! Every triangle ever made lives in one [`Forest`]. A triangle $[a, b, c]$ is cut at
+//! the midpoint $m$ of its refinement edge $bc$ (the edge opposite its newest vertex
+//! $a$) into $[m, a, b]$ and $[m, c, a]$, whose refinement edges are the two old
+//! edges. In the initial mesh each square cell's diagonal is the refinement edge of
+//! both its triangles, a compatible labelling, so refining a triangle whose
+//! neighbour across that edge has another refinement edge first refines the
+//! neighbour, and the recursion ends (Mitchell 1991; Binev, Dahmen, DeVore 2004).
+//! A mesh is a set of leaves of the forest. Two meshes of the forest are nested when
+//! every triangle of the finer one descends from one of the coarser, and then a P1
+//! field of the coarse mesh is P1 on the fine one: [`Forest::interpolation`] locates
+//! each fine node by descending the forest, so the embedding is exact.
+
+use crate::element::twice_area;
+use crate::error::InputError;
+use crate::mesh::{Interpolation, Mesh, Pattern, Supports, check_n};
+use std::collections::HashMap;
+
+/// All triangles of a bisection family, and their nodes.
+#[derive(Debug, Clone)]
+pub struct Forest {
+    /// Every node made so far; a mesh uses a subset.
+    pub nodes: Vec<[f64; 2]>,
+    /// Triangles $[a, b, c]$, counter-clockwise, refinement edge $bc$.
+    tris: Vec<[usize; 3]>,
+    children: Vec<Option<[usize; 2]>>,
+    /// Depth in the forest (0 for the initial triangles).
+    depth: Vec<u32>,
+    midpoints: HashMap<(usize, usize), usize>,
+    /// The initial grid: $n_0$ segments on $\Gamma_3$.
+    n0: usize,
+    supports: Supports,
+}
+
+/// A conforming mesh of the forest: its triangles (sorted ids).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Leaves(pub Vec<usize>);
+
+fn key(a: usize, b: usize) -> (usize, usize) {
+    (a.min(b), a.max(b))
+}
+
+impl Forest {
+    /// The paper's structured mesh with $n_0$ segments as the forest's roots.
+    pub fn new(n0: usize, supports: Supports) -> Result<(Forest, Leaves), InputError> {
+        check_n(n0)?;
+        let base = Mesh::build(n0, supports, Pattern::Diagonal)?;
+        // Rotate each triangle so that its vertex opposite the diagonal comes first.
+        let tris: Vec<[usize; 3]> = base
+            .triangles
+            .iter()
+            .map(|t| {
+                // Diagonal pattern: [ll, lr, ur] -> [lr, ur, ll]; [ll, ur, ul] -> [ul, ll, ur].
+                let (p0, p2) = (base.nodes[t[0]], base.nodes[t[2]]);
+                if p2[1] > p0[1] && p2[0] > p0[0] {
+                    [t[1], t[2], t[0]]
+                } else {
+                    [t[2], t[0], t[1]]
+                }
+            })
+            .collect();
+        let count = tris.len();
+        Ok((
+            Forest {
+                nodes: base.nodes,
+                children: vec![None; count],
+                depth: vec![0; count],
+                tris,
+                midpoints: HashMap::new(),
+                n0,
+                supports,
+            },
+            Leaves((0..count).collect()),
+        ))
+    }
+
+    /// The vertices of triangle `t`.
+    pub fn triangle(&self, t: usize) -> [[f64; 2]; 3] {
+        self.tris[t].map(|v| self.nodes[v])
+    }
+
+    /// The length of triangle `t`'s longest edge.
+    pub fn diameter(&self, t: usize) -> f64 {
+        let p = self.triangle(t);
+        let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+        d(p[0], p[1]).max(d(p[1], p[2])).max(d(p[2], p[0]))
+    }
+
+    /// Depth of triangle `t` in the forest.
+    pub fn depth(&self, t: usize) -> u32 {
+        self.depth[t]
+    }
+
+    /// The two halves of `t`, made on first use.
+    fn bisect(&mut self, t: usize) -> [usize; 2] {
+        if let Some(c) = self.children[t] {
+            return c;
+        }
+        let [a, b, c] = self.tris[t];
+        let m = *self.midpoints.entry(key(b, c)).or_insert_with(|| {
+            let (p, q) = (self.nodes[b], self.nodes[c]);
+            self.nodes.push([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])]);
+            self.nodes.len() - 1
+        });
+        let first = self.tris.len();
+        self.tris.push([m, a, b]);
+        self.tris.push([m, c, a]);
+        self.children.push(None);
+        self.children.push(None);
+        let d = self.depth[t] + 1;
+        self.depth.push(d);
+        self.depth.push(d);
+        let kids = [first, first + 1];
+        self.children[t] = Some(kids);
+        kids
+    }
+
+    /// Refines `mesh` until no triangle is `marked`, keeping it conforming.
+    pub fn refine(&mut self, mesh: &Leaves, marked: impl Fn(&Forest, usize) -> bool) -> Leaves {
+        let mut state = State::new(self, mesh);
+        loop {
+            let todo: Vec<usize> = state
+                .alive
+                .iter()
+                .enumerate()
+                .filter(|&(t, &a)| a && marked(self, t))
+                .map(|(t, _)| t)
+                .collect();
+            if todo.is_empty() {
+                break;
+            }
+            for t in todo {
+                if state.alive.get(t).copied().unwrap_or(false) {
+                    state.refine(self, t);
+                }
+            }
+        }
+        Leaves(
+            state
+                .alive
+                .iter()
+                .enumerate()
+                .filter(|&(_, &a)| a)
+                .map(|(t, _)| t)
+                .collect(),
+        )
+    }
+
+    /// The mesh of `leaves` for the solver: its nodes renumbered in the order of
+    /// the forest's (so coarser meshes' nodes come first), boundary parts from
+    /// the coordinates. `n` names the level (the uniform mesh it refines).
+    pub fn mesh(&self, leaves: &Leaves, n: usize) -> Mesh {
+        let mut used = vec![false; self.nodes.len()];
+        for &t in &leaves.0 {
+            for v in self.tris[t] {
+                used[v] = true;
+            }
+        }
+        let mut local = vec![usize::MAX; self.nodes.len()];
+        let mut nodes = vec![];
+        for (g, &u) in used.iter().enumerate() {
+            if u {
+                local[g] = nodes.len();
+                nodes.push(self.nodes[g]);
+            }
+        }
+        // Counter-clockwise with the refinement edge last is already counter-clockwise.
+        let triangles: Vec<[usize; 3]> = leaves
+            .0
+            .iter()
+            .map(|&t| self.tris[t].map(|v| local[v]))
+            .collect();
+        let fixed = nodes
+            .iter()
+            .map(|p| {
+                let side = p[0] == 0.0 || p[0] == 2.0;
+                match self.supports {
+                    Supports::Paper => [side && p[1] >= 0.5; 2],
+                    Supports::Rollers => [side || p[1] == 1.0, p[1] == 1.0],
+                }
+            })
+            .collect();
+        let mut contact: Vec<usize> = (0..nodes.len()).filter(|&v| nodes[v][1] == 0.0).collect();
+        contact.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
+        let mut top_edges = vec![];
+        for t in &triangles {
+            for e in 0..3 {
+                let (a, b) = (t[e], t[(e + 1) % 3]);
+                if nodes[a][1] == 1.0 && nodes[b][1] == 1.0 {
+                    // Left to right, as the structured mesh lists them (the load
+                    // takes an edge's length as the difference of its x).
+                    top_edges.push(if nodes[a][0] < nodes[b][0] {
+                        [a, b]
+                    } else {
+                        [b, a]
+                    });
+                }
+            }
+        }
+        top_edges.sort_by(|x, y| nodes[x[0]][0].total_cmp(&nodes[y[0]][0]));
+        Mesh {
+            n,
+            pattern: Pattern::Bisected,
+            nodes,
+            triangles,
+            fixed,
+            contact,
+            top_edges,
+        }
+    }
+
+    /// The exact P1 embedding of the mesh `coarse` (a mesh of this forest) into
+    /// the nodes of `fine`, any mesh of the forest that refines it.
+    pub fn interpolation(&self, coarse: &Leaves, fine: &Mesh) -> Interpolation {
+        let mut in_coarse = vec![false; self.tris.len()];
+        for &t in &coarse.0 {
+            in_coarse[t] = true;
+        }
+        let mut local = HashMap::new();
+        {
+            let mut used: Vec<usize> = coarse.0.iter().flat_map(|&t| self.tris[t]).collect();
+            used.sort_unstable();
+            used.dedup();
+            for (i, g) in used.into_iter().enumerate() {
+                local.insert(g, i);
+            }
+        }
+        let (nx, ny) = (self.n0, self.n0 / 2);
+        let side = 2.0 / self.n0 as f64;
+        let weights = fine
+            .nodes
+            .iter()
+            .map(|&p| {
+                let bary = |t: usize| {
+                    let q = self.triangle(t);
+                    let det = twice_area(q);
+                    let l1 = twice_area([q[0], p, q[2]]) / det;
+                    let l2 = twice_area([q[0], q[1], p]) / det;
+                    [1.0 - l1 - l2, l1, l2]
+                };
+                let worst = |l: [f64; 3]| l[0].min(l[1]).min(l[2]);
+                let i = ((p[0] / side).floor() as usize).min(nx - 1);
+                let j = ((p[1] / side).floor() as usize).min(ny - 1);
+                let cell = j * nx + i;
+                let mut t = if worst(bary(2 * cell)) >= worst(bary(2 * cell + 1)) {
+                    2 * cell
+                } else {
+                    2 * cell + 1
+                };
+                while !in_coarse[t] {
+                    let [c0, c1] = self.children[t].expect("the fine mesh refines the coarse one");
+                    t = if worst(bary(c0)) >= worst(bary(c1)) {
+                        c0
+                    } else {
+                        c1
+                    };
+                }
+                let l = bary(t);
+                let v = self.tris[t];
+                [
+                    (local[&v[0]], l[0]),
+                    (local[&v[1]], l[1]),
+                    (local[&v[2]], l[2]),
+                ]
+            })
+            .collect();
+        Interpolation { weights }
+    }
+}
+
+/// A mesh being refined: which triangles are in it, and the triangles on each edge.
+struct State {
+    alive: Vec<bool>,
+    edges: HashMap<(usize, usize), [Option<usize>; 2]>,
+}
+
+impl State {
+    fn new(forest: &Forest, mesh: &Leaves) -> State {
+        let mut s = State {
+            alive: vec![false; forest.tris.len()],
+            edges: HashMap::new(),
+        };
+        for &t in &mesh.0 {
+            s.add(forest, t);
+        }
+        s
+    }
+
+    fn add(&mut self, forest: &Forest, t: usize) {
+        if self.alive.len() <= t {
+            self.alive.resize(t + 1, false);
+        }
+        self.alive[t] = true;
+        let v = forest.tris[t];
+        for e in 0..3 {
+            let slot = self
+                .edges
+                .entry(key(v[e], v[(e + 1) % 3]))
+                .or_insert([None; 2]);
+            if slot[0].is_none() {
+                slot[0] = Some(t);
+            } else {
+                slot[1] = Some(t);
+            }
+        }
+    }
+
+    fn remove(&mut self, forest: &Forest, t: usize) {
+        self.alive[t] = false;
+        let v = forest.tris[t];
+        for e in 0..3 {
+            let k = key(v[e], v[(e + 1) % 3]);
+            let slot = self.edges.get_mut(&k).expect("edge of a live triangle");
+            if slot[0] == Some(t) {
+                slot[0] = slot[1].take();
+            } else {
+                slot[1] = None;
+            }
+            if slot[0].is_none() {
+                self.edges.remove(&k);
+            }
+        }
+    }
+
+    /// The other live triangle on edge `(b, c)` of `t`.
+    fn across(&self, t: usize, b: usize, c: usize) -> Option<usize> {
+        let slot = self.edges.get(&key(b, c))?;
+        slot.iter().flatten().copied().find(|&o| o != t)
+    }
+
+    fn split(&mut self, forest: &mut Forest, t: usize) {
+        self.remove(forest, t);
+        for c in forest.bisect(t) {
+            self.add(forest, c);
+        }
+    }
+
+    /// Bisects `t` and whatever conformity then requires.
+    fn refine(&mut self, forest: &mut Forest, t: usize) {
+        let [_, b, c] = forest.tris[t];
+        if let Some(mut nb) = self.across(t, b, c) {
+            let [_, nb_b, nb_c] = forest.tris[nb];
+            if key(nb_b, nb_c) != key(b, c) {
+                self.refine(forest, nb);
+                nb = self
+                    .across(t, b, c)
+                    .expect("the neighbour's half keeps the edge");
+            }
+            self.split(forest, t);
+            self.split(forest, nb);
+        } else {
+            self.split(forest, t);
+        }
+    }
+}

@@ -1,0 +1,834 @@
+//! Table 1 forensics: which reading of the paper, if any, gives its six errors
+//! (24.099 % at $h = k = 1/4$ down to 0.741 % at $1/128$, order about 1)?
+//!
+//! A *candidate* fixes every choice the paper leaves open or might have made
+//! differently from us, and yields a six-level error sequence; its distance to the
+//! paper is $\max_\text{levels} |\ln(\text{ours}/\text{paper})|$. The choices:
+//! - the load: `literal` (as printed), `literal_vertical` (the top traction turned
+//!   vertical, $f_2 = (0, -1.5\cdot10^{-3})$), `figure` (the loads of Figs. 3–4);
+//! - the material: `plane_strain` (ours, the printed $\lambda$) or `plane_stress`;
+//! - the mesh: `diagonal` (ours, cells of side $2h$), `cells_h` (cells of side $h$:
+//!   the mesh with $2n$ segments and $k = 1/n$), `antidiagonal`, `crisscross`;
+//! - the norm: `energy` ($\|v\|_E$), `energy_squared` (its square, in percent),
+//!   `l2` ($L^2(\Omega)$), `h1_seminorm`, `max` (largest nodal $|v|$),
+//!   `gamma3_u_nu` ($L^2(\Gamma_3)$ of $v_\nu$), `gamma3_sigma_nu` ($L^2(\Gamma_3)$ of the
+//!   contact stress $\sigma_\nu$, the nodal values interpolated linearly);
+//! - the time: `T`, `max_t` ($\max_n \|e_n\| / \max_n \|u_n\|$ over the level's own time
+//!   steps) or `l2_t` ($(\sum_n \|e_n\|^2 / \sum_n \|u_n\|^2)^{1/2}$ over them);
+//! - what the error is measured against: `reference` (the $h = k = 1/512$ solution,
+//!   the coarse field embedded exactly), `next_finer` ($\|u_h - u_{h/2}\| / \|u_{h/2}\|$),
+//!   `injected` ($\|u_h - I_h u_{ref}\| / \|I_h u_{ref}\|$ on the coarse mesh, with
+//!   $I_h$ the nodal interpolant; measuring against the interpolant on the fine
+//!   mesh gives the same numbers, since the embedding is exact), or
+//!   `interpolation` ($\|u_{ref} - I_h u_{ref}\| / \|u_{ref}\|$: the interpolation
+//!   error of the reference itself, no $u_h$).
+//!
+//! Every candidate that varies the norm, the time and the comparison is computed
+//! for the paper's reading of the rest; the loads, material and meshes are varied
+//! with the reference comparison and every norm and time. Each variant of the
+//! operator has its own reference on its own mesh pattern.
+//!
+//! The same runs give the reference-free estimates of the uniform family: the
+//! increments $d_n = \|u_n - u_{2n}\|_E / \|u_{2n}\|_E$ at $t = T$ up to $n = 256$,
+//! their fitted exponent, and from it an estimate of the reference's own error.
+
+use super::{Ctx, ExpError};
+use crate::certificate::ContactState;
+use crate::mesh::{Dofs, Interpolation, Mesh, Pattern};
+use crate::norms::{FieldNorms, field_norms, gamma_l2_sq};
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use crate::scheme::Options;
+use std::collections::BTreeMap;
+
+/// The paper's Table 1, percent, by $n$ ($h = k = 1/n$).
+use super::convergence::PAPER;
+
+/// The raw measures of one comparison: squared norms (and the max norm) of the
+/// error and of the field compared with, in the order of [`RAW`].
+type Raw = [f64; 6];
+
+/// The measures of a field: energy², L²², H¹², max, ‖v_ν‖²_Γ3, ‖σ_ν‖²_Γ3.
+const RAW: [&str; 6] = [
+    "energy",
+    "l2",
+    "h1_seminorm",
+    "max",
+    "gamma3_u_nu",
+    "gamma3_sigma_nu",
+];
+
+fn raw(n: FieldNorms, sigma_sq: f64) -> Raw {
+    [n.energy_sq, n.l2_sq, n.h1_sq, n.max, n.gamma_sq, sigma_sq]
+}
+
+/// A field at one time: nodal displacement and the contact stress at each contact node.
+#[derive(Clone)]
+struct Field {
+    u: Vec<[f64; 2]>,
+    sigma: Vec<f64>,
+}
+
+/// The running measures of one comparison over time.
+#[derive(Default, Clone)]
+struct Acc {
+    at_t: Option<(Raw, Raw)>,
+    max_e: Raw,
+    max_u: Raw,
+    sum_e: Raw,
+    sum_u: Raw,
+    count: usize,
+}
+
+impl Acc {
+    fn add(&mut self, e: Raw, u: Raw, last: bool) {
+        for q in 0..RAW.len() {
+            // The max norm is not squared: its "sum" is of squares all the same.
+            let (es, us) = if q == 3 {
+                (e[q] * e[q], u[q] * u[q])
+            } else {
+                (e[q], u[q])
+            };
+            self.max_e[q] = self.max_e[q].max(es);
+            self.max_u[q] = self.max_u[q].max(us);
+            self.sum_e[q] += es;
+            self.sum_u[q] += us;
+        }
+        self.count += 1;
+        if last {
+            self.at_t = Some((e, u));
+        }
+    }
+
+    /// The relative error for measure `q` and time reading `time` (0: T, 1: max, 2: L²).
+    fn relative(&self, q: usize, time: usize) -> f64 {
+        let sq = |e: f64, u: f64| (e / u).sqrt();
+        match time {
+            0 => match self.at_t {
+                Some((e, u)) if q == 3 => e[q] / u[q],
+                Some((e, u)) => sq(e[q], u[q]),
+                None => f64::NAN,
+            },
+            1 => sq(self.max_e[q], self.max_u[q]),
+            _ => sq(self.sum_e[q], self.sum_u[q]),
+        }
+    }
+}
+
+/// The squared $L^2(\Gamma_3)$ norm of a contact-stress vector.
+fn sigma_sq(mesh: &Mesh, s: &[f64]) -> f64 {
+    gamma_l2_sq(mesh, s)
+}
+
+/// The measures of `v` (with contact stress `s`) on `mesh`.
+fn measures(mesh: &Mesh, g: &crate::material::Isotropic, v: &[[f64; 2]], s: &[f64]) -> Raw {
+    raw(field_norms(mesh, g, v), sigma_sq(mesh, s))
+}
+
+/// Interpolates a contact vector of `coarse` to the contact nodes of `fine`.
+fn contact_interp(coarse: &Mesh, fine: &Mesh, interp: &Interpolation, s: &[f64]) -> Vec<f64> {
+    let mut nodal = vec![[0.0; 2]; coarse.nodes.len()];
+    for (&c, &v) in coarse.contact.iter().zip(s) {
+        nodal[c][0] = v;
+    }
+    fine.contact
+        .iter()
+        .map(|&c| {
+            interp.weights[c]
+                .iter()
+                .map(|&(node, w)| w * nodal[node][0])
+                .sum()
+        })
+        .collect()
+}
+
+/// The difference of two fields and its measures on `mesh`.
+fn diff_measures(
+    mesh: &Mesh,
+    g: &crate::material::Isotropic,
+    a: &Field,
+    b_u: &[[f64; 2]],
+    b_s: &[f64],
+) -> Raw {
+    let du: Vec<[f64; 2]> =
+        a.u.iter()
+            .zip(b_u)
+            .map(|(x, y)| [x[0] - y[0], x[1] - y[1]])
+            .collect();
+    let ds: Vec<f64> = a.sigma.iter().zip(b_s).map(|(x, y)| x - y).collect();
+    measures(mesh, g, &du, &ds)
+}
+
+/// One level run: its mesh and its fields by reference step $j$ ($t = j/n_{ref}$).
+struct LevelRun {
+    mesh: Mesh,
+    fields: BTreeMap<usize, Field>,
+}
+
+/// A group of scenarios that share the step matrix: one batched run per level.
+struct Group {
+    material: &'static str,
+    mesh: &'static str,
+    /// (load label, scenario).
+    loads: Vec<(&'static str, Scenario)>,
+}
+
+/// Runs the group's scenarios at $(n, N)$ and keeps every step whose time is on
+/// the grid of stride `stride` reference steps.
+fn run_level(
+    group: &Group,
+    n: usize,
+    steps: usize,
+    n_ref: usize,
+    stride: usize,
+    mut keep: impl FnMut(usize, usize, Field),
+) -> Result<Mesh, ExpError> {
+    let scns: Vec<Scenario> = group.loads.iter().map(|(_, s)| s.clone()).collect();
+    let mesh = scns[0].mesh(n)?;
+    let dofs = Dofs::new(&mesh, true);
+    let mut newtons: Vec<_> = scns
+        .iter()
+        .map(|_| crate::step::newton::Newton::default())
+        .collect();
+    let mut solvers: Vec<&mut dyn crate::step::StepSolver> = newtons
+        .iter_mut()
+        .map(|s| s as &mut dyn crate::step::StepSolver)
+        .collect();
+    let per = n_ref / steps;
+    crate::scheme::run_batch_states(
+        &scns,
+        &Options::new(n, steps),
+        &mut solvers,
+        &mut |i, step, _, u, states: &[ContactState]| {
+            let j = step * per;
+            if j.is_multiple_of(stride) {
+                keep(
+                    i,
+                    j,
+                    Field {
+                        u: dofs.expand(u),
+                        sigma: states.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect(),
+                    },
+                );
+            }
+        },
+    )?;
+    Ok(mesh)
+}
+
+/// The levels and reference of the study.
+pub struct Plan {
+    pub levels: Vec<usize>,
+    pub n_ref: usize,
+}
+
+pub fn plan(quick: bool) -> Plan {
+    let p = super::convergence::plan(quick);
+    Plan {
+        levels: p.levels,
+        n_ref: p.n_ref,
+    }
+}
+
+/// One candidate's sequence over the levels.
+struct Row {
+    load: &'static str,
+    material: &'static str,
+    mesh: &'static str,
+    norm: String,
+    time: &'static str,
+    against: &'static str,
+    values: Vec<f64>,
+}
+
+const TIMES: [&str; 3] = ["T", "max_t", "l2_t"];
+
+/// Rows for every norm and time from the accumulators of one (load, material,
+/// mesh, comparison), one per level.
+fn rows_of(
+    load: &'static str,
+    material: &'static str,
+    mesh: &'static str,
+    against: &'static str,
+    accs: &[Acc],
+) -> Vec<Row> {
+    let mut out = vec![];
+    for (q, name) in RAW.iter().enumerate() {
+        for (t, time) in TIMES.iter().enumerate() {
+            let values: Vec<f64> = accs.iter().map(|a| 100.0 * a.relative(q, t)).collect();
+            if q == 0 {
+                out.push(Row {
+                    load,
+                    material,
+                    mesh,
+                    norm: "energy_squared".into(),
+                    time,
+                    against,
+                    values: values.iter().map(|v| v * v / 100.0).collect(),
+                });
+            }
+            out.push(Row {
+                load,
+                material,
+                mesh,
+                norm: name.to_string(),
+                time,
+                against,
+                values,
+            });
+        }
+    }
+    out
+}
+
+/// What the study computes for one group.
+struct GroupResult {
+    rows: Vec<Row>,
+    /// Per load: the increments $d_n$ (energy, $t = T$, percent) by $n$.
+    increments: Vec<(&'static str, Vec<(usize, f64)>)>,
+}
+
+/// Runs one group: its levels (and, for the paper's group, the extra families),
+/// then its reference, comparing on the fly.
+fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<GroupResult, ExpError> {
+    let levels = &plan.levels;
+    let top = *levels.last().expect("levels");
+    let n_ref = plan.n_ref;
+    // Stored times: the grid of the finest level ($t = j/top$).
+    let stride = n_ref / top;
+    let g = group.loads[0].1.elasticity();
+    let nl = group.loads.len();
+    // Runs by (load, kind, n): kind 0 = h = k, 1 = cells of side h.
+    let mut runs: BTreeMap<(usize, usize, usize), LevelRun> = BTreeMap::new();
+    let mut level_ns: Vec<usize> = levels.clone();
+    if main && 2 * top < n_ref {
+        level_ns.push(2 * top);
+    }
+    for &n in &level_ns {
+        let clock = std::time::Instant::now();
+        let mut fields: Vec<BTreeMap<usize, Field>> = vec![BTreeMap::new(); nl];
+        let mesh = run_level(group, n, n, n_ref, stride, |i, j, f| {
+            fields[i].insert(j, f);
+        })?;
+        for (i, f) in fields.into_iter().enumerate() {
+            runs.insert(
+                (i, 0, n),
+                LevelRun {
+                    mesh: mesh.clone(),
+                    fields: f,
+                },
+            );
+        }
+        ctx.log(&format!(
+            "forensics {} {}: h = k = 1/{n} ({:.1} s)",
+            group.material,
+            group.mesh,
+            clock.elapsed().as_secs_f64()
+        ));
+    }
+    if main {
+        // Cells of side h: the mesh with 2n segments, k = 1/n; the paper's load only.
+        let lit = Group {
+            material: group.material,
+            mesh: "cells_h",
+            loads: vec![group.loads[0].clone()],
+        };
+        for &n in levels {
+            let clock = std::time::Instant::now();
+            let mut fields = BTreeMap::new();
+            let mesh = run_level(&lit, 2 * n, n, n_ref, stride, |_, j, f| {
+                fields.insert(j, f);
+            })?;
+            runs.insert((0, 1, n), LevelRun { mesh, fields });
+            ctx.log(&format!(
+                "forensics cells of side h: h = 1/{}, k = 1/{n} ({:.1} s)",
+                2 * n,
+                clock.elapsed().as_secs_f64()
+            ));
+        }
+    }
+
+    // Next-finer comparisons between stored levels (the finest pair waits for the
+    // reference), at the coarser level's times.
+    let mut next: BTreeMap<(usize, usize), Acc> = BTreeMap::new();
+    for i in 0..nl {
+        for &n in &level_ns {
+            let Some(fine) = runs.get(&(i, 0, 2 * n)) else {
+                continue;
+            };
+            let coarse = &runs[&(i, 0, n)];
+            let interp = Interpolation::new(&coarse.mesh, &fine.mesh);
+            let mut acc = Acc::default();
+            for (&j, f) in &coarse.fields {
+                let ff = &fine.fields[&j];
+                let cu = interp.apply(&f.u);
+                let cs = contact_interp(&coarse.mesh, &fine.mesh, &interp, &f.sigma);
+                let e = diff_measures(&fine.mesh, &g, ff, &cu, &cs);
+                let u = measures(&fine.mesh, &g, &ff.u, &ff.sigma);
+                acc.add(e, u, j == n_ref);
+            }
+            next.insert((i, n), acc);
+        }
+    }
+
+    // The reference, compared with every stored run on the fly.
+    let ref_mesh = group.loads[0].1.mesh(n_ref)?;
+    let interps: BTreeMap<usize, Interpolation> = runs
+        .values()
+        .map(|r| r.mesh.n)
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .map(|n| {
+            let m = runs.values().find(|r| r.mesh.n == n).expect("listed");
+            (n, Interpolation::new(&m.mesh, &ref_mesh))
+        })
+        .collect();
+    // Coarse node -> reference node (the meshes are nested, nodes coincide).
+    let key = |p: [f64; 2]| {
+        (
+            (p[0] * n_ref as f64).round() as i64,
+            (p[1] * n_ref as f64).round() as i64,
+        )
+    };
+    let ref_index: std::collections::HashMap<(i64, i64), usize> = ref_mesh
+        .nodes
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| (key(p), i))
+        .collect();
+    let injections: BTreeMap<usize, Vec<usize>> = interps
+        .keys()
+        .map(|&n| {
+            let m = &runs.values().find(|r| r.mesh.n == n).expect("listed").mesh;
+            let map = m.nodes.iter().map(|&p| ref_index[&key(p)]).collect();
+            (n, map)
+        })
+        .collect();
+    let ref_contact_pos: std::collections::HashMap<usize, usize> = ref_mesh
+        .contact
+        .iter()
+        .enumerate()
+        .map(|(k, &c)| (c, k))
+        .collect();
+
+    // Accumulators: (load, kind, n) against the reference; injected and
+    // interpolation for the paper's reading.
+    let mut vs_ref: BTreeMap<(usize, usize, usize), Acc> = BTreeMap::new();
+    let mut injected: BTreeMap<(usize, usize), Acc> = BTreeMap::new();
+    let mut interpolation: BTreeMap<(usize, usize), Acc> = BTreeMap::new();
+    let clock = std::time::Instant::now();
+    let ref_group = Group {
+        material: group.material,
+        mesh: group.mesh,
+        loads: group.loads.clone(),
+    };
+    let mut failure: Option<ExpError> = None;
+    run_level(&ref_group, n_ref, n_ref, n_ref, stride, |i, j, truth| {
+        if failure.is_some() {
+            return;
+        }
+        let u_meas = measures(&ref_mesh, &g, &truth.u, &truth.sigma);
+        for (&(li, kind, n), run) in &runs {
+            if li != i {
+                continue;
+            }
+            let Some(f) = run.fields.get(&j) else {
+                continue;
+            };
+            let interp = &interps[&run.mesh.n];
+            let pu = interp.apply(&f.u);
+            let ps = contact_interp(&run.mesh, &ref_mesh, interp, &f.sigma);
+            let e = diff_measures(&ref_mesh, &g, &truth, &pu, &ps);
+            let last = j == n_ref;
+            if !e.iter().all(|x| x.is_finite()) {
+                failure = Some(ExpError::Table {
+                    path: "table1_forensics".into(),
+                    message: format!("non-finite error at h = 1/{n}, t = {j}/{n_ref}"),
+                });
+                return;
+            }
+            if levels.contains(&n) || kind == 1 {
+                vs_ref
+                    .entry((li, kind, n))
+                    .or_default()
+                    .add(e, u_meas, last);
+            }
+            // The finest stored level against the reference: the last increment.
+            if kind == 0 && 2 * n == n_ref {
+                next.entry((li, n)).or_default().add(e, u_meas, last);
+            }
+            if main && li == 0 && kind == 0 && levels.contains(&n) {
+                // Injection: the reference's values at the coarse nodes.
+                let inj = &injections[&run.mesh.n];
+                let iu: Vec<[f64; 2]> = inj.iter().map(|&r| truth.u[r]).collect();
+                let is: Vec<f64> = run
+                    .mesh
+                    .contact
+                    .iter()
+                    .map(|&c| truth.sigma[ref_contact_pos[&inj[c]]])
+                    .collect();
+                let ei = diff_measures(&run.mesh, &g, f, &iu, &is);
+                let ui = measures(&run.mesh, &g, &iu, &is);
+                injected.entry((li, n)).or_default().add(ei, ui, last);
+                let piu = interp.apply(&iu);
+                let pis = contact_interp(&run.mesh, &ref_mesh, interp, &is);
+                let ep = diff_measures(&ref_mesh, &g, &truth, &piu, &pis);
+                interpolation
+                    .entry((li, n))
+                    .or_default()
+                    .add(ep, u_meas, last);
+            }
+        }
+    })?;
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    ctx.log(&format!(
+        "forensics {} {}: reference h = k = 1/{n_ref} and comparisons ({:.1} s)",
+        group.material,
+        group.mesh,
+        clock.elapsed().as_secs_f64()
+    ));
+
+    let mut rows = vec![];
+    for (i, (load, _)) in group.loads.iter().enumerate() {
+        let accs: Vec<Acc> = levels.iter().map(|&n| vs_ref[&(i, 0, n)].clone()).collect();
+        rows.extend(rows_of(
+            load,
+            group.material,
+            group.mesh,
+            "reference",
+            &accs,
+        ));
+        if main && i == 0 {
+            let accs: Vec<Acc> = levels.iter().map(|&n| vs_ref[&(0, 1, n)].clone()).collect();
+            rows.extend(rows_of(load, group.material, "cells_h", "reference", &accs));
+            for (name, map) in [
+                ("next_finer", &next),
+                ("injected", &injected),
+                ("interpolation", &interpolation),
+            ] {
+                let accs: Vec<Acc> = levels.iter().map(|&n| map[&(0, n)].clone()).collect();
+                rows.extend(rows_of(load, group.material, group.mesh, name, &accs));
+            }
+        }
+    }
+    let increments = if main {
+        group
+            .loads
+            .iter()
+            .enumerate()
+            .map(|(i, (load, _))| {
+                let d = level_ns
+                    .iter()
+                    .filter_map(|&n| next.get(&(i, n)).map(|a| (n, 100.0 * a.relative(0, 0))))
+                    .collect();
+                (*load, d)
+            })
+            .collect()
+    } else {
+        vec![]
+    };
+    Ok(GroupResult { rows, increments })
+}
+
+/// Plane-strain constants $(E', \kappa')$ that give the plane-stress tensor of
+/// $(E, \kappa)$: the same shear modulus and $\lambda' = E\kappa/(1 - \kappa^2)$.
+pub fn plane_stress_equivalent(e: f64, kappa: f64) -> (f64, f64) {
+    (
+        e * (1.0 + 2.0 * kappa) / ((1.0 + kappa) * (1.0 + kappa)),
+        kappa / (1.0 + kappa),
+    )
+}
+
+/// The groups of the study; the first is the paper's reading.
+fn groups() -> Result<Vec<Group>, ExpError> {
+    let literal = Scenario::load("literal")?;
+    let vertical = literal
+        .clone()
+        .with_loads(None, Some([0.0, literal.f2[0]]))?;
+    let figure = Scenario::load("figure")?;
+    let (e, kappa) = plane_stress_equivalent(literal.e, literal.kappa);
+    Ok(vec![
+        Group {
+            material: "plane_strain",
+            mesh: "diagonal",
+            loads: vec![
+                ("literal", literal.clone()),
+                ("literal_vertical", vertical),
+                ("figure", figure),
+            ],
+        },
+        Group {
+            material: "plane_stress",
+            mesh: "diagonal",
+            loads: vec![("literal", literal.clone().with_elasticity(e, kappa)?)],
+        },
+        Group {
+            material: "plane_strain",
+            mesh: "antidiagonal",
+            loads: vec![(
+                "literal",
+                literal.clone().with_pattern(Pattern::Antidiagonal),
+            )],
+        },
+        Group {
+            material: "plane_strain",
+            mesh: "crisscross",
+            loads: vec![("literal", literal.with_pattern(Pattern::CrissCross))],
+        },
+    ])
+}
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let plan = plan(ctx.quick);
+    let groups = groups()?;
+    let top = *plan.levels.last().expect("levels");
+    let extra = usize::from(2 * top < plan.n_ref);
+    ctx.add_units(groups.len() * (plan.levels.len() + 1) + extra + plan.levels.len());
+    let mut rows = vec![];
+    let mut increments = vec![];
+    for (gi, group) in groups.iter().enumerate() {
+        let r = study_group(group, &plan, gi == 0, ctx)?;
+        rows.extend(r.rows);
+        increments.extend(r.increments);
+    }
+    write_candidates(ctx, &plan, &rows)?;
+    write_reference_free(ctx, &plan, &increments)
+}
+
+fn orders(levels: &[usize], v: &[f64]) -> Vec<f64> {
+    (1..v.len())
+        .map(|i| (v[i - 1] / v[i]).ln() / (levels[i] as f64 / levels[i - 1] as f64).ln())
+        .collect()
+}
+
+fn distance(levels: &[usize], v: &[f64]) -> f64 {
+    levels
+        .iter()
+        .zip(v)
+        .map(|(n, x)| {
+            let p = PAPER.iter().find(|p| p.0 == *n).map_or(f64::NAN, |p| p.1);
+            (x / p).ln().abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+fn write_candidates(ctx: &Ctx, plan: &Plan, rows: &[Row]) -> Result<(), ExpError> {
+    let levels = &plan.levels;
+    let mut t = Table::new()
+        .str(
+            "candidate",
+            rows.iter()
+                .map(|r| {
+                    format!(
+                        "{}/{}/{}/{}/{}/{}",
+                        r.load, r.material, r.mesh, r.norm, r.time, r.against
+                    )
+                })
+                .collect(),
+        )
+        .str("load", rows.iter().map(|r| r.load.to_string()).collect())
+        .str(
+            "material",
+            rows.iter().map(|r| r.material.to_string()).collect(),
+        )
+        .str("mesh", rows.iter().map(|r| r.mesh.to_string()).collect())
+        .str("norm", rows.iter().map(|r| r.norm.clone()).collect())
+        .str("time", rows.iter().map(|r| r.time.to_string()).collect())
+        .str(
+            "against",
+            rows.iter().map(|r| r.against.to_string()).collect(),
+        );
+    for (l, n) in levels.iter().enumerate() {
+        t = t.f64(
+            &format!("err_n{n}_percent"),
+            rows.iter().map(|r| r.values[l]).collect(),
+        );
+    }
+    let ords: Vec<Vec<f64>> = rows.iter().map(|r| orders(levels, &r.values)).collect();
+    for (l, n) in levels.iter().enumerate().skip(1) {
+        t = t.f64(
+            &format!("order_n{n}"),
+            ords.iter().map(|o| o[l - 1]).collect(),
+        );
+    }
+    t = t.f64(
+        "distance",
+        rows.iter().map(|r| distance(levels, &r.values)).collect(),
+    );
+    let params = format!(
+        "levels h = k = 1/n, n in {levels:?}; reference h = k = 1/{} on each variant's own mesh pattern; err in percent; \
+         distance = max over levels of |ln(err/paper)| with the paper's Table 1 (24.099 ... 0.741); solver newton",
+        plan.n_ref
+    );
+    let path = ctx.write("table1_forensics.csv", &t, "forensics", &params)?;
+    write_markdown(ctx, plan, rows, &path)
+}
+
+/// The ten candidates closest to the paper and the paper's own reading, as a
+/// Markdown table for the book.
+fn write_markdown(
+    ctx: &Ctx,
+    plan: &Plan,
+    rows: &[Row],
+    csv: &std::path::Path,
+) -> Result<(), ExpError> {
+    let levels = &plan.levels;
+    let mut ranked: Vec<(f64, &Row)> = rows
+        .iter()
+        .map(|r| (distance(levels, &r.values), r))
+        .filter(|(d, _)| d.is_finite())
+        .collect();
+    ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut md = format!(
+        "<!-- produced by evhi {} `evhi reproduce forensics{}` from {} -->\n\n",
+        env!("CARGO_PKG_VERSION"),
+        if ctx.quick { " --quick" } else { "" },
+        csv.file_name().and_then(|f| f.to_str()).unwrap_or("")
+    );
+    md.push_str(&format!(
+        "The ten readings closest to the paper's Table 1 out of {}, errors in percent \
+         (load / material / mesh / norm / time / compared with); distance = \
+         max |ln(ours / paper)|.\n\n",
+        rows.len()
+    ));
+    md.push_str("| reading | ");
+    for n in levels {
+        md.push_str(&format!("1/{n} | "));
+    }
+    md.push_str("distance | worst factor |\n|---|");
+    for _ in levels {
+        md.push_str("---|");
+    }
+    md.push_str("---|---|\n| paper | ");
+    for n in levels {
+        let p = PAPER.iter().find(|p| p.0 == *n).map_or(f64::NAN, |p| p.1);
+        md.push_str(&format!("{} | ", sig(p)));
+    }
+    md.push_str(" | |\n");
+    let base = rows.iter().find(|r| {
+        r.load == "literal"
+            && r.material == "plane_strain"
+            && r.mesh == "diagonal"
+            && r.norm == "energy"
+            && r.time == "T"
+            && r.against == "reference"
+    });
+    for (d, r) in ranked.iter().take(10).copied().chain(
+        base.map(|b| (distance(levels, &b.values), b))
+            .filter(|(_, b)| !ranked.iter().take(10).any(|(_, r)| std::ptr::eq(*r, *b))),
+    ) {
+        md.push_str(&format!(
+            "| {} {} {} {} {} {} | ",
+            r.load, r.material, r.mesh, r.norm, r.time, r.against
+        ));
+        for v in &r.values {
+            md.push_str(&format!("{} | ", sig(*v)));
+        }
+        md.push_str(&format!("{} | {} |\n", sig(d), sig(d.exp())));
+    }
+    md.push_str(
+        "\nThe worst factor is exp(distance): the largest ratio between ours and the paper's at one level, either way.\n",
+    );
+    if let Some((d, r)) = ranked.iter().find(|(_, r)| r.norm == "energy") {
+        md.push_str(&format!(
+            "The closest reading in the energy norm is {} {} {} {} {} {}, at distance {} (worst factor {}); the second-closest reading of all is at distance {}.\n",
+            r.load,
+            r.material,
+            r.mesh,
+            r.norm,
+            r.time,
+            r.against,
+            sig(*d),
+            sig(d.exp()),
+            ranked.get(1).map_or("–".into(), |x| sig(x.0)),
+        ));
+    }
+    ctx.write_file(&ctx.data_path("table1_forensics.md"), md.as_bytes())
+}
+
+/// Three significant digits.
+fn sig(v: f64) -> String {
+    if !v.is_finite() {
+        return "–".into();
+    }
+    let mag = v.abs().log10().floor() as i32;
+    let dec = (2 - mag).max(0) as usize;
+    format!("{v:.dec$}")
+}
+
+/// The increments $d_n$ of the uniform family, their fitted exponent, and the
+/// estimated own error of the reference.
+fn write_reference_free(
+    ctx: &Ctx,
+    plan: &Plan,
+    increments: &[(&'static str, Vec<(usize, f64)>)],
+) -> Result<(), ExpError> {
+    let mut scen = vec![];
+    let mut ns = vec![];
+    let mut ds = vec![];
+    let mut ords = vec![];
+    for (load, d) in increments {
+        for (i, &(n, v)) in d.iter().enumerate() {
+            scen.push(load.to_string());
+            ns.push(n as u64);
+            ds.push(v);
+            ords.push(if i == 0 {
+                f64::NAN
+            } else {
+                (d[i - 1].1 / v).ln() / 2f64.ln()
+            });
+        }
+    }
+    let t = Table::new()
+        .str("load", scen)
+        .u64("n", ns)
+        .f64("increment_percent", ds)
+        .f64("order", ords);
+    let params = format!(
+        "increment d_n = ||u_n - u_2n||_E / ||u_2n||_E at t = T, h = k = 1/n, the last with u_2n the reference h = k = 1/{}; order = log2(d_n/2 / d_n)",
+        plan.n_ref
+    );
+    ctx.write("table1_increments.csv", &t, "forensics", &params)?;
+    // Estimates from the last three increments.
+    let mut load = vec![];
+    let (mut p_fit, mut last, mut orth, mut aligned) = (vec![], vec![], vec![], vec![]);
+    for (name, d) in increments {
+        let tail = &d[d.len().saturating_sub(3)..];
+        let (xs, ys): (Vec<f64>, Vec<f64>) = tail
+            .iter()
+            .map(|&(n, v)| ((1.0 / n as f64).ln(), v.ln()))
+            .unzip();
+        let p = slope(&xs, &ys);
+        let dl = tail.last().map_or(f64::NAN, |x| x.1);
+        let r = 2f64.powf(-p);
+        load.push(name.to_string());
+        p_fit.push(p);
+        last.push(dl);
+        // The next increment is d_last r; if the increments are B-orthogonal (as in
+        // a static linear problem) the remainder sums in squares, if aligned, linearly.
+        orth.push(dl * r / (1.0 - r * r).sqrt());
+        aligned.push(dl * r / (1.0 - r));
+    }
+    let t = Table::new()
+        .str("load", load)
+        .f64("fitted_exponent", p_fit)
+        .f64("last_increment_percent", last)
+        .f64("reference_error_orthogonal_percent", orth)
+        .f64("reference_error_aligned_percent", aligned);
+    let params = format!(
+        "exponent p: least-squares slope of ln d_n against ln(1/n) over the last three increments; estimated own error of the reference h = k = 1/{}: d_last r / sqrt(1 - r^2) (orthogonal increments) and d_last r / (1 - r) (aligned), r = 2^-p",
+        plan.n_ref
+    );
+    ctx.write("table1_reference_error.csv", &t, "forensics", &params)?;
+    Ok(())
+}
+
+fn slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
