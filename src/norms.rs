@@ -67,36 +67,72 @@ pub fn field_norms(
     g: &crate::material::Isotropic,
     v: &[[f64; 2]],
 ) -> FieldNorms {
-    let d = g.voigt();
-    let mut out = FieldNorms::default();
-    for tri in &mesh.triangles {
-        let p = tri.map(|k| mesh.nodes[k]);
-        let (area, bm) = crate::element::strain_matrix(p);
-        let ue = nalgebra::SVector::<f64, 6>::from_fn(|a, _| v[tri[a / 2]][a % 2]);
-        let eps = bm * ue;
-        out.energy_sq += 0.5 * (eps.transpose() * d * eps)[(0, 0)] * area;
-        // Rows 0 and 1 of the strain matrix hold d/dx on x-columns and d/dy on
-        // y-columns; row 2 holds the other two derivatives.
-        let (mut gx, mut gy) = ([0.0; 2], [0.0; 2]);
-        for a in 0..3 {
-            let (dx, dy) = (bm[(0, 2 * a)], bm[(1, 2 * a + 1)]);
-            for c in 0..2 {
-                gx[c] += dx * v[tri[a]][c];
-                gy[c] += dy * v[tri[a]][c];
+    NormGeometry::new(mesh).norms(mesh, g, v)
+}
+
+/// What [`field_norms`] needs of each triangle, computed once per mesh for fields
+/// measured many times: its vertices, area and shape-function gradients.
+pub struct NormGeometry {
+    tris: Vec<([usize; 3], [f64; 7])>,
+}
+
+impl NormGeometry {
+    pub fn new(mesh: &crate::mesh::Mesh) -> NormGeometry {
+        let tris = mesh
+            .triangles
+            .iter()
+            .map(|tri| {
+                let p = tri.map(|k| mesh.nodes[k]);
+                let det = crate::element::twice_area(p);
+                let mut geo = [0.5 * det, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+                for i in 0..3 {
+                    let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                    geo[1 + i] = (p[j][1] - p[k][1]) / det;
+                    geo[4 + i] = (p[k][0] - p[j][0]) / det;
+                }
+                (*tri, geo)
+            })
+            .collect();
+        NormGeometry { tris }
+    }
+
+    /// [`FieldNorms`] of `v` on `mesh` (the mesh this geometry was made from).
+    pub fn norms(
+        &self,
+        mesh: &crate::mesh::Mesh,
+        g: &crate::material::Isotropic,
+        v: &[[f64; 2]],
+    ) -> FieldNorms {
+        let mut out = FieldNorms::default();
+        for (tri, geo) in &self.tris {
+            let area = geo[0];
+            let vals = tri.map(|k| v[k]);
+            // Gradients of u_x and u_y.
+            let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
+            for a in 0..3 {
+                let (dx, dy) = (geo[1 + a], geo[4 + a]);
+                ux[0] += dx * vals[a][0];
+                ux[1] += dy * vals[a][0];
+                uy[0] += dx * vals[a][1];
+                uy[1] += dy * vals[a][1];
+            }
+            let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
+            let tr = e11 + e22;
+            out.energy_sq +=
+                0.5 * area * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma));
+            out.h1_sq += area * (ux[0] * ux[0] + ux[1] * ux[1] + uy[0] * uy[0] + uy[1] * uy[1]);
+            // Exact P1 mass: |T|/12 (sum of squares + square of the sum), per component.
+            for comp in [vals.map(|x| x[0]), vals.map(|x| x[1])] {
+                let s = comp[0] + comp[1] + comp[2];
+                let q = comp[0] * comp[0] + comp[1] * comp[1] + comp[2] * comp[2];
+                out.l2_sq += area / 12.0 * (q + s * s);
             }
         }
-        out.h1_sq += area * (gx[0] * gx[0] + gx[1] * gx[1] + gy[0] * gy[0] + gy[1] * gy[1]);
-        // Exact P1 mass: |T|/12 (sum of squares + square of the sum), per component.
-        let vals = tri.map(|k| v[k]);
-        for comp in [vals.map(|x| x[0]), vals.map(|x| x[1])] {
-            let (s, q) = comp.iter().fold((0.0, 0.0), |(s, q), &x| (s + x, q + x * x));
-            out.l2_sq += area / 12.0 * (q + s * s);
-        }
+        out.max = v.iter().map(|x| x[0].hypot(x[1])).fold(0.0, f64::max);
+        let nu: Vec<f64> = mesh.contact.iter().map(|&c| -v[c][1]).collect();
+        out.gamma_sq = gamma_l2_sq(mesh, &nu);
+        out
     }
-    out.max = v.iter().map(|x| x[0].hypot(x[1])).fold(0.0, f64::max);
-    let nu: Vec<f64> = mesh.contact.iter().map(|&c| -v[c][1]).collect();
-    out.gamma_sq = gamma_l2_sq(mesh, &nu);
-    out
 }
 
 /// $\|w\|^2_{L^2(\Gamma_3)}$ of the P1 function with values `w` at the contact nodes

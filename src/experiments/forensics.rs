@@ -35,7 +35,7 @@
 use super::{Ctx, ExpError};
 use crate::certificate::ContactState;
 use crate::mesh::{Dofs, Interpolation, Mesh, Pattern};
-use crate::norms::{FieldNorms, field_norms, gamma_l2_sq};
+use crate::norms::{FieldNorms, NormGeometry, gamma_l2_sq};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::Options;
@@ -120,9 +120,26 @@ fn sigma_sq(mesh: &Mesh, s: &[f64]) -> f64 {
     gamma_l2_sq(mesh, s)
 }
 
-/// The measures of `v` (with contact stress `s`) on `mesh`.
+/// The measures of `v` (with contact stress `s`) on `mesh`, whose triangle
+/// geometry is kept in `GEOMETRY` (built once per mesh size and pattern).
 fn measures(mesh: &Mesh, g: &crate::material::Isotropic, v: &[[f64; 2]], s: &[f64]) -> Raw {
-    raw(field_norms(mesh, g, v), sigma_sq(mesh, s))
+    /// Meshes are identified by (n, pattern, triangle count): the study's meshes
+    /// with the same key are the same mesh.
+    type Cache = Vec<((usize, Pattern, usize), std::rc::Rc<NormGeometry>)>;
+    thread_local! {
+        static GEOMETRY: std::cell::RefCell<Cache> = const { std::cell::RefCell::new(Vec::new()) };
+    }
+    let id = (mesh.n, mesh.pattern, mesh.triangles.len());
+    let geo = GEOMETRY.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        if let Some((_, geo)) = cache.iter().find(|(k, _)| *k == id) {
+            return geo.clone();
+        }
+        let geo = std::rc::Rc::new(NormGeometry::new(mesh));
+        cache.push((id, geo.clone()));
+        geo
+    });
+    raw(geo.norms(mesh, g, v), sigma_sq(mesh, s))
 }
 
 /// Interpolates a contact vector of `coarse` to the contact nodes of `fine`.
@@ -453,8 +470,9 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
                     .or_default()
                     .add(e, u_meas, last);
             }
-            // The finest stored level against the reference: the last increment.
-            if kind == 0 && 2 * n == n_ref {
+            // The finest stored level against the reference: the last increment,
+            // needed at t = T only.
+            if kind == 0 && 2 * n == n_ref && (last || levels.contains(&n)) {
                 next.entry((li, n)).or_default().add(e, u_meas, last);
             }
             if main && li == 0 && kind == 0 && levels.contains(&n) {

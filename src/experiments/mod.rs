@@ -76,6 +76,22 @@ pub const NAMES: [&str; 12] = [
     "stability",
 ];
 
+/// The CSV tables the book shows, as Markdown renderings beside them: file, key
+/// columns repeated in every part, and the most columns of one part (so a part
+/// fits the page).
+pub const BOOK_TABLES: [(&str, usize, usize); 10] = [
+    ("hypotheses.csv", 1, 7),
+    ("bench.csv", 2, 7),
+    ("bench_sweeps.csv", 1, 6),
+    ("bench_vs_paper.csv", 1, 6),
+    ("bench_solvers.csv", 2, 8),
+    ("stability_sweeps.csv", 4, 9),
+    ("stability_penalty.csv", 1, 5),
+    ("loads_search.csv", 2, 7),
+    ("fig4_counts.csv", 1, 6),
+    ("stability_prop31.csv", 3, 6),
+];
+
 /// Runs one experiment by name.
 pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
     match name {
@@ -127,7 +143,8 @@ impl Ctx {
         self.figures.join(format!("{stem}.{ext}"))
     }
 
-    /// Writes a table with its provenance.
+    /// Writes a table with its provenance (and, for a table the book shows, its
+    /// Markdown rendering, see [`BOOK_TABLES`]).
     pub fn write(
         &self,
         file: &str,
@@ -142,7 +159,23 @@ impl Ctx {
                 path: path.display().to_string(),
                 source: e,
             })?;
+        self.render_book_table(file)?;
         Ok(path)
+    }
+
+    /// Writes `data/<stem>.md`, the Markdown rendering of `data/<file>`, if the
+    /// book shows that table ([`BOOK_TABLES`]).
+    pub fn render_book_table(&self, file: &str) -> Result<(), ExpError> {
+        let Some(&(_, keys, cols)) = BOOK_TABLES.iter().find(|t| t.0 == file) else {
+            return Ok(());
+        };
+        let path = self.data_path(file);
+        let text = std::fs::read_to_string(&path).map_err(|e| ExpError::Io {
+            path: path.display().to_string(),
+            source: e,
+        })?;
+        let md = crate::output::markdown::table(&text, keys, cols);
+        self.write_file(&path.with_extension("md"), md.as_bytes())
     }
 
     /// Writes `bytes` to `path` atomically (a Markdown fragment, a report, a copied

@@ -23,18 +23,19 @@ pub fn init_font() {
 /// Colour of a contact regime (`branch4` and beyond cycle through further colours, so
 /// a law with more branches draws too).
 pub fn regime_colour(regime: &str) -> RGBColor {
+    // Okabe–Ito: told apart by readers with any common colour-vision deficiency.
     const MORE: [RGBColor; 4] = [
-        RGBColor(148, 103, 189),
-        RGBColor(140, 86, 75),
-        RGBColor(227, 119, 194),
-        RGBColor(23, 190, 207),
+        RGBColor(86, 180, 233),
+        RGBColor(204, 121, 167),
+        RGBColor(240, 228, 66),
+        RGBColor(60, 60, 60),
     ];
     match regime {
         "no_contact" => RGBColor(150, 150, 150),
-        "branch1" => RGBColor(31, 119, 180),
-        "branch2" => RGBColor(255, 127, 14),
-        "branch3" => RGBColor(44, 160, 44),
-        "limit" => RGBColor(214, 39, 40),
+        "branch1" => RGBColor(0, 114, 178),
+        "branch2" => RGBColor(230, 159, 0),
+        "branch3" => RGBColor(0, 158, 115),
+        "limit" => RGBColor(213, 94, 0),
         other => match other
             .strip_prefix("branch")
             .and_then(|b| b.parse::<usize>().ok())
@@ -48,11 +49,11 @@ pub fn regime_colour(regime: &str) -> RGBColor {
 /// Human label of a regime.
 pub fn regime_label(regime: &str) -> &'static str {
     match regime {
-        "no_contact" => "no contact (u_nu <= 0)",
-        "branch1" => "branch 1 (0 < u_nu <= u1)",
-        "branch2" => "branch 2 (u1 < u_nu < u2, softening)",
-        "branch3" => "branch 3 (u_nu >= u2)",
-        "limit" => "at the limit u_nu = g",
+        "no_contact" => "no contact (uν ≤ 0)",
+        "branch1" => "branch 1 (0 < uν ≤ u¹)",
+        "branch2" => "branch 2 (u¹ < uν < u², softening)",
+        "branch3" => "branch 3 (uν ≥ u²)",
+        "limit" => "at the limit uν = g",
         _ => "other",
     }
 }

@@ -32,7 +32,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         g,
         n / stride,
         format!(
-            "{scenario}: deformed body at t = T (true scale) and interface forces, h = 1/{n}, {steps} steps, g = {g}{}",
+            "{scenario} at t = T (true scale), forces on Γ3; h = 1/{n}, {steps} steps, g = {g}{}",
             if stride > 1 {
                 format!(" (mesh drawn every {stride} cells)")
             } else {

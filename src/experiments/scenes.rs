@@ -102,7 +102,7 @@ pub fn draw_run(
     both(
         dir,
         "deformed",
-        (1400, 1100),
+        (1000, 980),
         &SceneFigure {
             panels,
             title,
@@ -158,12 +158,12 @@ pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
     both(
         &ctx.figures,
         "fig3_deformed",
-        (1400, 1100),
+        (1000, 980),
         &SceneFigure {
             paper_law: true,
             panels,
             title: format!(
-                "Fig. 3: deformed body at t = T (true scale) and interface forces on Γ3, h = k = 1/{n}, g = {g}"
+                "Fig. 3: deformed body at t = T (true scale), forces on Γ3; h = k = 1/{n}"
             ),
         },
     )
@@ -209,7 +209,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     both(
         &ctx.figures,
         "fig4_several_g",
-        (1400, 1800),
+        (1000, 3760),
         &SceneFigure {
             paper_law: true,
             panels,
@@ -295,13 +295,26 @@ impl Figure for SceneFigure {
         let root = root.titled(&self.title, ("sans-serif", 24)).map_err(e2s)?;
         let rows = root.split_evenly((self.panels.len(), 1));
         for (p, area) in self.panels.iter().zip(rows.iter()) {
-            let (top, bottom) = area.split_vertically(area.dim_in_pixel().1 * 58 / 100);
+            // The mesh panel tall enough to show x in [-0.05, 2.05] and y in
+            // [-0.16, 1.02] at true aspect (plus its caption and labels); the forces
+            // get the rest.
+            let (w, h) = area.dim_in_pixel();
+            let plot_w = w.saturating_sub(MESH_FRAME.0) as f64;
+            let need = (plot_w * MESH_Y_SPAN / MESH_X_SPAN) as u32 + MESH_FRAME.1;
+            let (top, bottom) = area.split_vertically(need.min(h * 3 / 4));
             draw_mesh(p, &top)?;
             draw_forces(p, &bottom, self.paper_law)?;
         }
         Ok(())
     }
 }
+
+/// The mesh panel's x span, the y span it must show, and its frame (pixels
+/// outside the plotting area: y labels and margins across; caption, x labels
+/// and margins down).
+const MESH_X_SPAN: f64 = 2.1;
+const MESH_Y_SPAN: f64 = 1.18;
+const MESH_FRAME: (u32, u32) = (66, 74);
 
 fn draw_mesh<DB: DrawingBackend>(
     p: &Panel,
@@ -321,14 +334,15 @@ fn draw_mesh<DB: DrawingBackend>(
         .margin(8)
         .x_label_area_size(30)
         .y_label_area_size(50)
-        .build_cartesian_2d(-0.05..2.05, -0.16..1.02)
+        // True aspect: as many metres per pixel down as across.
+        .build_cartesian_2d(-0.05..2.05, -0.16..-0.16 + aspect_span(area))
         .map_err(e2s)?;
     chart
         .configure_mesh()
         .disable_mesh()
         .x_desc("x [m]")
         .y_desc("y [m]")
-        .label_style(("sans-serif", 14))
+        .label_style(("sans-serif", 16))
         .draw()
         .map_err(e2s)?;
     // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g).
@@ -382,6 +396,14 @@ fn draw_mesh<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The y span that the area's plotting region shows at true aspect.
+fn aspect_span<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>) -> f64 {
+    let (w, h) = area.dim_in_pixel();
+    let plot_w = w.saturating_sub(MESH_FRAME.0).max(1) as f64;
+    let plot_h = h.saturating_sub(MESH_FRAME.1).max(1) as f64;
+    (MESH_X_SPAN * plot_h / plot_w).max(MESH_Y_SPAN)
+}
+
 fn draw_forces<DB: DrawingBackend>(
     p: &Panel,
     area: &DrawingArea<DB, plotters::coord::Shift>,
@@ -390,10 +412,10 @@ fn draw_forces<DB: DrawingBackend>(
     let total: Vec<f64> = p.s1.iter().zip(&p.s2).map(|(a, b)| -(a + b)).collect();
     let ymax = total.iter().fold(1.0f64, |a, &b| a.max(b)) * 1.1;
     let mut chart = ChartBuilder::on(area)
-        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour) + unilateral part -σν² (dark red)", ("sans-serif", 16))
+        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)", ("sans-serif", 17))
         .margin(8)
         .x_label_area_size(35)
-        .y_label_area_size(50)
+        .y_label_area_size(62)
         .build_cartesian_2d(-0.05..2.05, 0.0..ymax)
         .map_err(e2s)?;
     chart
@@ -401,7 +423,7 @@ fn draw_forces<DB: DrawingBackend>(
         .disable_x_mesh()
         .x_desc("x [m]")
         .y_desc("-σν [N/m²]")
-        .label_style(("sans-serif", 14))
+        .label_style(("sans-serif", 16))
         .draw()
         .map_err(e2s)?;
     let w = if p.cx.len() > 1 {
@@ -447,6 +469,6 @@ fn draw_forces<DB: DrawingBackend>(
                 });
         }
     }
-    legend(&mut chart, SeriesLabelPosition::UpperRight, 13, 0.85)?;
+    legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.85)?;
     Ok(())
 }

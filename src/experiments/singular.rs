@@ -349,7 +349,12 @@ impl Figure for StaticFig {
             .y_label_area_size(90)
             .build_cartesian_2d(
                 (3.0..xmax * 1.3).log_scale().with_key_points(keys),
-                (ymin / 3.0..ymax * 8.0).log_scale(),
+                (ymin / 3.0..ymax * 8.0).log_scale().with_key_points(
+                    (-6..=1)
+                        .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
+                        .filter(|&y| y >= ymin / 3.0 && y <= ymax * 8.0)
+                        .collect::<Vec<f64>>(),
+                ),
             )
             .map_err(e2s)?;
         chart
@@ -357,7 +362,7 @@ impl Figure for StaticFig {
             .x_desc("n = 1/h (the difference to the next level, 2n)")
             .y_desc("relative energy norm")
             .x_label_formatter(&|x| format!("{}", x.round()))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .y_label_formatter(&|y| format!("{y}"))
             .label_style(("sans-serif", 20))
             .axis_desc_style(("sans-serif", 20))
             .draw()
@@ -379,16 +384,31 @@ impl Figure for StaticFig {
         }
         // Slope guides through the first point of the first series, below it.
         if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
+            // Each guide its own dash pattern (long, medium, dots), also in the legend.
+            const DASHES: [(i32, i32); 3] = [(14, 6), (6, 5), (2, 5)];
             for (i, (slope, label)) in self.guides.iter().enumerate() {
                 let y0 = y0 * 0.5f64.powi(i as i32 + 1);
                 let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
-                let grey = RGBColor(60 + 50 * i as u8, 60 + 50 * i as u8, 60 + 50 * i as u8);
+                let grey = RGBColor(50, 50, 50);
+                let (dash, gap) = DASHES[i % DASHES.len()];
                 chart
-                    .draw_series(DashedLineSeries::new(pts, 6, 4, grey.stroke_width(2)))
+                    .draw_series(DashedLineSeries::new(
+                        pts,
+                        dash as u32,
+                        gap as u32,
+                        grey.stroke_width(2),
+                    ))
                     .map_err(e2s)?
                     .label(label.clone())
                     .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], grey.stroke_width(2))
+                        let seg = |k: i32| {
+                            let a = (k * (dash + gap)).min(28);
+                            PathElement::new(
+                                vec![(x + a, y), (x + (a + dash).min(28), y)],
+                                grey.stroke_width(2),
+                            )
+                        };
+                        EmptyElement::at((0, 0)) + seg(0) + seg(1) + seg(2) + seg(3)
                     });
             }
         }

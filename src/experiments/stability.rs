@@ -65,6 +65,13 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
 
 // ---------------------------------------------------------------------------
 // Where methods fail: a map over the time step and the softening slope.
+
+/// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
+/// cell also says "fail").
+const CONVEX: RGBColor = RGBColor(86, 180, 233);
+const NOT_CONVEX: RGBColor = RGBColor(190, 225, 245);
+const SEVERAL: RGBColor = RGBColor(230, 159, 0);
+const FAILED: RGBColor = RGBColor(213, 94, 0);
 // ---------------------------------------------------------------------------
 
 use super::plot::{Figure, both, e2s};
@@ -378,7 +385,7 @@ fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
     both(
         &ctx.figures,
         "stability_map",
-        (1500, 700),
+        (1100, 1150),
         &MapFigure { cells },
     )
 }
@@ -390,8 +397,8 @@ impl Figure for MapFigure {
     ) -> Result<(), String> {
         let root = root
             .titled(
-                "Where step solvers fail: outcome by time step k and softening slope c2 (numbers: mean iterations per step)",
-                ("sans-serif", 20),
+                "Where step solvers fail, by time step k and softening slope c2 (numbers: mean iterations per step)",
+                ("sans-serif", 19),
             )
             .map_err(e2s)?;
         let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
@@ -400,8 +407,9 @@ impl Figure for MapFigure {
         let mut cs: Vec<f64> = self.cells.iter().map(|c| -c.2).collect();
         cs.sort_by(f64::total_cmp);
         cs.dedup();
-        let (top, _legend_band) = root.split_vertically(640);
-        let panels = top.split_evenly((1, SOLVERS.len()));
+        let band = 70;
+        let (top, _legend_band) = root.split_vertically(root.dim_in_pixel().1 - band);
+        let panels = top.split_evenly((SOLVERS.len().div_ceil(2), 2));
         for (solver, area) in SOLVERS.iter().zip(panels.iter()) {
             let mut chart = ChartBuilder::on(area)
                 .caption(*solver, ("sans-serif", 20))
@@ -434,20 +442,21 @@ impl Figure for MapFigure {
                 })
                 .x_desc("time step k")
                 .y_desc("softening slope c2")
-                .label_style(("sans-serif", 13))
+                .label_style(("sans-serif", 16))
+                .axis_desc_style(("sans-serif", 16))
                 .draw()
                 .map_err(e2s)?;
             for c in self.cells.iter().filter(|c| c.0 == *solver) {
                 let x = ks.iter().position(|&k| k == c.1).unwrap_or(0) as f64;
                 let y = cs.iter().position(|&v| v == -c.2).unwrap_or(0) as f64;
                 let colour = if c.3.starts_with("failed") || c.3.starts_with("error") {
-                    RGBColor(214, 39, 40)
+                    FAILED
                 } else if c.3 == "several solutions" {
-                    RGBColor(255, 160, 40)
+                    SEVERAL
                 } else if c.5 > 0.0 {
-                    RGBColor(44, 160, 44)
+                    CONVEX
                 } else {
-                    RGBColor(150, 210, 150)
+                    NOT_CONVEX
                 };
                 chart
                     .draw_series(std::iter::once(Rectangle::new(
@@ -463,29 +472,28 @@ impl Figure for MapFigure {
                 chart
                     .draw_series(std::iter::once(Text::new(
                         label,
-                        (x - 0.2, y + 0.1),
-                        ("sans-serif", 13),
+                        (x - 0.25, y + 0.12),
+                        ("sans-serif", 16),
                     )))
                     .map_err(e2s)?;
             }
         }
         let legend = [
-            (
-                "certified (penalty: converged), every step convex",
-                RGBColor(44, 160, 44),
-            ),
+            ("certified (penalty: converged), every step convex", CONVEX),
             (
                 "certified (penalty: converged), steps not convex",
-                RGBColor(150, 210, 150),
+                NOT_CONVEX,
             ),
-            ("several solutions (multistart)", RGBColor(255, 160, 40)),
-            ("failed", RGBColor(214, 39, 40)),
+            ("several solutions (multistart)", SEVERAL),
+            ("failed", FAILED),
         ];
+        // Two legend rows of two entries under the panels.
+        let y0 = root.dim_in_pixel().1 as i32 - band as i32 + 8;
         for (i, (text, colour)) in legend.iter().enumerate() {
-            let x = 20 + 460 * i as i32;
-            root.draw(&Rectangle::new([(x, 642), (x + 16, 658)], colour.filled()))
+            let (x, y) = (20 + 540 * (i % 2) as i32, y0 + 30 * (i / 2) as i32);
+            root.draw(&Rectangle::new([(x, y), (x + 18, y + 18)], colour.filled()))
                 .map_err(e2s)?;
-            root.draw(&Text::new(*text, (x + 22, 643), ("sans-serif", 15)))
+            root.draw(&Text::new(*text, (x + 26, y + 1), ("sans-serif", 17)))
                 .map_err(e2s)?;
         }
         Ok(())

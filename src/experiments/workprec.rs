@@ -31,16 +31,12 @@ pub fn draw(ctx: &Ctx, path: &Path) -> Result<(), ExpError> {
     };
     let chart = Chart {
         series: vec![
-            ("h = k = 1/n".into(), pick("h=k"), RGBColor(214, 39, 40)),
-            (
-                "h = 1/n, k = 1/512".into(),
-                pick("h"),
-                RGBColor(31, 119, 180),
-            ),
+            ("h = k = 1/n".into(), pick("h=k"), RGBColor(0, 114, 178)),
+            ("h = 1/n, k = 1/512".into(), pick("h"), RGBColor(213, 94, 0)),
             (
                 "h = 1/512, k = 1/N".into(),
                 pick("k"),
-                RGBColor(44, 160, 44),
+                RGBColor(0, 158, 115),
             ),
         ],
     };
@@ -73,7 +69,12 @@ impl Figure for Chart {
             .y_label_area_size(80)
             .build_cartesian_2d(
                 (xmin * 0.7..xmax * 1.5).log_scale(),
-                (ymin * 0.6..ymax * 1.6).log_scale(),
+                (ymin * 0.6..ymax * 1.6).log_scale().with_key_points(
+                    (-3..=2)
+                        .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
+                        .filter(|&y| y >= ymin * 0.6 && y <= ymax * 1.6)
+                        .collect::<Vec<f64>>(),
+                ),
             )
             .map_err(e2s)?;
         chart
@@ -81,6 +82,7 @@ impl Figure for Chart {
             .x_desc("wall time of the whole run [s] (median)")
             .y_desc("relative error, max over t [%]")
             .x_label_formatter(&|x| format!("{x:.3}"))
+            .y_label_formatter(&|y| format!("{y}"))
             .label_style(("sans-serif", 16))
             .draw()
             .map_err(e2s)?;
@@ -92,7 +94,9 @@ impl Figure for Chart {
                 .map_err(e2s)?
                 .label(label.clone())
                 .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
+                    EmptyElement::at((x + 12, y))
+                        + PathElement::new(vec![(-12, 0), (12, 0)], c.stroke_width(2))
+                        + Circle::new((0, 0), 5, c.filled())
                 });
             chart
                 .draw_series(
@@ -102,8 +106,11 @@ impl Figure for Chart {
                 .map_err(e2s)?;
             chart
                 .draw_series(
-                    s.iter().map(|p| {
-                        Text::new(p.2.clone(), (p.0 * 1.05, p.1 * 1.05), ("sans-serif", 12))
+                    // Labels alternate above and below their point, so that close
+                    // points do not print over each other.
+                    s.iter().enumerate().map(|(i, p)| {
+                        let dy = if i % 2 == 0 { 1.06 } else { 0.9 };
+                        Text::new(p.2.clone(), (p.0 * 1.05, p.1 * dy), ("sans-serif", 14))
                     }),
                 )
                 .map_err(e2s)?;

@@ -1,0 +1,138 @@
+//! Markdown renderings of the CSV tables the book shows: numbers to four
+//! significant digits, wide tables split into narrower ones that repeat the key
+//! columns, and the CSV's provenance kept as an HTML comment. The CSV stays the
+//! source of truth; the rendering is regenerated whenever it is written.
+
+/// Renders `csv` (with its `#` provenance lines) as Markdown. The first `keys`
+/// columns are repeated in every part; each part has at most `max_cols` columns.
+pub fn table(csv: &str, keys: usize, max_cols: usize) -> String {
+    let mut provenance = vec![];
+    let mut rows: Vec<Vec<String>> = vec![];
+    for line in csv.lines() {
+        if let Some(c) = line.strip_prefix('#') {
+            provenance.push(c.trim().replace("--", "- -"));
+        } else if !line.trim().is_empty() {
+            rows.push(split(line));
+        }
+    }
+    let mut out = String::new();
+    if !provenance.is_empty() {
+        out.push_str(&format!("<!-- {} -->\n\n", provenance.join("; ")));
+    }
+    let Some((header, body)) = rows.split_first() else {
+        return out;
+    };
+    let keys = keys.min(header.len());
+    let per = max_cols.saturating_sub(keys).max(1);
+    let others: Vec<usize> = (keys..header.len()).collect();
+    let chunks: Vec<&[usize]> = if others.is_empty() {
+        vec![&[]]
+    } else {
+        others.chunks(per).collect()
+    };
+    for (part, chunk) in chunks.iter().enumerate() {
+        if part > 0 {
+            out.push('\n');
+        }
+        let cols: Vec<usize> = (0..keys).chain(chunk.iter().copied()).collect();
+        let integer: Vec<bool> = cols
+            .iter()
+            .map(|&c| {
+                body.iter().all(|r| {
+                    r.get(c).is_none_or(|v| {
+                        v.parse::<f64>()
+                            .map(|x| !x.is_finite() || (x.fract() == 0.0 && x.abs() < 1e15))
+                            .unwrap_or(true)
+                    })
+                })
+            })
+            .collect();
+        out.push('|');
+        for &c in &cols {
+            out.push_str(&format!(" `{}` |", header[c]));
+        }
+        out.push_str("\n|");
+        for _ in &cols {
+            out.push_str("---|");
+        }
+        out.push('\n');
+        for r in body {
+            out.push('|');
+            for (i, &c) in cols.iter().enumerate() {
+                let cell = r.get(c).map_or("", |s| s.as_str());
+                out.push_str(&format!(" {} |", number(cell, integer[i])));
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// Splits a CSV line at commas outside double quotes.
+fn split(line: &str) -> Vec<String> {
+    let mut out = vec![];
+    let (mut cur, mut quoted) = (String::new(), false);
+    for ch in line.chars() {
+        match ch {
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(std::mem::take(&mut cur)),
+            _ => cur.push(ch),
+        }
+    }
+    out.push(cur);
+    out
+}
+
+/// A cell: numbers to four significant digits (integers whole, NaN as a dash),
+/// anything else as text.
+fn number(cell: &str, integer: bool) -> String {
+    let Ok(x) = cell.trim().parse::<f64>() else {
+        return cell.replace('|', "\\|");
+    };
+    if x.is_nan() {
+        return "–".into();
+    }
+    if integer {
+        return format!("{x:.0}");
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let mag = x.abs().log10().floor() as i32;
+    if (-3..5).contains(&mag) {
+        let dec = (3 - mag).max(0) as usize;
+        format!("{x:.dec$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_keep_four_significant_digits() {
+        assert_eq!(number("714.2857142857143", false), "714.3");
+        assert_eq!(number("0.006250645", false), "0.006251");
+        assert_eq!(number("3.3164307570356644e-16", false), "3.316e-16");
+        assert_eq!(number("30293238.0", true), "30293238");
+        assert_eq!(number("NaN", false), "–");
+        assert_eq!(number("newton", false), "newton");
+    }
+
+    #[test]
+    fn wide_tables_split_and_repeat_their_keys() {
+        let csv = "# made by a test\na,b,c,d\nx,1.5,2,3\ny,2.25,3,4\n";
+        let md = table(csv, 1, 3);
+        assert!(md.starts_with("<!-- made by a test -->"));
+        assert!(md.contains("| `a` | `b` | `c` |"), "{md}");
+        assert!(md.contains("| `a` | `d` |"), "{md}");
+        assert!(md.contains("| y | 2.250 | 3 |"), "{md}");
+    }
+
+    #[test]
+    fn quoted_commas_stay_in_their_cell() {
+        assert_eq!(split("1,\"a, b\",2"), vec!["1", "a, b", "2"]);
+    }
+}
