@@ -214,7 +214,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
             paper_law: true,
             panels,
             title: format!(
-                "Fig. 4: deformed body and interface forces for several g, h = k = 1/{n} (mesh drawn every {stride} cells)"
+                "Fig. 4: several g, h = k = 1/{n} (mesh lines every {stride} cells)"
             ),
         },
     )
