@@ -131,12 +131,15 @@ pub fn certify(
     law: &Law,
     g: f64,
 ) -> (Certificate, Vec<ContactState>) {
-    let fscale = crate::step::inf_norm(b)
-        .max(crate::step::inf_norm(ku))
+    let fscale = crate::dense::inf_norm(b)
+        .max(crate::dense::inf_norm(ku))
         .max(f64::MIN_POSITIVE);
-    let backward_scale = crate::step::inf_norm(b).max(ku_abs).max(f64::MIN_POSITIVE);
-    let dscale = g.abs().max(crate::step::inf_norm(u)).max(f64::MIN_POSITIVE);
-    let delta = rounding_delta(g, crate::step::inf_norm(u));
+    let backward_scale = crate::dense::inf_norm(b).max(ku_abs).max(f64::MIN_POSITIVE);
+    let dscale = g
+        .abs()
+        .max(crate::dense::inf_norm(u))
+        .max(f64::MIN_POSITIVE);
+    let delta = rounding_delta(g, crate::dense::inf_norm(u));
     let mut rho: Vec<f64> = ku.iter().zip(b).map(|(a, c)| a - c).collect();
     let mut cert = Certificate::default();
     let mut states = Vec::with_capacity(contact_dofs.len());
@@ -155,7 +158,7 @@ pub fn certify(
             at_limit: at_limit(g, s, delta),
         });
     }
-    cert.stationarity = crate::step::inf_norm(&rho) / backward_scale;
+    cert.stationarity = crate::dense::inf_norm(&rho) / backward_scale;
     (cert, states)
 }
 // ANCHOR_END: certify

@@ -89,3 +89,14 @@ pub fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<f64, InputError
         ))
     }
 }
+
+/// Why a factorisation failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FactorError {
+    #[error(
+        "the step matrix A + kB is not positive definite (pivot {index}); check the material constants"
+    )]
+    NotPositiveDefinite { index: usize },
+    #[error("sparse factorisation failed: {0}")]
+    Other(String),
+}

@@ -13,7 +13,9 @@
 pub mod assembly;
 pub mod bisection;
 pub mod certificate;
+pub mod cli;
 pub mod condense;
+pub mod dense;
 pub mod element;
 pub mod error;
 pub mod experiments;
@@ -29,3 +31,4 @@ pub mod scenario;
 pub mod scheme;
 pub mod show;
 pub mod step;
+pub mod timing;

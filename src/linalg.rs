@@ -40,16 +40,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::{Mat, MatMut, Par, Side};
 
-/// Why a factorisation failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum FactorError {
-    #[error(
-        "the step matrix A + kB is not positive definite (pivot {index}); check the material constants"
-    )]
-    NotPositiveDefinite { index: usize },
-    #[error("sparse factorisation failed: {0}")]
-    Other(String),
-}
+pub use crate::error::FactorError;
 
 /// A supernodal Cholesky factor of $K$ with the contact dofs last.
 pub struct Cholesky {

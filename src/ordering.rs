@@ -15,7 +15,7 @@
 //! Both are written as `fwd[new] = old`.
 
 use crate::assembly::SpMat;
-use crate::linalg::FactorError;
+use crate::error::FactorError;
 use crate::mesh::{Dofs, Mesh};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;

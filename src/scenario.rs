@@ -463,4 +463,12 @@ impl Scenario {
     pub fn viscosity(&self) -> Isotropic {
         Isotropic::viscosity(self.alpha, self.beta)
     }
+
+    /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like
+    /// coefficients in the same ratio), else `None`.
+    pub fn relaxation_time(&self) -> Option<f64> {
+        let (g, c) = (self.elasticity(), self.viscosity());
+        let (ta, tb) = (c.a / g.a, c.b / g.b);
+        ((ta - tb).abs() <= 1e-12 * ta.abs().max(tb.abs()) && ta > 0.0).then_some(ta)
+    }
 }

@@ -76,7 +76,7 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         c_t.b,
         c_t.coercivity()
     );
-    match crate::experiments::time::relaxation_time(scn) {
+    match scn.relaxation_time() {
         Some(tau) => {
             let _ = writeln!(
                 s,

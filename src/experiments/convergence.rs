@@ -439,7 +439,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let grid = *plan.levels.last().expect("levels");
     let all = study(&plan, grid, ctx)?;
     let params = format!(
-        "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over t = j/{grid}; solver newton",
+        "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over the level's own time steps (all on the grid t = j/{grid}); solver newton",
         plan.n_ref, plan.n_ref, plan.n_ref
     );
     // Observed orders within each (scenario, family), against the parameter that varies.

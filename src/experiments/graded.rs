@@ -229,14 +229,17 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "triangles",
             rows.iter().map(|r| r.triangles as u64).collect(),
         )
-        .f64("min_edge", rows.iter().map(|r| r.min_edge).collect())
+        .f64(
+            "min_longest_edge",
+            rows.iter().map(|r| r.min_edge).collect(),
+        )
         .f64(
             "rel_err_T_percent",
             rows.iter().map(|r| 100.0 * r.rel_err).collect(),
         )
         .f64("order_dofs", order);
     let params = format!(
-        "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= 2 sqrt2 / n * min(1, max(r, D^(1/mu))^(1-mu)), mu = {MU}, r = distance to the clamp ends and top corners; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh)",
+        "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= D min(1, max(r, D^(1/mu))^(1-mu)) with D = 2 sqrt2 / n, mu = {MU}, r = distance of the triangle's centroid to the nearest clamp end or top corner; min_longest_edge = the shortest longest edge of the mesh; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh)",
         plan.n_ref, ref_dofs.count, plan.n_ref
     );
     let path = ctx.write("graded_convergence.csv", &t, "graded", &params)?;

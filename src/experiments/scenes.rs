@@ -213,9 +213,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
         &SceneFigure {
             paper_law: true,
             panels,
-            title: format!(
-                "Fig. 4: several g, h = k = 1/{n} (mesh lines every {stride} cells)"
-            ),
+            title: format!("Fig. 4: several g, h = k = 1/{n} (mesh lines every {stride} cells)"),
         },
     )
 }

@@ -38,7 +38,7 @@ pub enum Edge {
 /// The real $4\times4$ matrix of the edge conditions on the wedge $0 < \theta < \omega$
 /// for the Kolosov–Muskhelishvili potentials $\varphi = A z^\lambda$, $\psi = B z^\lambda$
 /// (unknowns $\operatorname{Re}A, \operatorname{Im}A, \operatorname{Re}B, \operatorname{Im}B$),
-/// real $\lambda$, with $\kappa_M = 3 - 4\nu$ (plane strain). On a ray $\theta$:
+/// real $\lambda$, with $\kappa_M = 3 - 4\kappa$ (plane strain, $\kappa$ the Poisson ratio). On a ray $\theta$:
 /// $2\mu(u_x + i u_y) = r^\lambda(\kappa_M A e^{i\lambda\theta} - \lambda\bar A e^{i(2-\lambda)\theta} - \bar B e^{-i\lambda\theta})$ and
 /// $\sigma_{\theta\theta} + i\sigma_{r\theta} = \lambda r^{\lambda-1}(\lambda A e^{i(\lambda-1)\theta} + \bar A e^{-i(\lambda-1)\theta} + B e^{i(\lambda+1)\theta})$.
 fn edge_matrix(lambda: f64, omega: f64, kappa_m: f64, edges: [Edge; 2]) -> nalgebra::Matrix4<f64> {
@@ -217,7 +217,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         "steady state B u = f (no contact, no time), P1 on the uniform family n = 1/h; energy_sq = ||u_h||_E^2 = f.u_h/2; \
          rel_diff_next = ||u_(h/2) - u_h||_E / ||u||_E (Galerkin orthogonality, nested spaces; up to O(h^2) for smooth's vertex-sampled load); order_diff = observed order of \
          the differences between successive rows; rel_err_extrapolated = ||u - u_h||_E / ||u||_E with ||u||_E^2 from Aitken's \
-         extrapolation of the last three levels; rel_err_vs_n512 = ||u_512 - u_h||_E / ||u_512||_E, Table 1's measure; exponents (plane strain, kappa_M = 3 - 4 nu = {kappa_m}): clamp end on a straight \
+         extrapolation of the last three levels; rel_err_vs_n512 = ||u_512 - u_h||_E / ||u_512||_E, Table 1's measure; exponents (plane strain, kappa_M = 3 - 4 kappa = {kappa_m}): clamp end on a straight \
          edge lambda = {re_end} + {im_end:.5} i; clamped top corner (pi/2, clamped-free) lambda = {lambda_top:.5}"
     );
     let path = ctx.write("static_control.csv", &t, "static", &params)?;

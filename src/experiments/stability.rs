@@ -76,7 +76,6 @@ const FAILED: RGBColor = RGBColor(213, 94, 0);
 
 use super::plot::{Figure, both, e2s};
 use crate::law::Law;
-use crate::step::convexify::Convexify;
 use crate::step::penalty::Penalty;
 use crate::step::{Info, Status, StepProblem, StepSolver, inf_norm};
 use plotters::prelude::*;
@@ -84,12 +83,12 @@ use plotters::prelude::*;
 /// Runs a solver, and also solves every step again from other starting points
 /// (zero, $g$, $r_0$), recording the largest relative distance between answers:
 /// a nonzero spread means the step has several stationary points.
-struct MultiStart<S: StepSolver> {
-    inner: S,
+struct MultiStart {
+    inner: Box<dyn StepSolver>,
     spread: f64,
 }
 
-impl<S: StepSolver> StepSolver for MultiStart<S> {
+impl StepSolver for MultiStart {
     fn name(&self) -> &'static str {
         self.inner.name()
     }
@@ -139,38 +138,24 @@ struct Cell {
 fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
     let c2 = scn.law.slopes()[2];
     let mut opt = Options::new(n, steps);
-    let (res, spread) = match solver {
-        "newton" => {
-            let mut s = MultiStart {
-                inner: Newton::default(),
-                spread: 0.0,
-            };
-            let r = scheme::run(scn, &opt, &mut s, &mut |_, _, _| {});
-            (r, s.spread)
-        }
-        "convexify" => (
-            scheme::run(scn, &opt, &mut Convexify::default(), &mut |_, _, _| {}),
+    let entry = crate::step::solver(solver).expect("the map's solvers are registered");
+    if !entry.certified {
+        // The penalty answer overshoots g by design: judge it by its own convergence.
+        opt.certificate_tol = f64::INFINITY;
+    }
+    let (res, spread) = if entry.name == "newton" {
+        // Newton also from other starts: does the step have several solutions?
+        let mut s = MultiStart {
+            inner: entry.build(),
+            spread: 0.0,
+        };
+        let r = scheme::run(scn, &opt, &mut s, &mut |_, _, _| {});
+        (r, s.spread)
+    } else {
+        (
+            scheme::run(scn, &opt, entry.build().as_mut(), &mut |_, _, _| {}),
             f64::NAN,
-        ),
-        "newton, no line search" => {
-            let settings = crate::step::newton::Settings {
-                line_search: false,
-                ..Default::default()
-            };
-            (
-                scheme::run(scn, &opt, &mut Newton::new(settings), &mut |_, _, _| {}),
-                f64::NAN,
-            )
-        }
-        "penalty" => {
-            // The penalty answer overshoots g by design: judge it by its own convergence.
-            opt.certificate_tol = f64::INFINITY;
-            (
-                scheme::run(scn, &opt, &mut Penalty::new(1e6), &mut |_, _, _| {}),
-                f64::NAN,
-            )
-        }
-        other => unreachable!("unknown solver {other}"),
+        )
     };
     match res {
         Ok(run) => Cell {
@@ -229,7 +214,12 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
     }
 }
 
-pub const SOLVERS: [&str; 4] = ["newton", "newton, no line search", "convexify", "penalty"];
+pub const SOLVERS: [&str; 4] = [
+    crate::step::SOLVERS[0].label,
+    crate::step::SOLVERS[1].label,
+    crate::step::SOLVERS[2].label,
+    crate::step::SOLVERS[4].label,
+];
 
 /// The map: every solver on every (time step, softening slope) pair.
 pub fn run_map(ctx: &Ctx) -> Result<(), ExpError> {

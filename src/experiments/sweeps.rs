@@ -10,16 +10,12 @@ use crate::ordering::Ordering;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::Discretisation;
+use crate::timing::median;
 use faer::linalg::solvers::SolveCore;
 use std::time::Instant;
 
 /// Repetitions of each timing; the median is kept.
 const REPEAT: usize = 21;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
 
 /// One row of the table.
 struct Row {

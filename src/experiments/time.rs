@@ -61,14 +61,6 @@ pub fn plan(quick: bool) -> Plan {
     }
 }
 
-/// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like
-/// coefficients in the same ratio), else `None`.
-pub fn relaxation_time(scn: &Scenario) -> Option<f64> {
-    let (g, c) = (scn.elasticity(), scn.viscosity());
-    let (ta, tb) = (c.a / g.a, c.b / g.b);
-    ((ta - tb).abs() <= 1e-12 * ta.abs().max(tb.abs()) && ta > 0.0).then_some(ta)
-}
-
 // ANCHOR: scalar_model
 /// The scalar model of the layer: $\tau\dot y + y = \varphi(t)$, $y(0) = 0$, by backward
 /// Euler with $N$ steps on $[0, T]$, $y_n = (\tau y_{n-1} + k\varphi(t_n))/(\tau + k)$,
@@ -120,7 +112,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         plan.n,
         plan.levels,
         plan.n_ref,
-        relaxation_time(&Scenario::load("figure")?).unwrap_or(f64::NAN),
+        Scenario::load("figure")?
+            .relaxation_time()
+            .unwrap_or(f64::NAN),
     );
     let order = |v: &[f64], i: usize| -> f64 {
         if i == 0
@@ -208,7 +202,9 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path, plan: &Plan) -> Result<(), 
             sig3(e)
         }
     };
-    let tau = relaxation_time(&Scenario::load("figure")?).unwrap_or(f64::NAN);
+    let tau = Scenario::load("figure")?
+        .relaxation_time()
+        .unwrap_or(f64::NAN);
     let hist = histories();
     let mut md = format!(
         "<!-- {} -->\n\n",
@@ -328,7 +324,7 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
             }
         })?;
         for (i, (name, label, s)) in scns.iter().enumerate() {
-            let (model_max, model_t) = match relaxation_time(s) {
+            let (model_max, model_t) = match s.relaxation_time() {
                 Some(tau) => scalar_model(tau, &s.history, s.t_end, steps, plan.n_ref),
                 None => (f64::NAN, f64::NAN),
             };

@@ -14,6 +14,7 @@ pub mod convexify;
 pub mod newton;
 pub mod penalty;
 
+pub use crate::dense::{dense_solve, inf_norm, sym_matvec};
 use crate::law::Law;
 use faer::{Mat, MatRef};
 
@@ -68,6 +69,91 @@ pub struct Info {
 pub trait StepSolver {
     fn name(&self) -> &'static str;
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
+}
+
+/// One step solver of the registry.
+pub struct SolverEntry {
+    /// Its name on the command line (`--solver`).
+    pub name: &'static str,
+    /// Its label in tables and figures.
+    pub label: &'static str,
+    /// What it is, in one line.
+    pub about: &'static str,
+    /// Whether its steps can be certified: the penalty method overshoots $g$ by
+    /// design and is judged by its own convergence instead.
+    pub certified: bool,
+    make: fn() -> Box<dyn StepSolver>,
+}
+
+impl SolverEntry {
+    /// A new solver with default settings.
+    pub fn build(&self) -> Box<dyn StepSolver> {
+        (self.make)()
+    }
+}
+
+/// The step solvers, each spelled once: the command line, the benchmark and the
+/// stability map take their names and constructors from here.
+pub const SOLVERS: [SolverEntry; 5] = [
+    SolverEntry {
+        name: "newton",
+        label: "newton",
+        about: "semismooth Newton with a line search on the contact nodes (exact, fast)",
+        certified: true,
+        make: || Box::new(newton::Newton::default()),
+    },
+    SolverEntry {
+        name: "newton-no-line-search",
+        label: "newton, no line search",
+        about: "the same Newton without its line search (full steps)",
+        certified: true,
+        make: || {
+            Box::new(newton::Newton::new(newton::Settings {
+                line_search: false,
+                ..Default::default()
+            }))
+        },
+    },
+    SolverEntry {
+        name: "convexify",
+        label: "convexify",
+        about: "our reconstruction of the paper's sequence of convex problems, each solved by Clarabel",
+        certified: true,
+        make: || Box::new(convexify::Convexify::default()),
+    },
+    SolverEntry {
+        name: "proxgrad",
+        label: "proxgrad",
+        about: "plain proximal gradient, the slow baseline",
+        certified: true,
+        make: || Box::new(newton::Newton::proximal_gradient()),
+    },
+    SolverEntry {
+        name: "penalty",
+        label: "penalty",
+        about: "the limit g replaced by a penalty of stiffness 1e6 (overshoots g; not certified)",
+        certified: false,
+        make: || Box::new(penalty::Penalty::new(1e6)),
+    },
+];
+
+/// The names of [`SOLVERS`], for the command line.
+pub fn solver_names() -> Vec<&'static str> {
+    SOLVERS.iter().map(|s| s.name).collect()
+}
+
+/// The registry entry of a name or label.
+pub fn solver(name: &str) -> Result<&'static SolverEntry, crate::error::InputError> {
+    SOLVERS
+        .iter()
+        .find(|s| s.name == name || s.label == name)
+        .ok_or_else(|| {
+            crate::error::InputError::field(
+                "solver",
+                name,
+                format!("one of {}", solver_names().join(", ")),
+            )
+        })
 }
 
 impl StepProblem<'_> {
@@ -240,24 +326,4 @@ impl StepProblem<'_> {
 pub enum Piece {
     Branch(usize),
     Pinned(f64),
-}
-
-/// $y = S x$ for a dense symmetric matrix.
-pub fn sym_matvec(s: MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
-    let xv = MatRef::from_column_major_slice(x, x.len(), 1);
-    let y = s * xv;
-    (0..x.len()).map(|i| y[(i, 0)]).collect()
-}
-
-pub fn inf_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0, |a, &b| a.max(b.abs()))
-}
-
-/// Solves a dense square system by LU with partial pivoting; `None` when the
-/// result is not finite (singular matrix).
-pub fn dense_solve(h: Mat<f64>, rhs: Mat<f64>) -> Option<Mat<f64>> {
-    use faer::linalg::solvers::Solve;
-    let x = h.partial_piv_lu().solve(&rhs);
-    let ok = (0..x.nrows()).all(|i| x[(i, 0)].is_finite());
-    ok.then_some(x)
 }

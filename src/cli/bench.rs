@@ -1,0 +1,237 @@
+//! `evhi bench`: every phase timed at several levels, each run in a fresh process.
+
+use crate::timing::{machine, median};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct BenchArgs {
+    /// Levels n = steps for the phase timings.
+    #[arg(long, value_delimiter = ',', default_value = "32,64,128,256,512")]
+    pub levels: Vec<usize>,
+    /// Runs per configuration (the median is kept).
+    #[arg(long, default_value_t = 3)]
+    pub repeat: usize,
+    /// Levels n = steps at which the three step solvers are compared.
+    #[arg(long, value_delimiter = ',', default_value = "16,32,64")]
+    pub solver_levels: Vec<usize>,
+    /// Directory of the CSV tables.
+    #[arg(long, default_value = "data")]
+    pub data: PathBuf,
+    /// Directory of the figures.
+    #[arg(long, default_value = "figures")]
+    pub figures: PathBuf,
+    /// Measure nothing: rebuild the derived table (bench_vs_paper.csv), the
+    /// work-precision chart and the Markdown renderings of the bench tables from
+    /// the CSV files already in --data.
+    #[arg(long)]
+    pub from_csv: bool,
+    /// Only the sweep study: faer's solve against ours with the ordering, threads,
+    /// prefetch and number of right-hand sides varied, beside the machine's
+    /// streaming rate (data/bench_sweeps.csv; the full bench ends with it).
+    #[arg(long)]
+    pub sweeps: bool,
+    /// Level n of the sweep study.
+    #[arg(long, default_value_t = 512)]
+    pub sweeps_n: usize,
+}
+
+/// One configuration run in a child process; returns the numeric columns of its
+/// summary row (and the iteration totals of steps.csv) as name -> value.
+fn child_run(
+    n: usize,
+    steps: usize,
+    solver: &str,
+) -> Result<std::collections::HashMap<String, f64>, String> {
+    let dir = std::env::temp_dir().join(format!(
+        "evhi-bench-{}-{n}-{steps}-{solver}",
+        std::process::id()
+    ));
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let out = std::process::Command::new(exe)
+        .args(["solve", "--scenario", "figure", "--solver", solver])
+        .args([
+            "--n",
+            &n.to_string(),
+            "--steps",
+            &steps.to_string(),
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .map_err(|e| e.to_string())?;
+    if !out.status.success() {
+        return Err(format!(
+            "n = {n}, steps = {steps}, {solver}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    // Both files through the project's own CSV reader (polars); string columns are skipped.
+    use crate::experiments::{col_f64, read_csv};
+    let read =
+        || -> Result<std::collections::HashMap<String, f64>, crate::experiments::ExpError> {
+            let summary = read_csv(&dir.join("summary.csv"))?;
+            let mut row: std::collections::HashMap<String, f64> = summary
+                .get_column_names()
+                .iter()
+                .filter_map(|name| {
+                    Some((name.to_string(), *col_f64(&summary, name).ok()?.first()?))
+                })
+                .collect();
+            let steps_df = read_csv(&dir.join("steps.csv"))?;
+            for (col, total) in [
+                ("iterations", "iterations_total"),
+                ("inner_iterations", "inner_iterations_total"),
+            ] {
+                row.insert(total.into(), col_f64(&steps_df, col)?.iter().sum());
+            }
+            Ok(row)
+        };
+    let row = read().map_err(|e| e.to_string());
+    let _ = std::fs::remove_dir_all(&dir);
+    row
+}
+
+/// Runs the benchmark and writes its tables and chart.
+pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::experiments::Ctx;
+    use crate::output::csv::Table;
+    let ctx = Ctx {
+        quick: false,
+        data: args.data.clone(),
+        figures: args.figures.clone(),
+        verbose: true,
+        progress: None,
+    };
+    if args.from_csv {
+        crate::experiments::workprec::paper_comparison(&ctx)?;
+        crate::experiments::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
+        for file in ["bench.csv", "bench_sweeps.csv", "bench_solvers.csv"] {
+            ctx.render_book_table(file)?;
+        }
+        return Ok(());
+    }
+    let machine = machine();
+    eprintln!("bench on {machine}");
+    if args.sweeps {
+        crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+        return Ok(());
+    }
+    let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
+        row.get(k).copied().unwrap_or(f64::NAN)
+    };
+    // Phase timings, Newton, medians over repeats.
+    let cols = [
+        "wall_s",
+        "assembly_s",
+        "factorisation_s",
+        "condensation_s",
+        "steps_s",
+        "one_solve_s",
+        "floor_ratio",
+        "peak_rss_mb",
+    ];
+    let mut t = Table::new();
+    let mut med: Vec<Vec<f64>> = vec![vec![]; cols.len()];
+    let mut dofs = vec![];
+    for &n in &args.levels {
+        let mut runs = vec![];
+        for r in 0..args.repeat.max(1) {
+            eprintln!("  n = steps = {n}, run {}", r + 1);
+            runs.push(child_run(n, n, "newton")?);
+        }
+        dofs.push(f(&runs[0], "dofs") as u64);
+        for (c, name) in cols.iter().enumerate() {
+            med[c].push(median(runs.iter().map(|r| f(r, name)).collect()));
+        }
+    }
+    t = t
+        .u64("n", args.levels.iter().map(|&n| n as u64).collect())
+        .u64("steps", args.levels.iter().map(|&n| n as u64).collect())
+        .u64("dofs", dofs);
+    for (c, name) in cols.iter().enumerate() {
+        t = t.f64(name, med[c].clone());
+    }
+    let params = format!(
+        "machine: {machine}; scenario figure, solver newton, h = k = 1/n; medians of {} runs, each in a fresh process",
+        args.repeat
+    );
+    ctx.write("bench.csv", &t, "bench", &params)?;
+    crate::experiments::workprec::paper_comparison(&ctx)?;
+    // Step solvers compared on the same runs.
+    let mut rows = vec![];
+    for &n in &args.solver_levels {
+        // The certified solvers of the registry, as their steps differ in kind.
+        for solver in ["newton", "convexify", "proxgrad"]
+            .map(|n| crate::step::solver(n).expect("registered").name)
+        {
+            eprintln!("  solvers: n = steps = {n}, {solver}");
+            let runs: Vec<_> = (0..args.repeat.max(1))
+                .map(|_| child_run(n, n, solver))
+                .collect::<Result<_, _>>()?;
+            let m = |k: &str| median(runs.iter().map(|r| f(r, k)).collect());
+            rows.push((
+                n,
+                solver,
+                m("wall_s"),
+                m("steps_s"),
+                f(&runs[0], "iterations_total"),
+                f(&runs[0], "inner_iterations_total"),
+                m("max_certificate"),
+                f(&runs[0], "energy_norm_T"),
+            ));
+        }
+    }
+    let ts = Table::new()
+        .u64("n", rows.iter().map(|r| r.0 as u64).collect())
+        .str("solver", rows.iter().map(|r| r.1.to_string()).collect())
+        .f64("wall_s", rows.iter().map(|r| r.2).collect())
+        .f64("steps_s", rows.iter().map(|r| r.3).collect())
+        .f64("iterations_total", rows.iter().map(|r| r.4).collect())
+        .f64("inner_iterations_total", rows.iter().map(|r| r.5).collect())
+        .f64("max_certificate", rows.iter().map(|r| r.6).collect())
+        .f64("energy_norm_T", rows.iter().map(|r| r.7).collect());
+    ctx.write(
+        "bench_solvers.csv",
+        &ts,
+        "bench",
+        &format!(
+            "machine: {machine}; scenario figure, h = k = 1/n; medians of {} runs",
+            args.repeat
+        ),
+    )?;
+    // Work-precision: every configuration of the convergence study, timed.
+    let table1 = crate::experiments::read_csv(&ctx.data_path("table1.csv"))?;
+    let sc = crate::experiments::col_str(&table1, "scenario")?;
+    let fam = crate::experiments::col_str(&table1, "family")?;
+    let n = crate::experiments::col_f64(&table1, "n")?;
+    let st = crate::experiments::col_f64(&table1, "steps")?;
+    let err = crate::experiments::col_f64(&table1, "rel_err_T_percent")?;
+    let errm = crate::experiments::col_f64(&table1, "rel_err_max_percent")?;
+    let mut wp = vec![];
+    for i in (0..sc.len()).filter(|&i| sc[i] == "figure") {
+        let (ni, si) = (n[i] as usize, st[i] as usize);
+        eprintln!("  work-precision: n = {ni}, steps = {si}");
+        let runs: Vec<_> = (0..args.repeat.max(1))
+            .map(|_| child_run(ni, si, "newton"))
+            .collect::<Result<_, _>>()?;
+        wp.push((
+            fam[i].clone(),
+            ni,
+            si,
+            median(runs.iter().map(|r| f(r, "wall_s")).collect()),
+            err[i],
+            errm[i],
+        ));
+    }
+    let tw = Table::new()
+        .str("family", wp.iter().map(|r| r.0.clone()).collect())
+        .u64("n", wp.iter().map(|r| r.1 as u64).collect())
+        .u64("steps", wp.iter().map(|r| r.2 as u64).collect())
+        .f64("wall_s", wp.iter().map(|r| r.3).collect())
+        .f64("rel_err_T_percent", wp.iter().map(|r| r.4).collect())
+        .f64("rel_err_max_percent", wp.iter().map(|r| r.5).collect());
+    let path = ctx.write("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
+    crate::experiments::workprec::draw(&ctx, &path)?;
+    crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+    Ok(())
+}

@@ -1,0 +1,122 @@
+//! `evhi reproduce`: the experiments on two cores, one progress bar each.
+
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct ReproduceArgs {
+    /// Experiments to run (default: all).
+    #[arg(value_parser = crate::experiments::NAMES)]
+    pub names: Vec<String>,
+    /// Coarse levels only (seconds; what the tests snapshot).
+    #[arg(long)]
+    pub quick: bool,
+    /// No progress bars and no summary; errors still go to stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Directory of the CSV tables.
+    #[arg(long, default_value = "data")]
+    pub data: PathBuf,
+    /// Directory of the figures.
+    #[arg(long, default_value = "figures")]
+    pub figures: PathBuf,
+}
+
+/// Runs the named experiments (all by default).
+pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::experiments::{Ctx, NAMES, run};
+    let ctx = Ctx {
+        quick: args.quick,
+        data: args.data,
+        figures: args.figures,
+        verbose: true,
+        progress: None,
+    };
+    let names: Vec<String> = if args.names.is_empty() {
+        NAMES.iter().map(|s| s.to_string()).collect()
+    } else {
+        args.names
+    };
+    let total = Instant::now();
+    // One progress bar per experiment (drawn only on a terminal), with its ETA.
+    let multi = indicatif::MultiProgress::new();
+    if args.quiet {
+        multi.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let style = ProgressStyle::with_template(
+        "{prefix:>10} [{bar:30}] {pos}/{len} {elapsed:>4} eta {eta:>4} {wide_msg}",
+    )
+    .expect("valid template")
+    .progress_chars("=> ");
+    let bars: std::collections::HashMap<String, ProgressBar> = names
+        .iter()
+        .map(|n| {
+            let bar = multi.add(
+                ProgressBar::new(0)
+                    .with_style(style.clone())
+                    .with_prefix(n.clone()),
+            );
+            (n.clone(), bar)
+        })
+        .collect();
+    // Two lists of about equal wall time, one per core (measured alone: forensics
+    // 112 s; table1 65, static 37, time 27, graded 21 s; the rest under 15 s each).
+    let (heavy, light): (Vec<String>, Vec<String>) = names
+        .into_iter()
+        .partition(|n| ["table1", "time", "static", "graded"].contains(&n.as_str()));
+    let results: Vec<(String, f64, Result<(), String>)> = std::thread::scope(|s| {
+        let work = |list: Vec<String>| {
+            let ctx = ctx.clone();
+            let bars = &bars;
+            move || {
+                list.into_iter()
+                    .map(|name| {
+                        let t = Instant::now();
+                        let bar = bars[&name].clone();
+                        bar.reset();
+                        let ctx = Ctx {
+                            progress: Some(bar.clone()),
+                            ..ctx.clone()
+                        };
+                        let r = run(&name, &ctx).map_err(|e| e.to_string());
+                        let secs = t.elapsed().as_secs_f64();
+                        match &r {
+                            Ok(()) => bar.finish_with_message(format!("done in {secs:.1} s")),
+                            Err(_) => bar.abandon_with_message(format!("FAILED after {secs:.1} s")),
+                        }
+                        (name, secs, r)
+                    })
+                    .collect::<Vec<_>>()
+            }
+        };
+        let a = s.spawn(work(heavy));
+        let b = s.spawn(work(light));
+        let mut out = a.join().expect("experiment thread");
+        out.extend(b.join().expect("experiment thread"));
+        out
+    });
+    let mut failed = vec![];
+    for (name, secs, r) in &results {
+        match r {
+            Ok(()) if !args.quiet => eprintln!("  {name}: done in {secs:.1} s"),
+            Ok(()) => {}
+            Err(e) => {
+                eprintln!("  {name}: FAILED after {secs:.1} s: {e}");
+                failed.push(name.clone());
+            }
+        }
+    }
+    if !args.quiet {
+        eprintln!(
+            "reproduce: {} experiment(s) in {:.1} s wall",
+            results.len(),
+            total.elapsed().as_secs_f64()
+        );
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("experiments failed: {}", failed.join(", ")).into())
+    }
+}

@@ -1,0 +1,31 @@
+//! `evhi show`: a scenario and the paper's hypotheses for it.
+
+use crate::scenario::Scenario;
+
+#[derive(clap::Args)]
+pub struct ShowArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    pub scenario: String,
+    /// Contact segments n = 1/h of the run to check (a multiple of 4).
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+    pub n: usize,
+    /// Time steps N of the run to check.
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+    pub steps: usize,
+}
+
+/// Prints the report; a failed hypothesis is a warning, not an error.
+pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let scn = Scenario::load(&args.scenario)?;
+    crate::mesh::check_n(args.n)?;
+    crate::scheme::check_memory(args.n)?;
+    if args.steps == 0 {
+        return Err(crate::error::InputError::field("steps", 0, "an integer >= 1").into());
+    }
+    let (text, warnings) = crate::show::report(&scn, args.n, args.steps);
+    print!("{text}");
+    if warnings > 0 {
+        eprintln!("{warnings} warning(s)");
+    }
+    Ok(())
+}

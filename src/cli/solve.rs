@@ -1,0 +1,245 @@
+//! `evhi solve`: one scenario, written as a self-describing run directory.
+
+use crate::output::run::{Provenance, Recorder};
+use crate::output::rundir::RunDir;
+use crate::scenario::Scenario;
+use crate::scheme::{self, Options, OrderingKind};
+use crate::step::StepSolver;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+#[derive(clap::Args)]
+pub struct SolveArgs {
+    /// A built-in scenario (`literal`: the paper's printed loads; `figure`: loads that
+    /// reach every branch of the law; `smooth`: roller sides and a clamped top, no
+    /// singular corner) or the path of a scenario TOML file (see data/scenarios/).
+    #[arg(long, default_value = "figure")]
+    pub scenario: String,
+    /// Contact segments n = 1/h on Γ3 (a multiple of 4; the paper's Fig. 3 uses 128).
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+    pub n: usize,
+    /// Time steps N, k = T/N (the paper uses N = n).
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
+    pub steps: usize,
+    /// Step solver: `newton` (semismooth Newton, exact, fast), `newton-no-line-search`,
+    /// `convexify` (our reconstruction of the paper's sequence of convex problems, each
+    /// solved by Clarabel), `proxgrad` (plain proximal gradient, the slow baseline) or
+    /// `penalty` (g replaced by a stiff penalty: overshoots g, so its steps are judged
+    /// by their own convergence, not certified).
+    #[arg(long, default_value = "newton", value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_names()))]
+    pub solver: String,
+    /// Override the unilateral limit g (> 0, metres).
+    #[arg(long, allow_hyphen_values = true)]
+    pub g: Option<f64>,
+    /// Override the volume force f0 as FX,FY (N/m²).
+    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
+    pub f0: Option<[f64; 2]>,
+    /// Override the top traction f2 as FX,FY (N/m).
+    #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
+    pub f2: Option<[f64; 2]>,
+    /// Override the load history with a ramp: both loads grow as min(t/T_R, 1), so the
+    /// data start at zero as the paper's H(f) and H(0) ask (T_R > 0, seconds). Without
+    /// it the scenario's `loads.history` holds (default: constant, full load at t = 0).
+    #[arg(long, value_name = "T_R", allow_hyphen_values = true)]
+    pub ramp: Option<f64>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Also write the evolution for ParaView: solution_NNNNNN.vtu every K steps (and at
+    /// T) with displacement, sigma_nu1, sigma_nu2 and the regime code, plus
+    /// solution.pvd, the collection with the times (open it to animate).
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
+    pub vtk_every: Option<u64>,
+    /// Print the wall time of each phase (assembly, factorisation, condensation, steps).
+    #[arg(long)]
+    pub timings: bool,
+    /// Fail a step whose certificate exceeds this relative residual.
+    #[arg(long, default_value_t = 1e-10)]
+    pub certificate_tol: f64,
+    /// Fill-reducing ordering of A + kB: `nd` (nested dissection of the grid, whose
+    /// two halves two threads solve at once) or `amd` (approximate minimum degree).
+    #[arg(long, default_value = "nd", value_parser = ["nd", "amd"])]
+    pub ordering: String,
+    /// Threads for the triangular sweeps (1 or 2; 2 needs `--ordering nd`, and small
+    /// meshes, where a second thread does not pay, use one anyway).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
+    pub threads: u8,
+}
+
+/// Parses `FX,FY` into two finite numbers.
+pub fn parse_pair(s: &str) -> Result<[f64; 2], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [a, b] = parts[..] else {
+        return Err(format!("expected two numbers FX,FY, got `{s}`"));
+    };
+    let num = |t: &str| {
+        t.parse::<f64>()
+            .map_err(|_| format!("`{t}` is not a number (in `{s}`)"))
+    };
+    let v = [num(a)?, num(b)?];
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(v)
+    } else {
+        Err(format!("`{s}` must hold finite numbers"))
+    }
+}
+
+/// Solves and writes the run directory.
+pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
+    let wall = Instant::now();
+    let scn = Scenario::load(&args.scenario)?.with_loads(args.f0, args.f2)?;
+    let scn = match args.g {
+        Some(g) => scn.with_g(g)?,
+        None => scn,
+    };
+    let scn = match args.ramp {
+        Some(t_r) => scn.with_ramp(t_r)?,
+        None => scn,
+    };
+    let hyp = scn.time_hypotheses();
+    let failures = hyp.failures();
+    if !failures.is_empty() {
+        eprintln!(
+            "warning: scenario `{}` (load history: {}) breaks the paper's hypotheses at t = 0: {}. \
+             The error bounds assume them (the book, chapter \"Time\"); solving anyway.",
+            scn.name,
+            scn.history,
+            failures.join("; ")
+        );
+    }
+    if !(1e-15..=1e-4).contains(&args.certificate_tol) {
+        return Err(crate::error::InputError::field(
+            "certificate-tol",
+            format!("{:e}", args.certificate_tol),
+            "a relative residual in [1e-15, 1e-4] (below 1e-15 rounding alone fails it; \
+             above 1e-4 a step would be certified that is not a solution)",
+        )
+        .into());
+    }
+    let entry = crate::step::solver(&args.solver)?;
+    let mut solver: Box<dyn StepSolver> = entry.build();
+    let mut opt = Options::new(args.n, args.steps);
+    opt.certificate_tol = if entry.certified {
+        args.certificate_tol
+    } else {
+        f64::INFINITY
+    };
+    opt.ordering = match args.ordering.as_str() {
+        "amd" => OrderingKind::Amd,
+        _ => OrderingKind::NestedDissection,
+    };
+    opt.parallel = args.threads == 2;
+    // The output directory is checked and locked before any work.
+    let out = RunDir::open(&args.out)?;
+    let mut bar: Option<ProgressBar> = None;
+    let started = Instant::now();
+    let steps = args.steps as u64;
+    let mut recorder = Recorder::new(&scn, args.n, args.steps, args.vtk_every)?;
+    let mut observe =
+        |n: usize, t: f64, u: &[f64], contact: &[crate::certificate::ContactState]| {
+            recorder.observe(&out, n, t, u, contact);
+            if bar.is_none() && started.elapsed() > Duration::from_secs(1) {
+                let b = ProgressBar::new(steps).with_style(
+                    ProgressStyle::with_template(
+                        "{spinner} step {pos}/{len} [{bar:40}] {elapsed} (eta {eta})",
+                    )
+                    .expect("valid template")
+                    .progress_chars("=> "),
+                );
+                bar = Some(b);
+            }
+            if let Some(b) = &bar {
+                b.set_position(n as u64);
+            }
+        };
+    let run = scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut observe);
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let run = run?;
+    let h_s = crate::show::Smallness::of(&scn, args.n).unwrap_or_else(|e| {
+        eprintln!("warning: the trace constant could not be computed ({e}); H(s) is unchecked");
+        crate::show::Smallness::unknown(&scn, args.n)
+    });
+    if h_s.rhs() >= h_s.beta_b {
+        eprintln!(
+            "warning: the smallness condition H(s) fails: beta_B = {:.4e} <= m ||iota_h||^2 = \
+             {:.4e} * {:.4e} (n = {}); the paper's existence and error theory assume it. \
+             Certified steps still solve the discrete problem.",
+            h_s.beta_b, h_s.m, h_s.trace_sq, h_s.n
+        );
+    }
+    for (at, jump) in scn.law.down_jumps() {
+        eprintln!(
+            "warning: H(j) fails: p jumps down by {:e} at s = {at:e}, so no finite m makes j relaxed \
+             monotone; the paper's theory does not cover this law",
+            -jump
+        );
+    }
+    if run.hessian_min <= 0.0 {
+        eprintln!(
+            "warning: the step problem is not convex: its smallest possible curvature is {:.3e} \
+             (every node on the steepest softening branch). A certified step is then a stationary \
+             point, not necessarily the minimiser the scheme asks for; a smaller k, a stiffer \
+             material or a milder softening restores convexity (see the book, \"Beyond the paper\").",
+            run.hessian_min
+        );
+    }
+    let t_out = Instant::now();
+    let toml = match crate::scenario::BUILTIN
+        .iter()
+        .find(|b| b.0 == args.scenario)
+    {
+        Some((_, text)) => text.to_string(),
+        None => std::fs::read_to_string(&args.scenario)?,
+    };
+    let prov = Provenance {
+        command: std::env::args().skip(1).collect::<Vec<_>>().join(" "),
+        solver: solver.name().to_string(),
+        ordering: args.ordering.clone(),
+    };
+    crate::output::run::write(
+        &out,
+        &scn,
+        &toml,
+        &run,
+        recorder,
+        &prov,
+        wall.elapsed().as_secs_f64(),
+        &h_s,
+    )?;
+    // The run's figures, drawn from the tables just written.
+    crate::experiments::runplot::draw(&out.path(""))?;
+    out.publish()?;
+    if args.timings {
+        let t = &run.timings;
+        eprintln!(
+            "timings (s): assembly {:.4}  factorisation {:.4}  condensation {:.4}  steps {:.4} \
+             (step solver {:.4}, certificates {:.4})  output {:.4}  total {:.4}",
+            t.assembly,
+            t.factorisation,
+            t.condensation,
+            t.steps,
+            t.step_solver,
+            t.certificates,
+            t_out.elapsed().as_secs_f64(),
+            wall.elapsed().as_secs_f64()
+        );
+        eprintln!(
+            "dofs {}  contact nodes {}  nnz(L) {} ({}, {} sweep thread(s))",
+            run.dofs,
+            run.contact.len(),
+            run.nnz_l,
+            args.ordering,
+            run.sweep_threads
+        );
+        eprintln!(
+            "one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB",
+            t.one_solve,
+            t.floor_ratio(run.steps),
+            crate::output::run::peak_rss_mb()
+        );
+    }
+    Ok(())
+}

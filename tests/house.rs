@@ -1,0 +1,127 @@
+//! The house rules of `src/` that a change can break without any number moving:
+//! the binary's `main.rs` only parses the command line, and no two top-level
+//! modules import each other, directly or round a loop (tools/import_cycles.py
+//! is the same check for a quick look).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+fn src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let p = entry.unwrap().path();
+        if p.is_dir() {
+            rust_files(&p, out);
+        } else if p.extension().is_some_and(|e| e == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The code of a line: no comment, no string literal.
+fn code(line: &str) -> String {
+    let mut out = String::new();
+    let (mut in_str, mut escaped) = (false, false);
+    let chars: Vec<char> = line.chars().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if in_str {
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == '"' {
+                in_str = false;
+            }
+        } else if c == '"' {
+            in_str = true;
+        } else if c == '/' && chars.get(i + 1) == Some(&'/') {
+            break;
+        } else {
+            out.push(c);
+        }
+        i += 1;
+    }
+    out
+}
+
+/// Top-level module -> the top-level modules its code names as `crate::x`.
+fn imports() -> BTreeMap<String, BTreeSet<String>> {
+    let mut files = vec![];
+    rust_files(&src(), &mut files);
+    let mut map: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for f in files {
+        let rel = f
+            .strip_prefix(src())
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        if rel == "main.rs" || rel == "lib.rs" {
+            continue;
+        }
+        let top = rel
+            .split('/')
+            .next()
+            .unwrap()
+            .trim_end_matches(".rs")
+            .to_string();
+        let text = std::fs::read_to_string(&f).unwrap();
+        let deps = map.entry(top.clone()).or_default();
+        for line in text.lines() {
+            let c = code(line);
+            for (i, _) in c.match_indices("crate::") {
+                let name: String = c[i + 7..]
+                    .chars()
+                    .take_while(|ch| ch.is_alphanumeric() || *ch == '_')
+                    .collect();
+                if !name.is_empty() && name != top {
+                    deps.insert(name);
+                }
+            }
+        }
+    }
+    map
+}
+
+#[test]
+fn no_module_imports_round_a_loop() {
+    let map = imports();
+    let reach = |a: &str| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![a.to_string()];
+        while let Some(x) = stack.pop() {
+            for y in map.get(&x).into_iter().flatten() {
+                if seen.insert(y.clone()) {
+                    stack.push(y.clone());
+                }
+            }
+        }
+        seen
+    };
+    let mut cycles = vec![];
+    for (a, deps) in &map {
+        for b in deps {
+            if a < b && reach(b).contains(a) {
+                cycles.push(format!("{a} <-> {b}"));
+            }
+        }
+    }
+    assert!(map.len() > 15, "found only {} modules", map.len());
+    assert!(cycles.is_empty(), "import cycles: {cycles:?}");
+}
+
+#[test]
+fn main_rs_is_the_command_line_only() {
+    let lines = std::fs::read_to_string(src().join("main.rs"))
+        .unwrap()
+        .lines()
+        .count();
+    assert!(
+        lines <= 250,
+        "src/main.rs has {lines} lines; commands belong in src/cli/"
+    );
+}
