@@ -545,3 +545,44 @@ fn reproduce_quiet_prints_nothing() {
     assert!(dir.join("data/loads_search.csv").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Every registered step solver is reachable from the command line; the penalty
+/// method, which overshoots g by design, runs with a note that it is not certified.
+#[test]
+fn every_registered_solver_runs_from_the_command_line() {
+    for entry in evhi::step::SOLVERS.iter() {
+        let dir = scratch(&format!("solver-{}", entry.name));
+        let out = evhi()
+            .args(["solve", "--scenario", "figure", "--n", "8", "--steps", "4"])
+            .args(["--solver", entry.name, "--out"])
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{}: {stderr}", entry.name);
+        assert_eq!(
+            stderr.contains("is not certified"),
+            !entry.certified,
+            "{}: {stderr}",
+            entry.name
+        );
+        assert!(dir.join("summary.csv").exists(), "{}", entry.name);
+        std::fs::remove_dir_all(&dir).ok();
+    }
+    let out = evhi()
+        .args([
+            "solve",
+            "--solver",
+            "gradient-descent",
+            "--out",
+            "/tmp/never",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("newton") && stderr.contains("penalty"),
+        "{stderr}"
+    );
+}

@@ -123,6 +123,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     opt.certificate_tol = if entry.certified {
         args.certificate_tol
     } else {
+        eprintln!(
+            "note: solver `{}` is not certified ({}); steps.csv still records each step's \
+             certificate, which measures its distance from the exact step",
+            entry.name, entry.about
+        );
         f64::INFINITY
     };
     opt.ordering = match args.ordering.as_str() {
