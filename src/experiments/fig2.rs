@@ -8,6 +8,10 @@ use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 
+/// Okabe–Ito blue and vermillion (safe for colour-blind readers).
+const OKABE_BLUE: RGBColor = RGBColor(0, 114, 178);
+const VERMILLION: RGBColor = RGBColor(213, 94, 0);
+
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
     let g = scn.g;
@@ -102,18 +106,18 @@ impl Figure for Fig2 {
             .map(|((&u, &s), _)| (u, s))
             .collect();
         chart
-            .draw_series(LineSeries::new(comp, BLUE.stroke_width(3)))
+            .draw_series(LineSeries::new(comp, OKABE_BLUE.stroke_width(3)))
             .map_err(e2s)?
             .label("normal compliance -σν¹ = p(uν), (5.1)")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLUE.stroke_width(3)));
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], OKABE_BLUE.stroke_width(3)));
         chart
-            .draw_series(LineSeries::new(wall, RED.stroke_width(3)))
+            .draw_series(LineSeries::new(wall, VERMILLION.stroke_width(3)))
             .map_err(e2s)?
             .label(format!(
                 "unilateral limit uν = g = {} (5.2): -σν² ≥ 0",
                 self.g
             ))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(3)));
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], VERMILLION.stroke_width(3)));
         chart
             .draw_series(
                 self.bu
@@ -122,7 +126,7 @@ impl Figure for Fig2 {
                     .map(|(&u, &s)| Circle::new((u, s), 6, BLACK.filled())),
             )
             .map_err(e2s)?
-            .label("branch points 0, u1 = 0.05, u2 = 0.075, g")
+            .label("branch points 0, u¹ = 0.05, u² = 0.075, g")
             .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.filled()));
         legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())
