@@ -18,6 +18,7 @@ use crate::norms::energy_norm_with;
 use crate::ordering::Ordering;
 use crate::scenario::Scenario;
 use crate::step::{Status, StepProblem, StepSolver};
+use crate::timing::timed;
 use std::time::Instant;
 
 /// The space discretisation of a scenario: mesh, dofs and operators.
@@ -219,13 +220,15 @@ pub fn step_curvature(scn: &Scenario, n: usize, steps: usize) -> Result<f64, Run
     check_memory(n)?;
     let disc = Discretisation::new(scn, n)?;
     let k = scn.t_end / steps as f64;
-    let kmat = lin_comb(1.0, &disc.a, k, &disc.b);
-    let order = Ordering::nested_dissection(&disc.mesh, &disc.dofs, &disc.contact_dofs);
-    let mut chol = Cholesky::factor(&kmat, &order)?;
-    chol.sequential();
-    let c = condense(&chol).map_err(RunError::Condense)?;
-    let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
-    step_hessian_min(c.s.as_ref(), &kw, scn.law.min_slope(), c.lambda_min)
+    let op = StepOperator::new(
+        &disc,
+        k,
+        OrderingKind::NestedDissection,
+        false,
+        scn.law.min_slope(),
+        &mut Timings::default(),
+    )?;
+    Ok(op.hessian_min)
 }
 
 /// Why a step failed, in words: the solver's own verdict, or the certificate that
@@ -294,7 +297,6 @@ impl Options {
     }
 }
 
-// ANCHOR: run
 /// Runs the scheme. `observe(n, t_n, u_n)` is called after every step.
 pub fn run(
     scn: &Scenario,
@@ -361,11 +363,95 @@ pub fn run_batch_states(
     solvers: &mut [&mut dyn StepSolver],
     observe: &mut StateObserver<'_>,
 ) -> Result<Vec<Run>, RunError> {
+    check_batch(scns, opt, solvers)?;
+    let Some(scn) = scns.first() else {
+        return Ok(vec![]);
+    };
+    let mut timings = Timings::default();
+    let (disc, loads) = timed(&mut timings.assembly, || discretise(scns, opt))?;
+    let k = scn.t_end / opt.steps as f64;
+    let cmin = (scns.iter().map(|s| s.law.min_slope())).fold(f64::INFINITY, f64::min);
+    let op = StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?;
+    timings.one_solve = op.one_solve(&disc.f);
+    let (nd, m, nb) = (disc.dofs.count, op.kw.len(), scns.len());
+    // ANCHOR: time_loop
+    // Per scenario: u_n and A u_n (u_0 = 0), the condensed unknowns r, the records.
+    let mut u = vec![vec![0.0; nd]; nb];
+    let mut au = vec![vec![0.0; nd]; nb];
+    let mut r = vec![vec![0.0; m]; nb];
+    let mut records: Vec<Vec<StepRecord>> = vec![Vec::with_capacity(opt.steps); nb];
+    let mut contact = vec![vec![]; nb];
+    let clock = Instant::now();
+    for step in 1..=opt.steps {
+        let t = step as f64 * k;
+        let t0 = Instant::now();
+        // b_n = A u_{n-1} + k f_n, with f_n = phi(t_n) f.
+        let b: Vec<Vec<f64>> = (au.iter().zip(&loads).zip(scns))
+            .map(|((au, f), scn)| {
+                let kf = k * scn.history.phi(t);
+                au.iter().zip(f).map(|(au, f)| au + kf * f).collect()
+            })
+            .collect();
+        let infos;
+        (u, infos) = op.step(&b, scns, solvers, &mut r, &mut timings);
+        let time_s = t0.elapsed().as_secs_f64();
+        for (i, info) in infos.into_iter().enumerate() {
+            let (rec, states) = timed(&mut timings.certificates, || {
+                op.record(&u[i], &b[i], &mut au[i], &scns[i], (step, t, time_s), info)
+            });
+            let failed = rec.status != Status::Converged
+                || rec.certificate.max().is_nan()
+                || rec.certificate.max() > opt.certificate_tol;
+            if failed {
+                return Err(RunError::Step {
+                    scenario: scns[i].name.clone(),
+                    step,
+                    t,
+                    solver: solvers[i].name().to_string(),
+                    status: rec.status,
+                    iterations: rec.iterations,
+                    residual: rec.solver_residual,
+                    certificate: rec.certificate.max(),
+                    tol: opt.certificate_tol,
+                });
+            }
+            records[i].push(rec);
+            observe(i, step, t, &u[i], &states);
+            contact[i] = states;
+        }
+    }
+    timings.steps = clock.elapsed().as_secs_f64();
+    // ANCHOR_END: time_loop
+    Ok((u.into_iter().zip(records).zip(contact))
+        .map(|((u, records), contact)| Run {
+            n: opt.n,
+            steps: opt.steps,
+            dofs: disc.dofs.count,
+            nnz_l: op.chol.nnz_l(),
+            sweep_threads: op.threads,
+            u,
+            records,
+            contact,
+            timings: timings.clone(),
+            s_eigen: (op.lambda_min, op.lambda_max),
+            hessian_min: op.hessian_min,
+        })
+        .collect())
+}
+
+/// Refuses a batch that cannot run: a step count out of range, a solver count that
+/// is not one per scenario, scenarios that do not share the step matrix, a mesh
+/// too large for memory.
+fn check_batch(
+    scns: &[Scenario],
+    opt: &Options,
+    solvers: &[&mut dyn StepSolver],
+) -> Result<(), RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
     }
     let Some(scn) = scns.first() else {
-        return Ok(vec![]);
+        return Ok(());
     };
     if solvers.len() != scns.len() {
         return Err(InputError::field(
@@ -387,8 +473,16 @@ pub fn run_batch_states(
         .into());
     }
     check_memory(opt.n)?;
-    let mut timings = Timings::default();
-    let clock = Instant::now();
+    Ok(())
+}
+
+/// The discretisation of the batch's first scenario (or of the given mesh), and the
+/// load vector of each scenario on it.
+fn discretise(
+    scns: &[Scenario],
+    opt: &Options,
+) -> Result<(Discretisation, Vec<Vec<f64>>), RunError> {
+    let scn = &scns[0];
     let disc = match &opt.mesh {
         Some(mesh) => Discretisation::on(scn, (**mesh).clone()),
         None => Discretisation::new(scn, opt.n)?,
@@ -403,180 +497,197 @@ pub fn run_batch_states(
             other.f0_modulation,
         ));
     }
-    timings.assembly = clock.elapsed().as_secs_f64();
+    Ok((disc, loads))
+}
 
-    let k = scn.t_end / opt.steps as f64;
-    let clock = Instant::now();
-    // A and B share their pattern (one mesh, one dof map), which makes K = A + kB and
-    // the products A u, B u single passes over it.
-    let pair = Pair::new(&disc.a, &disc.b);
-    let kmat = match &pair {
-        Some(pair) => pair.lin_comb(1.0, k),
-        None => lin_comb(1.0, &disc.a, k, &disc.b),
-    };
-    let cdofs = disc.contact_dofs.clone();
-    let grid = disc.mesh.pattern != crate::mesh::Pattern::Bisected;
-    let order = match opt.ordering {
-        OrderingKind::NestedDissection if grid => {
-            Ordering::nested_dissection(&disc.mesh, &disc.dofs, &cdofs)
-        }
-        _ => Ordering::amd(&kmat, &cdofs)?,
-    };
-    let mut chol = Cholesky::factor(&kmat, &order)?;
-    if !opt.parallel || chol.nnz_l() < PARALLEL_MIN_NNZ {
-        chol.sequential();
-    }
-    let threads = if chol.is_parallel() { 2 } else { 1 };
-    timings.factorisation = clock.elapsed().as_secs_f64();
-    let mut solves: Vec<f64> = (0..3)
-        .map(|_| {
-            let t = Instant::now();
-            std::hint::black_box(chol.solve(&disc.f));
-            t.elapsed().as_secs_f64()
+/// The step operator $K = A + kB$: factorised with the contact dofs last, condensed
+/// onto them ($S$), with the spectral bounds the step solvers and the convexity test
+/// need.
+pub struct StepOperator<'d> {
+    pub k: f64,
+    /// $A$ and $B$.
+    pub a: &'d SpMat,
+    pub b: &'d SpMat,
+    pub kmat: SpMat,
+    /// $A$ and $B$ on one pattern, when they share it (the products then take one pass).
+    pub pair: Option<Pair<'d>>,
+    pub chol: Cholesky,
+    /// Threads of the triangular sweeps.
+    pub threads: usize,
+    /// The condensed stiffness $S$ on the contact normal dofs.
+    pub s: faer::Mat<f64>,
+    pub lambda_min: f64,
+    pub lambda_max: f64,
+    /// $k w_i$ per contact node.
+    pub kw: Vec<f64>,
+    /// The smallest curvature a step can have (see [`Run::hessian_min`]).
+    pub hessian_min: f64,
+    /// The contact normal dofs.
+    pub cdofs: Vec<usize>,
+}
+
+impl<'d> StepOperator<'d> {
+    /// Assembles, orders and factorises $K$ and condenses it; `cmin` is the steepest
+    /// softening slope of the laws it will serve. The phases' wall times go into
+    /// `timings`.
+    pub fn new(
+        disc: &'d Discretisation,
+        k: f64,
+        ordering: OrderingKind,
+        parallel: bool,
+        cmin: f64,
+        timings: &mut Timings,
+    ) -> Result<StepOperator<'d>, RunError> {
+        let cdofs = disc.contact_dofs.clone();
+        let (pair, kmat, chol, threads) = timed(&mut timings.factorisation, || {
+            // A and B share their pattern (one mesh, one dof map), which makes K = A + kB
+            // and the products A u, B u single passes over it.
+            let pair = Pair::new(&disc.a, &disc.b);
+            let kmat = match &pair {
+                Some(pair) => pair.lin_comb(1.0, k),
+                None => lin_comb(1.0, &disc.a, k, &disc.b),
+            };
+            let grid = disc.mesh.pattern != crate::mesh::Pattern::Bisected;
+            let order = match ordering {
+                OrderingKind::NestedDissection if grid => {
+                    Ordering::nested_dissection(&disc.mesh, &disc.dofs, &cdofs)
+                }
+                _ => Ordering::amd(&kmat, &cdofs)?,
+            };
+            let mut chol = Cholesky::factor(&kmat, &order)?;
+            if !parallel || chol.nnz_l() < PARALLEL_MIN_NNZ {
+                chol.sequential();
+            }
+            let threads = if chol.is_parallel() { 2 } else { 1 };
+            Ok::<_, RunError>((pair, kmat, chol, threads))
+        })?;
+        let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
+        let (c, hessian_min) = timed(&mut timings.condensation, || {
+            let c = condense(&chol).map_err(RunError::Condense)?;
+            let h = step_hessian_min(c.s.as_ref(), &kw, cmin, c.lambda_min)?;
+            Ok::<_, RunError>((c, h))
+        })?;
+        let Condensed {
+            s,
+            lambda_max,
+            lambda_min,
+        } = c;
+        Ok(StepOperator {
+            k,
+            a: &disc.a,
+            b: &disc.b,
+            kmat,
+            pair,
+            chol,
+            threads,
+            s,
+            lambda_min,
+            lambda_max,
+            kw,
+            hessian_min,
+            cdofs,
         })
-        .collect();
-    solves.sort_by(f64::total_cmp);
-    timings.one_solve = solves[1];
+    }
 
-    let clock = Instant::now();
-    let Condensed {
-        s,
-        lambda_max,
-        lambda_min,
-    } = condense(&chol).map_err(RunError::Condense)?;
-
-    let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
-    let m = cdofs.len();
-    let cmin = scns
-        .iter()
-        .map(|s| s.law.min_slope())
-        .fold(f64::INFINITY, f64::min);
-    let hessian_min = step_hessian_min(s.as_ref(), &kw, cmin, lambda_min)?;
-    // The condensed operator and its spectral bounds are one phase.
-    timings.condensation = clock.elapsed().as_secs_f64();
-    let nd = disc.dofs.count;
-    let nb = scns.len();
-    // Per scenario: u_n, A u_n (u_0 = 0), the condensed unknowns, the records.
-    let mut u = vec![vec![0.0; nd]; nb];
-    let mut au = vec![vec![0.0; nd]; nb];
-    let mut r = vec![vec![0.0; m]; nb];
-    let mut records: Vec<Vec<StepRecord>> = vec![Vec::with_capacity(opt.steps); nb];
-    let mut contact = vec![vec![]; nb];
-    let clock = Instant::now();
-    for step in 1..=opt.steps {
-        let t = step as f64 * k;
-        let t0 = Instant::now();
-        // b_n = A u_{n-1} + k f_n with f_n = phi(t_n) f; forward solve x = L^{-1} b_n;
-        // r0 = P K^{-1} b_n from its contact block.
-        let b: Vec<Vec<f64>> = (au.iter().zip(&loads).zip(scns))
-            .map(|((au, f), scn)| {
-                let kf = k * scn.history.phi(t);
-                au.iter().zip(f).map(|(au, f)| au + kf * f).collect()
+    /// One solve with the factor (forward + backward), median of three: the floor
+    /// of a step's cost.
+    pub fn one_solve(&self, f: &[f64]) -> f64 {
+        let mut solves: Vec<f64> = (0..3)
+            .map(|_| {
+                let t = Instant::now();
+                std::hint::black_box(self.chol.solve(f));
+                t.elapsed().as_secs_f64()
             })
             .collect();
+        solves.sort_by(f64::total_cmp);
+        solves[1]
+    }
+
+    // ANCHOR: step
+    /// One batched step: one forward sweep for all right-hand sides $b_n$, each
+    /// scenario's condensed contact problem from $r_0 = PK^{-1}b_n$ (warm-started at
+    /// `r`), the recovery of $u_n = K^{-1}(b_n + E_C^\top z)$ with $z = S(r_0 - r)$, and
+    /// one backward sweep for all.
+    pub fn step(
+        &self,
+        b: &[Vec<f64>],
+        scns: &[Scenario],
+        solvers: &mut [&mut dyn StepSolver],
+        r: &mut [Vec<f64>],
+        timings: &mut Timings,
+    ) -> (Vec<Vec<f64>>, Vec<crate::step::Info>) {
+        let chol = &self.chol;
+        let m = self.kw.len();
         let mut x = chol.forward_many(&b.iter().map(Vec::as_slice).collect::<Vec<_>>());
-        let mut infos = Vec::with_capacity(nb);
-        for i in 0..nb {
+        let nd = x.first().map_or(0, Vec::len);
+        let mut infos = Vec::with_capacity(b.len());
+        for i in 0..b.len() {
             let mut y_c = x[i][nd - m..].to_vec();
             chol.contact_backward(&mut y_c);
             let r0: Vec<f64> = y_c.iter().map(|y| -y).collect();
             let prob = StepProblem {
-                s: s.as_ref(),
+                s: self.s.as_ref(),
                 r0: &r0,
-                kw: &kw,
+                kw: &self.kw,
                 law: &scns[i].law,
                 g: scns[i].g,
-                lipschitz: lambda_max,
-                curvature_min: hessian_min,
+                lipschitz: self.lambda_max,
+                curvature_min: self.hessian_min,
             };
-            let ts = Instant::now();
-            infos.push(solvers[i].solve(&prob, &mut r[i]));
-            timings.step_solver += ts.elapsed().as_secs_f64();
-            // Recovery: u = K^{-1}(b_n + z at the contact y-dofs), z = S (r0 - r): the forward
-            // solve changes only in its contact block, by L_CC^{-1} z; then one backward solve.
+            infos.push(timed(&mut timings.step_solver, || {
+                solvers[i].solve(&prob, &mut r[i])
+            }));
+            // The forward solve changes only in its contact block, by L_CC^{-1} z.
             let diff: Vec<f64> = r0.iter().zip(&r[i]).map(|(a, b)| a - b).collect();
-            let mut z = crate::step::sym_matvec(s.as_ref(), &diff);
+            let mut z = crate::step::sym_matvec(self.s.as_ref(), &diff);
             chol.contact_forward(&mut z);
             for (xi, zi) in x[i][nd - m..].iter_mut().zip(&z) {
                 *xi += zi;
             }
         }
-        u = chol.backward_many(x);
-        let time_s = t0.elapsed().as_secs_f64();
-        for (i, info) in infos.into_iter().enumerate() {
-            let tc = Instant::now();
-            // A u_n and B u_n serve the next step, the certificate (K u = A u + k B u) and the norm.
-            let (bu, ku_abs);
-            (au[i], bu, ku_abs) = match &pair {
-                Some(pair) => {
-                    let p = pair.products(&u[i], k, threads);
-                    (p.ax, p.bx, p.abs_norm)
-                }
-                None => (
-                    matvec(&disc.a, &u[i]),
-                    matvec(&disc.b, &u[i]),
-                    abs_matvec_norm(&kmat, &u[i]),
-                ),
-            };
-            let ku: Vec<f64> = au[i].iter().zip(&bu).map(|(a, b)| a + k * b).collect();
-            let (certificate, states) = certify(
-                &ku,
-                ku_abs,
-                &b[i],
-                &u[i],
-                &cdofs,
-                &kw,
-                &scns[i].law,
-                scns[i].g,
-            );
-            timings.certificates += tc.elapsed().as_secs_f64();
-            let rec = StepRecord {
-                step,
-                t,
-                status: info.status.clone(),
-                iterations: info.iterations,
-                inner_iterations: info.inner_iterations,
-                solver_residual: info.residual,
-                certificate,
-                energy_norm: energy_norm_with(&bu, &u[i]),
-                time_s,
-            };
-            let failed = info.status != Status::Converged
-                || certificate.max().is_nan()
-                || certificate.max() > opt.certificate_tol;
-            records[i].push(rec);
-            if failed {
-                return Err(RunError::Step {
-                    scenario: scns[i].name.clone(),
-                    step,
-                    t,
-                    solver: solvers[i].name().to_string(),
-                    status: info.status,
-                    iterations: info.iterations,
-                    residual: info.residual,
-                    certificate: certificate.max(),
-                    tol: opt.certificate_tol,
-                });
-            }
-            observe(i, step, t, &u[i], &states);
-            contact[i] = states;
-        }
+        (chol.backward_many(x), infos)
     }
-    timings.steps = clock.elapsed().as_secs_f64();
-    Ok((u.into_iter().zip(records).zip(contact))
-        .map(|((u, records), contact)| Run {
-            n: opt.n,
-            steps: opt.steps,
-            dofs: disc.dofs.count,
-            nnz_l: chol.nnz_l(),
-            sweep_threads: threads,
-            u,
-            records,
-            contact,
-            timings: timings.clone(),
-            s_eigen: (lambda_min, lambda_max),
-            hessian_min,
-        })
-        .collect())
+    // ANCHOR_END: step
+
+    /// The record of a step: $Au_n$ (kept in `au` for the next step), $Bu_n$, the
+    /// certificate of $u_n$ against $K u = b_n$ and the contact conditions, the
+    /// energy norm.
+    pub fn record(
+        &self,
+        u: &[f64],
+        b: &[f64],
+        au: &mut Vec<f64>,
+        scn: &Scenario,
+        (step, t, time_s): (usize, f64, f64),
+        info: crate::step::Info,
+    ) -> (StepRecord, Vec<ContactState>) {
+        let k = self.k;
+        let (bu, ku_abs);
+        (*au, bu, ku_abs) = match &self.pair {
+            Some(pair) => {
+                let p = pair.products(u, k, self.threads);
+                (p.ax, p.bx, p.abs_norm)
+            }
+            None => (
+                matvec(self.a, u),
+                matvec(self.b, u),
+                abs_matvec_norm(&self.kmat, u),
+            ),
+        };
+        let ku: Vec<f64> = au.iter().zip(&bu).map(|(a, b)| a + k * b).collect();
+        let (certificate, states) =
+            certify(&ku, ku_abs, b, u, &self.cdofs, &self.kw, &scn.law, scn.g);
+        let rec = StepRecord {
+            step,
+            t,
+            status: info.status,
+            iterations: info.iterations,
+            inner_iterations: info.inner_iterations,
+            solver_residual: info.residual,
+            certificate,
+            energy_norm: energy_norm_with(&bu, u),
+            time_s,
+        };
+        (rec, states)
+    }
 }
-// ANCHOR_END: run

@@ -32,3 +32,11 @@ pub fn machine() -> String {
         .map_or(f64::NAN, |kb| kb / 1048576.0);
     format!("{cpu}, {cores} cores, {mem:.0} GiB")
 }
+
+/// Runs `f` and adds its wall time, in seconds, to `slot`.
+pub fn timed<T>(slot: &mut f64, f: impl FnOnce() -> T) -> T {
+    let clock = std::time::Instant::now();
+    let out = f();
+    *slot += clock.elapsed().as_secs_f64();
+    out
+}

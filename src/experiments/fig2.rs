@@ -109,7 +109,9 @@ impl Figure for Fig2 {
             .draw_series(LineSeries::new(comp, OKABE_BLUE.stroke_width(3)))
             .map_err(e2s)?
             .label("normal compliance -σν¹ = p(uν), (5.1)")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], OKABE_BLUE.stroke_width(3)));
+            .legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], OKABE_BLUE.stroke_width(3))
+            });
         chart
             .draw_series(LineSeries::new(wall, VERMILLION.stroke_width(3)))
             .map_err(e2s)?
@@ -117,7 +119,9 @@ impl Figure for Fig2 {
                 "unilateral limit uν = g = {} (5.2): -σν² ≥ 0",
                 self.g
             ))
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], VERMILLION.stroke_width(3)));
+            .legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], VERMILLION.stroke_width(3))
+            });
         chart
             .draw_series(
                 self.bu
