@@ -1,0 +1,68 @@
+//! Every step solver of the registry on small condensed problems whose answers are
+//! known by hand: a diagonal $S$ decouples the nodes, so each node solves
+//! $s (r - r_0) + k w\, p(r) \ni 0$, $r \le g$, alone.
+//!
+//! With $s = 1000$, $k w = 1$ and the paper's law ($p = 200 r$ up to 0.05, then
+//! $15 - 100 r$ up to 0.075, then $300 r - 15$), $g = 0.1$:
+//! - no contact: $r_0 = -0.05$ gives $r = -0.05$;
+//! - branch 1: $r_0 = 0.03$ gives $1200 r = 30$, $r = 0.025$;
+//! - branch 2 (softening): $r_0 = 0.069$ gives $900 r = 54$, $r = 0.06$;
+//! - branch 3: $r_0 = 0.102$ gives $1300 r = 117$, $r = 0.09$;
+//! - at the limit: $r_0 = 0.2$ would give $r = 0.165 > g$, so $r = g = 0.1$.
+//!
+//! And a law with an upward jump of 5 at 0.05 ($p(0.05^-) = 10$, $p(0.05^+) = 15$):
+//! $r_0 = 0.0625$ puts $1000(r_0 - 0.05) = 12.5$ inside $[10, 15]$, so $r = 0.05$, on the jump.
+
+use evhi::law::Law;
+use evhi::step::{SOLVERS, Status, StepProblem};
+
+fn solve_all(law: &Law, r0: &[f64], expected: &[f64]) {
+    let m = r0.len();
+    let s = faer::Mat::from_fn(m, m, |i, j| if i == j { 1000.0 } else { 0.0 });
+    let kw = vec![1.0; m];
+    let cmin = law.min_slope().min(0.0);
+    let p = StepProblem {
+        s: s.as_ref(),
+        r0,
+        kw: &kw,
+        law,
+        g: 0.1,
+        lipschitz: 1000.0,
+        curvature_min: 1000.0 + cmin,
+    };
+    for entry in SOLVERS.iter() {
+        let mut r = vec![0.0; m];
+        let info = entry.build().solve(&p, &mut r);
+        assert_eq!(info.status, Status::Converged, "{}: {info:?}", entry.name);
+        // Certified solvers land on the answer; the penalty method may overshoot g
+        // by about (force at the limit) / stiffness.
+        let tol = if entry.certified { 1e-9 } else { 1e-4 };
+        for (i, (x, e)) in r.iter().zip(expected).enumerate() {
+            assert!(
+                (x - e).abs() <= tol,
+                "{}: node {i} at {x}, expected {e}",
+                entry.name
+            );
+        }
+    }
+}
+
+#[test]
+fn every_solver_finds_each_branch_and_the_limit() {
+    solve_all(
+        &evhi::law::paper_law(),
+        &[-0.05, 0.03, 0.069, 0.102, 0.2],
+        &[-0.05, 0.025, 0.06, 0.09, 0.1],
+    );
+}
+
+#[test]
+fn every_solver_stops_on_an_upward_jump() {
+    let law = Law::new(&[0.0, 0.05], &[0.0, 200.0, 200.0], &[0.0, 5.0], 0.0).unwrap();
+    // A node on the jump, and one on each side of it.
+    solve_all(
+        &law,
+        &[0.0625, 0.03, 0.09],
+        &[0.05, 0.025, (90.0 - 5.0) / 1200.0 + 0.0],
+    );
+}
