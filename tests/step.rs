@@ -66,3 +66,42 @@ fn every_solver_stops_on_an_upward_jump() {
         &[0.05, 0.025, (90.0 - 5.0) / 1200.0 + 0.0],
     );
 }
+
+/// A bad setting is refused by name before any iteration, not used.
+#[test]
+fn bad_settings_are_refused_by_name() {
+    use evhi::step::StepSolver;
+    let law = evhi::law::paper_law();
+    let s = faer::Mat::from_fn(1, 1, |_, _| 1000.0);
+    let p = StepProblem {
+        s: s.as_ref(),
+        r0: &[0.03],
+        kw: &[1.0],
+        law: &law,
+        g: 0.1,
+        lipschitz: 1000.0,
+        curvature_min: 900.0,
+    };
+    let mut newton = evhi::step::newton::Newton::new(evhi::step::newton::Settings {
+        gamma_fraction: 1.5,
+        ..Default::default()
+    });
+    let mut convexify = evhi::step::convexify::Convexify::new(evhi::step::convexify::Settings {
+        ipm_tol: f64::NAN,
+        ..Default::default()
+    });
+    let mut penalty = evhi::step::penalty::Penalty::new(-1.0);
+    for (solver, field) in [
+        (&mut newton as &mut dyn StepSolver, "newton.gamma_fraction"),
+        (&mut convexify, "convexify.ipm_tol"),
+        (&mut penalty, "penalty.stiffness"),
+    ] {
+        let mut r = vec![0.0];
+        let info = solver.solve(&p, &mut r);
+        match info.status {
+            Status::Failed(msg) => assert!(msg.contains(field), "{msg}"),
+            other => panic!("{field}: {other:?}"),
+        }
+        assert_eq!(info.iterations, 0);
+    }
+}

@@ -33,6 +33,8 @@ pub struct Settings {
     pub max_iter: usize,
     /// Clarabel's gap and feasibility tolerances.
     pub ipm_tol: f64,
+    /// Clarabel's iteration limit for one convex subproblem.
+    pub ipm_max_iter: u32,
     /// Solve exactly on the identified pieces at the end (see module docs).
     pub polish: bool,
 }
@@ -43,8 +45,21 @@ impl Default for Settings {
             tol: 1e-9,
             max_iter: 100,
             ipm_tol: 1e-10,
+            ipm_max_iter: 200,
             polish: true,
         }
+    }
+}
+
+impl Settings {
+    /// Checks every field: a bad value is named, never silently used.
+    pub fn validate(&self) -> Result<(), crate::error::InputError> {
+        let s = "convexify";
+        super::setting(s, "tol", self.tol, 1e-15, 1e-2)?;
+        super::setting(s, "max_iter", self.max_iter as f64, 1.0, 1e5)?;
+        super::setting(s, "ipm_tol", self.ipm_tol, 1e-14, 1e-3)?;
+        super::setting(s, "ipm_max_iter", self.ipm_max_iter as f64, 1.0, 1e5)?;
+        Ok(())
     }
 }
 
@@ -208,7 +223,7 @@ impl Convexify {
             .tol_gap_rel(tol)
             .tol_feas(tol)
             .tol_ktratio(tol)
-            .max_iter(200)
+            .max_iter(self.settings.ipm_max_iter)
             .build()
             .map_err(|e| format!("{e:?}"))?;
         let mut solver =
@@ -231,6 +246,9 @@ impl StepSolver for Convexify {
     }
 
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
+        if let Err(e) = self.settings.validate() {
+            return Info::refused(e.to_string());
+        }
         let st = self.settings.clone();
         let mut info = Info {
             status: Status::MaxIterations,

@@ -71,6 +71,40 @@ pub trait StepSolver {
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
 }
 
+impl Info {
+    /// A solve refused before it started (bad settings): no iterations, the
+    /// reason in the status.
+    pub fn refused(reason: String) -> Info {
+        Info {
+            status: Status::Failed(reason),
+            iterations: 0,
+            inner_iterations: 0,
+            residual: f64::NAN,
+            history: vec![],
+        }
+    }
+}
+
+/// Checks one setting: finite and within `[lo, hi]`; the error names the solver
+/// and the field.
+pub(crate) fn setting(
+    solver: &str,
+    field: &str,
+    v: f64,
+    lo: f64,
+    hi: f64,
+) -> Result<(), crate::error::InputError> {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(())
+    } else {
+        Err(crate::error::InputError::field(
+            format!("{solver}.{field}"),
+            v,
+            format!("a number in [{lo:e}, {hi:e}]"),
+        ))
+    }
+}
+
 /// One step solver of the registry.
 pub struct SolverEntry {
     /// Its name on the command line (`--solver`).

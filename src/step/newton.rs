@@ -40,6 +40,20 @@ pub struct Settings {
     pub line_search: bool,
 }
 
+impl Settings {
+    /// Checks every field (as Clarabel's settings are checked): a bad value is
+    /// named, never silently used.
+    pub fn validate(&self) -> Result<(), crate::error::InputError> {
+        let s = "newton";
+        super::setting(s, "tol", self.tol, 1e-16, 1e-2)?;
+        super::setting(s, "max_iter", self.max_iter as f64, 0.0, 1e7)?;
+        super::setting(s, "max_backtracks", self.max_backtracks as f64, 0.0, 60.0)?;
+        super::setting(s, "gamma_fraction", self.gamma_fraction, 1e-6, 1.0 - 1e-12)?;
+        super::setting(s, "sigma", self.sigma, 1e-12, 1.0 - 1e-12)?;
+        Ok(())
+    }
+}
+
 impl Default for Settings {
     fn default() -> Self {
         Settings {
@@ -206,6 +220,9 @@ impl StepSolver for Newton {
     }
 
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
+        if let Err(e) = self.settings.validate() {
+            return Info::refused(e.to_string());
+        }
         let st = &self.settings;
         let gamma = self.gamma(p);
         let r0n = inf_norm(p.r0);

@@ -61,6 +61,10 @@ impl StepSolver for Penalty {
     }
 
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
+        // The stiffness is the penalty's one setting (the inner Newton checks its own).
+        if let Err(e) = super::setting("penalty", "stiffness", self.stiffness, 1e-12, 1e15) {
+            return Info::refused(e.to_string());
+        }
         let fresh = !matches!(&self.cache, Some((l, g, _)) if l == p.law && *g == p.g);
         if fresh {
             self.cache = Some((
