@@ -203,19 +203,10 @@ fn run_level(
     let scns: Vec<Scenario> = group.loads.iter().map(|(_, s)| s.clone()).collect();
     let mesh = scns[0].mesh(n)?;
     let dofs = Dofs::new(&mesh, true);
-    let mut newtons: Vec<_> = scns
-        .iter()
-        .map(|_| crate::step::newton::Newton::default())
-        .collect();
-    let mut solvers: Vec<&mut dyn crate::step::StepSolver> = newtons
-        .iter_mut()
-        .map(|s| s as &mut dyn crate::step::StepSolver)
-        .collect();
     let per = n_ref / steps;
-    crate::scheme::run_batch_states(
+    super::run_newton_batch_states(
         &scns,
         &Options::new(n, steps),
-        &mut solvers,
         &mut |i, step, _, u, states: &[ContactState]| {
             let j = step * per;
             if j.is_multiple_of(stride) {

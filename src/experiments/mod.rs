@@ -241,6 +241,15 @@ pub fn run_newton_batch_with(
     opt: &crate::scheme::Options,
     observe: &mut crate::scheme::BatchObserver<'_>,
 ) -> Result<Vec<crate::scheme::Run>, ExpError> {
+    run_newton_batch_states(scns, opt, &mut |i, step, t, u, _| observe(i, step, t, u))
+}
+
+/// [`run_newton_batch_with`] with an observer that also sees each step's contact states.
+pub fn run_newton_batch_states(
+    scns: &[crate::scenario::Scenario],
+    opt: &crate::scheme::Options,
+    observe: &mut crate::scheme::StateObserver<'_>,
+) -> Result<Vec<crate::scheme::Run>, ExpError> {
     let mut newtons: Vec<_> = scns
         .iter()
         .map(|_| crate::step::newton::Newton::default())
@@ -249,7 +258,12 @@ pub fn run_newton_batch_with(
         .iter_mut()
         .map(|s| s as &mut dyn crate::step::StepSolver)
         .collect();
-    Ok(crate::scheme::run_batch(scns, opt, &mut solvers, observe)?)
+    Ok(crate::scheme::run_batch_states(
+        scns,
+        opt,
+        &mut solvers,
+        observe,
+    )?)
 }
 
 /// Reads a CSV written by [`Ctx::write`] (comment lines skipped).
