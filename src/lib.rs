@@ -27,6 +27,7 @@ pub mod mesh;
 pub mod norms;
 pub mod ordering;
 pub mod output;
+pub mod reduced;
 pub mod scenario;
 pub mod scheme;
 pub mod show;
