@@ -80,12 +80,12 @@ pub const NAMES: [&str; 12] = [
 /// columns repeated in every part, and the most columns of one part (so a part
 /// fits the page).
 pub const BOOK_TABLES: [(&str, usize, usize); 10] = [
-    ("hypotheses.csv", 1, 7),
-    ("bench.csv", 2, 7),
-    ("bench_sweeps.csv", 1, 6),
+    ("hypotheses.csv", 1, 5),
+    ("bench.csv", 2, 6),
+    ("bench_sweeps.csv", 1, 5),
     ("bench_vs_paper.csv", 1, 6),
-    ("bench_solvers.csv", 2, 8),
-    ("stability_sweeps.csv", 4, 9),
+    ("bench_solvers.csv", 2, 6),
+    ("stability_sweeps.csv", 4, 7),
     ("stability_penalty.csv", 1, 5),
     ("loads_search.csv", 2, 7),
     ("fig4_counts.csv", 1, 6),
