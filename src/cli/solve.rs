@@ -124,8 +124,8 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         args.certificate_tol
     } else {
         eprintln!(
-            "note: solver `{}` is not certified ({}); steps.csv still records each step's \
-             certificate, which measures its distance from the exact step",
+            "note: solver `{}` ({}) is not certified; steps.csv still records each step's \
+             certificate, its distance from the exact step",
             entry.name, entry.about
         );
         f64::INFINITY
