@@ -634,9 +634,11 @@ impl<'d> StepOperator<'d> {
                 lipschitz: self.lambda_max,
                 curvature_min: self.hessian_min,
             };
-            infos.push(timed(&mut timings.step_solver, || {
-                solvers[i].solve(&prob, &mut r[i])
-            }));
+            let clock = Instant::now();
+            let mut info = solvers[i].solve(&prob, &mut r[i]);
+            info.time_s = clock.elapsed().as_secs_f64();
+            timings.step_solver += info.time_s;
+            infos.push(info);
             // The forward solve changes only in its contact block, by L_CC^{-1} z.
             let diff: Vec<f64> = r0.iter().zip(&r[i]).map(|(a, b)| a - b).collect();
             let mut z = crate::step::sym_matvec(self.s.as_ref(), &diff);

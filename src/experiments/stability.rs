@@ -76,42 +76,10 @@ const FAILED: RGBColor = RGBColor(213, 94, 0);
 
 use super::plot::{Figure, both, e2s};
 use crate::law::Law;
+use crate::step::Status;
+use crate::step::multistart::MultiStart;
 use crate::step::penalty::Penalty;
-use crate::step::{Info, Status, StepProblem, StepSolver, inf_norm};
 use plotters::prelude::*;
-
-/// Runs a solver, and also solves every step again from other starting points
-/// (zero, $g$, $r_0$), recording the largest relative distance between answers:
-/// a nonzero spread means the step has several stationary points.
-struct MultiStart {
-    inner: Box<dyn StepSolver>,
-    spread: f64,
-}
-
-impl StepSolver for MultiStart {
-    fn name(&self) -> &'static str {
-        self.inner.name()
-    }
-    fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
-        let info = self.inner.solve(p, r);
-        if info.status != Status::Converged {
-            return info;
-        }
-        let m = p.m();
-        for start in [
-            vec![0.0; m],
-            vec![p.g.min(1e3); m],
-            p.r0.iter().map(|&x| x.min(p.g)).collect(),
-        ] {
-            let mut x = start;
-            if self.inner.solve(p, &mut x).status == Status::Converged {
-                let d: Vec<f64> = x.iter().zip(r.iter()).map(|(a, b)| a - b).collect();
-                self.spread = self.spread.max(inf_norm(&d) / inf_norm(r).max(1e-300));
-            }
-        }
-        info
-    }
-}
 
 /// The paper's law with the softening slope `c2`.
 fn law_with_softening(c2: f64) -> Result<Law, ExpError> {

@@ -256,6 +256,7 @@ impl StepSolver for Convexify {
             inner_iterations: 0,
             residual: f64::NAN,
             history: vec![],
+            time_s: 0.0,
         };
         for it in 0..st.max_iter {
             let eta: Vec<f64> = r.iter().map(|&s| concave_slope(p, s)).collect();

@@ -11,6 +11,7 @@
 //! $-\big(S(r - r_0)\big)_i / (k w_i) \in \partial_{Cl} j(r_i) + N_{(-\infty, g]}(r_i)$.
 
 pub mod convexify;
+pub mod multistart;
 pub mod newton;
 pub mod penalty;
 
@@ -62,6 +63,8 @@ pub struct Info {
     pub residual: f64,
     /// Residual after each outer iteration.
     pub history: Vec<f64>,
+    /// Wall time of the solve, s (set by the time loop, which measures it).
+    pub time_s: f64,
 }
 
 /// A solver of the condensed step problem. `r` holds the starting point on
@@ -81,6 +84,7 @@ impl Info {
             inner_iterations: 0,
             residual: f64::NAN,
             history: vec![],
+            time_s: 0.0,
         }
     }
 }

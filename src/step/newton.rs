@@ -233,6 +233,7 @@ impl StepSolver for Newton {
             inner_iterations: 0,
             residual: f64::NAN,
             history: vec![],
+            time_s: 0.0,
         };
         let mut e = Self::eval(p, gamma, r);
         let sigma = st.sigma * (1.0 - gamma * p.lipschitz).max(0.0) / (2.0 * gamma);
