@@ -109,6 +109,11 @@ impl Timings {
 pub struct Run {
     pub n: usize,
     pub steps: usize,
+    /// The time step $k = T/N$ and the mesh size $h = 1/n$.
+    pub k: f64,
+    pub h: f64,
+    /// The mesh the run solved on (outputs draw from it instead of rebuilding it).
+    pub mesh: std::sync::Arc<Mesh>,
     pub dofs: usize,
     pub nnz_l: usize,
     /// Threads of the triangular sweeps (2 only with nested dissection on a mesh
@@ -422,10 +427,14 @@ pub fn run_batch_states(
     }
     timings.steps = clock.elapsed().as_secs_f64();
     // ANCHOR_END: time_loop
+    let mesh = std::sync::Arc::new(disc.mesh.clone());
     Ok((u.into_iter().zip(records).zip(contact))
         .map(|((u, records), contact)| Run {
             n: opt.n,
             steps: opt.steps,
+            k,
+            h: disc.mesh.h(),
+            mesh: mesh.clone(),
             dofs: disc.dofs.count,
             nnz_l: op.chol.nnz_l(),
             sweep_threads: op.threads,

@@ -164,11 +164,8 @@ pub fn write(
     if rec.vtk.is_some() {
         out.write("solution.pvd", vtu::pvd(&rec.series).as_bytes())?;
     }
-    let mesh = scn.mesh(run.n).map_err(|e| OutError::Io {
-        path: "mesh".into(),
-        source: std::io::Error::other(e.to_string()),
-    })?;
-    let dofs = Dofs::new(&mesh, true);
+    let mesh = &*run.mesh;
+    let dofs = Dofs::new(mesh, true);
     let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
     let c = &run.contact;
     let contact = Table::new()
@@ -270,11 +267,11 @@ pub fn write(
         .collect();
     out.write(
         "solution.vtu",
-        vtu::vtu(&mesh, &disp, &run.contact, &codes).as_bytes(),
+        vtu::vtu(mesh, &disp, &run.contact, &codes).as_bytes(),
     )?;
     out.write_table(
         "nodes.csv",
-        &nodes_table(&mesh, &disp, (run.n / 32).max(1)),
+        &nodes_table(mesh, &disp, (run.n / 32).max(1)),
         &header,
     )?;
     // The evolution at five contact nodes, and the regime counts.
