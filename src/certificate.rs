@@ -184,25 +184,17 @@ impl ContactState {
     /// otherwise `no_contact` on a branch where $p \equiv 0$ left of the first
     /// breakpoint, and `branch{b}` on branch $b$ of the law.
     pub fn regime(&self, law: &Law, g: f64) -> String {
-        if self.at_limit || at_limit(g, self.u_nu, 0.0) {
-            return "limit".into();
-        }
-        let b = law.branch(self.u_nu);
-        if b == 0 && law.slopes()[0] == 0.0 && law.p_on(0, self.u_nu) == 0.0 {
-            "no_contact".into()
-        } else {
-            format!("branch{b}")
-        }
+        self.regime_of(law, g).name()
+    }
+
+    /// The regime as the law classifies it ([`Law::regime`]).
+    pub fn regime_of(&self, law: &Law, g: f64) -> crate::law::Regime {
+        law.regime(self.u_nu, self.at_limit || at_limit(g, self.u_nu, 0.0))
     }
 
     /// The regime as an integer for field output: 0 no contact, $b$ on branch $b$
     /// ($1 \le b \le K$ for a law with $K$ breakpoints), $K + 1$ at the limit.
     pub fn regime_code(&self, law: &Law, g: f64) -> i32 {
-        let r = self.regime(law, g);
-        match r.as_str() {
-            "limit" => law.breakpoints().len() as i32 + 1,
-            "no_contact" => 0,
-            _ => law.branch(self.u_nu) as i32,
-        }
+        self.regime_of(law, g).code(law)
     }
 }

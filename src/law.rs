@@ -233,3 +233,50 @@ impl Law {
             .collect()
     }
 }
+
+/// Where a contact node's normal displacement sits in the law: no contact
+/// (left of the first breakpoint, where $p \equiv 0$), on branch $b$ of $p$, or at
+/// the unilateral limit $g$.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Regime {
+    NoContact,
+    Branch(usize),
+    Limit,
+}
+
+impl Regime {
+    /// The name in tables and figures: `no_contact`, `branch{b}`, `limit`.
+    pub fn name(&self) -> String {
+        match self {
+            Regime::NoContact => "no_contact".into(),
+            Regime::Branch(b) => format!("branch{b}"),
+            Regime::Limit => "limit".into(),
+        }
+    }
+
+    /// The integer of field output: 0 no contact, $b$ on branch $b$, $K + 1$ at the
+    /// limit for a law with $K$ breakpoints.
+    pub fn code(&self, law: &Law) -> i32 {
+        match self {
+            Regime::NoContact => 0,
+            Regime::Branch(b) => *b as i32,
+            Regime::Limit => law.breakpoints().len() as i32 + 1,
+        }
+    }
+}
+
+impl Law {
+    /// The regime of a normal displacement `u_nu` that is (`at_limit`) or is not at
+    /// the limit.
+    pub fn regime(&self, u_nu: f64, at_limit: bool) -> Regime {
+        if at_limit {
+            return Regime::Limit;
+        }
+        let b = self.branch(u_nu);
+        if b == 0 && self.slopes()[0] == 0.0 && self.p_on(0, u_nu) == 0.0 {
+            Regime::NoContact
+        } else {
+            Regime::Branch(b)
+        }
+    }
+}
