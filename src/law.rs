@@ -280,3 +280,73 @@ impl Law {
         }
     }
 }
+
+impl Law {
+    // ANCHOR: prox
+    /// $\operatorname{prox}$ of $\gamma\,kw\,j$ restricted to $s \le g$, at $v$: on each
+    /// branch (cut at $g$) the objective $kw\, j(s) + (s - v)^2/(2\gamma)$ is a strictly
+    /// convex quadratic; its minimiser clamped to the branch is the branch's best
+    /// point, and the best branch wins. Returns the point, the slope of the prox
+    /// there (0 when clamped to a branch end, i.e. pinned) and the branch.
+    pub fn prox(&self, v: f64, gamma: f64, kw: f64, g: f64) -> (f64, f64, usize) {
+        let law = self;
+        let bps = law.breakpoints();
+        let mut best = (f64::INFINITY, 0.0, 0.0, 0usize);
+        for b in 0..law.n_branches() {
+            let lo = if b == 0 {
+                f64::NEG_INFINITY
+            } else {
+                bps[b - 1]
+            };
+            if lo >= g {
+                break;
+            }
+            let hi = bps.get(b).copied().unwrap_or(f64::INFINITY).min(g);
+            let c = law.slopes()[b];
+            let denom = 1.0 + gamma * kw * c;
+            let stat = (v - gamma * kw * law.p_on(b, 0.0)) / denom;
+            let s = stat.clamp(lo, hi);
+            let obj = kw * law.j(s) + (s - v) * (s - v) / (2.0 * gamma);
+            let slope = if s == stat && s < hi && s > lo {
+                1.0 / denom
+            } else {
+                0.0
+            };
+            if obj < best.0 {
+                best = (obj, s, slope, b);
+            }
+        }
+        (best.1, best.2, best.3)
+    }
+    // ANCHOR_END: prox
+}
+
+impl Law {
+    /// The law with the penalty branch added at `g`.
+    pub fn penalised(&self, g: f64, stiffness: f64) -> Law {
+        let law = self;
+        let mut breaks: Vec<f64> = law
+            .breakpoints()
+            .iter()
+            .copied()
+            .filter(|&s| s < g)
+            .collect();
+        let mut slopes: Vec<f64> = law.slopes()[..=breaks.len()].to_vec();
+        let jumps_below: Vec<f64> = breaks
+            .iter()
+            .map(|&s| {
+                let (a, b) = law.p_sides(s);
+                b - a
+            })
+            .collect();
+        // Beyond g: the law's own slope there plus the penalty; p stays continuous at g.
+        let beyond = law.slopes()[law.branch(g)];
+        breaks.push(g);
+        slopes.push(beyond + stiffness);
+        let mut jumps = jumps_below;
+        jumps.push(0.0);
+        let p_left = law.p_sides(breaks[0]).0;
+        Law::new(&breaks, &slopes, &jumps, p_left)
+            .expect("a valid law stays valid with a penalty branch")
+    }
+}

@@ -171,44 +171,11 @@ impl Newton {
     }
 }
 
-// ANCHOR: prox
-/// $\operatorname{prox}_{\gamma \varphi_i}(v)$ for node `i`: on each branch (cut at
-/// $g$) the objective $k w_i\, j(s) + (s - v)^2/(2\gamma)$ is a strictly convex
-/// quadratic; its minimiser clamped to the branch is the branch's best point,
-/// and the best branch wins. Returns the point, the slope of the prox there
-/// (0 when clamped to a branch end, i.e. pinned) and the branch.
+/// $\operatorname{prox}_{\gamma \varphi_i}(v)$ for node `i`: the law's prox with the
+/// node's weight (see [`crate::law::Law::prox`]).
 fn prox_node(p: &StepProblem, i: usize, gamma: f64, v: f64) -> (f64, f64, usize) {
-    let law = p.law;
-    let kw = p.kw[i];
-    let bps = law.breakpoints();
-    let mut best = (f64::INFINITY, 0.0, 0.0, 0usize);
-    for b in 0..law.n_branches() {
-        let lo = if b == 0 {
-            f64::NEG_INFINITY
-        } else {
-            bps[b - 1]
-        };
-        if lo >= p.g {
-            break;
-        }
-        let hi = bps.get(b).copied().unwrap_or(f64::INFINITY).min(p.g);
-        let c = law.slopes()[b];
-        let denom = 1.0 + gamma * kw * c;
-        let stat = (v - gamma * kw * law.p_on(b, 0.0)) / denom;
-        let s = stat.clamp(lo, hi);
-        let obj = kw * law.j(s) + (s - v) * (s - v) / (2.0 * gamma);
-        let slope = if s == stat && s < hi && s > lo {
-            1.0 / denom
-        } else {
-            0.0
-        };
-        if obj < best.0 {
-            best = (obj, s, slope, b);
-        }
-    }
-    (best.1, best.2, best.3)
+    p.law.prox(v, gamma, p.kw[i], p.g)
 }
-// ANCHOR_END: prox
 
 impl StepSolver for Newton {
     fn name(&self) -> &'static str {

@@ -27,31 +27,9 @@ impl Penalty {
         }
     }
 
-    /// The law with the penalty branch added at `g`.
+    /// The law with the penalty branch added at `g` (see [`Law::penalised`]).
     pub fn penalised(law: &Law, g: f64, stiffness: f64) -> Law {
-        let mut breaks: Vec<f64> = law
-            .breakpoints()
-            .iter()
-            .copied()
-            .filter(|&s| s < g)
-            .collect();
-        let mut slopes: Vec<f64> = law.slopes()[..=breaks.len()].to_vec();
-        let jumps_below: Vec<f64> = breaks
-            .iter()
-            .map(|&s| {
-                let (a, b) = law.p_sides(s);
-                b - a
-            })
-            .collect();
-        // Beyond g: the law's own slope there plus the penalty; p stays continuous at g.
-        let beyond = law.slopes()[law.branch(g)];
-        breaks.push(g);
-        slopes.push(beyond + stiffness);
-        let mut jumps = jumps_below;
-        jumps.push(0.0);
-        let p_left = law.p_sides(breaks[0]).0;
-        Law::new(&breaks, &slopes, &jumps, p_left)
-            .expect("a valid law stays valid with a penalty branch")
+        law.penalised(g, stiffness)
     }
 }
 
