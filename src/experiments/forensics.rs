@@ -77,7 +77,6 @@ struct Acc {
     max_u: Raw,
     sum_e: Raw,
     sum_u: Raw,
-    count: usize,
 }
 
 impl Acc {
@@ -94,7 +93,6 @@ impl Acc {
             self.sum_e[q] += es;
             self.sum_u[q] += us;
         }
-        self.count += 1;
         if last {
             self.at_t = Some((e, u));
         }
@@ -115,31 +113,53 @@ impl Acc {
     }
 }
 
-/// The squared $L^2(\Gamma_3)$ norm of a contact-stress vector.
-fn sigma_sq(mesh: &Mesh, s: &[f64]) -> f64 {
-    gamma_l2_sq(mesh, s)
+/// Measures fields on the study's meshes with the elasticity tensor `g`. Each
+/// mesh's triangle geometry is built on first use and kept for the group's
+/// thousands of evaluations; meshes are told apart by (n, pattern, triangle
+/// count), which within one study identifies them.
+struct Meter {
+    g: crate::material::Isotropic,
+    geometry: std::cell::RefCell<Vec<(MeshKey, std::rc::Rc<NormGeometry>)>>,
 }
 
-/// The measures of `v` (with contact stress `s`) on `mesh`, whose triangle
-/// geometry is kept in `GEOMETRY` (built once per mesh size and pattern).
-fn measures(mesh: &Mesh, g: &crate::material::Isotropic, v: &[[f64; 2]], s: &[f64]) -> Raw {
-    /// Meshes are identified by (n, pattern, triangle count): the study's meshes
-    /// with the same key are the same mesh.
-    type Cache = Vec<((usize, Pattern, usize), std::rc::Rc<NormGeometry>)>;
-    thread_local! {
-        static GEOMETRY: std::cell::RefCell<Cache> = const { std::cell::RefCell::new(Vec::new()) };
-    }
-    let id = (mesh.n, mesh.pattern, mesh.triangles.len());
-    let geo = GEOMETRY.with(|cache| {
-        let mut cache = cache.borrow_mut();
-        if let Some((_, geo)) = cache.iter().find(|(k, _)| *k == id) {
-            return geo.clone();
+/// (n, pattern, triangle count) of a mesh of the study.
+type MeshKey = (usize, Pattern, usize);
+
+impl Meter {
+    fn new(g: crate::material::Isotropic) -> Meter {
+        Meter {
+            g,
+            geometry: Default::default(),
         }
-        let geo = std::rc::Rc::new(NormGeometry::new(mesh));
-        cache.push((id, geo.clone()));
-        geo
-    });
-    raw(geo.norms(mesh, g, v), sigma_sq(mesh, s))
+    }
+
+    /// The measures of `v` (with contact stress `s`) on `mesh`.
+    fn measures(&self, mesh: &Mesh, v: &[[f64; 2]], s: &[f64]) -> Raw {
+        let id = (mesh.n, mesh.pattern, mesh.triangles.len());
+        let found = self
+            .geometry
+            .borrow()
+            .iter()
+            .find(|(k, _)| *k == id)
+            .map(|(_, g)| g.clone());
+        let geo = found.unwrap_or_else(|| {
+            let geo = std::rc::Rc::new(NormGeometry::new(mesh));
+            self.geometry.borrow_mut().push((id, geo.clone()));
+            geo
+        });
+        raw(geo.norms(mesh, &self.g, v), gamma_l2_sq(mesh, s))
+    }
+
+    /// The measures of the difference `a - b` on `mesh`.
+    fn diff(&self, mesh: &Mesh, a: &Field, b_u: &[[f64; 2]], b_s: &[f64]) -> Raw {
+        let du: Vec<[f64; 2]> =
+            a.u.iter()
+                .zip(b_u)
+                .map(|(x, y)| [x[0] - y[0], x[1] - y[1]])
+                .collect();
+        let ds: Vec<f64> = a.sigma.iter().zip(b_s).map(|(x, y)| x - y).collect();
+        self.measures(mesh, &du, &ds)
+    }
 }
 
 /// Interpolates a contact vector of `coarse` to the contact nodes of `fine`.
@@ -157,23 +177,6 @@ fn contact_interp(coarse: &Mesh, fine: &Mesh, interp: &Interpolation, s: &[f64])
                 .sum()
         })
         .collect()
-}
-
-/// The difference of two fields and its measures on `mesh`.
-fn diff_measures(
-    mesh: &Mesh,
-    g: &crate::material::Isotropic,
-    a: &Field,
-    b_u: &[[f64; 2]],
-    b_s: &[f64],
-) -> Raw {
-    let du: Vec<[f64; 2]> =
-        a.u.iter()
-            .zip(b_u)
-            .map(|(x, y)| [x[0] - y[0], x[1] - y[1]])
-            .collect();
-    let ds: Vec<f64> = a.sigma.iter().zip(b_s).map(|(x, y)| x - y).collect();
-    measures(mesh, g, &du, &ds)
 }
 
 /// One level run: its mesh and its fields by reference step $j$ ($t = j/n_{ref}$).
@@ -224,19 +227,8 @@ fn run_level(
     Ok(mesh)
 }
 
-/// The levels and reference of the study.
-pub struct Plan {
-    pub levels: Vec<usize>,
-    pub n_ref: usize,
-}
-
-pub fn plan(quick: bool) -> Plan {
-    let p = super::convergence::plan(quick);
-    Plan {
-        levels: p.levels,
-        n_ref: p.n_ref,
-    }
-}
+/// The levels and reference of the study: Table 1's.
+pub use super::convergence::{Plan, plan};
 
 /// One candidate's sequence over the levels.
 struct Row {
@@ -304,7 +296,7 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
     let n_ref = plan.n_ref;
     // Stored times: the grid of the finest level ($t = j/top$).
     let stride = n_ref / top;
-    let g = group.loads[0].1.elasticity();
+    let meter = Meter::new(group.loads[0].1.elasticity());
     let nl = group.loads.len();
     // Runs by (load, kind, n): kind 0 = h = k, 1 = cells of side h.
     let mut runs: BTreeMap<(usize, usize, usize), LevelRun> = BTreeMap::new();
@@ -371,8 +363,8 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
                 let ff = &fine.fields[&j];
                 let cu = interp.apply(&f.u);
                 let cs = contact_interp(&coarse.mesh, &fine.mesh, &interp, &f.sigma);
-                let e = diff_measures(&fine.mesh, &g, ff, &cu, &cs);
-                let u = measures(&fine.mesh, &g, &ff.u, &ff.sigma);
+                let e = meter.diff(&fine.mesh, ff, &cu, &cs);
+                let u = meter.measures(&fine.mesh, &ff.u, &ff.sigma);
                 acc.add(e, u, j == n_ref);
             }
             next.insert((i, n), acc);
@@ -435,7 +427,7 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
         if failure.is_some() {
             return;
         }
-        let u_meas = measures(&ref_mesh, &g, &truth.u, &truth.sigma);
+        let u_meas = meter.measures(&ref_mesh, &truth.u, &truth.sigma);
         for (&(li, kind, n), run) in &runs {
             if li != i {
                 continue;
@@ -446,7 +438,7 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
             let interp = &interps[&run.mesh.n];
             let pu = interp.apply(&f.u);
             let ps = contact_interp(&run.mesh, &ref_mesh, interp, &f.sigma);
-            let e = diff_measures(&ref_mesh, &g, &truth, &pu, &ps);
+            let e = meter.diff(&ref_mesh, &truth, &pu, &ps);
             let last = j == n_ref;
             if !e.iter().all(|x| x.is_finite()) {
                 failure = Some(ExpError::Table {
@@ -476,12 +468,12 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
                     .iter()
                     .map(|&c| truth.sigma[ref_contact_pos[&inj[c]]])
                     .collect();
-                let ei = diff_measures(&run.mesh, &g, f, &iu, &is);
-                let ui = measures(&run.mesh, &g, &iu, &is);
+                let ei = meter.diff(&run.mesh, f, &iu, &is);
+                let ui = meter.measures(&run.mesh, &iu, &is);
                 injected.entry((li, n)).or_default().add(ei, ui, last);
                 let piu = interp.apply(&iu);
                 let pis = contact_interp(&run.mesh, &ref_mesh, interp, &is);
-                let ep = diff_measures(&ref_mesh, &g, &truth, &piu, &pis);
+                let ep = meter.diff(&ref_mesh, &truth, &piu, &pis);
                 interpolation
                     .entry((li, n))
                     .or_default()
