@@ -53,14 +53,11 @@ pub fn run_reduced(
     solver: &mut dyn StepSolver,
     outputs: &[usize],
 ) -> Result<ReducedRun, RunError> {
-    if opt.steps == 0 || opt.steps > 1_000_000 {
-        return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
-    }
+    crate::scheme::check_steps(opt)?;
     crate::scheme::check_memory(opt.n)?;
     let mut timings = Timings::default();
-    let disc = crate::timing::timed(&mut timings.assembly, || match &opt.mesh {
-        Some(mesh) => Ok(Discretisation::on(scn, (**mesh).clone())),
-        None => Discretisation::new(scn, opt.n),
+    let (disc, _) = crate::timing::timed(&mut timings.assembly, || {
+        crate::scheme::discretise(std::slice::from_ref(scn), opt)
     })?;
     let Some(c) = proportional(scn, &disc) else {
         return Err(InputError::field(

@@ -23,7 +23,8 @@ use std::time::Instant;
 
 /// The space discretisation of a scenario: mesh, dofs and operators.
 pub struct Discretisation {
-    pub mesh: Mesh,
+    /// Shared with the runs made on it (a [`Run`] keeps its mesh).
+    pub mesh: std::sync::Arc<Mesh>,
     pub dofs: Dofs,
     /// Viscosity operator $A$.
     pub a: SpMat,
@@ -43,7 +44,8 @@ impl Discretisation {
     }
 
     /// The discretisation of `scn` on a given mesh.
-    pub fn on(scn: &Scenario, mesh: Mesh) -> Self {
+    pub fn on(scn: &Scenario, mesh: impl Into<std::sync::Arc<Mesh>>) -> Self {
+        let mesh: std::sync::Arc<Mesh> = mesh.into();
         let dofs = Dofs::new(&mesh, true);
         let [a, b] = assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
         let f = assembly::load(&mesh, &dofs, scn.f0, scn.f2, scn.f0_modulation);
@@ -427,7 +429,7 @@ pub fn run_batch_states(
     }
     timings.steps = clock.elapsed().as_secs_f64();
     // ANCHOR_END: time_loop
-    let mesh = std::sync::Arc::new(disc.mesh.clone());
+    let mesh = disc.mesh.clone();
     Ok((u.into_iter().zip(records).zip(contact))
         .map(|((u, records), contact)| Run {
             n: opt.n,
@@ -456,9 +458,7 @@ fn check_batch(
     opt: &Options,
     solvers: &[&mut dyn StepSolver],
 ) -> Result<(), RunError> {
-    if opt.steps == 0 || opt.steps > 1_000_000 {
-        return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
-    }
+    check_steps(opt)?;
     let Some(scn) = scns.first() else {
         return Ok(());
     };
@@ -485,15 +485,23 @@ fn check_batch(
     Ok(())
 }
 
+/// Refuses a step count out of range.
+pub(crate) fn check_steps(opt: &Options) -> Result<(), RunError> {
+    if opt.steps == 0 || opt.steps > 1_000_000 {
+        return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
+    }
+    Ok(())
+}
+
 /// The discretisation of the batch's first scenario (or of the given mesh), and the
 /// load vector of each scenario on it.
-fn discretise(
+pub(crate) fn discretise(
     scns: &[Scenario],
     opt: &Options,
 ) -> Result<(Discretisation, Vec<Vec<f64>>), RunError> {
     let scn = &scns[0];
     let disc = match &opt.mesh {
-        Some(mesh) => Discretisation::on(scn, (**mesh).clone()),
+        Some(mesh) => Discretisation::on(scn, mesh.clone()),
         None => Discretisation::new(scn, opt.n)?,
     };
     let mut loads = vec![disc.f.clone()];
