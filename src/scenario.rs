@@ -202,6 +202,19 @@ fn limit(field: &str, g: f64) -> Result<f64, InputError> {
 }
 
 /// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`].
+/// A Poisson ratio: finite and in $(-1, \tfrac12)$.
+fn poisson(field: &str, kappa: f64) -> Result<f64, InputError> {
+    if kappa.is_finite() && kappa > -1.0 && kappa < 0.5 {
+        Ok(kappa)
+    } else {
+        Err(InputError::field(
+            field,
+            kappa,
+            "a Poisson ratio in (-1, 0.5)",
+        ))
+    }
+}
+
 fn positive(field: &str, v: f64) -> Result<f64, InputError> {
     in_range(field, v, 1.0 / MAX_MAGNITUDE, MAX_MAGNITUDE)
 }
@@ -256,13 +269,7 @@ impl Scenario {
         let g = limit("g", raw.g)?;
         let m = &raw.material;
         let e = positive("material.E", m.e)?;
-        if !(m.kappa.is_finite() && m.kappa > -1.0 && m.kappa < 0.5) {
-            return Err(InputError::field(
-                "material.kappa",
-                m.kappa,
-                "a Poisson ratio in (-1, 0.5)",
-            ));
-        }
+        poisson("material.kappa", m.kappa)?;
         finite("material.alpha", m.alpha)?;
         let beta = positive("material.beta", m.beta)?;
         if 2.0 * m.alpha + beta <= 0.0 {
@@ -446,14 +453,7 @@ impl Scenario {
     /// Replaces the elasticity constants (validated like the file's).
     pub fn with_elasticity(mut self, e: f64, kappa: f64) -> Result<Self, InputError> {
         self.e = positive("material.E", e)?;
-        if !(kappa.is_finite() && kappa > -1.0 && kappa < 0.5) {
-            return Err(InputError::field(
-                "material.kappa",
-                kappa,
-                "a Poisson ratio in (-1, 0.5)",
-            ));
-        }
-        self.kappa = kappa;
+        self.kappa = poisson("material.kappa", kappa)?;
         Ok(self)
     }
 
