@@ -9,7 +9,7 @@
 //! the maximum over the time levels shared with the reference,
 //! $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$ (the norm of Corollary 4.1's left side).
 
-use super::plot::{Figure, both, e2s, legend};
+use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv, run_newton_batch_with};
 use crate::assembly::stiffness;
 use crate::element::strain_matrix;
@@ -775,11 +775,7 @@ impl Figure for Fig5 {
                     .draw_series(s.iter().map(move |&p| Circle::new(p, 5, c.filled())))
                     .map_err(e2s)?
                     .label(label.clone())
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x + 14, y))
-                            + PathElement::new(vec![(-14, 0), (14, 0)], c.stroke_width(3))
-                            + Circle::new((0, 0), 5, c.filled())
-                    });
+                    .legend(move |xy| circle_legend(xy, 14, c.stroke_width(3), 5, c));
             }
         }
         // Slope guides below the first series' first point: order 1 long dashes,
@@ -805,17 +801,7 @@ impl Figure for Fig5 {
                     ))
                     .map_err(e2s)?
                     .label(label)
-                    .legend(move |(x, y)| {
-                        // Four dashes of the guide's own pattern (cut at 28 px).
-                        let seg = |i: i32| {
-                            let a = (i * (dash + gap)).min(28);
-                            PathElement::new(
-                                vec![(x + a, y), (x + (a + dash).min(28), y)],
-                                grey.stroke_width(2),
-                            )
-                        };
-                        EmptyElement::at((0, 0)) + seg(0) + seg(1) + seg(2) + seg(3)
-                    });
+                    .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
             }
         }
         legend(&mut chart, SeriesLabelPosition::LowerRight, 16, 0.9)?;

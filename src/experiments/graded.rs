@@ -17,7 +17,7 @@
 //! $n_{ref}$ with $k = 1/n_{ref}$. The error is the relative energy norm at $t = T$
 //! (where the time part of the error is below 0.3 % at every level of Table 1).
 
-use super::plot::{Figure, both, e2s, legend};
+use super::plot::{Figure, both, circle_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::bisection::{Forest, Leaves};
 use crate::mesh::{Dofs, Mesh, Supports};
@@ -335,11 +335,7 @@ impl Figure for GradedFig {
                     .draw_series(marks.iter().map(|&p| Circle::new(p, 6, c.filled())))
                     .map_err(e2s)?
                     .label(label.clone())
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x + 12, y))
-                            + PathElement::new(vec![(-12, 0), (12, 0)], c.stroke_width(3))
-                            + Circle::new((0, 0), 6, c.filled())
-                    });
+                    .legend(move |xy| circle_legend(xy, 12, c.stroke_width(3), 6, c));
             } else {
                 chart
                     .draw_series(marks.iter().map(|&p| {

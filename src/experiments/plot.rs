@@ -2,6 +2,7 @@
 //! so that no system font is needed).
 
 use super::ExpError;
+use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 use std::path::Path;
@@ -133,3 +134,46 @@ pub fn both<F: Figure>(dir: &Path, stem: &str, size: (u32, u32), fig: &F) -> Res
     }
     Ok(())
 }
+
+/// A legend entry for a line with a filled circle marker: the line `2 * half` px long
+/// in `style`, the circle of `radius` px at its middle.
+pub fn circle_legend<DB: DrawingBackend>(
+    (x, y): (i32, i32),
+    half: i32,
+    style: ShapeStyle,
+    radius: i32,
+    colour: RGBColor,
+) -> CircleLegend<DB> {
+    EmptyElement::at((x + half, y))
+        + PathElement::new(vec![(-half, 0), (half, 0)], style)
+        + Circle::new((0, 0), radius, colour.filled())
+}
+
+/// The element [`circle_legend`] draws.
+pub type CircleLegend<DB> =
+    ComposedElement<(i32, i32), DB, PathElement<(i32, i32)>, Circle<(i32, i32), i32>>;
+
+/// A legend entry for a dashed guide: four dashes of `dash` px with `gap` px
+/// between them, cut at 28 px, so the entry shows the guide's own pattern.
+pub fn dashed_legend<DB: DrawingBackend>(
+    (x, y): (i32, i32),
+    dash: i32,
+    gap: i32,
+    style: ShapeStyle,
+) -> DashedLegend<DB> {
+    let seg = |i: i32| {
+        let a = (i * (dash + gap)).min(28);
+        PathElement::new(vec![(x + a, y), (x + (a + dash).min(28), y)], style)
+    };
+    EmptyElement::at((0, 0)) + seg(0) + seg(1) + seg(2) + seg(3)
+}
+
+/// The element [`dashed_legend`] draws: four path segments.
+pub type DashedLegend<DB> = ComposedElement<
+    (i32, i32),
+    DB,
+    Dash,
+    ComposedElement<(i32, i32), DB, ComposedElement<(i32, i32), DB, Dash, Dash>, Dash>,
+>;
+
+type Dash = PathElement<(i32, i32)>;

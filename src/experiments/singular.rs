@@ -14,7 +14,7 @@
 //! ([`wedge_exponents`]); on uniform meshes the energy error then decays like
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
-use super::plot::{Figure, both, e2s, legend};
+use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::assembly::{load, stiffness};
 use crate::linalg::Cholesky;
@@ -376,11 +376,7 @@ impl Figure for StaticFig {
                 .draw_series(s.iter().map(|&p| Circle::new(p, 6, c.filled())))
                 .map_err(e2s)?
                 .label(label.clone())
-                .legend(move |(x, y)| {
-                    EmptyElement::at((x + 12, y))
-                        + PathElement::new(vec![(-12, 0), (12, 0)], c.stroke_width(3))
-                        + Circle::new((0, 0), 6, c.filled())
-                });
+                .legend(move |xy| circle_legend(xy, 12, c.stroke_width(3), 6, c));
         }
         // Slope guides through the first point of the first series, below it.
         if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
@@ -400,16 +396,7 @@ impl Figure for StaticFig {
                     ))
                     .map_err(e2s)?
                     .label(label.clone())
-                    .legend(move |(x, y)| {
-                        let seg = |k: i32| {
-                            let a = (k * (dash + gap)).min(28);
-                            PathElement::new(
-                                vec![(x + a, y), (x + (a + dash).min(28), y)],
-                                grey.stroke_width(2),
-                            )
-                        };
-                        EmptyElement::at((0, 0)) + seg(0) + seg(1) + seg(2) + seg(3)
-                    });
+                    .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
             }
         }
         legend(&mut chart, SeriesLabelPosition::UpperRight, 18, 0.9)?;

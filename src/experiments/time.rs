@@ -12,7 +12,7 @@
 //! $y_n = 1 - (1 + k/\tau)^{-n}$, predicts the relative error without any mesh; the
 //! table carries it beside the measurement.
 
-use super::plot::{Figure, both, e2s, legend};
+use super::plot::{Figure, both, circle_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::history::History;
 use crate::norms::energy_norm;
@@ -507,11 +507,7 @@ impl Figure for TimeFig {
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 6, c.filled())))
                     .map_err(e2s)?
                     .label(label.clone())
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x + 12, y))
-                            + PathElement::new(vec![(-12, 0), (12, 0)], style)
-                            + Circle::new((0, 0), 6, c.filled())
-                    });
+                    .legend(move |xy| circle_legend(xy, 12, style, 6, c));
             } else {
                 chart
                     .draw_series(

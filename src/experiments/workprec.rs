@@ -1,7 +1,7 @@
 //! The work–precision chart: error in energy norm against wall time for the
 //! configurations of the convergence study (`evhi bench` times them).
 
-use super::plot::{Figure, both, e2s, legend};
+use super::plot::{Figure, both, circle_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use plotters::prelude::*;
 use std::path::Path;
@@ -93,11 +93,7 @@ impl Figure for Chart {
                 .draw_series(LineSeries::new(line, c.stroke_width(2)))
                 .map_err(e2s)?
                 .label(label.clone())
-                .legend(move |(x, y)| {
-                    EmptyElement::at((x + 12, y))
-                        + PathElement::new(vec![(-12, 0), (12, 0)], c.stroke_width(2))
-                        + Circle::new((0, 0), 5, c.filled())
-                });
+                .legend(move |xy| circle_legend(xy, 12, c.stroke_width(2), 5, c));
             chart
                 .draw_series(
                     s.iter()
