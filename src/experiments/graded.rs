@@ -109,10 +109,10 @@ struct Row {
 /// The loads of the study (one batched run per mesh).
 pub const LOADS: [&str; 2] = ["literal", "figure"];
 
-fn solve_at_t(scns: &[Scenario], mesh: &Mesh, n: usize) -> Result<Vec<Vec<f64>>, ExpError> {
+fn solve_at_t(scns: &[Scenario], mesh: &Arc<Mesh>, n: usize) -> Result<Vec<Vec<f64>>, ExpError> {
     let mut last = vec![vec![]; scns.len()];
     let opt = Options {
-        mesh: Some(Arc::new(mesh.clone())),
+        mesh: Some(mesh.clone()),
         ..Options::new(n, n)
     };
     super::run_newton_batch_with(scns, &opt, &mut |i, step, _, u| {
@@ -152,7 +152,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         prev = level(&mut forest, &prev, n, true);
     }
     let ref_leaves = prev;
-    let ref_mesh = forest.mesh(&ref_leaves, plan.n_ref);
+    let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
     let clock = std::time::Instant::now();
     let reference = solve_at_t(&scns, &ref_mesh, plan.n_ref)?;
     let ref_dofs = Dofs::new(&ref_mesh, true);
@@ -172,7 +172,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     for (family, list) in &families {
         for (n, leaves) in list {
             let clock = std::time::Instant::now();
-            let mesh = forest.mesh(leaves, *n);
+            let mesh = Arc::new(forest.mesh(leaves, *n));
             let dofs = Dofs::new(&mesh, true);
             let fields = solve_at_t(&scns, &mesh, *n)?;
             let interp = forest.interpolation(leaves, &ref_mesh);
