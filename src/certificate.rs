@@ -142,9 +142,36 @@ pub fn certify(
     let delta = rounding_delta(g, crate::dense::inf_norm(u));
     let mut rho: Vec<f64> = ku.iter().zip(b).map(|(a, c)| a - c).collect();
     let mut cert = Certificate::default();
-    let mut states = Vec::with_capacity(contact_dofs.len());
-    for (i, &d) in contact_dofs.iter().enumerate() {
-        let s = -u[d];
+    let states = contact_conditions(
+        contact_dofs.iter().map(|&d| (-u[d], d)),
+        &mut rho,
+        kw,
+        law,
+        g,
+        (delta, fscale, dscale),
+        &mut cert,
+    );
+    cert.stationarity = crate::dense::inf_norm(&rho) / backward_scale;
+    (cert, states)
+}
+// ANCHOR_END: certify
+
+/// The contact part of a certificate: for each contact node `(s, d)` (normal
+/// displacement $s = u_\nu$, position `d` of its reaction in `rho`) the reaction
+/// `rho[d]` is split into $k w_i(\xi_i + \mu_i)$, which is taken off `rho`;
+/// feasibility and complementarity go into `cert`. `scales` = (rounding
+/// tolerance in displacement, force scale, displacement scale).
+fn contact_conditions(
+    nodes: impl Iterator<Item = (f64, usize)>,
+    rho: &mut [f64],
+    kw: &[f64],
+    law: &Law,
+    g: f64,
+    (delta, fscale, dscale): (f64, f64, f64),
+    cert: &mut Certificate,
+) -> Vec<ContactState> {
+    let mut states = Vec::with_capacity(kw.len());
+    for (i, (s, d)) in nodes.enumerate() {
         let split = split_node(law, g, s, rho[d] / kw[i], delta);
         rho[d] -= kw[i] * (split.xi + split.mu);
         cert.feasibility = cert.feasibility.max((s - g).max(0.0) / dscale);
@@ -158,10 +185,49 @@ pub fn certify(
             at_limit: at_limit(g, s, delta),
         });
     }
+    states
+}
+
+/// The certificate of a step on its *condensed* problem alone: with
+/// $z = S(r_0 - r)$ the contact reactions, $z_i / (k w_i)$ must split as in
+/// [`certify`]. The scales are those of [`certify`] with $S$, $r_0$, $r$ in place
+/// of $K$, $b$, $u$: stationarity is relative to $\max(\|Sr_0\|_\infty, \|\,|S|\,|r|\,\|_\infty)$.
+/// It says nothing of the eliminated equations: they hold by construction of
+/// $S$ and $r_0$, which only a certificate on the full system checks.
+pub fn certify_condensed(
+    s: faer::MatRef<'_, f64>,
+    r0: &[f64],
+    r: &[f64],
+    kw: &[f64],
+    law: &Law,
+    g: f64,
+) -> (Certificate, Vec<ContactState>) {
+    let m = r.len();
+    let s_r0 = crate::dense::sym_matvec(s, r0);
+    let s_r = crate::dense::sym_matvec(s, r);
+    let abs_s_r = (0..m)
+        .map(|i| (0..m).map(|j| (s[(i, j)] * r[j]).abs()).sum::<f64>())
+        .fold(0.0f64, f64::max);
+    let n0 = crate::dense::inf_norm(&s_r0);
+    let fscale = n0.max(crate::dense::inf_norm(&s_r)).max(f64::MIN_POSITIVE);
+    let backward_scale = n0.max(abs_s_r).max(f64::MIN_POSITIVE);
+    let r_norm = crate::dense::inf_norm(r);
+    let dscale = g.abs().max(r_norm).max(f64::MIN_POSITIVE);
+    let delta = rounding_delta(g, r_norm);
+    let mut rho: Vec<f64> = s_r0.iter().zip(&s_r).map(|(a, b)| a - b).collect();
+    let mut cert = Certificate::default();
+    let states = contact_conditions(
+        r.iter().copied().zip(0..m),
+        &mut rho,
+        kw,
+        law,
+        g,
+        (delta, fscale, dscale),
+        &mut cert,
+    );
     cert.stationarity = crate::dense::inf_norm(&rho) / backward_scale;
     (cert, states)
 }
-// ANCHOR_END: certify
 
 /// Regime names in the order no contact, branches by number, limit (deduplicated).
 pub fn regime_order(regimes: &[String]) -> Vec<String> {

@@ -1,33 +1,39 @@
-//! The reduced time loop for proportional damping (issue "Speed"; first part).
+//! The reduced time loop for proportional damping.
 //!
-//! When $\mathcal C = c\,\mathcal G$, so $A = cB$ and $K = A + kB = (c + k)B$, one step
-//! of the scheme needs no sparse solve at all. With $a = c/(c+k)$,
-//! $\beta_n = k\varphi(t_n)/(c+k)$ and $q = -E_C B^{-1} f$ (the load's contact response,
-//! one solve), $K^{-1}A = a\,I$ gives
+//! When $\mathcal C = c\,\mathcal G$, so $A = cB$ and $K = A + kB = (c + k)B$, a step of
+//! the scheme needs no sparse solve at all. With $a = c/(c+k)$,
+//! $\beta_n = k\varphi(t_n)/(c+k)$ and $q = -E_C B^{-1} f$ (the load's contact
+//! response, one solve), $K^{-1}A = a\,I$ gives
 //! $$K^{-1} b_n = a\,u_{n-1} + \beta_n B^{-1} f, \qquad r_{0,n} = a\,r_{n-1} + \beta_n q,$$
-//! so each step is only the condensed contact problem of [`crate::step`], from
-//! $r_{0,n}$, and the field is a sum
-//! $$u_n = Y_n\,B^{-1} f + K^{-1}E_C^\top Z_n, \qquad Y_n = a Y_{n-1} + \beta_n, \quad
-//! Z_n = a Z_{n-1} + z_n, \quad z_n = S(r_{0,n} - r_n),$$
-//! formed with one solve only where it is wanted. This module runs that loop for
-//! one scenario and gives the contact unknowns at every step and the field at the
-//! steps asked for; `tests/reduced.rs` checks it against [`crate::scheme`] to
-//! $10^{-12}$. It is not yet wired into the experiments or `solve` (see the book's
-//! speed section for what is left).
+//! so each step is only the condensed contact problem of [`crate::step`] with
+//! $S_K = (c+k) S_B$, from $r_{0,n}$. The field is
+//! $$u_n = B^{-1}\big(Y_n f + E_C^\top W_n\big), \qquad Y_n = a Y_{n-1} + \beta_n, \quad
+//! W_n = a W_{n-1} + z_n/(c+k), \quad z_n = S_K(r_{0,n} - r_n),$$
+//! formed with one solve only where it is wanted ([`Reduced::field`]). Its energy
+//! norm $\|u_n\|_E^2 = \tfrac12 u_n^\top B u_n$ needs none: $B u_n = Y_n f + E_C^\top W_n$
+//! and $E_C u_n = -r_n$ give
+//! $$u_n^\top B u_n = Y_n^2\, f^\top B^{-1} f - Y_n\, W_n^\top q - W_n^\top r_n,$$
+//! and the same for the difference of two runs on one mesh ([`Reduced::energy_diff`]).
+//!
+//! One factorisation of $B$ (and one condensation) serves every $k$: Table 1's
+//! reference and its $k$ family share it. Every step is certified on its
+//! condensed problem ([`crate::certificate::certify_condensed`]); every step whose
+//! field is formed also on the full, uncondensed system with the assembled $A$ and
+//! $B$ ([`crate::certificate::certify`]), which checks the reduction itself.
+//! `tests/reduced.rs` compares the loop with [`crate::scheme`].
 
+use crate::assembly::{abs_matvec_norm, matvec};
+use crate::certificate::{Certificate, ContactState, certify, certify_condensed};
 use crate::error::InputError;
+use crate::linalg::Cholesky;
 use crate::scenario::Scenario;
-use crate::scheme::{Discretisation, Options, RunError, StepOperator, Timings};
+use crate::scheme::{
+    Check, Discretisation, Options, OrderingKind, Run, RunError, StepRecord, Timings,
+};
 use crate::step::{Status, StepProblem, StepSolver};
-
-/// The result of a reduced run.
-pub struct ReducedRun {
-    /// $r_n$ (contact normal displacements $u_\nu$) at every step $n = 1 \dots N$.
-    pub r: Vec<Vec<f64>>,
-    /// $(n, u_n)$ at the steps asked for.
-    pub fields: Vec<(usize, Vec<f64>)>,
-    pub timings: Timings,
-}
+use crate::timing::timed;
+use faer::Mat;
+use std::time::Instant;
 
 /// Whether the scenario's damping is proportional on the assembled matrices:
 /// its relaxation time $c$ when $\max|A - cB| \le 10^{-12} \max|A|$.
@@ -45,98 +51,365 @@ pub fn proportional(scn: &Scenario, disc: &Discretisation) -> Option<f64> {
     (gap <= 1e-12 * scale).then_some(c)
 }
 
-/// Runs the scheme by the reduced loop; `outputs` are the steps whose full field is
-/// formed. A scenario without proportional damping is refused by name.
-pub fn run_reduced(
+/// $B$ factorised with the contact dofs last and condensed onto them: the
+/// operator of every reduced run on one mesh, whatever $k$.
+pub struct Reduced<'d> {
+    pub disc: &'d Discretisation,
+    /// The relaxation time $c$ ($A = cB$).
+    pub c: f64,
+    pub chol: Cholesky,
+    /// $S_B$, the Schur complement of $B$ on the contact normal dofs.
+    pub s_b: Mat<f64>,
+    pub lambda_min: f64,
+    pub lambda_max: f64,
+}
+
+/// A load on the mesh and what the loop needs of it.
+pub struct Load {
+    pub f: Vec<f64>,
+    /// $B^{-1} f$.
+    pub binv_f: Vec<f64>,
+    /// $q = -E_C B^{-1} f$.
+    pub q: Vec<f64>,
+    /// $f^\top B^{-1} f$.
+    pub ff: f64,
+}
+
+/// The state after a step in reduced coordinates: $u_n = B^{-1}(Y f + E_C^\top W)$
+/// and $r = -E_C u_n$.
+#[derive(Debug, Clone)]
+pub struct State {
+    pub y: f64,
+    pub w: Vec<f64>,
+    pub r: Vec<f64>,
+}
+
+/// What the observer of a reduced run sees after each step.
+pub struct Stepped<'a> {
+    pub step: usize,
+    pub t: f64,
+    pub state: &'a State,
+    pub record: &'a StepRecord,
+    pub contact: &'a [ContactState],
+    /// $u_n$, at the steps whose field was asked for.
+    pub field: Option<&'a [f64]>,
+}
+
+/// The operator of one step length $k$: $S_K = (c+k)S_B$, the weights and bounds.
+struct AtK {
+    k: f64,
+    s: Mat<f64>,
+    kw: Vec<f64>,
+    lambda_max: f64,
+    hessian_min: f64,
+}
+
+impl<'d> Reduced<'d> {
+    /// Factorises and condenses $B$; a scenario whose damping is not proportional
+    /// on `disc` is refused by name.
+    pub fn new(
+        scn: &Scenario,
+        disc: &'d Discretisation,
+        ordering: OrderingKind,
+        parallel: bool,
+        timings: &mut Timings,
+    ) -> Result<Reduced<'d>, RunError> {
+        let Some(c) = proportional(scn, disc) else {
+            return Err(InputError::field(
+                "material",
+                format!("alpha = {}, beta = {}", scn.alpha, scn.beta),
+                "proportional damping, C = c G (alpha/beta as the elastic a/b), for the reduced loop",
+            )
+            .into());
+        };
+        let (chol, _) = timed(&mut timings.factorisation, || {
+            crate::scheme::factorise(disc, &disc.b, ordering, parallel)
+        })?;
+        let cond = timed(&mut timings.condensation, || {
+            crate::condense::condense(&chol).map_err(RunError::Condense)
+        })?;
+        Ok(Reduced {
+            disc,
+            c,
+            chol,
+            s_b: cond.s,
+            lambda_min: cond.lambda_min,
+            lambda_max: cond.lambda_max,
+        })
+    }
+
+    /// The load response of `f` (one solve).
+    pub fn load(&self, f: Vec<f64>) -> Load {
+        let binv_f = self.chol.solve(&f);
+        let q = self.disc.contact_dofs.iter().map(|&d| -binv_f[d]).collect();
+        let ff = f.iter().zip(&binv_f).map(|(a, b)| a * b).sum();
+        Load { f, binv_f, q, ff }
+    }
+
+    /// The load response of a scenario that shares the mesh (its own $f_0$, $f_2$).
+    pub fn load_of(&self, scn: &Scenario) -> Load {
+        let d = self.disc;
+        self.load(crate::assembly::load(
+            &d.mesh,
+            &d.dofs,
+            scn.f0,
+            scn.f2,
+            scn.f0_modulation,
+        ))
+    }
+
+    /// $u = B^{-1}(Y f + E_C^\top W)$: one solve.
+    pub fn field(&self, load: &Load, st: &State) -> Vec<f64> {
+        let mut rhs = vec![0.0; self.disc.dofs.count];
+        for (&d, w) in self.disc.contact_dofs.iter().zip(&st.w) {
+            rhs[d] = *w;
+        }
+        let v = self.chol.solve(&rhs);
+        v.iter()
+            .zip(&load.binv_f)
+            .map(|(v, b)| st.y * b + v)
+            .collect()
+    }
+
+    /// $u^\top B u$ of a state, without a solve.
+    pub fn quad(&self, load: &Load, st: &State) -> f64 {
+        let wq: f64 = st.w.iter().zip(&load.q).map(|(a, b)| a * b).sum();
+        let wr: f64 = st.w.iter().zip(&st.r).map(|(a, b)| a * b).sum();
+        st.y * st.y * load.ff - st.y * wq - wr
+    }
+
+    /// $\|u\|_E = \sqrt{u^\top B u / 2}$ of a state (the norm of [`crate::norms`]).
+    pub fn energy(&self, load: &Load, st: &State) -> f64 {
+        (0.5 * self.quad(load, st)).max(0.0).sqrt()
+    }
+
+    /// $\|u_a - u_b\|_E$ of two states on this mesh under one load, without a solve
+    /// (the formula of [`Reduced::quad`] for the difference, which is formed first).
+    pub fn energy_diff(&self, load: &Load, a: &State, b: &State) -> f64 {
+        let d = State {
+            y: a.y - b.y,
+            w: a.w.iter().zip(&b.w).map(|(x, y)| x - y).collect(),
+            r: a.r.iter().zip(&b.r).map(|(x, y)| x - y).collect(),
+        };
+        self.energy(load, &d)
+    }
+
+    fn at(&self, k: f64, cmin: f64) -> Result<AtK, RunError> {
+        let ck = self.c + k;
+        let s = Mat::from_fn(self.s_b.nrows(), self.s_b.ncols(), |i, j| {
+            ck * self.s_b[(i, j)]
+        });
+        let kw: Vec<f64> = self.disc.weights.iter().map(|w| k * w).collect();
+        let hessian_min =
+            crate::scheme::step_hessian_min(s.as_ref(), &kw, cmin, ck * self.lambda_min)?;
+        Ok(AtK {
+            k,
+            s,
+            kw,
+            lambda_max: ck * self.lambda_max,
+            hessian_min,
+        })
+    }
+
+    /// The full certificate of $u_n$ (formed) against $K u_n = A u_{n-1} + k\varphi(t_n) f$
+    /// with the assembled $A$ and $B$.
+    fn certify_full(
+        &self,
+        at: &AtK,
+        scn: &Scenario,
+        load: &Load,
+        (u_prev, u): (&[f64], &[f64]),
+        t: f64,
+    ) -> (Certificate, Vec<ContactState>) {
+        let d = self.disc;
+        let (au, bu) = (matvec(&d.a, u), matvec(&d.b, u));
+        let ku: Vec<f64> = au.iter().zip(&bu).map(|(a, b)| a + at.k * b).collect();
+        let kphi = at.k * scn.history.phi(t);
+        let b: Vec<f64> = (matvec(&d.a, u_prev).iter().zip(&load.f))
+            .map(|(a, f)| a + kphi * f)
+            .collect();
+        // |K| = (c + k)|B| on a proportional pattern.
+        let ku_abs = (self.c + at.k) * abs_matvec_norm(&d.b, u);
+        certify(&ku, ku_abs, &b, u, &d.contact_dofs, &at.kw, &scn.law, scn.g)
+    }
+
+    /// Runs `steps` steps of length $T/\text{steps}$ for `scn` under `load`. The
+    /// field is formed (one solve, and a full certificate) at the steps for which
+    /// `want_field` is true; every step gets the condensed certificate and fails
+    /// the run when it exceeds `tol`. `observe` sees every step.
+    #[allow(clippy::too_many_arguments)]
+    pub fn march(
+        &self,
+        scn: &Scenario,
+        load: &Load,
+        steps: usize,
+        solver: &mut dyn StepSolver,
+        tol: f64,
+        want_field: &dyn Fn(usize) -> bool,
+        timings: &mut Timings,
+        observe: &mut dyn FnMut(Stepped<'_>),
+    ) -> Result<March, RunError> {
+        let k = scn.t_end / steps as f64;
+        let at = timed(&mut timings.condensation, || {
+            self.at(k, scn.law.min_slope())
+        })?;
+        let (ck, a) = (self.c + k, self.c / (self.c + k));
+        let m = load.q.len();
+        let mut st = State {
+            y: 0.0,
+            w: vec![0.0; m],
+            r: vec![0.0; m],
+        };
+        let mut records = Vec::with_capacity(steps);
+        let clock = Instant::now();
+        for step in 1..=steps {
+            let t = step as f64 * k;
+            let t0 = Instant::now();
+            let beta = k * scn.history.phi(t) / ck;
+            let r0: Vec<f64> = (st.r.iter().zip(&load.q))
+                .map(|(rp, qi)| a * rp + beta * qi)
+                .collect();
+            let prob = StepProblem {
+                s: at.s.as_ref(),
+                r0: &r0,
+                kw: &at.kw,
+                law: &scn.law,
+                g: scn.g,
+                lipschitz: at.lambda_max,
+                curvature_min: at.hessian_min,
+            };
+            let prev = want_field(step).then(|| st.clone());
+            let mut info = timed(&mut timings.step_solver, || solver.solve(&prob, &mut st.r));
+            info.time_s = t0.elapsed().as_secs_f64();
+            let diff: Vec<f64> = r0.iter().zip(&st.r).map(|(x, y)| x - y).collect();
+            let z = crate::dense::sym_matvec(at.s.as_ref(), &diff);
+            for (w, zi) in st.w.iter_mut().zip(&z) {
+                *w = a * *w + zi / ck;
+            }
+            st.y = a * st.y + beta;
+            let ((mut certificate, mut contact), field) = timed(&mut timings.certificates, || {
+                let cond = certify_condensed(at.s.as_ref(), &r0, &st.r, &at.kw, &scn.law, scn.g);
+                let field = prev.map(|p| (self.field(load, &p), self.field(load, &st)));
+                (cond, field)
+            });
+            let mut check = Check::Condensed;
+            if let Some((u_prev, u)) = &field {
+                let full = timed(&mut timings.certificates, || {
+                    self.certify_full(&at, scn, load, (u_prev, u), t)
+                });
+                // The full certificate is the stricter and supersedes the condensed one.
+                (certificate, contact) = full;
+                check = Check::Full;
+            }
+            let rec = StepRecord {
+                step,
+                t,
+                status: info.status.clone(),
+                iterations: info.iterations,
+                inner_iterations: info.inner_iterations,
+                solver_residual: info.residual,
+                certificate,
+                energy_norm: self.energy(load, &st),
+                time_s: info.time_s,
+                check,
+            };
+            let failed = info.status != Status::Converged
+                || certificate.max().is_nan()
+                || certificate.max() > tol;
+            if failed {
+                return Err(RunError::Step {
+                    scenario: scn.name.clone(),
+                    step,
+                    t,
+                    solver: solver.name().to_string(),
+                    status: info.status,
+                    iterations: info.iterations,
+                    residual: info.residual,
+                    certificate: certificate.max(),
+                    tol,
+                });
+            }
+            observe(Stepped {
+                step,
+                t,
+                state: &st,
+                record: &rec,
+                contact: &contact,
+                field: field.as_ref().map(|(_, u)| u.as_slice()),
+            });
+            records.push(rec);
+        }
+        timings.steps += clock.elapsed().as_secs_f64();
+        Ok(March {
+            records,
+            hessian_min: at.hessian_min,
+            s_eigen: (ck * self.lambda_min, at.lambda_max),
+        })
+    }
+}
+
+/// What [`Reduced::march`] returns besides what it showed the observer.
+pub struct March {
+    pub records: Vec<StepRecord>,
+    /// The step operator's curvature bound (see [`Run::hessian_min`]).
+    pub hessian_min: f64,
+    /// The extreme eigenvalues of $S_K$.
+    pub s_eigen: (f64, f64),
+}
+
+/// Runs one scenario by the reduced loop, with the result the general path gives
+/// ([`crate::scheme::run_with_states`]): the field is formed at the last step and
+/// where `want_field` asks, and `observe(n, t_n, u_n, contact_n)` gets it there.
+pub fn run(
     scn: &Scenario,
     opt: &Options,
     solver: &mut dyn StepSolver,
-    outputs: &[usize],
-) -> Result<ReducedRun, RunError> {
+    want_field: &dyn Fn(usize) -> bool,
+    observe: &mut dyn FnMut(usize, f64, Option<&[f64]>, &[ContactState]),
+) -> Result<Run, RunError> {
     crate::scheme::check_steps(opt)?;
     crate::scheme::check_memory(opt.n)?;
     let mut timings = Timings::default();
-    let (disc, _) = crate::timing::timed(&mut timings.assembly, || {
+    let (disc, _) = timed(&mut timings.assembly, || {
         crate::scheme::discretise(std::slice::from_ref(scn), opt)
     })?;
-    let Some(c) = proportional(scn, &disc) else {
-        return Err(InputError::field(
-            "material",
-            format!("alpha = {}, beta = {}", scn.alpha, scn.beta),
-            "proportional damping, C = c G (alpha/beta as the elastic a/b), for the reduced loop",
-        )
-        .into());
-    };
-    let k = scn.t_end / opt.steps as f64;
-    let op = StepOperator::new(
-        &disc,
-        k,
-        opt.ordering,
-        opt.parallel,
-        scn.law.min_slope(),
+    let op = Reduced::new(scn, &disc, opt.ordering, opt.parallel, &mut timings)?;
+    let load = op.load(disc.f.clone());
+    timings.one_solve = crate::timing::median_of(3, || {
+        std::hint::black_box(op.chol.solve(&disc.f));
+    });
+    let want = |n: usize| n == opt.steps || want_field(n);
+    let (mut u, mut contact) = (vec![], vec![]);
+    let march = op.march(
+        scn,
+        &load,
+        opt.steps,
+        solver,
+        opt.certificate_tol,
+        &want,
         &mut timings,
-    )?;
-    let (a, ck) = (c / (c + k), c + k);
-    // B^{-1} f = (c + k) K^{-1} f, and q = -E_C B^{-1} f.
-    let binv_f: Vec<f64> = op.chol.solve(&disc.f).iter().map(|x| ck * x).collect();
-    let q: Vec<f64> = disc.contact_dofs.iter().map(|&d| -binv_f[d]).collect();
-    let m = q.len();
-    let (mut r, mut zsum, mut y) = (vec![0.0; m], vec![0.0; m], 0.0);
-    let mut out = ReducedRun {
-        r: Vec::with_capacity(opt.steps),
-        fields: vec![],
-        timings: Timings::default(),
-    };
-    let clock = std::time::Instant::now();
-    for step in 1..=opt.steps {
-        let t = step as f64 * k;
-        let beta = k * scn.history.phi(t) / ck;
-        let r0: Vec<f64> = r
-            .iter()
-            .zip(&q)
-            .map(|(rp, qi)| a * rp + beta * qi)
-            .collect();
-        let prob = StepProblem {
-            s: op.s.as_ref(),
-            r0: &r0,
-            kw: &op.kw,
-            law: &scn.law,
-            g: scn.g,
-            lipschitz: op.lambda_max,
-            curvature_min: op.hessian_min,
-        };
-        let info = crate::timing::timed(&mut timings.step_solver, || solver.solve(&prob, &mut r));
-        if info.status != Status::Converged {
-            return Err(RunError::Step {
-                scenario: scn.name.clone(),
-                step,
-                t,
-                solver: solver.name().to_string(),
-                status: info.status,
-                iterations: info.iterations,
-                residual: info.residual,
-                certificate: f64::NAN,
-                tol: opt.certificate_tol,
-            });
-        }
-        let diff: Vec<f64> = r0.iter().zip(&r).map(|(x, y)| x - y).collect();
-        let z = crate::dense::sym_matvec(op.s.as_ref(), &diff);
-        for (zs, zi) in zsum.iter_mut().zip(&z) {
-            *zs = a * *zs + zi;
-        }
-        y = a * y + beta;
-        out.r.push(r.clone());
-        if outputs.contains(&step) {
-            let mut rhs = vec![0.0; disc.dofs.count];
-            for (&d, zs) in disc.contact_dofs.iter().zip(&zsum) {
-                rhs[d] = *zs;
+        &mut |s| {
+            observe(s.step, s.t, s.field, s.contact);
+            if s.step == opt.steps {
+                u = s.field.expect("the last field is formed").to_vec();
+                contact = s.contact.to_vec();
             }
-            let w = op.chol.solve(&rhs);
-            let u: Vec<f64> = w.iter().zip(&binv_f).map(|(w, g)| y * g + w).collect();
-            out.fields.push((step, u));
-        }
-    }
-    timings.steps = clock.elapsed().as_secs_f64();
-    out.timings = timings;
-    Ok(out)
+        },
+    )?;
+    Ok(Run {
+        n: opt.n,
+        steps: opt.steps,
+        k: scn.t_end / opt.steps as f64,
+        h: disc.mesh.h(),
+        mesh: disc.mesh.clone(),
+        dofs: disc.dofs.count,
+        nnz_l: op.chol.nnz_l(),
+        sweep_threads: if op.chol.is_parallel() { 2 } else { 1 },
+        u,
+        records: march.records,
+        contact,
+        timings,
+        s_eigen: march.s_eigen,
+        hessian_min: march.hessian_min,
+    })
 }

@@ -67,6 +67,25 @@ impl Discretisation {
     }
 }
 
+/// Which check a step got.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Check {
+    /// The certificate on the full system $Ku_n = b_n$ plus contact conditions.
+    #[default]
+    Full,
+    /// The certificate on the condensed problem only (the field was not formed).
+    Condensed,
+}
+
+impl Check {
+    pub fn name(self) -> &'static str {
+        match self {
+            Check::Full => "full",
+            Check::Condensed => "condensed",
+        }
+    }
+}
+
 /// One step's record.
 #[derive(Debug, Clone)]
 pub struct StepRecord {
@@ -81,6 +100,8 @@ pub struct StepRecord {
     pub energy_norm: f64,
     /// Wall time of the step (condensed solve and both solves with $K$), s.
     pub time_s: f64,
+    /// Which certificate the step got.
+    pub check: Check,
 }
 
 /// Wall times of the phases, s.
@@ -201,7 +222,7 @@ pub fn check_memory(n: usize) -> Result<(), InputError> {
 /// $\lambda_{\min}(S + k\,\mathrm{diag}(w)\,c_{\min})$: the smallest curvature a step can
 /// have, every node on the steepest softening branch ($\lambda_{\min}(S)$ when no slope
 /// is negative).
-fn step_hessian_min(
+pub(crate) fn step_hessian_min(
     s: faer::MatRef<'_, f64>,
     kw: &[f64],
     cmin: f64,
@@ -517,6 +538,31 @@ pub(crate) fn discretise(
     Ok((disc, loads))
 }
 
+/// Orders `mat` (an operator on `disc`'s dofs) with the contact dofs last and
+/// factorises it; the sweeps run on two threads when `parallel` and the factor is
+/// large enough. Returns the factor and its number of sweep threads.
+pub(crate) fn factorise(
+    disc: &Discretisation,
+    mat: &SpMat,
+    ordering: OrderingKind,
+    parallel: bool,
+) -> Result<(Cholesky, usize), RunError> {
+    let cdofs = &disc.contact_dofs;
+    let grid = disc.mesh.pattern != crate::mesh::Pattern::Bisected;
+    let order = match ordering {
+        OrderingKind::NestedDissection if grid => {
+            Ordering::nested_dissection(&disc.mesh, &disc.dofs, cdofs)
+        }
+        _ => Ordering::amd(mat, cdofs)?,
+    };
+    let mut chol = Cholesky::factor(mat, &order)?;
+    if !parallel || chol.nnz_l() < PARALLEL_MIN_NNZ {
+        chol.sequential();
+    }
+    let threads = if chol.is_parallel() { 2 } else { 1 };
+    Ok((chol, threads))
+}
+
 /// The step operator $K = A + kB$: factorised with the contact dofs last, condensed
 /// onto them ($S$), with the spectral bounds the step solvers and the convexity test
 /// need.
@@ -564,18 +610,7 @@ impl<'d> StepOperator<'d> {
                 Some(pair) => pair.lin_comb(1.0, k),
                 None => lin_comb(1.0, &disc.a, k, &disc.b),
             };
-            let grid = disc.mesh.pattern != crate::mesh::Pattern::Bisected;
-            let order = match ordering {
-                OrderingKind::NestedDissection if grid => {
-                    Ordering::nested_dissection(&disc.mesh, &disc.dofs, &cdofs)
-                }
-                _ => Ordering::amd(&kmat, &cdofs)?,
-            };
-            let mut chol = Cholesky::factor(&kmat, &order)?;
-            if !parallel || chol.nnz_l() < PARALLEL_MIN_NNZ {
-                chol.sequential();
-            }
-            let threads = if chol.is_parallel() { 2 } else { 1 };
+            let (chol, threads) = factorise(disc, &kmat, ordering, parallel)?;
             Ok::<_, RunError>((pair, kmat, chol, threads))
         })?;
         let kw: Vec<f64> = disc.weights.iter().map(|w| k * w).collect();
@@ -609,15 +644,9 @@ impl<'d> StepOperator<'d> {
     /// One solve with the factor (forward + backward), median of three: the floor
     /// of a step's cost.
     pub fn one_solve(&self, f: &[f64]) -> f64 {
-        let mut solves: Vec<f64> = (0..3)
-            .map(|_| {
-                let t = Instant::now();
-                std::hint::black_box(self.chol.solve(f));
-                t.elapsed().as_secs_f64()
-            })
-            .collect();
-        solves.sort_by(f64::total_cmp);
-        solves[1]
+        crate::timing::median_of(3, || {
+            std::hint::black_box(self.chol.solve(f));
+        })
     }
 
     // ANCHOR: step
@@ -706,6 +735,7 @@ impl<'d> StepOperator<'d> {
             certificate,
             energy_norm: energy_norm_with(&bu, u),
             time_s,
+            check: Check::Full,
         };
         (rec, states)
     }

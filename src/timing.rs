@@ -40,3 +40,16 @@ pub fn timed<T>(slot: &mut f64, f: impl FnOnce() -> T) -> T {
     *slot += clock.elapsed().as_secs_f64();
     out
 }
+
+/// The median wall time of `reps` calls of `f`, s.
+pub fn median_of(reps: usize, mut f: impl FnMut()) -> f64 {
+    median(
+        (0..reps)
+            .map(|_| {
+                let t = std::time::Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .collect(),
+    )
+}

@@ -65,6 +65,14 @@ pub struct SolveArgs {
     /// meshes, where a second thread does not pay, use one anyway).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
     pub threads: u8,
+    /// Time loop: `reduced` (for proportional damping, C = c G as in the paper's data:
+    /// each step is the contact problem on the m = n + 1 contact nodes alone, and the
+    /// field is formed only where it is written, with a full certificate there; every
+    /// other step is certified on its condensed problem), `general` (one forward and
+    /// backward sweep per step, every step certified on the full system), or `auto`
+    /// (reduced where the damping is proportional).
+    #[arg(long, default_value = "auto", value_parser = ["auto", "general", "reduced"])]
+    pub path: String,
 }
 
 /// Parses `FX,FY` into two finite numbers.
@@ -141,8 +149,9 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let started = Instant::now();
     let steps = args.steps as u64;
     let mut recorder = Recorder::new(&scn, args.n, args.steps, args.vtk_every)?;
+    let field_steps: Vec<bool> = (0..=args.steps).map(|s| recorder.wants_field(s)).collect();
     let mut observe =
-        |n: usize, t: f64, u: &[f64], contact: &[crate::certificate::ContactState]| {
+        |n: usize, t: f64, u: Option<&[f64]>, contact: &[crate::certificate::ContactState]| {
             recorder.observe(&out, n, t, u, contact);
             if bar.is_none() && started.elapsed() > Duration::from_secs(1) {
                 let b = ProgressBar::new(steps).with_style(
@@ -158,7 +167,19 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
                 b.set_position(n as u64);
             }
         };
-    let run = scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut observe);
+    let reduced = match args.path.as_str() {
+        "general" => false,
+        "reduced" => true,
+        _ => crate::reduced::proportional(&scn, &scheme::Discretisation::new(&scn, 4)?).is_some(),
+    };
+    let run = if reduced {
+        let wants = |step: usize| field_steps[step];
+        crate::reduced::run(&scn, &opt, solver.as_mut(), &wants, &mut observe)
+    } else {
+        scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut |n, t, u, c| {
+            observe(n, t, Some(u), c)
+        })
+    };
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
@@ -203,6 +224,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         command: std::env::args().skip(1).collect::<Vec<_>>().join(" "),
         solver: solver.name().to_string(),
         ordering: args.ordering.clone(),
+        path: (if reduced { "reduced" } else { "general" }).to_string(),
     };
     crate::output::run::write(
         &out,

@@ -48,7 +48,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         &scn,
         &Options::new(n, n),
         &mut Newton::default(),
-        &mut |step, t, u, c| rec.observe(&out, step, t, u, c),
+        &mut |step, t, u, c| rec.observe(&out, step, t, Some(u), c),
     )?;
     let prov = Provenance {
         command: format!(
@@ -57,6 +57,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         ),
         solver: "newton".into(),
         ordering: "nd".into(),
+        path: "general".into(),
     };
     let h_s = crate::show::Smallness::of(&scn, n)
         .unwrap_or_else(|_| crate::show::Smallness::unknown(&scn, n));

@@ -19,6 +19,8 @@ pub struct Provenance {
     pub command: String,
     pub solver: String,
     pub ordering: String,
+    /// The time loop that ran: `general` or `reduced`.
+    pub path: String,
 }
 
 /// The `#` lines that open every CSV of a run: the command and the data it solved.
@@ -105,13 +107,21 @@ impl Recorder {
         })
     }
 
-    /// Records step `step` (time `t`, field `u`, contact states `contact`).
+    /// Whether step `step` is written as a field (so the reduced loop forms it).
+    pub fn wants_field(&self, step: usize) -> bool {
+        self.vtk
+            .as_ref()
+            .is_some_and(|(k, ..)| (step as u64).is_multiple_of(*k) || step == self.steps)
+    }
+
+    /// Records step `step` (time `t`, field `u` where one was formed, contact
+    /// states `contact`).
     pub fn observe(
         &mut self,
         out: &RunDir,
         step: usize,
         t: f64,
-        u: &[f64],
+        u: Option<&[f64]>,
         contact: &[ContactState],
     ) {
         let mut counts = BTreeMap::new();
@@ -125,8 +135,8 @@ impl Recorder {
                     .push((step, t, i, *c, c.regime(&self.law, self.g)));
             }
         }
-        if let Some((k, mesh, dofs)) = &self.vtk
-            && ((step as u64).is_multiple_of(*k) || step == self.steps)
+        if let Some((_, mesh, dofs)) = &self.vtk
+            && let Some(u) = u.filter(|_| self.wants_field(step))
             && self.error.is_none()
         {
             let file = format!("solution_{step:06}.vtu");
@@ -211,7 +221,11 @@ pub fn write(
             r.iter().map(|s| s.certificate.complementarity).collect(),
         )
         .f64("energy_norm", r.iter().map(|s| s.energy_norm).collect())
-        .f64("time_s", r.iter().map(|s| s.time_s).collect());
+        .f64("time_s", r.iter().map(|s| s.time_s).collect())
+        .str(
+            "check",
+            r.iter().map(|s| s.check.name().to_string()).collect(),
+        );
     out.write_table("steps.csv", &steps, &header)?;
     let max_cert = r.iter().map(|s| s.certificate.max()).fold(0.0, f64::max);
     let iters: usize = r.iter().map(|s| s.iterations).sum();
@@ -253,6 +267,7 @@ pub fn write(
         .f64("floor_ratio", vec![t.floor_ratio(run.steps)])
         .f64("peak_rss_mb", vec![peak_rss_mb()])
         .str("ordering", vec![prov.ordering.clone()])
+        .str("path", vec![prov.path.clone()])
         .u64("sweep_threads", vec![run.sweep_threads as u64])
         .str(
             "version",
