@@ -16,37 +16,69 @@ pub type SpMat = SparseColMat<usize, f64>;
 
 // ANCHOR: assemble
 /// Assembles $(\mathcal T\varepsilon(u), \varepsilon(v))_\Omega$ over the free dofs
-/// for each tensor of `tensors`: one pass over the triangles, one sort of the
-/// index pairs, and the same pattern for every matrix.
+/// for each tensor of `tensors`, on one pattern. The pattern comes from the mesh
+/// (dofs couple when their nodes share a triangle), so no index pairs are sorted:
+/// each element matrix is added into its columns in place. Entries are summed in
+/// the order of the triangles, as a sort of triplets would sum them.
 pub fn stiffness_all<const T: usize>(
     mesh: &Mesh,
     dofs: &Dofs,
     tensors: [&Isotropic; T],
 ) -> [SpMat; T] {
     let d = tensors.map(|t| t.voigt());
-    let mut idx = Vec::with_capacity(36 * mesh.triangles.len());
-    let mut vals: [Vec<f64>; T] = std::array::from_fn(|_| Vec::with_capacity(idx.capacity()));
+    let symbolic = pattern(mesh, dofs);
+    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+    let mut vals: [Vec<f64>; T] = std::array::from_fn(|_| vec![0.0; row_idx.len()]);
     for tri in &mesh.triangles {
         let p = tri.map(|v| mesh.nodes[v]);
         let ke: [_; T] = std::array::from_fn(|t| element_matrix(p, &d[t]));
         let gdof: [Option<usize>; 6] = std::array::from_fn(|a| dofs.of(tri[a / 2], a % 2));
-        for (a, ga) in gdof.iter().enumerate() {
-            let Some(ga) = ga else { continue };
-            for (b, gb) in gdof.iter().enumerate() {
-                let Some(gb) = gb else { continue };
-                idx.push(faer::sparse::Pair::new(*ga, *gb));
+        for (b, gb) in gdof.iter().enumerate() {
+            let Some(gb) = *gb else { continue };
+            let col = col_ptr[gb]..col_ptr[gb + 1];
+            for (a, ga) in gdof.iter().enumerate() {
+                let Some(ga) = *ga else { continue };
+                let at = col.start
+                    + row_idx[col.clone()]
+                        .iter()
+                        .position(|&r| r == ga)
+                        .expect("the pattern holds every element coupling");
                 for t in 0..T {
-                    vals[t].push(ke[t][(a, b)]);
+                    vals[t][at] += ke[t][(a, b)];
                 }
             }
         }
     }
-    let (symbolic, order) =
-        SymbolicSparseColMat::try_new_from_indices(dofs.count, dofs.count, &idx)
-            .expect("indices are below the dof count");
-    std::array::from_fn(|t| {
-        SparseColMat::new_from_argsort(symbolic.clone(), &order, &vals[t]).expect("allocation")
-    })
+    vals.map(|v| SparseColMat::new(symbolic.clone(), v))
+}
+
+/// The pattern of the P1 operators on the free dofs: column $(v, c)$ holds both
+/// components of every node that shares a triangle with $v$, in dof order.
+fn pattern(mesh: &Mesh, dofs: &Dofs) -> SymbolicSparseColMat<usize> {
+    let mut nbr: Vec<Vec<usize>> = vec![Vec::with_capacity(8); mesh.nodes.len()];
+    for tri in &mesh.triangles {
+        for &a in tri {
+            nbr[a].extend_from_slice(tri);
+        }
+    }
+    let mut col_ptr = Vec::with_capacity(dofs.count + 1);
+    let mut row_idx = Vec::with_capacity(14 * dofs.count);
+    col_ptr.push(0);
+    for (v, list) in nbr.iter_mut().enumerate() {
+        list.sort_unstable();
+        list.dedup();
+        for c in 0..2 {
+            if dofs.of(v, c).is_none() {
+                continue;
+            }
+            row_idx.extend(
+                list.iter()
+                    .flat_map(|&u| (0..2).filter_map(move |k| dofs.of(u, k))),
+            );
+            col_ptr.push(row_idx.len());
+        }
+    }
+    SymbolicSparseColMat::new_checked(dofs.count, dofs.count, col_ptr, None, row_idx)
 }
 
 /// One stiffness matrix, see [`stiffness_all`].

@@ -227,58 +227,6 @@ impl Dofs {
     }
 }
 
-// ANCHOR: prolongate
-/// Interpolates nodal values of a P1 field on `coarse` at the nodes of `fine`,
-/// a refinement of it (same domain, `fine.n` a multiple of `coarse.n`). The
-/// meshes are nested (each fine triangle lies in one coarse triangle), so this
-/// is the exact embedding of the coarse P1 space in the fine one.
-pub fn prolongate(coarse: &Mesh, vals: &[[f64; 2]], fine: &Mesh) -> Vec<[f64; 2]> {
-    assert!(
-        coarse.pattern == Pattern::Diagonal && fine.pattern == Pattern::Diagonal,
-        "the structured prolongation knows the paper's pattern only (see Interpolation)"
-    );
-    assert!(
-        fine.n.is_multiple_of(coarse.n),
-        "fine mesh must refine the coarse one"
-    );
-    let r = fine.n / coarse.n;
-    let (nxc, nxf) = (coarse.n, fine.n);
-    let idc = |i: usize, j: usize| j * (nxc + 1) + i;
-    let mut out = Vec::with_capacity(fine.nodes.len());
-    for jf in 0..=nxf / 2 {
-        for if_ in 0..=nxf {
-            let (ic, a) = (
-                (if_ / r).min(nxc - 1),
-                (if_ - (if_ / r).min(nxc - 1) * r) as f64 / r as f64,
-            );
-            let (jc, b) = (
-                (jf / r).min(nxc / 2 - 1),
-                (jf - (jf / r).min(nxc / 2 - 1) * r) as f64 / r as f64,
-            );
-            let (ll, lr, ur, ul) = (
-                idc(ic, jc),
-                idc(ic + 1, jc),
-                idc(ic + 1, jc + 1),
-                idc(ic, jc + 1),
-            );
-            // lower-right triangle (ll, lr, ur) when a >= b, upper-left (ll, ur, ul) otherwise
-            let w = if a >= b {
-                [(ll, 1.0 - a), (lr, a - b), (ur, b)]
-            } else {
-                [(ll, 1.0 - b), (ur, a), (ul, b - a)]
-            };
-            let mut v = [0.0; 2];
-            for (node, wt) in w {
-                v[0] += wt * vals[node][0];
-                v[1] += wt * vals[node][1];
-            }
-            out.push(v);
-        }
-    }
-    out
-}
-// ANCHOR_END: prolongate
-
 impl Dofs {
     /// Gathers one value pair per node into a vector of free dofs.
     pub fn gather(&self, nodal: &[[f64; 2]]) -> Vec<f64> {
@@ -370,6 +318,68 @@ impl Interpolation {
             })
             .collect();
         Interpolation { weights }
+    }
+
+    /// The interpolation from a structured mesh of the paper's pattern to a
+    /// uniform refinement of it (`fine.n` a multiple of `coarse.n`), in closed
+    /// form: fine node $(i_f, j_f)$ lies at $(a, b)$ in the cell of coarse node
+    /// $(i_c, j_c)$, in its lower-right triangle when $a \ge b$. The meshes are
+    /// nested (each fine triangle lies in one coarse triangle), so this is the
+    /// exact embedding of the coarse P1 space in the fine one.
+    pub fn nested(coarse: &Mesh, fine: &Mesh) -> Result<Interpolation, InputError> {
+        if coarse.pattern != Pattern::Diagonal || fine.pattern != Pattern::Diagonal {
+            return Err(InputError::field(
+                "pattern",
+                format!("{} to {}", coarse.pattern.name(), fine.pattern.name()),
+                "the paper's diagonal pattern on both meshes (else Interpolation::new)",
+            ));
+        }
+        if !fine.n.is_multiple_of(coarse.n) {
+            return Err(InputError::field(
+                "n",
+                format!("{} to {}", coarse.n, fine.n),
+                "a fine n that is a multiple of the coarse n",
+            ));
+        }
+        let r = fine.n / coarse.n;
+        let (nxc, nxf) = (coarse.n, fine.n);
+        let idc = |i: usize, j: usize| j * (nxc + 1) + i;
+        // Coarse cell and position in it along one axis, the last cell closed.
+        let locate = |f: usize, cells: usize| {
+            let c = (f / r).min(cells - 1);
+            (c, (f - c * r) as f64 / r as f64)
+        };
+        let mut weights = Vec::with_capacity(fine.nodes.len());
+        for jf in 0..=nxf / 2 {
+            for if_ in 0..=nxf {
+                let ((ic, a), (jc, b)) = (locate(if_, nxc), locate(jf, nxc / 2));
+                let (ll, lr, ur, ul) = (
+                    idc(ic, jc),
+                    idc(ic + 1, jc),
+                    idc(ic + 1, jc + 1),
+                    idc(ic, jc + 1),
+                );
+                weights.push(if a >= b {
+                    [(ll, 1.0 - a), (lr, a - b), (ur, b)]
+                } else {
+                    [(ll, 1.0 - b), (ur, a), (ul, b - a)]
+                });
+            }
+        }
+        Ok(Interpolation { weights })
+    }
+
+    /// $P^\top v$: the transpose applied to one value pair per fine node, one
+    /// pair per coarse node out (`coarse_nodes` of them).
+    pub fn apply_transpose(&self, vals: &[[f64; 2]], coarse_nodes: usize) -> Vec<[f64; 2]> {
+        let mut out = vec![[0.0; 2]; coarse_nodes];
+        for (w, v) in self.weights.iter().zip(vals) {
+            for &(node, wt) in w {
+                out[node][0] += wt * v[0];
+                out[node][1] += wt * v[1];
+            }
+        }
+        out
     }
 
     /// The interpolated field at the fine nodes.

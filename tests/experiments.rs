@@ -12,6 +12,7 @@ fn ctx(name: &str) -> Ctx {
         figures: root.join("figures"),
         verbose: false,
         progress: None,
+        reference: None,
     }
 }
 

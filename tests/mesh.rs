@@ -2,7 +2,7 @@
 //! nested-dissection ordering of criss-cross meshes and the exact P1 norms.
 
 use evhi::material::Isotropic;
-use evhi::mesh::{Interpolation, Mesh, Pattern, Supports, prolongate};
+use evhi::mesh::{Interpolation, Mesh, Pattern, Supports};
 use evhi::norms::field_norms;
 use evhi::scenario::Scenario;
 
@@ -54,8 +54,9 @@ fn interpolation_reproduces_linear_fields() {
     }
 }
 
-/// On the paper's pattern the general interpolation equals the structured
-/// prolongation for any (not only linear) field.
+/// On the paper's pattern the general interpolation equals the closed-form
+/// nested one for any (not only linear) field, and the transpose is the adjoint:
+/// v·(P u) = (P^T v)·u.
 #[test]
 fn interpolation_equals_the_structured_prolongation() {
     let coarse = Mesh::structured(8).unwrap();
@@ -66,10 +67,29 @@ fn interpolation_equals_the_structured_prolongation() {
         .map(|p| [(3.0 * p[0]).sin(), (p[0] * p[1]).exp()])
         .collect();
     let a = Interpolation::new(&coarse, &fine).apply(&vals);
-    let b = prolongate(&coarse, &vals, &fine);
+    let nested = Interpolation::nested(&coarse, &fine).unwrap();
+    let b = nested.apply(&vals);
     for (x, y) in a.iter().zip(&b) {
         assert!((x[0] - y[0]).abs() < 1e-14 && (x[1] - y[1]).abs() < 1e-14);
     }
+    let v: Vec<[f64; 2]> = fine
+        .nodes
+        .iter()
+        .map(|p| [p[1].cos(), p[0] - p[1]])
+        .collect();
+    let dot = |x: &[[f64; 2]], y: &[[f64; 2]]| -> f64 {
+        x.iter()
+            .zip(y)
+            .map(|(a, b)| a[0] * b[0] + a[1] * b[1])
+            .sum()
+    };
+    let lhs = dot(&v, &b);
+    let rhs = dot(&nested.apply_transpose(&v, coarse.nodes.len()), &vals);
+    assert!((lhs - rhs).abs() < 1e-12 * lhs.abs(), "{lhs} against {rhs}");
+    // Only nested meshes of the paper's pattern.
+    assert!(Interpolation::nested(&fine, &coarse).is_err());
+    let cross = Mesh::build(32, Supports::Paper, Pattern::Crisscross).unwrap();
+    assert!(Interpolation::nested(&coarse, &cross).is_err());
 }
 
 /// The exact P1 norms of v = (x, y + 1) on (0,2) x (0,1): ∫|v|² = 8/3 + 14/3,

@@ -101,6 +101,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         figures: args.figures.clone(),
         verbose: true,
         progress: None,
+        reference: None,
     };
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;

@@ -15,6 +15,12 @@ pub struct ReproduceArgs {
     /// No progress bars and no summary; errors still go to stderr.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Table 1's reference level n (h = k = 1/n) in place of the paper's 512, e.g.
+    /// 1024 (1.05 M unknowns, about 2 GB): writes table1_ref<n>.csv and
+    /// table1_reference_shift_ref<n>.csv, how far each entry of table1.csv moves
+    /// (run `reproduce table1` first); the paper's table1.csv is left as it is.
+    #[arg(long, value_name = "N")]
+    pub reference: Option<usize>,
     /// Directory of the CSV tables.
     #[arg(long, default_value = "data")]
     pub data: PathBuf,
@@ -32,6 +38,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         figures: args.figures,
         verbose: true,
         progress: None,
+        reference: args.reference,
     };
     let names: Vec<String> = if args.names.is_empty() {
         NAMES.iter().map(|s| s.to_string()).collect()

@@ -4,20 +4,23 @@
 //! into its $h$ part ($k$ at the reference value) and its $k$ part ($h$ at the
 //! reference value), and where in $\Omega$ the error sits.
 //!
-//! Coarse fields are prolongated exactly onto the reference mesh (the spaces are
+//! Every run goes by the reduced loop ([`crate::reduced`]): one factorisation of
+//! $B$ per mesh serves all its step lengths, and the errors between the time
+//! levels need no field (see [`Reference::coarse`]). At $T$ the fields are formed,
+//! the coarse one embedded exactly in the reference space (the spaces are
 //! nested). The paper does not say at which time it measures; we report $t = T$ and
 //! the maximum over the time levels shared with the reference,
 //! $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$ (the norm of Corollary 4.1's left side).
 
 use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
-use super::{Ctx, ExpError, col_f64, col_str, read_csv, run_newton_batch_with};
-use crate::assembly::stiffness;
+use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::element::strain_matrix;
-use crate::mesh::{Dofs, Mesh, prolongate};
-use crate::norms::energy_norm;
+use crate::mesh::{Dofs, Interpolation, Mesh};
 use crate::output::csv::Table;
+use crate::reduced::{Reduced, State};
 use crate::scenario::Scenario;
-use crate::scheme::Options;
+use crate::scheme::{Discretisation, OrderingKind, Timings};
+use crate::step::newton::Newton;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 
@@ -51,18 +54,25 @@ pub fn plan(quick: bool) -> Plan {
     }
 }
 
-/// The reference solution at the time levels $t = j/N_{grid}$.
-/// The reference solutions of a group of scenarios that share the step matrix
-/// (so the mesh and the energy norm too), at the time levels $t = j/N_{grid}$.
+/// The reference runs of a group of scenarios that share the step matrix (so the
+/// mesh and the energy norm too), with what the levels need of them at the time
+/// levels $t = j/N_{grid}$.
 struct Reference {
-    mesh: Mesh,
+    mesh: std::sync::Arc<Mesh>,
     dofs: Dofs,
-    b: crate::assembly::SpMat,
     grid: usize,
-    /// Per scenario of the group: the fields and their energy norms, by level $j$.
-    fields: Vec<BTreeMap<usize, Vec<f64>>>,
-    norms: Vec<BTreeMap<usize, f64>>,
+    runs: Vec<RefRun>,
     tensor: crate::material::Isotropic,
+}
+
+/// One scenario's reference.
+struct RefRun {
+    /// The load vector $f$ on the reference mesh.
+    f: Vec<f64>,
+    /// By level $j$: the reduced state and $u^\top B u$.
+    at: BTreeMap<usize, (State, f64)>,
+    /// $u_{ref}(T)$.
+    field_t: Vec<f64>,
 }
 
 /// Error of one level against the reference.
@@ -95,126 +105,280 @@ pub fn region(x: f64, y: f64) -> usize {
 struct Accumulator {
     max_e: f64,
     max_u: f64,
+    /// $\|e(T)\|_E$ from the reduced quantities, checked against the formed fields.
+    e_t_reduced: f64,
     e_t: f64,
     u_t: f64,
     regions: [f64; 3],
-    fail: Option<usize>,
+}
+
+impl Accumulator {
+    /// Adds the error $\|e\|_E$ at level $j$ of the grid.
+    fn add(&mut self, e: f64, u_ref: f64, at_t: bool) {
+        self.max_e = self.max_e.max(e);
+        self.max_u = self.max_u.max(u_ref);
+        if at_t {
+            self.e_t_reduced = e;
+            self.u_t = u_ref;
+        }
+    }
+
+    /// The level's row, once the error at $T$ has been formed from the fields. The
+    /// reduced error at $T$ must agree with it to $10^{-9}\,\|u_{ref}(T)\|_E$: each
+    /// formed field carries the rounding of a solve with $B$ (measured: the two
+    /// routes differ by at most $7\cdot10^{-11}\,\|u_{ref}(T)\|_E$ at $h = 1/512$).
+    fn finish(
+        self,
+        family: &'static str,
+        (n, steps): (usize, usize),
+        scenario: &str,
+    ) -> Result<LevelError, ExpError> {
+        let agree = (self.e_t - self.e_t_reduced).abs() <= 1e-9 * self.u_t;
+        if !self.e_t.is_finite() || !agree {
+            return Err(ExpError::Table {
+                path: format!("table1, scenario {scenario}"),
+                message: format!(
+                    "h = 1/{n}, {steps} steps: the error at T is {:e} from the fields and {:e} \
+                     from the reduced quantities (||u_ref(T)||_E = {:e})",
+                    self.e_t, self.e_t_reduced, self.u_t
+                ),
+            });
+        }
+        Ok(LevelError {
+            family,
+            n,
+            steps,
+            rel_t: self.e_t / self.u_t,
+            rel_max: self.max_e / self.max_u,
+            regions: self.regions,
+        })
+    }
+}
+
+/// $\|v\|_E$ from $v^\top B v$.
+fn energy_of_quad(quad: f64) -> f64 {
+    (0.5 * quad).max(0.0).sqrt()
+}
+
+/// The time levels $t = j/N_{grid}$ a run of `steps` steps shares with the grid:
+/// $j$ of step `step`, if it is one.
+fn grid_level(step: usize, steps: usize, grid: usize) -> Option<usize> {
+    (step * grid)
+        .is_multiple_of(steps)
+        .then(|| step * grid / steps)
 }
 
 impl Reference {
-    /// The references of a group of scenarios that share the step matrix, in one
-    /// batched run.
+    /// The references of a group of scenarios that share the step matrix, and the
+    /// group's $k$ family (the reference mesh, coarser steps): all on one
+    /// factorisation of $B$ (the reduced loop of [`crate::reduced`]). Returns the
+    /// reference and, per scenario of the group, its $k$-family errors by level.
     fn compute(
         scns: &[Scenario],
-        n_ref: usize,
+        plan: &Plan,
         grid: usize,
         ctx: &Ctx,
-    ) -> Result<Reference, ExpError> {
+    ) -> Result<(Reference, Vec<Vec<LevelError>>), ExpError> {
+        let n_ref = plan.n_ref;
         let every = n_ref / grid;
-        let mut fields = vec![BTreeMap::new(); scns.len()];
         let clock = std::time::Instant::now();
-        run_newton_batch_with(scns, &Options::new(n_ref, n_ref), &mut |i, step, _, u| {
-            if step % every == 0 {
-                fields[i].insert(step / every, u.to_vec());
-            }
-        })?;
+        let disc = Discretisation::new(&scns[0], n_ref)?;
+        let mut timings = Timings::default();
+        // Two workers already keep both cores busy: one sweep thread.
+        let op = Reduced::new(
+            &scns[0],
+            &disc,
+            OrderingKind::NestedDissection,
+            false,
+            &mut timings,
+        )?;
+        let tensor = scns[0].elasticity();
+        let mut runs = Vec::with_capacity(scns.len());
+        for scn in scns {
+            let load = op.load_of(scn);
+            let mut at = BTreeMap::new();
+            let mut field_t = vec![];
+            op.march(
+                scn,
+                &load,
+                n_ref,
+                &mut Newton::default(),
+                TOL,
+                &|step| step == n_ref,
+                &mut timings,
+                &mut |s| {
+                    if s.step % every == 0 {
+                        at.insert(s.step / every, (s.state.clone(), op.quad(&load, s.state)));
+                    }
+                    if let Some(u) = s.field {
+                        field_t = u.to_vec();
+                    }
+                },
+            )?;
+            runs.push((
+                load,
+                RefRun {
+                    f: vec![],
+                    at,
+                    field_t,
+                },
+            ));
+        }
         let names: Vec<&str> = scns.iter().map(|s| s.name.as_str()).collect();
         ctx.log(&format!(
             "{}: reference, h = k = 1/{n_ref} ({:.1} s)",
             names.join(" + "),
             clock.elapsed().as_secs_f64()
         ));
-        let mesh = scns[0].mesh(n_ref)?;
-        let dofs = Dofs::new(&mesh, true);
-        let tensor = scns[0].elasticity();
-        let b = stiffness(&mesh, &dofs, &tensor);
-        let norms = (fields.iter())
-            .map(|f| f.iter().map(|(&j, u)| (j, energy_norm(&b, u))).collect())
-            .collect();
-        Ok(Reference {
-            mesh,
-            dofs,
-            b,
+        let mut reference = Reference {
+            mesh: disc.mesh.clone(),
+            dofs: Dofs::new(&disc.mesh, true),
             grid,
-            fields,
-            norms,
+            runs: vec![],
             tensor,
-        })
+        };
+        // The k family: h = 1/n_ref, k = 1/n, on the same factorisation.
+        let clock = std::time::Instant::now();
+        let mut k_family = vec![vec![]; scns.len()];
+        for (i, scn) in scns.iter().enumerate() {
+            let (load, run) = &runs[i];
+            for &steps in &plan.levels {
+                let mut acc = Accumulator::default();
+                let mut field_t = vec![];
+                op.march(
+                    scn,
+                    load,
+                    steps,
+                    &mut Newton::default(),
+                    TOL,
+                    &|step| step == steps,
+                    &mut timings,
+                    &mut |s| {
+                        let Some(j) = grid_level(s.step, steps, grid) else {
+                            return;
+                        };
+                        let (st, quad) = &run.at[&j];
+                        acc.add(
+                            op.energy_diff(load, st, s.state),
+                            energy_of_quad(*quad),
+                            j == grid,
+                        );
+                        if let Some(u) = s.field {
+                            field_t = u.to_vec();
+                        }
+                    },
+                )?;
+                let diff: Vec<f64> = run
+                    .field_t
+                    .iter()
+                    .zip(&field_t)
+                    .map(|(a, b)| a - b)
+                    .collect();
+                acc.regions = reference.regions(&diff);
+                acc.e_t = acc.regions.iter().sum::<f64>().sqrt();
+                k_family[i].push(acc.finish(FAMILIES[2], (n_ref, steps), &scn.name)?);
+            }
+        }
+        ctx.log(&format!(
+            "{}: k family, h = 1/{n_ref} ({:.1} s)",
+            names.join(" + "),
+            clock.elapsed().as_secs_f64()
+        ));
+        reference.runs = runs
+            .into_iter()
+            .map(|(load, run)| RefRun { f: load.f, ..run })
+            .collect();
+        Ok((reference, k_family))
     }
 
-    /// Errors of the level $(n, N)$ for each scenario of the group, in one batched
-    /// run, computed on the fly at the shared time levels.
-    fn levels(
+    /// The errors of the coarse mesh $h = 1/n$ for each scenario of the group, in
+    /// the $h = k$ family ($k = 1/n$) and the $h$ family ($k$ of the reference),
+    /// both on one factorisation of its $B$. Between the time levels of the grid
+    /// no field is formed: with $P$ the exact embedding of the coarse space in the
+    /// reference one and $g_{ref} = B u_{ref} = Y f + E_C^\top W$,
+    /// $$\|u_{ref} - P u_h\|_B^2 = u_{ref}^\top B u_{ref} - 2\, g_{ref}^\top P u_h + u_h^\top B_h u_h,$$
+    /// where $f^\top P u_h = (P^\top f)^\top u_h$ and $E_C P u_h$ interpolates $-r_h$ along
+    /// $\Gamma_3$. At $T$ the fields are formed, and the two must agree.
+    fn coarse(
         &self,
         scns: &[Scenario],
-        family: &'static str,
         n: usize,
-        steps: usize,
-    ) -> Result<Vec<LevelError>, ExpError> {
-        let coarse = scns[0].mesh(n)?;
-        let cdofs = Dofs::new(&coarse, true);
-        let mut acc: Vec<Accumulator> = scns
-            .iter()
-            .map(|_| Accumulator {
-                u_t: 1.0,
-                ..Default::default()
-            })
-            .collect();
-        run_newton_batch_with(
-            scns,
-            // Two workers already keep both cores busy with levels; a second sweep
-            // thread per run only waits for a core. Measured once each: table1 in
-            // 70.6 s this way, 77.5 s with two sweep threads for the levels too.
-            &Options {
-                parallel: false,
-                ..Options::new(n, steps)
-            },
-            &mut |i, step, _, u| {
-                let a = &mut acc[i];
-                if !(step * self.grid).is_multiple_of(steps) || a.fail.is_some() {
-                    return;
-                }
-                let j = step * self.grid / steps;
-                let Some(uref) = self.fields[i].get(&j) else {
-                    return;
-                };
-                let fine = if n == self.mesh.n {
-                    u.to_vec()
-                } else {
-                    self.dofs
-                        .gather(&prolongate(&coarse, &cdofs.expand(u), &self.mesh))
-                };
-                let diff: Vec<f64> = uref.iter().zip(&fine).map(|(a, b)| a - b).collect();
-                let e = energy_norm(&self.b, &diff);
-                a.max_e = a.max_e.max(e);
-                a.max_u = a.max_u.max(self.norms[i][&j]);
-                if j == self.grid {
-                    a.e_t = e;
-                    a.u_t = self.norms[i][&j];
-                    a.regions = self.regions(&diff);
-                }
-                if !e.is_finite() {
-                    a.fail = Some(step);
-                }
-            },
+        n_ref: usize,
+    ) -> Result<[Vec<LevelError>; 2], ExpError> {
+        let disc = Discretisation::new(&scns[0], n)?;
+        let mut timings = Timings::default();
+        let op = Reduced::new(
+            &scns[0],
+            &disc,
+            OrderingKind::NestedDissection,
+            false,
+            &mut timings,
         )?;
-        scns.iter()
-            .zip(acc)
-            .map(|(scn, a)| match a.fail {
-                Some(step) => Err(ExpError::Table {
-                    path: format!("table1, scenario {}", scn.name),
-                    message: format!("non-finite error at h = 1/{n}, {steps} steps, step {step}"),
-                }),
-                None => Ok(LevelError {
-                    family,
-                    n,
+        let interp = Interpolation::nested(&disc.mesh, &self.mesh)?;
+        // Per coarse node: its index among the contact nodes.
+        let mut contact_index = vec![None; disc.mesh.nodes.len()];
+        for (i, &v) in disc.mesh.contact.iter().enumerate() {
+            contact_index[v] = Some(i);
+        }
+        // Interpolates coarse contact values r at the reference contact nodes.
+        let on_contact = |r: &[f64]| -> Vec<f64> {
+            (self.mesh.contact.iter())
+                .map(|&v| {
+                    (interp.weights[v].iter())
+                        .map(|&(c, wt)| contact_index[c].map_or(0.0, |i| wt * r[i]))
+                        .sum()
+                })
+                .collect()
+        };
+        let mut out = [vec![], vec![]];
+        for (scn, run) in scns.iter().zip(&self.runs) {
+            let load = op.load_of(scn);
+            // d = B_h^{-1} P^T f_ref.
+            let pt_f = interp.apply_transpose(&self.dofs.expand(&run.f), disc.mesh.nodes.len());
+            let d = op.chol.solve(&disc.dofs.gather(&pt_f));
+            let d_f: f64 = d.iter().zip(&load.f).map(|(a, b)| a * b).sum();
+            let d_c: Vec<f64> = disc.contact_dofs.iter().map(|&c| d[c]).collect();
+            for (slot, steps) in [(0, n), (1, n_ref)] {
+                let mut acc = Accumulator::default();
+                let mut field_t = vec![];
+                op.march(
+                    scn,
+                    &load,
                     steps,
-                    rel_t: a.e_t / a.u_t,
-                    rel_max: a.max_e / a.max_u,
-                    regions: a.regions,
-                }),
-            })
-            .collect()
+                    &mut Newton::default(),
+                    TOL,
+                    &|step| step == steps,
+                    &mut timings,
+                    &mut |s| {
+                        let Some(j) = grid_level(s.step, steps, self.grid) else {
+                            return;
+                        };
+                        let (st_ref, quad_ref) = &run.at[&j];
+                        let st = s.state;
+                        let wd: f64 = st.w.iter().zip(&d_c).map(|(a, b)| a * b).sum();
+                        let wr: f64 = (st_ref.w.iter().zip(on_contact(&st.r)))
+                            .map(|(a, b)| a * b)
+                            .sum();
+                        let cross = st_ref.y * (st.y * d_f + wd) - wr;
+                        let quad = quad_ref - 2.0 * cross + op.quad(&load, st);
+                        acc.add(
+                            energy_of_quad(quad),
+                            energy_of_quad(*quad_ref),
+                            j == self.grid,
+                        );
+                        if let Some(u) = s.field {
+                            field_t = u.to_vec();
+                        }
+                    },
+                )?;
+                let fine = self.dofs.gather(&interp.apply(&disc.dofs.expand(&field_t)));
+                let diff: Vec<f64> = run.field_t.iter().zip(&fine).map(|(a, b)| a - b).collect();
+                acc.regions = self.regions(&diff);
+                acc.e_t = acc.regions.iter().sum::<f64>().sqrt();
+                out[slot].push(acc.finish(FAMILIES[slot], (n, steps), &scn.name)?);
+            }
+        }
+        Ok(out)
     }
 
     /// $\tfrac12(\mathcal G\varepsilon(v), \varepsilon(v))$ per region.
@@ -241,42 +405,24 @@ impl Reference {
 pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
 
 /// One unit of the study's work: the references of a group of scenarios that
-/// share the step matrix, or one level of one family for such a group.
+/// share the step matrix with their $k$ family, or one coarse mesh of such a
+/// group with its $h = k$ and $h$ families.
 #[derive(Debug, Clone, Copy)]
 enum Task {
     Reference(usize),
     Level {
         group: usize,
-        /// Index of the level in the plan and of the family in [`FAMILIES`].
+        /// Index of the level in the plan.
         level: usize,
-        family: usize,
     },
 }
 
-/// The three families: name, and $(n, N)$ from the level's $n$ and the reference's.
+/// The three families: $(n, N)$ from the level's $n$ and the reference's $n$ are
+/// $(n, n)$, $(n, n_{ref})$ and $(n_{ref}, n)$.
 const FAMILIES: [&str; 3] = ["h=k", "h", "k"];
 
-fn family_sizes(family: usize, n: usize, n_ref: usize) -> (usize, usize) {
-    match family {
-        0 => (n, n),
-        1 => (n, n_ref),
-        _ => (n_ref, n),
-    }
-}
-
-impl Task {
-    /// Rough cost, for running the dearest first: dof-steps of the run plus the
-    /// fine-mesh error evaluations at the shared time levels.
-    fn cost(&self, plan: &Plan, grid: usize) -> usize {
-        match *self {
-            Task::Reference(_) => usize::MAX,
-            Task::Level { level, family, .. } => {
-                let (n, steps) = family_sizes(family, plan.levels[level], plan.n_ref);
-                steps * n * n + steps.min(grid) * plan.n_ref * plan.n_ref
-            }
-        }
-    }
-}
+/// The step solver's certificate tolerance of every run of the study.
+const TOL: f64 = 1e-10;
 
 /// What the workers share: the tasks not yet started, the references done so far,
 /// and the first error.
@@ -289,10 +435,9 @@ struct Queue {
 }
 
 /// All three families of all scenarios, on two threads (this machine has two
-/// cores). Scenarios that share the step matrix run together (`literal` and
-/// `figure`: one factorisation and one sweep over $L$ per step for both).
-/// References go first; then the levels, dearest first, each as soon as its
-/// reference is there, so neither thread idles while work remains.
+/// cores), by the reduced loop: one factorisation of $B$ per mesh serves every
+/// $k$. References go first (each with its $k$ family); then the coarse meshes,
+/// finest first, each as soon as its reference is there.
 fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)>, ExpError> {
     let scenarios = SCENARIOS
         .iter()
@@ -315,22 +460,13 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
         (s * nl + level) * FAMILIES.len() + family
     };
     let mut pending: Vec<Task> = (0..groups.len()).map(Task::Reference).collect();
-    let mut levels = vec![];
-    for group in 0..groups.len() {
-        for level in 0..nl {
-            for family in 0..FAMILIES.len() {
-                levels.push(Task::Level {
-                    group,
-                    level,
-                    family,
-                });
-            }
+    for level in (0..nl).rev() {
+        for group in 0..groups.len() {
+            pending.push(Task::Level { group, level });
         }
     }
-    levels.sort_by_key(|t| std::cmp::Reverse(t.cost(plan, grid)));
-    // One unit per reference and per level run.
-    ctx.add_units(pending.len() + levels.len());
-    pending.extend(levels);
+    // Each reference logs twice (itself, its k family), each coarse mesh once.
+    ctx.add_units(pending.len() + groups.len());
     let queue = std::sync::Mutex::new(Queue {
         pending,
         references: vec![None; groups.len()],
@@ -363,30 +499,35 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
             }
         };
         let outcome = match (task, reference) {
-            (Task::Reference(g), _) => Reference::compute(&groups[g], plan.n_ref, grid, ctx)
-                .map(|r| (Some((g, std::sync::Arc::new(r))), vec![])),
-            (
-                Task::Level {
-                    group,
-                    level,
-                    family,
-                },
-                Some(reference),
-            ) => {
-                let (n, steps) = family_sizes(family, plan.levels[level], plan.n_ref);
+            (Task::Reference(g), _) => {
+                Reference::compute(&groups[g], plan, grid, ctx).map(|(r, k_family)| {
+                    let rows: Vec<(usize, LevelError)> = (groups[g].iter().zip(k_family))
+                        .flat_map(|(s, errs)| {
+                            (errs.into_iter().enumerate())
+                                .map(|(level, e)| (row(&s.name, level, 2), e))
+                                .collect::<Vec<_>>()
+                        })
+                        .collect();
+                    (Some((g, std::sync::Arc::new(r))), rows)
+                })
+            }
+            (Task::Level { group, level }, Some(reference)) => {
+                let n = plan.levels[level];
                 let clock = std::time::Instant::now();
-                let errors = reference.levels(&groups[group], FAMILIES[family], n, steps);
+                let errors = reference.coarse(&groups[group], n, plan.n_ref);
                 let names: Vec<&str> = groups[group].iter().map(|s| s.name.as_str()).collect();
                 ctx.log(&format!(
-                    "{}: {} family, h = 1/{n}, k = 1/{steps} ({:.1} s)",
+                    "{}: h = k and h families, h = 1/{n} ({:.1} s)",
                     names.join(" + "),
-                    FAMILIES[family],
                     clock.elapsed().as_secs_f64()
                 ));
-                errors.map(|errors| {
-                    let rows = (groups[group].iter().zip(errors))
-                        .map(|(s, e)| (row(&s.name, level, family), e))
-                        .collect();
+                errors.map(|[hk, h]| {
+                    let rows: Vec<(usize, LevelError)> =
+                        (groups[group].iter().zip(hk.into_iter().zip(h)))
+                            .flat_map(|(s, (hk, h))| {
+                                [(row(&s.name, level, 0), hk), (row(&s.name, level, 1), h)]
+                            })
+                            .collect();
                     (None, rows)
                 })
             }
@@ -394,8 +535,10 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
         };
         let mut q = queue.lock().expect("study queue");
         match outcome {
-            Ok((Some((g, r)), _)) => q.references[g] = Some(r),
-            Ok((None, rows)) => {
+            Ok((reference, rows)) => {
+                if let Some((g, r)) = reference {
+                    q.references[g] = Some(r);
+                }
                 q.levels.extend(rows);
                 // References no pending level needs are let go (their fields are
                 // large); running levels hold their own handle.
@@ -435,8 +578,24 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
-    let plan = plan(ctx.quick);
+    let mut plan = plan(ctx.quick);
     let grid = *plan.levels.last().expect("levels");
+    let suffix = match ctx.reference {
+        Some(r) if r != plan.n_ref => {
+            if r <= grid || !r.is_multiple_of(grid) {
+                return Err(crate::error::InputError::field(
+                    "reference",
+                    r,
+                    format!("a multiple of {grid} above {grid} (the finest level), e.g. 1024"),
+                )
+                .into());
+            }
+            crate::scheme::check_memory(r)?;
+            plan.n_ref = r;
+            format!("_ref{r}")
+        }
+        _ => String::new(),
+    };
     let all = study(&plan, grid, ctx)?;
     let params = format!(
         "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over the level's own time steps (all on the grid t = j/{grid}); solver newton",
@@ -513,9 +672,71 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "share_rest",
             all.iter().map(|(_, e)| e.regions[2] / total(e)).collect(),
         );
+    if !suffix.is_empty() {
+        let path = ctx.write(&format!("table1{suffix}.csv"), &t, "table1", &params)?;
+        return write_shift(ctx, &path, &suffix);
+    }
     let path = ctx.write("table1.csv", &t, "table1", &params)?;
     write_markdown(ctx, &path, &params)?;
     draw(ctx, &path)
+}
+
+/// How far each error of `table1.csv` (reference 1/512) moves with the finer
+/// reference of `path`: both values and their ratio, at $T$ and over $t$.
+fn write_shift(ctx: &Ctx, path: &std::path::Path, suffix: &str) -> Result<(), ExpError> {
+    let base = ctx.data.join("table1.csv");
+    if !base.exists() {
+        return Err(ExpError::Table {
+            path: base.display().to_string(),
+            message: "missing: run `evhi reproduce table1` before a finer reference".into(),
+        });
+    }
+    let (old, new) = (read_csv(&base)?, read_csv(path)?);
+    // A row is its scenario, family and level: n, or the steps in the k family.
+    let key = |df: &polars::prelude::DataFrame| -> Result<Vec<String>, ExpError> {
+        let (s, f) = (col_str(df, "scenario")?, col_str(df, "family")?);
+        let (n, k) = (col_f64(df, "n")?, col_f64(df, "steps")?);
+        Ok((0..s.len())
+            .map(|i| {
+                let level = if f[i] == "k" { k[i] } else { n[i] };
+                format!("{} {} {level}", s[i], f[i])
+            })
+            .collect())
+    };
+    if key(&old)? != key(&new)? {
+        return Err(ExpError::Table {
+            path: base.display().to_string(),
+            message: "its rows are not those of the finer reference's table (quick mode?)".into(),
+        });
+    }
+    let col = |df: &polars::prelude::DataFrame, c: &str| col_f64(df, c);
+    let (t0, t1) = (
+        col(&old, "rel_err_T_percent")?,
+        col(&new, "rel_err_T_percent")?,
+    );
+    let (m0, m1) = (
+        col(&old, "rel_err_max_percent")?,
+        col(&new, "rel_err_max_percent")?,
+    );
+    let ratio = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| b / a).collect();
+    let t = Table::new()
+        .str("scenario", col_str(&new, "scenario")?)
+        .str("family", col_str(&new, "family")?)
+        .f64("n", col(&new, "n")?)
+        .f64("steps", col(&new, "steps")?)
+        .f64("rel_err_T_percent_ref512", t0.clone())
+        .f64(&format!("rel_err_T_percent{suffix}"), t1.clone())
+        .f64("ratio_T", ratio(&t0, &t1))
+        .f64("rel_err_max_percent_ref512", m0.clone())
+        .f64(&format!("rel_err_max_percent{suffix}"), m1.clone())
+        .f64("ratio_max", ratio(&m0, &m1));
+    ctx.write(
+        &format!("table1_reference_shift{suffix}.csv"),
+        &t,
+        "table1",
+        "table1.csv (reference h = k = 1/512) against the finer reference; ratio = finer / 512",
+    )?;
+    Ok(())
 }
 
 /// The Markdown Table 1, ours beside the paper's, from the CSV.

@@ -40,6 +40,9 @@ pub struct Ctx {
     /// The experiment's progress bar: [`Ctx::add_units`] announces work, each
     /// [`Ctx::log`] completes one unit.
     pub progress: Option<indicatif::ProgressBar>,
+    /// Table 1's reference level $n$ (`h = k = 1/n`) instead of the paper's 512;
+    /// its tables are then written beside the paper's, with the level in their name.
+    pub reference: Option<usize>,
 }
 
 /// An experiment's failure.
