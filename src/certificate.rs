@@ -205,9 +205,15 @@ pub fn certify_condensed(
     let m = r.len();
     let s_r0 = crate::dense::sym_matvec(s, r0);
     let s_r = crate::dense::sym_matvec(s, r);
-    let abs_s_r = (0..m)
-        .map(|i| (0..m).map(|j| (s[(i, j)] * r[j]).abs()).sum::<f64>())
-        .fold(0.0f64, f64::max);
+    // |S||r|, column by column (S is stored by columns).
+    let mut abs_s_r = vec![0.0; m];
+    for (j, rj) in r.iter().enumerate() {
+        let col = s.col(j);
+        for (acc, sij) in abs_s_r.iter_mut().zip(col.iter()) {
+            *acc += (sij * rj).abs();
+        }
+    }
+    let abs_s_r = crate::dense::inf_norm(&abs_s_r);
     let n0 = crate::dense::inf_norm(&s_r0);
     let fscale = n0.max(crate::dense::inf_norm(&s_r)).max(f64::MIN_POSITIVE);
     let backward_scale = n0.max(abs_s_r).max(f64::MIN_POSITIVE);

@@ -16,7 +16,7 @@
 //! by $\sigma\|R\|^2$; the plain forward–backward point $\bar r$ always does
 //! (for $\gamma < 1/L$), so the iteration cannot cycle.
 
-use super::{Info, Status, StepProblem, StepSolver, dense_solve, inf_norm, sym_matvec};
+use super::{Info, Status, StepProblem, StepSolver, inf_norm, sym_matvec};
 use faer::Mat;
 
 /// Settings of the Newton solver.
@@ -72,6 +72,45 @@ impl Default for Settings {
 #[derive(Debug, Clone, Default)]
 pub struct Newton {
     pub settings: Settings,
+    /// The LU factor of the last Newton matrix, reused while the pieces stay.
+    cache: Cache,
+}
+
+/// The factor of $S_{II} + \operatorname{diag}(k w_i c_{b_i})$ for one set of
+/// free nodes and branches, and what it was built from. Between time steps the
+/// pieces often stay, and then a Newton step costs two triangular solves instead
+/// of an $O(m^3)$ factorisation (the same factor, so the same direction to the
+/// last bit).
+#[derive(Default)]
+struct Cache(Option<Factored>);
+
+struct Factored {
+    /// (node, branch) of each free node.
+    key: Vec<(usize, usize)>,
+    /// Where $S$ lives, its size, and the sums of its diagonal and of $k w$: a
+    /// new problem is not mistaken for the old one (a false match would cost
+    /// only a poor direction, which the line search and the residual catch).
+    fingerprint: (usize, usize, f64, f64),
+    lu: faer::linalg::solvers::PartialPivLu<f64>,
+}
+
+impl std::fmt::Debug for Cache {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Cache({})", if self.0.is_some() { "factor" } else { "empty" })
+    }
+}
+
+/// A clone starts with an empty cache.
+impl Clone for Cache {
+    fn clone(&self) -> Self {
+        Cache(None)
+    }
+}
+
+fn fingerprint(p: &StepProblem) -> (usize, usize, f64, f64) {
+    let m = p.s.nrows();
+    let diag: f64 = (0..m).map(|i| p.s[(i, i)]).sum();
+    (p.s.as_ptr() as usize, m, diag, p.kw.iter().sum())
 }
 
 /// One evaluation of the forward–backward map at a point.
@@ -87,7 +126,10 @@ struct Eval {
 
 impl Newton {
     pub fn new(settings: Settings) -> Self {
-        Newton { settings }
+        Newton {
+            settings,
+            cache: Cache::default(),
+        }
     }
 
     /// The plain proximal-gradient baseline (no Newton directions), with an
@@ -99,6 +141,7 @@ impl Newton {
                 max_iter: 200_000,
                 ..Settings::default()
             },
+            cache: Cache::default(),
         }
     }
 
@@ -140,7 +183,8 @@ impl Newton {
     }
 
     /// The Newton direction at an evaluated point; `None` if the system is singular.
-    fn direction(p: &StepProblem, gamma: f64, e: &Eval) -> Option<Vec<f64>> {
+    fn direction(&mut self, p: &StepProblem, gamma: f64, e: &Eval) -> Option<Vec<f64>> {
+        use faer::linalg::solvers::Solve;
         let m = e.res.len();
         let mut d = vec![0.0; m];
         let free: Vec<usize> = (0..m).filter(|&i| e.slope[i] > 0.0).collect();
@@ -154,16 +198,31 @@ impl Newton {
         }
         let sda = sym_matvec(p.s, &d);
         let nf = free.len();
-        let mut h = Mat::<f64>::zeros(nf, nf);
-        let mut rhs = Mat::<f64>::zeros(nf, 1);
-        for (a, &i) in free.iter().enumerate() {
-            for (c, &j) in free.iter().enumerate() {
-                h[(a, c)] = p.s[(i, j)];
+        let rhs = Mat::<f64>::from_fn(nf, 1, |a, _| {
+            let i = free[a];
+            -e.res[i] / (gamma * e.slope[i]) - sda[i]
+        });
+        let key: Vec<(usize, usize)> = free.iter().map(|&i| (i, e.branch[i])).collect();
+        let print = fingerprint(p);
+        let hit = (self.cache.0.as_ref()).is_some_and(|c| c.key == key && c.fingerprint == print);
+        if !hit {
+            let mut h = Mat::<f64>::zeros(nf, nf);
+            for (a, &i) in free.iter().enumerate() {
+                for (c, &j) in free.iter().enumerate() {
+                    h[(a, c)] = p.s[(i, j)];
+                }
+                h[(a, a)] += p.kw[i] * p.law.slopes()[e.branch[i]];
             }
-            h[(a, a)] += p.kw[i] * p.law.slopes()[e.branch[i]];
-            rhs[(a, 0)] = -e.res[i] / (gamma * e.slope[i]) - sda[i];
+            self.cache.0 = Some(Factored {
+                key,
+                fingerprint: print,
+                lu: h.partial_piv_lu(),
+            });
         }
-        let x = dense_solve(h, rhs)?;
+        let x = self.cache.0.as_ref().expect("factored").lu.solve(&rhs);
+        if !(0..nf).all(|a| x[(a, 0)].is_finite()) {
+            return None;
+        }
         for (a, &i) in free.iter().enumerate() {
             d[i] = x[(a, 0)];
         }
@@ -171,8 +230,6 @@ impl Newton {
     }
 }
 
-/// $\operatorname{prox}_{\gamma \varphi_i}(v)$ for node `i`: the law's prox with the
-/// node's weight (see [`crate::law::Law::prox`]).
 fn prox_node(p: &StepProblem, i: usize, gamma: f64, v: f64) -> (f64, f64, usize) {
     p.law.prox(v, gamma, p.kw[i], p.g)
 }
@@ -190,7 +247,7 @@ impl StepSolver for Newton {
         if let Err(e) = self.settings.validate() {
             return Info::refused(e.to_string());
         }
-        let st = &self.settings;
+        let st = &self.settings.clone();
         let gamma = self.gamma(p);
         let r0n = inf_norm(p.r0);
         let scale = |x: &[f64]| r0n.max(inf_norm(x)).max(f64::MIN_POSITIVE);
@@ -225,7 +282,7 @@ impl StepSolver for Newton {
             }
             let sq: f64 = e.res.iter().map(|x| x * x).sum();
             let dir = if st.newton {
-                Self::direction(p, gamma, &e)
+                self.direction(p, gamma, &e)
             } else {
                 None
             };
