@@ -435,6 +435,8 @@ struct Queue {
     references: Vec<Option<std::sync::Arc<Reference>>>,
     /// (table row, error).
     levels: Vec<(usize, LevelError)>,
+    /// References being computed now.
+    running: usize,
     error: Option<ExpError>,
 }
 
@@ -471,10 +473,18 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
     }
     // Each reference logs twice (itself, its k family), each coarse mesh once.
     ctx.add_units(pending.len() + groups.len());
+    // A reference holds the factor of its B: two at once only where both fit in
+    // 2 GB (h = 1/512 needs about 0.5 GB; h = 1/1024 about 2 GB, so one at a time).
+    let concurrent = if 2.0 * crate::scheme::memory_estimate(plan.n_ref) <= 2e9 {
+        2
+    } else {
+        1
+    };
     let queue = std::sync::Mutex::new(Queue {
         pending,
         references: vec![None; groups.len()],
         levels: vec![],
+        running: 0,
         error: None,
     });
     let ready = std::sync::Condvar::new();
@@ -486,12 +496,15 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
                     return;
                 }
                 let runnable = q.pending.iter().position(|t| match t {
-                    Task::Reference(_) => true,
+                    Task::Reference(_) => q.running < concurrent,
                     Task::Level { group, .. } => q.references[*group].is_some(),
                 });
                 match runnable {
                     Some(i) => {
                         let task = q.pending.remove(i);
+                        if let Task::Reference(_) = task {
+                            q.running += 1;
+                        }
                         let reference = match task {
                             Task::Level { group, .. } => q.references[group].clone(),
                             Task::Reference(_) => None,
@@ -538,6 +551,9 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
             (Task::Level { .. }, None) => unreachable!("levels wait for their reference"),
         };
         let mut q = queue.lock().expect("study queue");
+        if let Task::Reference(_) = task {
+            q.running -= 1;
+        }
         match outcome {
             Ok((reference, rows)) => {
                 if let Some((g, r)) = reference {
