@@ -146,10 +146,14 @@ impl TimeHypotheses {
 }
 
 /// The scenarios shipped in `data/scenarios/`, compiled in.
-pub const BUILTIN: [(&str, &str); 3] = [
+pub const BUILTIN: [(&str, &str); 4] = [
     ("literal", include_str!("../data/scenarios/literal.toml")),
     ("figure", include_str!("../data/scenarios/figure.toml")),
     ("smooth", include_str!("../data/scenarios/smooth.toml")),
+    (
+        "nonproportional",
+        include_str!("../data/scenarios/nonproportional.toml"),
+    ),
 ];
 
 /// Bound on the law's slopes: beyond it the contact terms dwarf the body's stiffness

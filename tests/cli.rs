@@ -586,3 +586,58 @@ fn every_registered_solver_runs_from_the_command_line() {
         "{stderr}"
     );
 }
+
+/// `--path auto` takes the reduced loop where the damping is proportional and the
+/// general one where it is not; steps.csv says which certificate each step got;
+/// `--path reduced` on the non-proportional scene is refused by name.
+#[test]
+fn the_time_loop_follows_the_damping() {
+    let column = |dir: &std::path::Path, file: &str, name: &str| -> Vec<String> {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let at = header.iter().position(|h| *h == name).unwrap();
+        lines
+            .map(|l| l.split(',').nth(at).unwrap().to_string())
+            .collect()
+    };
+    for (scenario, path, checks) in [
+        ("figure", "reduced", ["condensed", "full"]),
+        ("nonproportional", "general", ["full", "full"]),
+    ] {
+        let dir = scratch(&format!("path-{scenario}"));
+        succeed(
+            evhi()
+                .args(["solve", "--scenario", scenario, "--n", "8", "--steps", "4"])
+                .arg("--out")
+                .arg(&dir),
+        );
+        assert_eq!(column(&dir, "summary.csv", "path"), vec![path.to_string()]);
+        let check = column(&dir, "steps.csv", "check");
+        assert_eq!(check.len(), 4);
+        assert_eq!([check[0].as_str(), check[3].as_str()], checks, "{scenario}");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+    let dir = scratch("path-refused");
+    let out = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "nonproportional",
+            "--n",
+            "8",
+            "--steps",
+            "4",
+        ])
+        .args(["--path", "reduced", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("material") && err.contains("proportional"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

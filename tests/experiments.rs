@@ -345,3 +345,23 @@ fn progress_units_match_the_work_done() {
         std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
     }
 }
+
+/// The general and the reduced time loop give the same contact unknowns, energy
+/// norms and fields to 1e-12 at the quick levels (snapshotted below 1e-11).
+#[test]
+fn paths_agree() {
+    use evhi::experiments::{col_f64, read_csv};
+    snapshot_outputs_floor("paths", &["paths.csv"], &[], 1e-11);
+    let c = ctx("paths-check");
+    run("paths", &c).unwrap();
+    let t = read_csv(&c.data.join("paths.csv")).unwrap();
+    for col in ["contact_gap", "energy_gap", "field_gap_T"] {
+        let worst = col_f64(&t, col).unwrap().into_iter().fold(0.0, f64::max);
+        assert!(worst <= 1e-12, "{col}: {worst:e}");
+    }
+    for col in ["general_max_certificate", "reduced_max_certificate"] {
+        let worst = col_f64(&t, col).unwrap().into_iter().fold(0.0, f64::max);
+        assert!(worst <= 1e-10, "{col}: {worst:e}");
+    }
+    std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
+}

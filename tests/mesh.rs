@@ -88,7 +88,7 @@ fn interpolation_equals_the_structured_prolongation() {
     assert!((lhs - rhs).abs() < 1e-12 * lhs.abs(), "{lhs} against {rhs}");
     // Only nested meshes of the paper's pattern.
     assert!(Interpolation::nested(&fine, &coarse).is_err());
-    let cross = Mesh::build(32, Supports::Paper, Pattern::Crisscross).unwrap();
+    let cross = Mesh::build(32, Supports::Paper, Pattern::CrissCross).unwrap();
     assert!(Interpolation::nested(&coarse, &cross).is_err());
 }
 

@@ -41,14 +41,23 @@ fn child_run(
     n: usize,
     steps: usize,
     solver: &str,
+    path: &str,
 ) -> Result<std::collections::HashMap<String, f64>, String> {
     let dir = std::env::temp_dir().join(format!(
-        "evhi-bench-{}-{n}-{steps}-{solver}",
+        "evhi-bench-{}-{n}-{steps}-{solver}-{path}",
         std::process::id()
     ));
     let exe = std::env::current_exe().map_err(|e| e.to_string())?;
     let out = std::process::Command::new(exe)
-        .args(["solve", "--scenario", "figure", "--solver", solver])
+        .args([
+            "solve",
+            "--scenario",
+            "figure",
+            "--solver",
+            solver,
+            "--path",
+            path,
+        ])
         .args([
             "--n",
             &n.to_string(),
@@ -61,7 +70,7 @@ fn child_run(
         .map_err(|e| e.to_string())?;
     if !out.status.success() {
         return Err(format!(
-            "n = {n}, steps = {steps}, {solver}: {}",
+            "n = {n}, steps = {steps}, {solver}, {path} path: {}",
             String::from_utf8_lossy(&out.stderr)
         ));
     }
@@ -131,29 +140,34 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         "floor_ratio",
         "peak_rss_mb",
     ];
-    let mut t = Table::new();
+    // Both time loops at every level: general (a sweep per step) and reduced.
+    let paths = ["general", "reduced"];
     let mut med: Vec<Vec<f64>> = vec![vec![]; cols.len()];
-    let mut dofs = vec![];
+    let (mut dofs, mut keys) = (vec![], vec![]);
     for &n in &args.levels {
-        let mut runs = vec![];
-        for r in 0..args.repeat.max(1) {
-            eprintln!("  n = steps = {n}, run {}", r + 1);
-            runs.push(child_run(n, n, "newton")?);
-        }
-        dofs.push(f(&runs[0], "dofs") as u64);
-        for (c, name) in cols.iter().enumerate() {
-            med[c].push(median(runs.iter().map(|r| f(r, name)).collect()));
+        for path in paths {
+            let mut runs = vec![];
+            for r in 0..args.repeat.max(1) {
+                eprintln!("  n = steps = {n}, {path} path, run {}", r + 1);
+                runs.push(child_run(n, n, "newton", path)?);
+            }
+            dofs.push(f(&runs[0], "dofs") as u64);
+            keys.push((n, path));
+            for (c, name) in cols.iter().enumerate() {
+                med[c].push(median(runs.iter().map(|r| f(r, name)).collect()));
+            }
         }
     }
-    t = t
-        .u64("n", args.levels.iter().map(|&n| n as u64).collect())
-        .u64("steps", args.levels.iter().map(|&n| n as u64).collect())
+    let mut t = Table::new()
+        .u64("n", keys.iter().map(|k| k.0 as u64).collect())
+        .u64("steps", keys.iter().map(|k| k.0 as u64).collect())
+        .str("path", keys.iter().map(|k| k.1.to_string()).collect())
         .u64("dofs", dofs);
     for (c, name) in cols.iter().enumerate() {
         t = t.f64(name, med[c].clone());
     }
     let params = format!(
-        "machine: {machine}; scenario figure, solver newton, h = k = 1/n; medians of {} runs, each in a fresh process",
+        "machine: {machine}; scenario figure, solver newton, h = k = 1/n; path: the general time loop or the reduced one; medians of {} runs, each in a fresh process; wall_s is the solve without writing its files",
         args.repeat
     );
     ctx.write("bench.csv", &t, "bench", &params)?;
@@ -167,7 +181,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         {
             eprintln!("  solvers: n = steps = {n}, {solver}");
             let runs: Vec<_> = (0..args.repeat.max(1))
-                .map(|_| child_run(n, n, solver))
+                .map(|_| child_run(n, n, solver, "auto"))
                 .collect::<Result<_, _>>()?;
             let m = |k: &str| median(runs.iter().map(|r| f(r, k)).collect());
             rows.push((
@@ -213,7 +227,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         let (ni, si) = (n[i] as usize, st[i] as usize);
         eprintln!("  work-precision: n = {ni}, steps = {si}");
         let runs: Vec<_> = (0..args.repeat.max(1))
-            .map(|_| child_run(ni, si, "newton"))
+            .map(|_| child_run(ni, si, "newton", "auto"))
             .collect::<Result<_, _>>()?;
         wp.push((
             fam[i].clone(),

@@ -13,7 +13,9 @@ use std::time::{Duration, Instant};
 pub struct SolveArgs {
     /// A built-in scenario (`literal`: the paper's printed loads; `figure`: loads that
     /// reach every branch of the law; `smooth`: roller sides and a clamped top, no
-    /// singular corner) or the path of a scenario TOML file (see data/scenarios/).
+    /// singular corner; `nonproportional`: `figure` with a viscosity that is not a
+    /// multiple of the elasticity, so only the general time loop applies) or the path
+    /// of a scenario TOML file (see data/scenarios/).
     #[arg(long, default_value = "figure")]
     pub scenario: String,
     /// Contact segments n = 1/h on Γ3 (a multiple of 4; the paper's Fig. 3 uses 128).

@@ -13,6 +13,7 @@ pub mod forensics;
 pub mod graded;
 pub mod hypotheses;
 pub mod loads;
+pub mod paths;
 pub mod plot;
 pub mod runplot;
 pub mod scenes;
@@ -64,13 +65,14 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 12] = [
+pub const NAMES: [&str; 13] = [
     "hypotheses",
     "fig2",
     "loads",
     "fig3",
     "fig4",
     "table1",
+    "paths",
     "forensics",
     "graded",
     "time",
@@ -84,7 +86,7 @@ pub const NAMES: [&str; 12] = [
 /// fits the page).
 pub const BOOK_TABLES: [(&str, usize, usize); 10] = [
     ("hypotheses.csv", 1, 5),
-    ("bench.csv", 2, 6),
+    ("bench.csv", 3, 6),
     ("bench_sweeps.csv", 1, 5),
     ("bench_vs_paper.csv", 1, 6),
     ("bench_solvers.csv", 2, 6),
@@ -104,6 +106,7 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         "fig3" => scenes::run_fig3(ctx),
         "fig4" => scenes::run_fig4(ctx),
         "table1" => convergence::run(ctx),
+        "paths" => paths::run(ctx),
         "forensics" => forensics::run(ctx),
         "graded" => graded::run(ctx),
         "time" => time::run(ctx),

@@ -124,22 +124,23 @@ pub const PAPER_TIMES: [(usize, u64, f64); 2] = [(128, 17_028, 665.0), (512, 264
 /// beside the paper's CPU time at the same $h = k$.
 pub fn paper_comparison(ctx: &Ctx) -> Result<(), ExpError> {
     let df = read_csv(&ctx.data_path("bench.csv"))?;
-    let (n, dofs, wall) = (
+    let (n, dofs, wall, path) = (
         col_f64(&df, "n")?,
         col_f64(&df, "dofs")?,
         col_f64(&df, "wall_s")?,
+        col_str(&df, "path")?,
     );
-    let rows: Vec<(usize, u64, f64, f64, f64)> = PAPER_TIMES
-        .iter()
-        .filter_map(|&(pn, pd, ps)| {
-            let i = n.iter().position(|&x| x as usize == pn)?;
-            Some((pn, pd, ps, dofs[i], wall[i]))
-        })
-        .collect();
+    let mut rows: Vec<(usize, u64, f64, f64, f64, &str)> = vec![];
+    for &(pn, pd, ps) in PAPER_TIMES.iter() {
+        for i in (0..n.len()).filter(|&i| n[i] as usize == pn) {
+            rows.push((pn, pd, ps, dofs[i], wall[i], path[i].as_str()));
+        }
+    }
     let t = crate::output::csv::Table::new()
         .u64("n_and_steps", rows.iter().map(|r| r.0 as u64).collect())
         .u64("paper_dofs", rows.iter().map(|r| r.1).collect())
         .f64("paper_cpu_s", rows.iter().map(|r| r.2).collect())
+        .str("path", rows.iter().map(|r| r.5.to_string()).collect())
         .u64("our_dofs", rows.iter().map(|r| r.3 as u64).collect())
         .f64("our_wall_s", rows.iter().map(|r| r.4).collect())
         .f64("paper_over_ours", rows.iter().map(|r| r.2 / r.4).collect());

@@ -96,7 +96,11 @@ struct Factored {
 
 impl std::fmt::Debug for Cache {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Cache({})", if self.0.is_some() { "factor" } else { "empty" })
+        write!(
+            f,
+            "Cache({})",
+            if self.0.is_some() { "factor" } else { "empty" }
+        )
     }
 }
 

@@ -1,0 +1,116 @@
+//! Both time loops on the same runs: the general loop of [`crate::scheme`] (a
+//! forward and a backward sweep with the factor of $A + kB$ per step) and the
+//! reduced loop of [`crate::reduced`] (the contact problem alone per step, for
+//! proportional damping). For the three scenes and a load history at
+//! $h = k = 1/n$: the largest gap between the two in the contact unknowns over all
+//! steps, in the energy norms over all steps and in the field at $T$, each relative
+//! to the general loop's largest value, and both loops' largest certificate.
+//! `data/paths.csv`.
+
+use super::{Ctx, ExpError};
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use crate::scheme::{Options, Run, run_with_states};
+use crate::step::newton::Newton;
+
+/// $\max|a - b| / \max|a|$.
+fn gap(a: &[f64], b: &[f64]) -> f64 {
+    let scale = crate::dense::inf_norm(a).max(f64::MIN_POSITIVE);
+    let diff = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    diff / scale
+}
+
+/// One run of a loop: the contact unknowns of every step, the run.
+type Traced = (Vec<f64>, Run);
+
+fn general(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
+    let mut r = vec![];
+    let run = run_with_states(
+        scn,
+        &Options::new(n, n),
+        &mut Newton::default(),
+        &mut |_, _, _, c| r.extend(c.iter().map(|c| c.u_nu)),
+    )?;
+    Ok((r, run))
+}
+
+fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
+    let mut r = vec![];
+    let run = crate::reduced::run(
+        scn,
+        &Options::new(n, n),
+        &mut Newton::default(),
+        &|_| false,
+        &mut |_, _, _, c| r.extend(c.iter().map(|c| c.u_nu)),
+    )?;
+    Ok((r, run))
+}
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    // Every scene up to 1/256; `figure` alone at 1/512 (its general run takes 16 s).
+    let (levels, finest): (Vec<usize>, usize) = if ctx.quick {
+        (vec![8, 16], 16)
+    } else {
+        (vec![16, 32, 64, 128, 256], 512)
+    };
+    let ramp = Scenario::load("figure")?.with_ramp(0.25)?;
+    let scenes: Vec<(String, Scenario)> = ["literal", "figure", "smooth"]
+        .iter()
+        .map(|name| Ok((name.to_string(), Scenario::load(name)?)))
+        .chain([Ok(("figure-ramp".to_string(), ramp))])
+        .collect::<Result<_, ExpError>>()?;
+    let mut jobs: Vec<(usize, usize)> = (0..scenes.len())
+        .flat_map(|s| levels.iter().map(move |&n| (s, n)))
+        .collect();
+    if finest > *levels.last().expect("levels") {
+        jobs.push((1, finest));
+    }
+    ctx.add_units(jobs.len());
+    let mut rows = vec![];
+    for (s, n) in jobs {
+        let (name, scn) = &scenes[s];
+        let ((rg, g), (rr, r)) = (general(scn, n)?, reduced(scn, n)?);
+        let energy =
+            |run: &Run| -> Vec<f64> { run.records.iter().map(|s| s.energy_norm).collect() };
+        let cert = |run: &Run| {
+            (run.records.iter())
+                .map(|s| s.certificate.max())
+                .fold(0.0, f64::max)
+        };
+        rows.push((
+            name.clone(),
+            n,
+            gap(&rg, &rr),
+            gap(&energy(&g), &energy(&r)),
+            gap(&g.u, &r.u),
+            cert(&g),
+            cert(&r),
+        ));
+        ctx.log(&format!("{name}: h = k = 1/{n}"));
+    }
+    let t = Table::new()
+        .str("scenario", rows.iter().map(|r| r.0.clone()).collect())
+        .u64("n", rows.iter().map(|r| r.1 as u64).collect())
+        .u64("steps", rows.iter().map(|r| r.1 as u64).collect())
+        .f64("contact_gap", rows.iter().map(|r| r.2).collect())
+        .f64("energy_gap", rows.iter().map(|r| r.3).collect())
+        .f64("field_gap_T", rows.iter().map(|r| r.4).collect())
+        .f64(
+            "general_max_certificate",
+            rows.iter().map(|r| r.5).collect(),
+        )
+        .f64(
+            "reduced_max_certificate",
+            rows.iter().map(|r| r.6).collect(),
+        );
+    ctx.write(
+        "paths.csv",
+        &t,
+        "paths",
+        "h = k = 1/n; gaps between the general and the reduced time loop, each max |general - reduced| / max |general| over all steps (contact unknowns u_nu, energy norms) or over the dofs at T (field); certificates: the largest of each loop (the reduced loop's are on the condensed problem where no field is formed); solver newton",
+    )?;
+    Ok(())
+}
