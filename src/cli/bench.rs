@@ -33,6 +33,15 @@ pub struct BenchArgs {
     /// Level n of the sweep study.
     #[arg(long, default_value_t = 512)]
     pub sweeps_n: usize,
+    /// Only the side-by-side comparison with the independent SciPy implementation
+    /// (tools/scipy_reference/, run through its run.sh, which installs NumPy and
+    /// SciPy into .tools/venv-scipy on first use), interleaved run by run with
+    /// both of our time loops: data/bench_scipy.csv.
+    #[arg(long)]
+    pub scipy: bool,
+    /// Levels n = steps of the SciPy comparison.
+    #[arg(long, value_delimiter = ',', default_value = "32,64,128")]
+    pub scipy_levels: Vec<usize>,
 }
 
 /// One configuration run in a child process; returns the numeric columns of its
@@ -115,7 +124,12 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;
         crate::experiments::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
-        for file in ["bench.csv", "bench_sweeps.csv", "bench_solvers.csv"] {
+        for file in [
+            "bench.csv",
+            "bench_sweeps.csv",
+            "bench_solvers.csv",
+            "bench_scipy.csv",
+        ] {
             ctx.render_book_table(file)?;
         }
         return Ok(());
@@ -125,6 +139,9 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     if args.sweeps {
         crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
         return Ok(());
+    }
+    if args.scipy {
+        return scipy(&ctx, &args, &machine);
     }
     let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
         row.get(k).copied().unwrap_or(f64::NAN)
@@ -248,5 +265,134 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     let path = ctx.write("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
     crate::experiments::workprec::draw(&ctx, &path)?;
     crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+    Ok(())
+}
+
+/// One run of the SciPy implementation (one thread for its BLAS, its faster
+/// setting on this machine), checked against the evhi run directory `check`:
+/// its summary row as name -> value.
+fn scipy_run(
+    n: usize,
+    check: &std::path::Path,
+) -> Result<std::collections::HashMap<String, f64>, String> {
+    let out = std::process::Command::new("bash")
+        .arg("tools/scipy_reference/run.sh")
+        .args([
+            "--scenario",
+            "figure",
+            "--n",
+            &n.to_string(),
+            "--steps",
+            &n.to_string(),
+        ])
+        .args(["--repeat", "1", "--check"])
+        .arg(check)
+        .env("OPENBLAS_NUM_THREADS", "1")
+        .output()
+        .map_err(|e| format!("tools/scipy_reference/run.sh: {e}"))?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    if !out.status.success() {
+        return Err(format!(
+            "tools/scipy_reference/run.sh, n = {n}: {}{}",
+            text,
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().ok_or("no output")?.split(',').collect();
+    let median = lines
+        .find(|l| l.starts_with("median,"))
+        .ok_or("no median row")?;
+    // The median row has one leading field more than the header.
+    Ok(header
+        .iter()
+        .zip(median.split(',').skip(1))
+        .filter_map(|(h, v)| Some((h.to_string(), v.parse::<f64>().ok()?)))
+        .collect())
+}
+
+/// Our two time loops beside the SciPy implementation, run by run in turn:
+/// `data/bench_scipy.csv`.
+fn scipy(
+    ctx: &crate::experiments::Ctx,
+    args: &BenchArgs,
+    machine: &str,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::output::csv::Table;
+    let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
+        row.get(k).copied().unwrap_or(f64::NAN)
+    };
+    let mut rows = vec![];
+    for &n in &args.scipy_levels {
+        // The run SciPy's answer is checked against (the reduced loop's).
+        let check =
+            std::env::temp_dir().join(format!("evhi-bench-scipy-{}-{n}", std::process::id()));
+        let exe = std::env::current_exe()?;
+        let status = std::process::Command::new(exe)
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--n",
+                &n.to_string(),
+                "--steps",
+                &n.to_string(),
+                "--out",
+            ])
+            .arg(&check)
+            .stderr(std::process::Stdio::null())
+            .status()?;
+        if !status.success() {
+            return Err(format!("evhi solve at n = {n} failed").into());
+        }
+        let (mut sp, mut gen_, mut red) = (vec![], vec![], vec![]);
+        for r in 0..args.repeat.max(1) {
+            eprintln!("  scipy comparison: n = steps = {n}, round {}", r + 1);
+            sp.push(scipy_run(n, &check)?);
+            gen_.push(child_run(n, n, "newton", "general")?);
+            red.push(child_run(n, n, "newton", "reduced")?);
+        }
+        let _ = std::fs::remove_dir_all(&check);
+        let m = |runs: &[std::collections::HashMap<String, f64>], k: &str| {
+            median(runs.iter().map(|r| f(r, k)).collect())
+        };
+        let (ts, tg, tr) = (m(&sp, "total_s"), m(&gen_, "wall_s"), m(&red, "wall_s"));
+        rows.push((
+            n,
+            f(&red[0], "dofs"),
+            ts,
+            m(&sp, "steps_s"),
+            tg,
+            tr,
+            f(&sp[0], "rel_err_u_nu"),
+            f(&sp[0], "rel_diff_energy_norm"),
+        ));
+    }
+    let t = Table::new()
+        .u64("n", rows.iter().map(|r| r.0 as u64).collect())
+        .u64("dofs", rows.iter().map(|r| r.1 as u64).collect())
+        .f64("scipy_total_s", rows.iter().map(|r| r.2).collect())
+        .f64("scipy_steps_s", rows.iter().map(|r| r.3).collect())
+        .f64("general_wall_s", rows.iter().map(|r| r.4).collect())
+        .f64("reduced_wall_s", rows.iter().map(|r| r.5).collect())
+        .f64(
+            "scipy_over_general",
+            rows.iter().map(|r| r.2 / r.4).collect(),
+        )
+        .f64(
+            "scipy_over_reduced",
+            rows.iter().map(|r| r.2 / r.5).collect(),
+        )
+        .f64("scipy_gap_u_nu", rows.iter().map(|r| r.6).collect())
+        .f64("scipy_gap_energy", rows.iter().map(|r| r.7.abs()).collect());
+    ctx.write(
+        "bench_scipy.csv",
+        &t,
+        "bench",
+        &format!(
+            "machine: {machine}; scenario figure, h = k = 1/n; SciPy: tools/scipy_reference (SuperLU, one BLAS thread), total_s = assembly to last step, without Python start-up; ours: wall_s of `evhi solve --path general|reduced`, without process start-up and file writing; medians of {} rounds, each round one run of each in turn, each in a fresh process; gaps: SciPy against the reduced run at T, relative",
+            args.repeat
+        ),
+    )?;
     Ok(())
 }

@@ -174,19 +174,28 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         "reduced" => true,
         _ => crate::reduced::proportional(&scn, &scheme::Discretisation::new(&scn, 4)?).is_some(),
     };
-    let run = if reduced {
-        let wants = |step: usize| field_steps[step];
-        crate::reduced::run(&scn, &opt, solver.as_mut(), &wants, &mut observe)
-    } else {
-        scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut |n, t, u, c| {
-            observe(n, t, Some(u), c)
-        })
-    };
+    // The smallness check H(s) factorises a matrix of its own: on the second core
+    // while the run goes (the reduced loop keeps one core busy).
+    let (run, h_s) = std::thread::scope(|s| {
+        let h_s = s.spawn(|| crate::show::Smallness::of(&scn, args.n));
+        let run = if reduced {
+            let wants = |step: usize| field_steps[step];
+            crate::reduced::run(&scn, &opt, solver.as_mut(), &wants, &mut observe)
+        } else {
+            scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut |n, t, u, c| {
+                observe(n, t, Some(u), c)
+            })
+        };
+        let h_s = h_s
+            .join()
+            .unwrap_or_else(|_| Err("the smallness check panicked".to_string()));
+        (run, h_s)
+    });
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
     let run = run?;
-    let h_s = crate::show::Smallness::of(&scn, args.n).unwrap_or_else(|e| {
+    let h_s = h_s.unwrap_or_else(|e| {
         eprintln!("warning: the trace constant could not be computed ({e}); H(s) is unchecked");
         crate::show::Smallness::unknown(&scn, args.n)
     });

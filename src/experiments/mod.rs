@@ -84,7 +84,9 @@ pub const NAMES: [&str; 13] = [
 /// The CSV tables the book shows, as Markdown renderings beside them: file, key
 /// columns repeated in every part, and the most columns of one part (so a part
 /// fits the page).
-pub const BOOK_TABLES: [(&str, usize, usize); 10] = [
+pub const BOOK_TABLES: [(&str, usize, usize); 12] = [
+    ("bench_scipy.csv", 1, 6),
+    ("paths.csv", 3, 6),
     ("hypotheses.csv", 1, 5),
     ("bench.csv", 3, 6),
     ("bench_sweeps.csv", 1, 5),
