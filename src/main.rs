@@ -7,6 +7,9 @@ use evhi::scenario::Scenario;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Quasistatic viscoelastic contact with a nonmonotone normal compliance law and a
 /// unilateral limit: the reference implementation of Barboteu, Bartosz & Han (2017).
 ///
