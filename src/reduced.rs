@@ -265,6 +265,8 @@ impl<'d> Reduced<'d> {
         for step in 1..=steps {
             let t = step as f64 * k;
             let t0 = Instant::now();
+            // ANCHOR: reduced_step
+            // r_0 = a r_{n-1} + beta_n q: no solve.
             let beta = k * scn.history.phi(t) / ck;
             let r0: Vec<f64> = (st.r.iter().zip(&load.q))
                 .map(|(rp, qi)| a * rp + beta * qi)
@@ -281,12 +283,14 @@ impl<'d> Reduced<'d> {
             let prev = want_field(step).then(|| st.clone());
             let mut info = timed(&mut timings.step_solver, || solver.solve(&prob, &mut st.r));
             info.time_s = t0.elapsed().as_secs_f64();
+            // The contact reactions z = S_K (r_0 - r) enter W; Y follows the load.
             let diff: Vec<f64> = r0.iter().zip(&st.r).map(|(x, y)| x - y).collect();
             let z = crate::dense::sym_matvec(at.s.as_ref(), &diff);
             for (w, zi) in st.w.iter_mut().zip(&z) {
                 *w = a * *w + zi / ck;
             }
             st.y = a * st.y + beta;
+            // ANCHOR_END: reduced_step
             let ((mut certificate, mut contact), field) = timed(&mut timings.certificates, || {
                 let cond = certify_condensed(at.s.as_ref(), &r0, &st.r, &at.kw, &scn.law, scn.g);
                 let field = prev.map(|p| (self.field(load, &p), self.field(load, &st)));
@@ -297,7 +301,8 @@ impl<'d> Reduced<'d> {
                 let full = timed(&mut timings.certificates, || {
                     self.certify_full(&at, scn, load, (u_prev, u), t)
                 });
-                // The full certificate is the stricter and supersedes the condensed one.
+                // The full certificate checks every equation, the contact conditions
+                // among them, on the assembled system: it replaces the condensed one.
                 (certificate, contact) = full;
                 check = Check::Full;
             }
@@ -358,8 +363,10 @@ pub struct March {
 }
 
 /// Runs one scenario by the reduced loop, with the result the general path gives
-/// ([`crate::scheme::run_with_states`]): the field is formed at the last step and
-/// where `want_field` asks, and `observe(n, t_n, u_n, contact_n)` gets it there.
+/// ([`crate::scheme::run_with_states`]): the field is formed, and the step
+/// certified on the full system, where `want_field` asks, at the last step and at
+/// a sample of three more (a quarter, half and three quarters of the way);
+/// `observe(n, t_n, u_n, contact_n)` gets the field where it was formed.
 pub fn run(
     scn: &Scenario,
     opt: &Options,
@@ -377,7 +384,8 @@ pub fn run(
     // The load's solve is the one solve of the run before the steps: its time is
     // the floor's unit (`one_solve_s`).
     let load = crate::timing::timed(&mut timings.one_solve, || op.load(disc.f.clone()));
-    let want = |n: usize| n == opt.steps || want_field(n);
+    let quarter = (opt.steps / 4).max(1);
+    let want = |n: usize| n.is_multiple_of(quarter) || n == opt.steps || want_field(n);
     let (mut u, mut contact) = (vec![], vec![]);
     let march = op.march(
         scn,

@@ -608,14 +608,14 @@ fn the_time_loop_follows_the_damping() {
         let dir = scratch(&format!("path-{scenario}"));
         succeed(
             evhi()
-                .args(["solve", "--scenario", scenario, "--n", "8", "--steps", "4"])
+                .args(["solve", "--scenario", scenario, "--n", "8", "--steps", "8"])
                 .arg("--out")
                 .arg(&dir),
         );
         assert_eq!(column(&dir, "summary.csv", "path"), vec![path.to_string()]);
         let check = column(&dir, "steps.csv", "check");
-        assert_eq!(check.len(), 4);
-        assert_eq!([check[0].as_str(), check[3].as_str()], checks, "{scenario}");
+        assert_eq!(check.len(), 8);
+        assert_eq!([check[0].as_str(), check[7].as_str()], checks, "{scenario}");
         std::fs::remove_dir_all(&dir).ok();
     }
     let dir = scratch("path-refused");

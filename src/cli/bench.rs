@@ -5,9 +5,14 @@ use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct BenchArgs {
-    /// Levels n = steps for the phase timings.
-    #[arg(long, value_delimiter = ',', default_value = "32,64,128,256,512")]
+    /// Levels n = steps for the phase timings (the general loop only up to
+    /// --general-max; the reduced loop at every level).
+    #[arg(long, value_delimiter = ',', default_value = "32,64,128,256,512,1024")]
     pub levels: Vec<usize>,
+    /// The finest level at which the general loop is timed (at 1/1024 it takes
+    /// minutes per run).
+    #[arg(long, default_value_t = 512)]
+    pub general_max: usize,
     /// Runs per configuration (the median is kept).
     #[arg(long, default_value_t = 3)]
     pub repeat: usize,
@@ -163,6 +168,9 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     let (mut dofs, mut keys) = (vec![], vec![]);
     for &n in &args.levels {
         for path in paths {
+            if path == "general" && n > args.general_max {
+                continue;
+            }
             let mut runs = vec![];
             for r in 0..args.repeat.max(1) {
                 eprintln!("  n = steps = {n}, {path} path, run {}", r + 1);

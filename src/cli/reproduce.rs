@@ -6,8 +6,9 @@ use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct ReproduceArgs {
-    /// Experiments to run (default: all).
-    #[arg(value_parser = crate::experiments::NAMES)]
+    /// Experiments to run (default: all). `paper` stands for the paper's own set:
+    /// hypotheses fig2 loads fig3 fig4 table1.
+    #[arg(value_parser = crate::experiments::NAMES.iter().chain(&["paper"]).copied().collect::<Vec<_>>())]
     pub names: Vec<String>,
     /// Coarse levels only (seconds; what the tests snapshot).
     #[arg(long)]
@@ -43,7 +44,26 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     let names: Vec<String> = if args.names.is_empty() {
         NAMES.iter().map(|s| s.to_string()).collect()
     } else {
-        args.names
+        let mut names: Vec<String> = vec![];
+        for name in args.names {
+            let group: Vec<String> = match name.as_str() {
+                "paper" => PAPER_SET.iter().map(|s| s.to_string()).collect(),
+                _ => vec![name],
+            };
+            for n in group {
+                if !names.contains(&n) {
+                    names.push(n);
+                }
+            }
+        }
+        names
+    };
+    let set = if names.len() == NAMES.len() {
+        "all".to_string()
+    } else if names.iter().eq(PAPER_SET.iter()) {
+        "paper".to_string()
+    } else {
+        names.join("+")
     };
     let total = Instant::now();
     // One progress bar per experiment (drawn only on a terminal), with its ETA.
@@ -114,16 +134,69 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
     }
+    let wall = total.elapsed().as_secs_f64();
     if !args.quiet {
         eprintln!(
-            "reproduce: {} experiment(s) in {:.1} s wall",
-            results.len(),
-            total.elapsed().as_secs_f64()
+            "reproduce: {} experiment(s) in {wall:.1} s wall",
+            results.len()
         );
+    }
+    if failed.is_empty() && !ctx.quick && ctx.reference.is_none() {
+        record_times(&ctx, &set, &results, wall)?;
     }
     if failed.is_empty() {
         Ok(())
     } else {
         Err(format!("experiments failed: {}", failed.join(", ")).into())
     }
+}
+
+/// The paper's own experiments: its hypotheses, Figs. 2-4 and Table 1.
+pub const PAPER_SET: [&str; 6] = ["hypotheses", "fig2", "loads", "fig3", "fig4", "table1"];
+
+/// Keeps the wall times of this invocation in `data/reproduce_times.csv`, beside
+/// those of other sets of experiments (a set's earlier rows are replaced): the set,
+/// each experiment's time with the others of its set running beside it on the
+/// second core, and the set's total.
+fn record_times(
+    ctx: &crate::experiments::Ctx,
+    set: &str,
+    results: &[(String, f64, Result<(), String>)],
+    wall: f64,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::experiments::{col_f64, col_str, read_csv};
+    let path = ctx.data_path("reproduce_times.csv");
+    let mut rows: Vec<(String, String, f64)> = vec![];
+    if path.exists() {
+        let old = read_csv(&path)?;
+        let (sets, names, secs) = (
+            col_str(&old, "set")?,
+            col_str(&old, "experiment")?,
+            col_f64(&old, "wall_s")?,
+        );
+        for i in 0..sets.len() {
+            if sets[i] != set {
+                rows.push((sets[i].clone(), names[i].clone(), secs[i]));
+            }
+        }
+    }
+    for (name, secs, _) in results {
+        rows.push((set.to_string(), name.clone(), *secs));
+    }
+    rows.push((set.to_string(), "(total)".to_string(), wall));
+    let t = crate::output::csv::Table::new()
+        .str("set", rows.iter().map(|r| r.0.clone()).collect())
+        .str("experiment", rows.iter().map(|r| r.1.clone()).collect())
+        .f64("wall_s", rows.iter().map(|r| r.2).collect());
+    ctx.write(
+        "reproduce_times.csv",
+        &t,
+        "reproduce",
+        &format!(
+            "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); machine: {}; two threads, each experiment timed while the others of its set run beside it",
+            PAPER_SET.join(" "),
+            crate::timing::machine()
+        ),
+    )?;
+    Ok(())
 }
