@@ -134,8 +134,9 @@ impl Ctx {
                     env!("CARGO_PKG_VERSION")
                 ),
                 _ => format!(
-                    "produced by evhi {} `evhi reproduce {experiment}{}`",
+                    "produced by evhi {} `evhi reproduce{}{experiment}{}`",
                     env!("CARGO_PKG_VERSION"),
+                    if experiment.is_empty() { "" } else { " " },
                     if self.quick { " --quick" } else { "" }
                 ),
             },
