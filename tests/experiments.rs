@@ -306,7 +306,8 @@ fn every_experiment_is_tested_here() {
     let src: String = include_str!("experiments.rs").split_whitespace().collect();
     for name in NAMES {
         assert!(
-            src.contains(&format!("snapshot_outputs(\"{name}\"")),
+            src.contains(&format!("snapshot_outputs(\"{name}\""))
+                || src.contains(&format!("snapshot_outputs_floor(\"{name}\"")),
             "experiment {name} has no snapshot test"
         );
     }
@@ -320,6 +321,7 @@ fn progress_units_match_the_work_done() {
         "loads",
         "fig3",
         "table1",
+        "paths",
         "forensics",
         "graded",
         "time",
