@@ -1,5 +1,6 @@
 //! `evhi bench`: every phase timed at several levels, each run in a fresh process.
 
+use crate::step::DEFAULT_SOLVER;
 use crate::timing::{machine, median};
 use std::path::PathBuf;
 
@@ -26,8 +27,8 @@ pub struct BenchArgs {
     #[arg(long, default_value = "figures")]
     pub figures: PathBuf,
     /// Measure nothing: rebuild the derived table (bench_vs_paper.csv), the
-    /// work-precision chart and the Markdown renderings of the bench tables from
-    /// the CSV files already in --data.
+    /// work-precision chart and the Markdown renderings of every table the book
+    /// shows from the CSV files already in --data.
     #[arg(long)]
     pub from_csv: bool,
     /// Only the sweep study: faer's solve against ours with the ordering, threads,
@@ -129,12 +130,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;
         crate::experiments::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
-        for file in [
-            "bench.csv",
-            "bench_sweeps.csv",
-            "bench_solvers.csv",
-            "bench_scipy.csv",
-        ] {
+        for (file, _, _) in crate::experiments::BOOK_TABLES {
             ctx.render_book_table(file)?;
         }
         return Ok(());
@@ -174,7 +170,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
             let mut runs = vec![];
             for r in 0..args.repeat.max(1) {
                 eprintln!("  n = steps = {n}, {path} path, run {}", r + 1);
-                runs.push(child_run(n, n, "newton", path)?);
+                runs.push(child_run(n, n, DEFAULT_SOLVER, path)?);
             }
             dofs.push(f(&runs[0], "dofs") as u64);
             keys.push((n, path));
@@ -200,9 +196,10 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     // Step solvers compared on the same runs.
     let mut rows = vec![];
     for &n in &args.solver_levels {
-        // The certified solvers of the registry, as their steps differ in kind.
-        for solver in ["newton", "convexify", "proxgrad"]
-            .map(|n| crate::step::solver(n).expect("registered").name)
+        for solver in crate::step::SOLVERS
+            .iter()
+            .filter(|e| e.benchmarked)
+            .map(|e| e.name)
         {
             eprintln!("  solvers: n = steps = {n}, {solver}");
             let runs: Vec<_> = (0..args.repeat.max(1))
@@ -252,7 +249,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         let (ni, si) = (n[i] as usize, st[i] as usize);
         eprintln!("  work-precision: n = {ni}, steps = {si}");
         let runs: Vec<_> = (0..args.repeat.max(1))
-            .map(|_| child_run(ni, si, "newton", "auto"))
+            .map(|_| child_run(ni, si, DEFAULT_SOLVER, "auto"))
             .collect::<Result<_, _>>()?;
         wp.push((
             fam[i].clone(),
@@ -357,8 +354,8 @@ fn scipy(
         for r in 0..args.repeat.max(1) {
             eprintln!("  scipy comparison: n = steps = {n}, round {}", r + 1);
             sp.push(scipy_run(n, &check)?);
-            gen_.push(child_run(n, n, "newton", "general")?);
-            red.push(child_run(n, n, "newton", "reduced")?);
+            gen_.push(child_run(n, n, DEFAULT_SOLVER, "general")?);
+            red.push(child_run(n, n, DEFAULT_SOLVER, "reduced")?);
         }
         let _ = std::fs::remove_dir_all(&check);
         let m = |runs: &[std::collections::HashMap<String, f64>], k: &str| {

@@ -29,7 +29,7 @@ pub struct SolveArgs {
     /// solved by Clarabel), `proxgrad` (plain proximal gradient, the slow baseline) or
     /// `penalty` (g replaced by a stiff penalty: overshoots g, so its steps are judged
     /// by their own convergence, not certified).
-    #[arg(long, default_value = "newton", value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_names()))]
+    #[arg(long, default_value = crate::step::DEFAULT_SOLVER, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_names()))]
     pub solver: String,
     /// Override the unilateral limit g (> 0, metres).
     #[arg(long, allow_hyphen_values = true)]

@@ -55,7 +55,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "reproduce example{}",
             if ctx.quick { " --quick" } else { "" }
         ),
-        solver: "newton".into(),
+        solver: crate::step::DEFAULT_SOLVER.into(),
         ordering: "nd".into(),
         path: "general".into(),
     };

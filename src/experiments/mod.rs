@@ -85,8 +85,8 @@ pub const NAMES: [&str; 13] = [
 /// columns repeated in every part, and the most columns of one part (so a part
 /// fits the page).
 pub const BOOK_TABLES: [(&str, usize, usize); 12] = [
-    ("bench_scipy.csv", 1, 6),
-    ("paths.csv", 3, 6),
+    ("bench_scipy.csv", 1, 5),
+    ("paths.csv", 2, 5),
     ("hypotheses.csv", 1, 5),
     ("bench.csv", 3, 6),
     ("bench_sweeps.csv", 1, 5),

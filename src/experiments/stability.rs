@@ -111,7 +111,7 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
         // The penalty answer overshoots g by design: judge it by its own convergence.
         opt.certificate_tol = f64::INFINITY;
     }
-    let (res, spread) = if entry.name == "newton" {
+    let (res, spread) = if entry.name == crate::step::DEFAULT_SOLVER {
         // Newton also from other starts: does the step have several solutions?
         let mut s = MultiStart {
             inner: entry.build(),
@@ -132,7 +132,7 @@ fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cel
             c2,
             outcome: if spread > 1e-6 {
                 "several solutions".into()
-            } else if solver == "penalty" {
+            } else if !entry.certified {
                 "converged (overshoots g)".into()
             } else {
                 "certified".into()
@@ -495,12 +495,17 @@ pub fn run_sweeps(ctx: &Ctx) -> Result<(), ExpError> {
         ),
     ];
     let mut rows = vec![];
-    ctx.add_units(sweeps.iter().map(|s| s.1.len() * 3).sum());
+    let swept = crate::step::SOLVERS.iter().filter(|e| e.swept).count();
+    ctx.add_units(sweeps.iter().map(|s| s.1.len() * swept).sum());
     for (param, values, edit) in &sweeps {
         for &v in values {
             let mut scn = base.clone();
             edit(&mut scn, v);
-            for solver in ["newton", "convexify", "penalty"] {
+            for solver in crate::step::SOLVERS
+                .iter()
+                .filter(|e| e.swept)
+                .map(|e| e.name)
+            {
                 ctx.log(&format!("stability sweep: {param} = {v}, {solver}"));
                 let c = map_cell(&scn, n, n, solver);
                 rows.push((param.to_string(), v, scn.elasticity().coercivity(), c));

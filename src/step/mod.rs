@@ -120,6 +120,12 @@ pub struct SolverEntry {
     /// Whether its steps can be certified: the penalty method overshoots $g$ by
     /// design and is judged by its own convergence instead.
     pub certified: bool,
+    /// Whether `evhi bench` compares it with the others (one solver of each kind
+    /// of step: Newton, the convexification, proximal gradient).
+    pub benchmarked: bool,
+    /// Whether the stability sweeps run it (one of each treatment of the limit:
+    /// exact with Newton, exact with the convexification, penalised).
+    pub swept: bool,
     make: fn() -> Box<dyn StepSolver>,
 }
 
@@ -130,6 +136,9 @@ impl SolverEntry {
     }
 }
 
+/// The name of the default step solver (the first of [`SOLVERS`]).
+pub const DEFAULT_SOLVER: &str = SOLVERS[0].name;
+
 /// The step solvers, each spelled once: the command line, the benchmark and the
 /// stability map take their names and constructors from here.
 pub const SOLVERS: [SolverEntry; 5] = [
@@ -138,6 +147,8 @@ pub const SOLVERS: [SolverEntry; 5] = [
         label: "newton",
         about: "semismooth Newton with a line search on the contact nodes (exact, fast)",
         certified: true,
+        benchmarked: true,
+        swept: true,
         make: || Box::new(newton::Newton::default()),
     },
     SolverEntry {
@@ -145,6 +156,8 @@ pub const SOLVERS: [SolverEntry; 5] = [
         label: "newton, no line search",
         about: "the same Newton without its line search (full steps)",
         certified: true,
+        benchmarked: false,
+        swept: false,
         make: || {
             Box::new(newton::Newton::new(newton::Settings {
                 line_search: false,
@@ -157,6 +170,8 @@ pub const SOLVERS: [SolverEntry; 5] = [
         label: "convexify",
         about: "our reconstruction of the paper's sequence of convex problems, each solved by Clarabel",
         certified: true,
+        benchmarked: true,
+        swept: true,
         make: || Box::new(convexify::Convexify::default()),
     },
     SolverEntry {
@@ -164,6 +179,8 @@ pub const SOLVERS: [SolverEntry; 5] = [
         label: "proxgrad",
         about: "plain proximal gradient, the slow baseline",
         certified: true,
+        benchmarked: true,
+        swept: false,
         make: || Box::new(newton::Newton::proximal_gradient()),
     },
     SolverEntry {
@@ -171,6 +188,8 @@ pub const SOLVERS: [SolverEntry; 5] = [
         label: "penalty",
         about: "the limit g replaced by a penalty of stiffness 1e6, which lets u_nu overshoot g",
         certified: false,
+        benchmarked: false,
+        swept: true,
         make: || Box::new(penalty::Penalty::new(1e6)),
     },
 ];
