@@ -353,6 +353,9 @@ impl<'d> Reduced<'d> {
     }
 }
 
+/// `observe(n, t_n, u_n, contact_n)` of a reduced run: `u_n` where it was formed.
+pub type FieldObserver<'a> = dyn FnMut(usize, f64, Option<&[f64]>, &[ContactState]) + 'a;
+
 /// What [`Reduced::march`] returns besides what it showed the observer.
 pub struct March {
     pub records: Vec<StepRecord>,
@@ -372,7 +375,7 @@ pub fn run(
     opt: &Options,
     solver: &mut dyn StepSolver,
     want_field: &dyn Fn(usize) -> bool,
-    observe: &mut dyn FnMut(usize, f64, Option<&[f64]>, &[ContactState]),
+    observe: &mut FieldObserver<'_>,
 ) -> Result<Run, RunError> {
     crate::scheme::check_steps(opt)?;
     crate::scheme::check_memory(opt.n)?;

@@ -57,7 +57,7 @@ fn compare(scn: &Scenario, n: usize, steps: usize) {
         scn.name
     );
     // Asked for: half-way and the end; sampled besides: the quarters.
-    let sampled = |s: usize| s % (steps / 4) == 0;
+    let sampled = |s: usize| s.is_multiple_of(steps / 4);
     assert_eq!(formed.len(), 4);
     for (step, u) in &formed {
         let gap = rel_gap(&fields[step - 1], u);

@@ -15,7 +15,7 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 512)]
     pub general_max: usize,
     /// Runs per configuration (the median is kept).
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 5)]
     pub repeat: usize,
     /// Levels n = steps at which the three step solvers are compared.
     #[arg(long, value_delimiter = ',', default_value = "16,32,64")]

@@ -87,9 +87,9 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
             (n.clone(), bar)
         })
         .collect();
-    // Two lists of about equal wall time, one per core (measured in the full run of
-    // data/reproduce_times.csv: forensics 106 s; paths 42, graded 26, static 17,
-    // time 14, stability 8, table1 7 s; the rest under 2 s each).
+    // Two lists of about equal wall time, one per core (the full run of
+    // data/reproduce_times.csv: forensics 150 s beside the rest; paths 46, graded 28,
+    // static 16, time 15, stability 11, table1 7 s; the rest under 2 s each).
     let (heavy, light): (Vec<String>, Vec<String>) = names.into_iter().partition(|n| {
         ["table1", "paths", "graded", "time", "static", "stability"].contains(&n.as_str())
     });

@@ -693,7 +693,8 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             all.iter().map(|(_, e)| e.regions[2] / total(e)).collect(),
         );
     if !suffix.is_empty() {
-        let path = ctx.write(&format!("table1{suffix}.csv"), &t, "table1", &params)?;
+        let command = format!("table1 --reference {}", plan.n_ref);
+        let path = ctx.write(&format!("table1{suffix}.csv"), &t, &command, &params)?;
         return write_shift(ctx, &path, &suffix);
     }
     let path = ctx.write("table1.csv", &t, "table1", &params)?;
@@ -750,10 +751,11 @@ fn write_shift(ctx: &Ctx, path: &std::path::Path, suffix: &str) -> Result<(), Ex
         .f64("rel_err_max_percent_ref512", m0.clone())
         .f64(&format!("rel_err_max_percent{suffix}"), m1.clone())
         .f64("ratio_max", ratio(&m0, &m1));
+    let command = format!("table1 --reference {}", suffix.trim_start_matches("_ref"));
     ctx.write(
         &format!("table1_reference_shift{suffix}.csv"),
         &t,
-        "table1",
+        &command,
         "table1.csv (reference h = k = 1/512) against the finer reference; ratio = finer / 512",
     )?;
     Ok(())
