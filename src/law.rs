@@ -232,6 +232,91 @@ impl Law {
             })
             .collect()
     }
+
+    /// The slope of $p$ on branch `b`: the curvature of $j$ there.
+    pub fn slope(&self, b: usize) -> f64 {
+        self.slopes[b]
+    }
+
+    /// The breakpoints where $p$ jumps (up or down): a node there is pinned.
+    pub fn jumps(&self) -> Vec<f64> {
+        self.breaks
+            .iter()
+            .copied()
+            .filter(|&s| {
+                let i = self.clarke(s);
+                i.hi > i.lo
+            })
+            .collect()
+    }
+
+    /// Whether `s` lies within `tol` of a breakpoint (on the boundary of two branches).
+    pub fn near_breakpoint(&self, s: f64, tol: f64) -> bool {
+        self.breaks.iter().any(|&b| (s - b).abs() <= tol)
+    }
+
+    // ANCHOR: convex_split
+    /// The convex part $j_\cup$ of the convex–concave split $j = j_\cup + j_\cap$
+    /// below the limit $g$, with $j_\cap(s) = \tfrac12 c_{\min} s^2$ plus the downward
+    /// jumps of $p$ (so that $j_\cup'' = c_b - c_{\min} \ge 0$ on every branch):
+    /// the anchor $a$ (the first breakpoint below $g$) and, from it, the runs of
+    /// $j_\cup$ on which a node's cost is linear plus quadratic.
+    pub fn convex_runs(&self, g: f64) -> (f64, Vec<ConvexRun>) {
+        let cmin = self.min_slope();
+        let down = self.down_jumps();
+        // p_cup = p - (j_cap)': the downward jumps at or below `upto` are removed.
+        let p_cup = |b: usize, s: f64, upto: f64| {
+            self.p_on(b, s)
+                - cmin * s
+                - down
+                    .iter()
+                    .filter(|(sb, _)| *sb <= upto)
+                    .map(|(_, d)| d)
+                    .sum::<f64>()
+        };
+        let bps: Vec<f64> = self.breaks.iter().copied().filter(|&s| s < g).collect();
+        let a = bps.first().copied().unwrap_or(g);
+        // Left of the anchor: no breakpoint is passed (f64::MIN keeps the sum empty).
+        let mut out = vec![ConvexRun {
+            dir: -1.0,
+            len: f64::INFINITY,
+            lin: -p_cup(0, a, f64::MIN),
+            quad: self.slope(0) - cmin,
+        }];
+        for (idx, &s) in bps.iter().enumerate() {
+            let b = idx + 1;
+            let end = bps.get(idx + 1).copied().unwrap_or(g);
+            out.push(ConvexRun {
+                dir: 1.0,
+                len: end - s,
+                lin: p_cup(b, s, s),
+                quad: self.slope(b) - cmin,
+            });
+        }
+        (a, out)
+    }
+
+    /// A supergradient of $j_\cap$ at $s$.
+    pub fn concave_slope(&self, s: f64) -> f64 {
+        self.min_slope() * s
+            + self
+                .down_jumps()
+                .iter()
+                .filter(|(sb, _)| s > *sb)
+                .map(|(_, d)| d)
+                .sum::<f64>()
+    }
+    // ANCHOR_END: convex_split
+}
+
+/// One run of a node's convex part $j_\cup$: $t \ge 0$ (and $t \le$ `len` when
+/// finite), cost `lin * t + 0.5 * quad * t^2`, entering $r$ with sign `dir`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConvexRun {
+    pub dir: f64,
+    pub len: f64,
+    pub lin: f64,
+    pub quad: f64,
 }
 
 /// Where a contact node's normal displacement sits in the law: no contact

@@ -104,7 +104,7 @@ struct Cell {
 }
 
 fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
-    let c2 = scn.law.slopes()[2];
+    let c2 = scn.law.slope(2);
     let mut opt = Options::new(n, steps);
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
     if !entry.certified {
@@ -289,7 +289,7 @@ pub fn run_penalty(ctx: &Ctx) -> Result<(), ExpError> {
         let diff: Vec<f64> = res.u.iter().zip(&exact.u).map(|(a, e)| a - e).collect();
         let rel = crate::norms::energy_norm(&b, &diff) / crate::norms::energy_norm(&b, &exact.u);
         // Condition of the Newton matrix on a node pushed past g: (lambda_max(S) + k w (c3 + s)) / lambda_min(S).
-        let cond = (res.s_eigen.1 + kw_max * (scn.law.slopes()[3] + s)) / res.s_eigen.0;
+        let cond = (res.s_eigen.1 + kw_max * (scn.law.slope(3) + s)) / res.s_eigen.0;
         let iters = res.records.iter().map(|r| r.iterations as f64).sum::<f64>() / n as f64;
         rows.push((s, overshoot / scn.g, rel, cond, iters));
     }

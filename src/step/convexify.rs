@@ -74,73 +74,11 @@ impl Convexify {
     }
 }
 
-/// One run of a node's convex part: $t \ge 0$ (and $t \le$ `len` when finite),
-/// cost `lin * t + 0.5 * quad * t^2`, entering $r$ with sign `dir`.
-struct Run {
-    dir: f64,
-    len: f64,
-    lin: f64,
-    quad: f64,
-}
-
-/// The runs of $j_\cup$ below $g$ and the anchor $a$ they start from.
-fn runs(p: &StepProblem) -> (f64, Vec<Run>) {
-    let law = p.law;
-    let cmin = law.min_slope();
-    let down = law.down_jumps();
-    // p_cup = p - (j_cap)': the downward jumps at or below `upto` are removed.
-    let p_cup = |b: usize, s: f64, upto: f64| {
-        law.p_on(b, s)
-            - cmin * s
-            - down
-                .iter()
-                .filter(|(sb, _)| *sb <= upto)
-                .map(|(_, d)| d)
-                .sum::<f64>()
-    };
-    let bps: Vec<f64> = law
-        .breakpoints()
-        .iter()
-        .copied()
-        .filter(|&s| s < p.g)
-        .collect();
-    let a = bps.first().copied().unwrap_or(p.g);
-    // Left of the anchor: no breakpoint is passed (f64::MIN keeps the sum empty).
-    let mut out = vec![Run {
-        dir: -1.0,
-        len: f64::INFINITY,
-        lin: -p_cup(0, a, f64::MIN),
-        quad: law.slopes()[0] - cmin,
-    }];
-    for (idx, &s) in bps.iter().enumerate() {
-        let b = idx + 1;
-        let end = bps.get(idx + 1).copied().unwrap_or(p.g);
-        out.push(Run {
-            dir: 1.0,
-            len: end - s,
-            lin: p_cup(b, s, s),
-            quad: law.slopes()[b] - cmin,
-        });
-    }
-    (a, out)
-}
-
-/// A supergradient of $j_\cap$ at $s$.
-fn concave_slope(p: &StepProblem, s: f64) -> f64 {
-    p.law.min_slope() * s
-        + p.law
-            .down_jumps()
-            .iter()
-            .filter(|(sb, _)| s > *sb)
-            .map(|(_, d)| d)
-            .sum::<f64>()
-}
-
 impl Convexify {
     /// Solves the convex subproblem with linear concave term `eta`; returns $r$ and Clarabel's iterations.
     fn subproblem(&self, p: &StepProblem, eta: &[f64]) -> Result<(Vec<f64>, u32), String> {
         let m = p.m();
-        let (a, runs) = runs(p);
+        let (a, runs) = p.law.convex_runs(p.g);
         let nr = runs.len();
         let nvar = m + m * nr;
         // P: upper triangle of S in the r block, diagonal in the t block.
@@ -259,7 +197,7 @@ impl StepSolver for Convexify {
             time_s: 0.0,
         };
         for it in 0..st.max_iter {
-            let eta: Vec<f64> = r.iter().map(|&s| concave_slope(p, s)).collect();
+            let eta: Vec<f64> = r.iter().map(|&s| p.law.concave_slope(s)).collect();
             let (next, ipm_iters) = match self.subproblem(p, &eta) {
                 Ok(x) => x,
                 Err(msg) => {

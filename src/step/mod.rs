@@ -280,13 +280,12 @@ impl StepProblem<'_> {
         }
         let tol = 1e-12 * self.g.abs().max(inf_norm(r)).min(1e300);
         let pieces = self.pieces_of(r, tol);
-        let bps = self.law.breakpoints();
         let free: Vec<(usize, usize)> = pieces
             .iter()
             .enumerate()
             .filter_map(|(i, p)| match p {
                 // a node sitting on a breakpoint is on the boundary of two branches: not free
-                Piece::Branch(b) if !bps.iter().any(|&s| (r[i] - s).abs() <= tol) => Some((i, *b)),
+                Piece::Branch(b) if !self.law.near_breakpoint(r[i], tol) => Some((i, *b)),
                 _ => None,
             })
             .collect();
@@ -297,7 +296,7 @@ impl StepProblem<'_> {
             let (i, b) = free[a];
             self.s[(i, free[c].0)]
                 + if a == c {
-                    self.kw[i] * self.law.slopes()[b]
+                    self.kw[i] * self.law.slope(b)
                 } else {
                     0.0
                 }
@@ -338,7 +337,7 @@ impl StepProblem<'_> {
             for (c, &j) in free.iter().enumerate() {
                 h[(a, c)] = self.s[(i, j)];
             }
-            let c_b = self.law.slopes()[b];
+            let c_b = self.law.slope(b);
             h[(a, a)] += self.kw[i] * c_b;
             rhs[(a, 0)] = sr0[i] - sra[i] - self.kw[i] * self.law.p_on(b, 0.0);
         }
@@ -353,16 +352,7 @@ impl StepProblem<'_> {
     /// The piece each node of `r` lies on, pinning nodes within `tol` of $g$
     /// or of a jump of $p$.
     pub fn pieces_of(&self, r: &[f64], tol: f64) -> Vec<Piece> {
-        let jumps: Vec<f64> = self
-            .law
-            .breakpoints()
-            .iter()
-            .copied()
-            .filter(|&s| {
-                let i = self.law.clarke(s);
-                i.hi > i.lo
-            })
-            .collect();
+        let jumps = self.law.jumps();
         r.iter()
             .map(|&x| {
                 if x >= self.g - tol {

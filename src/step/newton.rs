@@ -215,7 +215,7 @@ impl Newton {
                 for (c, &j) in free.iter().enumerate() {
                     h[(a, c)] = p.s[(i, j)];
                 }
-                h[(a, a)] += p.kw[i] * p.law.slopes()[e.branch[i]];
+                h[(a, a)] += p.kw[i] * p.law.slope(e.branch[i]);
             }
             self.cache.0 = Some(Factored {
                 key,
