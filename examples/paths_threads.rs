@@ -2,7 +2,7 @@
 //! the largest gap in the contact unknowns over all steps, relative, at h = k = 1/n.
 //! `cargo run --release --example paths_threads -- 64 128 256`
 use evhi::scenario::Scenario;
-use evhi::scheme::{Options, run_with_states};
+use evhi::scheme::{Settings, run_with_states};
 use evhi::step::newton::Newton;
 
 fn main() {
@@ -13,9 +13,9 @@ fn main() {
     {
         let trace = |parallel: bool| {
             let mut r = vec![];
-            let opt = Options {
+            let opt = Settings {
                 parallel,
-                ..Options::new(n, n)
+                ..Settings::new(n, n)
             };
             run_with_states(&scn, &opt, &mut Newton::default(), &mut |_, _, _, c| {
                 r.extend(c.iter().map(|c| c.u_nu))
@@ -26,7 +26,7 @@ fn main() {
         let mut red = vec![];
         evhi::reduced::run(
             &scn,
-            &Options::new(n, n),
+            &Settings::new(n, n),
             &mut Newton::default(),
             &|_| false,
             &mut |_, _, _, c| red.extend(c.iter().map(|c| c.u_nu)),

@@ -3,7 +3,7 @@
 //! contact unknowns. A quick look, not the benchmark (`evhi bench` is).
 //! `cargo run --release --example reduced_vs_general -- 512`
 use evhi::scenario::Scenario;
-use evhi::scheme::{Options, run_with_states};
+use evhi::scheme::{Settings, run_with_states};
 use evhi::step::newton::Newton;
 use std::time::Instant;
 
@@ -13,7 +13,7 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(512);
     let scn = Scenario::load("figure").unwrap();
-    let opt = Options::new(n, n);
+    let opt = Settings::new(n, n);
     let (mut general, mut reduced) = (vec![], vec![]);
     let t = Instant::now();
     run_with_states(&scn, &opt, &mut Newton::default(), &mut |_, _, _, c| {

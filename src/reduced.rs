@@ -28,7 +28,7 @@ use crate::error::InputError;
 use crate::linalg::Cholesky;
 use crate::scenario::Scenario;
 use crate::scheme::{
-    Check, Discretisation, Options, OrderingKind, Run, RunError, StepRecord, Timings,
+    Check, Discretisation, OrderingKind, Run, RunError, Settings, StepRecord, Timings,
 };
 use crate::step::{Status, StepProblem, StepSolver};
 use crate::timing::timed;
@@ -372,7 +372,7 @@ pub struct March {
 /// `observe(n, t_n, u_n, contact_n)` gets the field where it was formed.
 pub fn run(
     scn: &Scenario,
-    opt: &Options,
+    opt: &Settings,
     solver: &mut dyn StepSolver,
     want_field: &dyn Fn(usize) -> bool,
     observe: &mut FieldObserver<'_>,

@@ -283,9 +283,9 @@ fn step_failure(
     }
 }
 
-/// Options of a run.
+/// Settings of a run.
 #[derive(Debug, Clone)]
-pub struct Options {
+pub struct Settings {
     pub n: usize,
     pub steps: usize,
     /// A step whose certificate exceeds this fails the run.
@@ -312,9 +312,9 @@ pub enum OrderingKind {
 /// second thread costs more than it saves.
 pub const PARALLEL_MIN_NNZ: usize = 1_000_000;
 
-impl Options {
+impl Settings {
     pub fn new(n: usize, steps: usize) -> Self {
-        Options {
+        Settings {
             n,
             steps,
             certificate_tol: 1e-10,
@@ -328,7 +328,7 @@ impl Options {
 /// Runs the scheme. `observe(n, t_n, u_n)` is called after every step.
 pub fn run(
     scn: &Scenario,
-    opt: &Options,
+    opt: &Settings,
     solver: &mut dyn StepSolver,
     observe: &mut dyn FnMut(usize, f64, &[f64]),
 ) -> Result<Run, RunError> {
@@ -354,7 +354,7 @@ pub type StateObserver<'a> = dyn FnMut(usize, usize, f64, &[f64], &[ContactState
 /// contact states of every step (for output of the evolution).
 pub fn run_with_states(
     scn: &Scenario,
-    opt: &Options,
+    opt: &Settings,
     solver: &mut dyn StepSolver,
     observe: &mut Observer<'_>,
 ) -> Result<Run, RunError> {
@@ -375,7 +375,7 @@ pub fn run_with_states(
 /// scenario `i`. The timings are those of the whole batch.
 pub fn run_batch(
     scns: &[Scenario],
-    opt: &Options,
+    opt: &Settings,
     solvers: &mut [&mut dyn StepSolver],
     observe: &mut BatchObserver<'_>,
 ) -> Result<Vec<Run>, RunError> {
@@ -387,7 +387,7 @@ pub fn run_batch(
 /// [`run_batch`] with an observer that also receives each step's contact states.
 pub fn run_batch_states(
     scns: &[Scenario],
-    opt: &Options,
+    opt: &Settings,
     solvers: &mut [&mut dyn StepSolver],
     observe: &mut StateObserver<'_>,
 ) -> Result<Vec<Run>, RunError> {
@@ -476,7 +476,7 @@ pub fn run_batch_states(
 /// too large for memory.
 fn check_batch(
     scns: &[Scenario],
-    opt: &Options,
+    opt: &Settings,
     solvers: &[&mut dyn StepSolver],
 ) -> Result<(), RunError> {
     check_steps(opt)?;
@@ -507,7 +507,7 @@ fn check_batch(
 }
 
 /// Refuses a step count out of range.
-pub(crate) fn check_steps(opt: &Options) -> Result<(), RunError> {
+pub(crate) fn check_steps(opt: &Settings) -> Result<(), RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
     }
@@ -518,7 +518,7 @@ pub(crate) fn check_steps(opt: &Options) -> Result<(), RunError> {
 /// load vector of each scenario on it.
 pub(crate) fn discretise(
     scns: &[Scenario],
-    opt: &Options,
+    opt: &Settings,
 ) -> Result<(Discretisation, Vec<Vec<f64>>), RunError> {
     let scn = &scns[0];
     let disc = match &opt.mesh {

@@ -138,7 +138,7 @@ fn interpolation_through_the_forest_is_exact() {
 /// that the top edges run left to right (a reversed edge flips its load).
 #[test]
 fn the_scheme_runs_on_bisected_meshes() {
-    use evhi::scheme::Options;
+    use evhi::scheme::Settings;
     use std::sync::Arc;
     let scn = evhi::scenario::Scenario::load("figure").unwrap();
     let (mut forest, root) = Forest::new(4, Supports::Paper).unwrap();
@@ -147,9 +147,9 @@ fn the_scheme_runs_on_bisected_meshes() {
         leaves = uniform(&mut forest, &leaves, n);
     }
     let mesh = forest.mesh(&leaves, 16);
-    let opt = Options {
+    let opt = Settings {
         mesh: Some(Arc::new(mesh.clone())),
-        ..Options::new(16, 16)
+        ..Settings::new(16, 16)
     };
     let run = evhi::experiments::run_newton_batch_with(
         std::slice::from_ref(&scn),

@@ -5,7 +5,7 @@
 use evhi::certificate::{certify_condensed, split_node};
 use evhi::law::paper_law;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Check, Options};
+use evhi::scheme::{Check, Settings};
 use evhi::step::newton::Newton;
 
 const G: f64 = 0.1;
@@ -74,7 +74,7 @@ fn condensed_and_full_certificates_agree_on_a_run() {
     let scn = Scenario::load("figure").unwrap();
     let run = evhi::reduced::run(
         &scn,
-        &Options::new(16, 8),
+        &Settings::new(16, 8),
         &mut Newton::default(),
         &|s| s == 3,
         &mut |_, _, _, _| {},

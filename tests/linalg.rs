@@ -7,7 +7,7 @@ use evhi::assembly::{Pair, lin_comb, matvec};
 use evhi::linalg::Cholesky;
 use evhi::ordering::Ordering;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Discretisation, Options, OrderingKind, run};
+use evhi::scheme::{Discretisation, OrderingKind, Settings, run};
 use evhi::step::newton::Newton;
 
 fn operators(name: &str, n: usize) -> (Discretisation, evhi::assembly::SpMat) {
@@ -183,9 +183,9 @@ fn both_orderings_give_the_same_run() {
     let scn = Scenario::load("figure").unwrap();
     let mut last = vec![];
     for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
-        let opt = Options {
+        let opt = Settings {
             ordering,
-            ..Options::new(32, 16)
+            ..Settings::new(32, 16)
         };
         let r = run(&scn, &opt, &mut Newton::default(), &mut |_, _, _| {}).unwrap();
         last.push(r.u);
@@ -204,7 +204,7 @@ fn a_batch_run_equals_separate_runs() {
         Scenario::load("literal").unwrap(),
         Scenario::load("figure").unwrap(),
     ];
-    let opt = Options::new(32, 16);
+    let opt = Settings::new(32, 16);
     let mut seen = vec![0usize; 2];
     let (mut a, mut b) = (Newton::default(), Newton::default());
     let batch = evhi::scheme::run_batch(&scns, &opt, &mut [&mut a, &mut b], &mut |i, _, _, _| {
@@ -229,7 +229,7 @@ fn a_batch_refuses_scenarios_with_different_operators() {
     let (mut a, mut b) = (Newton::default(), Newton::default());
     let err = evhi::scheme::run_batch(
         &scns,
-        &Options::new(16, 4),
+        &Settings::new(16, 4),
         &mut [&mut a, &mut b],
         &mut |_, _, _, _| {},
     )

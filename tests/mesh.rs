@@ -123,16 +123,16 @@ fn field_norms_are_exact_for_linear_fields() {
 /// equals the AMD-ordered one, and no matrix entry couples the halves.
 #[test]
 fn criss_cross_runs_with_nested_dissection() {
-    use evhi::scheme::{Options, OrderingKind, run};
+    use evhi::scheme::{OrderingKind, Settings, run};
     use evhi::step::newton::Newton;
     let scn = Scenario::load("figure")
         .unwrap()
         .with_pattern(Pattern::CrissCross);
     let mut last = vec![];
     for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
-        let opt = Options {
+        let opt = Settings {
             ordering,
-            ..Options::new(16, 8)
+            ..Settings::new(16, 8)
         };
         let mut u_t = vec![];
         run(&scn, &opt, &mut Newton::default(), &mut |_, _, u| {

@@ -8,7 +8,7 @@
 use evhi::norms::energy_norm;
 use evhi::reduced::{Reduced, State};
 use evhi::scenario::Scenario;
-use evhi::scheme::{Check, Discretisation, Options, OrderingKind, Timings, run_with_states};
+use evhi::scheme::{Check, Discretisation, OrderingKind, Settings, Timings, run_with_states};
 use evhi::step::newton::Newton;
 
 fn rel_gap(a: &[f64], b: &[f64]) -> f64 {
@@ -21,7 +21,7 @@ fn rel_gap(a: &[f64], b: &[f64]) -> f64 {
 }
 
 fn compare(scn: &Scenario, n: usize, steps: usize) {
-    let opt = Options::new(n, steps);
+    let opt = Settings::new(n, steps);
     let (mut fields, mut contact) = (vec![], vec![]);
     let general = run_with_states(scn, &opt, &mut Newton::default(), &mut |_, _, u, c| {
         fields.push(u.to_vec());
@@ -135,7 +135,7 @@ fn one_operator_serves_every_k_and_its_norms_need_no_solve() {
         let mut g = vec![];
         run_with_states(
             &scn,
-            &Options::new(16, steps),
+            &Settings::new(16, steps),
             &mut Newton::default(),
             &mut |n, _, u, _| {
                 if n == steps {
@@ -168,7 +168,7 @@ fn damping_that_is_not_proportional_is_refused() {
     scn.alpha = 60.0;
     let err = evhi::reduced::run(
         &scn,
-        &Options::new(8, 4),
+        &Settings::new(8, 4),
         &mut Newton::default(),
         &|_| false,
         &mut |_, _, _, _| {},

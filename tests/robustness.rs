@@ -6,9 +6,9 @@
 
 use evhi::law::Law;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Options, RunError, run};
+use evhi::scheme::{RunError, Settings, run};
 use evhi::step::Status;
-use evhi::step::newton::{Newton, Settings};
+use evhi::step::newton::{self, Newton};
 use proptest::prelude::*;
 
 const GOOD: &str = include_str!("../data/scenarios/figure.toml");
@@ -115,11 +115,11 @@ proptest! {
 #[test]
 fn a_solver_out_of_iterations_stops_the_run_with_its_step_and_residual() {
     let scn = Scenario::load("figure").unwrap();
-    let mut solver = Newton::new(Settings {
+    let mut solver = Newton::new(newton::Settings {
         max_iter: 0,
-        ..Settings::default()
+        ..newton::Settings::default()
     });
-    let err = run(&scn, &Options::new(16, 16), &mut solver, &mut |_, _, _| {})
+    let err = run(&scn, &Settings::new(16, 16), &mut solver, &mut |_, _, _| {})
         .err()
         .expect("must fail");
     match err {
@@ -140,7 +140,7 @@ fn a_solver_out_of_iterations_stops_the_run_with_its_step_and_residual() {
 #[test]
 fn a_certificate_over_tolerance_stops_the_run() {
     let scn = Scenario::load("figure").unwrap();
-    let mut opt = Options::new(8, 4);
+    let mut opt = Settings::new(8, 4);
     opt.certificate_tol = 1e-300;
     let err = run(&scn, &opt, &mut Newton::default(), &mut |_, _, _| {})
         .err()
@@ -155,12 +155,12 @@ fn a_certificate_over_tolerance_stops_the_run() {
 #[test]
 fn the_observer_never_sees_a_failed_step() {
     let scn = Scenario::load("figure").unwrap();
-    let mut solver = Newton::new(Settings {
+    let mut solver = Newton::new(newton::Settings {
         max_iter: 0,
-        ..Settings::default()
+        ..newton::Settings::default()
     });
     let mut seen = vec![];
-    let err = run(&scn, &Options::new(16, 16), &mut solver, &mut |n, _, _| {
+    let err = run(&scn, &Settings::new(16, 16), &mut solver, &mut |n, _, _| {
         seen.push(n)
     })
     .err()
@@ -251,19 +251,19 @@ fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
             0.0,
         )
         .unwrap();
-        let plain = Settings {
+        let plain = newton::Settings {
             line_search: false,
-            ..Settings::default()
+            ..newton::Settings::default()
         };
         let plain_run = run(
             &scn,
-            &Options::new(32, steps),
+            &Settings::new(32, steps),
             &mut Newton::new(plain),
             &mut |_, _, _| {},
         );
         let globalised = run(
             &scn,
-            &Options::new(32, steps),
+            &Settings::new(32, steps),
             &mut Newton::default(),
             &mut |_, _, _| {},
         );

@@ -4,7 +4,7 @@
 use evhi::assembly::{lin_comb, matvec};
 use evhi::norms::energy_norm;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Discretisation, Options, run};
+use evhi::scheme::{Discretisation, Settings, run};
 use evhi::step::{StepSolver, convexify::Convexify, newton::Newton};
 use faer::Mat;
 
@@ -15,7 +15,7 @@ fn fields(
     solver: &mut dyn StepSolver,
 ) -> (Vec<Vec<f64>>, evhi::scheme::Run) {
     let mut us = vec![];
-    let r = run(scn, &Options::new(n, steps), solver, &mut |_, _, u| {
+    let r = run(scn, &Settings::new(n, steps), solver, &mut |_, _, u| {
         us.push(u.to_vec())
     })
     .expect("run succeeds");
@@ -118,7 +118,7 @@ fn convexify_without_polish_is_still_certified_loosely() {
         polish: false,
         ..Default::default()
     });
-    let mut opt = Options::new(16, 16);
+    let mut opt = Settings::new(16, 16);
     opt.certificate_tol = 1e-5;
     let r = run(&scn, &opt, &mut solver, &mut |_, _, _| {}).expect("loose run succeeds");
     let worst = r
@@ -138,7 +138,7 @@ fn literal_scenario_stays_off_the_law() {
     let scn = Scenario::load("literal").unwrap();
     let r = run(
         &scn,
-        &Options::new(16, 16),
+        &Settings::new(16, 16),
         &mut Newton::default(),
         &mut |_, _, _| {},
     )

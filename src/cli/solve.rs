@@ -3,7 +3,7 @@
 use crate::output::run::{Provenance, Recorder};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
-use crate::scheme::{self, Options, OrderingKind};
+use crate::scheme::{self, OrderingKind, Settings};
 use crate::step::StepSolver;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -129,7 +129,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let entry = crate::step::solver(&args.solver)?;
     let mut solver: Box<dyn StepSolver> = entry.build();
-    let mut opt = Options::new(args.n, args.steps);
+    let mut opt = Settings::new(args.n, args.steps);
     opt.certificate_tol = if entry.certified {
         args.certificate_tol
     } else {

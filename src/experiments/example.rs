@@ -9,7 +9,7 @@ use super::{Ctx, ExpError};
 use crate::output::run::{Provenance, Recorder};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
-use crate::scheme::Options;
+use crate::scheme::Settings;
 use crate::step::newton::Newton;
 
 /// The example's TOML, compiled in.
@@ -46,7 +46,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut rec = Recorder::new(&scn, n, n, None)?;
     let res = crate::scheme::run_with_states(
         &scn,
-        &Options::new(n, n),
+        &Settings::new(n, n),
         &mut Newton::default(),
         &mut |step, t, u, c| rec.observe(&out, step, t, Some(u), c),
     )?;

@@ -38,7 +38,7 @@ use crate::mesh::{Dofs, Interpolation, Mesh, Pattern};
 use crate::norms::{FieldNorms, NormGeometry, gamma_l2_sq};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::Options;
+use crate::scheme::Settings;
 use std::collections::BTreeMap;
 
 /// The paper's Table 1, percent, by $n$ ($h = k = 1/n$).
@@ -209,7 +209,7 @@ fn run_level(
     let per = n_ref / steps;
     super::run_newton_batch_states(
         &scns,
-        &Options::new(n, steps),
+        &Settings::new(n, steps),
         &mut |i, step, _, u, states: &[ContactState]| {
             let j = step * per;
             if j.is_multiple_of(stride) {

@@ -24,7 +24,7 @@ use crate::mesh::{Dofs, Mesh, Supports};
 use crate::norms::field_norms;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::Options;
+use crate::scheme::Settings;
 use plotters::prelude::*;
 use std::sync::Arc;
 
@@ -111,9 +111,9 @@ pub const LOADS: [&str; 2] = ["literal", "figure"];
 
 fn solve_at_t(scns: &[Scenario], mesh: &Arc<Mesh>, n: usize) -> Result<Vec<Vec<f64>>, ExpError> {
     let mut last = vec![vec![]; scns.len()];
-    let opt = Options {
+    let opt = Settings {
         mesh: Some(mesh.clone()),
-        ..Options::new(n, n)
+        ..Settings::new(n, n)
     };
     super::run_newton_batch_with(scns, &opt, &mut |i, step, _, u| {
         if step == n {

@@ -223,7 +223,7 @@ pub fn run_newton(
     n: usize,
     steps: usize,
 ) -> Result<crate::scheme::Run, ExpError> {
-    let opt = crate::scheme::Options::new(n, steps);
+    let opt = crate::scheme::Settings::new(n, steps);
     Ok(crate::scheme::run(
         scn,
         &opt,
@@ -239,7 +239,7 @@ pub fn run_newton_batch(
     n: usize,
     steps: usize,
 ) -> Result<Vec<crate::scheme::Run>, ExpError> {
-    let opt = crate::scheme::Options::new(n, steps);
+    let opt = crate::scheme::Settings::new(n, steps);
     run_newton_batch_with(scns, &opt, &mut |_, _, _, _| {})
 }
 
@@ -247,7 +247,7 @@ pub fn run_newton_batch(
 /// observer.
 pub fn run_newton_batch_with(
     scns: &[crate::scenario::Scenario],
-    opt: &crate::scheme::Options,
+    opt: &crate::scheme::Settings,
     observe: &mut crate::scheme::BatchObserver<'_>,
 ) -> Result<Vec<crate::scheme::Run>, ExpError> {
     run_newton_batch_states(scns, opt, &mut |i, step, t, u, _| observe(i, step, t, u))
@@ -256,7 +256,7 @@ pub fn run_newton_batch_with(
 /// [`run_newton_batch_with`] with an observer that also sees each step's contact states.
 pub fn run_newton_batch_states(
     scns: &[crate::scenario::Scenario],
-    opt: &crate::scheme::Options,
+    opt: &crate::scheme::Settings,
     observe: &mut crate::scheme::StateObserver<'_>,
 ) -> Result<Vec<crate::scheme::Run>, ExpError> {
     let mut newtons: Vec<_> = scns

@@ -10,7 +10,7 @@
 use super::{Ctx, ExpError};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{Options, Run, run_with_states};
+use crate::scheme::{Run, Settings, run_with_states};
 use crate::step::newton::Newton;
 
 /// $\max|a - b| / \max|a|$.
@@ -30,7 +30,7 @@ fn general(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
     let mut r = vec![];
     let run = run_with_states(
         scn,
-        &Options::new(n, n),
+        &Settings::new(n, n),
         &mut Newton::default(),
         &mut |_, _, _, c| r.extend(c.iter().map(|c| c.u_nu)),
     )?;
@@ -41,7 +41,7 @@ fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
     let mut r = vec![];
     let run = crate::reduced::run(
         scn,
-        &Options::new(n, n),
+        &Settings::new(n, n),
         &mut Newton::default(),
         &|_| false,
         &mut |_, _, _, c| r.extend(c.iter().map(|c| c.u_nu)),

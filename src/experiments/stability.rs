@@ -8,7 +8,7 @@ use crate::material::Isotropic;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{self, Options};
+use crate::scheme::{self, Settings};
 use crate::step::newton::Newton;
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -30,7 +30,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             let (mut max_sq, mut sum_sq) = (0.0f64, 0.0f64);
             scheme::run(
                 &scn,
-                &Options::new(n, nsteps),
+                &Settings::new(n, nsteps),
                 &mut Newton::default(),
                 &mut |_, _, u| {
                     let du: Vec<f64> = u.iter().zip(&prev).map(|(a, b)| (a - b) / k).collect();
@@ -105,7 +105,7 @@ struct Cell {
 
 fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
     let c2 = scn.law.slope(2);
-    let mut opt = Options::new(n, steps);
+    let mut opt = Settings::new(n, steps);
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
     if !entry.certified {
         // The penalty answer overshoots g by design: judge it by its own convergence.
@@ -278,7 +278,7 @@ pub fn run_penalty(ctx: &Ctx) -> Result<(), ExpError> {
         .fold(0.0f64, |a, &w| a.max(k * w));
     let mut rows = vec![];
     for &s in &stiff {
-        let mut opt = Options::new(n, n);
+        let mut opt = Settings::new(n, n);
         opt.certificate_tol = f64::INFINITY;
         let res = scheme::run(&scn, &opt, &mut Penalty::new(s), &mut |_, _, _| {})?;
         let overshoot = res

@@ -18,7 +18,7 @@ use crate::history::History;
 use crate::norms::energy_norm;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{Discretisation, Options};
+use crate::scheme::{Discretisation, Settings};
 use plotters::prelude::*;
 
 /// The load scenarios of the study.
@@ -291,7 +291,7 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
     let nb = batch.len();
     let mut refs: Vec<Vec<Vec<f64>>> = vec![vec![vec![0.0; disc.dofs.count]]; nb];
     let mut first_limit = vec![f64::NAN; nb];
-    let opt = Options::new(plan.n, plan.n_ref);
+    let opt = Settings::new(plan.n, plan.n_ref);
     super::run_newton_batch_with(&batch, &opt, &mut |i, step, t, u| {
         if step % stride == 0 {
             refs[i].push(u.to_vec());
@@ -312,7 +312,7 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
         let mut e_max = vec![0.0f64; nb];
         let mut r_max = vec![0.0f64; nb];
         let mut e_t = vec![0.0f64; nb];
-        let opt = Options::new(plan.n, steps);
+        let opt = Settings::new(plan.n, steps);
         super::run_newton_batch_with(&batch, &opt, &mut |i, step, _t, u| {
             let j = step * ratio;
             let diff: Vec<f64> = u.iter().zip(&refs[i][j]).map(|(a, b)| a - b).collect();
