@@ -1,70 +1,10 @@
-//! The stability bound of Proposition 3.1: $\max_n \|\delta u_n\|_V^2 + k\sum_n \|\delta u_n\|_V^2 \le c$
-//! uniformly in $h$ and $k$, with $\delta u_n = (u_n - u_{n-1})/k$ and
-//! $\|v\|_V^2 = (\varepsilon(v), \varepsilon(v))_{\mathcal H}$ (4.8). Measured as $k \to 0$ at fixed $h$.
+//! Where methods fail: every registered step solver on a map over the time step
+//! and the softening slope of the law (`data/stability_map.csv`, its figure).
 
-use super::{Ctx, ExpError};
-use crate::assembly::{quad_form, stiffness};
-use crate::material::Isotropic;
-use crate::mesh::{Dofs, Mesh};
+use crate::experiments::{Ctx, ExpError};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::{self, Settings};
-use crate::step::newton::Newton;
-
-pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
-    let (n, steps): (usize, Vec<usize>) = if ctx.quick {
-        (8, vec![4, 8, 16, 32])
-    } else {
-        (32, vec![4, 8, 16, 32, 64, 128, 256, 512, 1024])
-    };
-    let mesh = Mesh::structured(n)?; // the paper's supports, as in both scenarios below
-    let dofs = Dofs::new(&mesh, true);
-    // (u, v)_V = (eps(u), eps(v)): the isotropic tensor with a = 0, b = 1.
-    let v_mat = stiffness(&mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });
-    let mut rows = vec![];
-    for name in ["literal", "figure"] {
-        let scn = Scenario::load(name)?;
-        for &nsteps in &steps {
-            let k = scn.t_end / nsteps as f64;
-            let mut prev = vec![0.0; dofs.count];
-            let (mut max_sq, mut sum_sq) = (0.0f64, 0.0f64);
-            scheme::run(
-                &scn,
-                &Settings::new(n, nsteps),
-                &mut Newton::default(),
-                &mut |_, _, u| {
-                    let du: Vec<f64> = u.iter().zip(&prev).map(|(a, b)| (a - b) / k).collect();
-                    let sq = quad_form(&v_mat, &du);
-                    max_sq = max_sq.max(sq);
-                    sum_sq += k * sq;
-                    prev.copy_from_slice(u);
-                },
-            )?;
-            rows.push((name, nsteps, k, max_sq.sqrt(), sum_sq, max_sq + sum_sq));
-        }
-    }
-    let t = Table::new()
-        .str("scenario", rows.iter().map(|r| r.0.to_string()).collect())
-        .u64("steps", rows.iter().map(|r| r.1 as u64).collect())
-        .f64("k", rows.iter().map(|r| r.2).collect())
-        .f64("max_norm_du", rows.iter().map(|r| r.3).collect())
-        .f64("k_sum_norm_du_sq", rows.iter().map(|r| r.4).collect())
-        .f64("prop31_lhs", rows.iter().map(|r| r.5).collect());
-    ctx.write(
-        "stability_prop31.csv",
-        &t,
-        "stability",
-        &format!(
-            "h = 1/{n}, solver newton; du_n = (u_n - u_(n-1))/k, ||v||_V^2 = (eps(v), eps(v))"
-        ),
-    )?;
-    run_map(ctx)?;
-    run_penalty(ctx)?;
-    run_sweeps(ctx)
-}
-
-// ---------------------------------------------------------------------------
-// Where methods fail: a map over the time step and the softening slope.
 
 /// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
 /// cell also says "fail").
@@ -72,13 +12,10 @@ const CONVEX: RGBColor = RGBColor(86, 180, 233);
 const NOT_CONVEX: RGBColor = RGBColor(190, 225, 245);
 const SEVERAL: RGBColor = RGBColor(230, 159, 0);
 const FAILED: RGBColor = RGBColor(213, 94, 0);
-// ---------------------------------------------------------------------------
-
-use super::plot::{Figure, both, e2s};
+use crate::experiments::plot::{Figure, both, e2s};
 use crate::law::Law;
 use crate::step::Status;
 use crate::step::multistart::MultiStart;
-use crate::step::penalty::Penalty;
 use plotters::prelude::*;
 
 /// The paper's law with the softening slope `c2`.
@@ -91,19 +28,19 @@ fn law_with_softening(c2: f64) -> Result<Law, ExpError> {
     )?)
 }
 
-struct Cell {
-    solver: &'static str,
-    steps: usize,
-    c2: f64,
-    outcome: String,
-    failed_step: u64,
-    mean_iterations: f64,
-    certificate: f64,
-    hessian_min: f64,
-    spread: f64,
+pub(super) struct Cell {
+    pub(super) solver: &'static str,
+    pub(super) steps: usize,
+    pub(super) c2: f64,
+    pub(super) outcome: String,
+    pub(super) failed_step: u64,
+    pub(super) mean_iterations: f64,
+    pub(super) certificate: f64,
+    pub(super) hessian_min: f64,
+    pub(super) spread: f64,
 }
 
-fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
+pub(super) fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
     let c2 = scn.law.slope(2);
     let mut opt = Settings::new(n, steps);
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
@@ -190,7 +127,7 @@ pub const SOLVERS: [&str; 4] = [
 ];
 
 /// The map: every solver on every (time step, softening slope) pair.
-pub fn run_map(ctx: &Ctx) -> Result<(), ExpError> {
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let (n, steps, c2s): (usize, Vec<usize>, Vec<f64>) = if ctx.quick {
         (8, vec![1, 8], vec![-100.0, -1e5])
     } else {
@@ -259,75 +196,20 @@ pub fn run_map(ctx: &Ctx) -> Result<(), ExpError> {
     draw_map(ctx, &path)
 }
 
-/// The penalty treatment against the exact bound as the penalty stiffens.
-pub fn run_penalty(ctx: &Ctx) -> Result<(), ExpError> {
-    let (n, stiff): (usize, Vec<f64>) = if ctx.quick {
-        (8, vec![1e3, 1e6])
-    } else {
-        (32, vec![1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e10])
-    };
-    let scn = Scenario::load("figure")?;
-    let exact = super::run_newton(&scn, n, n)?;
-    let mesh = scn.mesh(n)?;
-    let dofs = Dofs::new(&mesh, true);
-    let b = stiffness(&mesh, &dofs, &scn.elasticity());
-    let k = scn.t_end / n as f64;
-    let kw_max = mesh
-        .contact_weights()
-        .iter()
-        .fold(0.0f64, |a, &w| a.max(k * w));
-    let mut rows = vec![];
-    for &s in &stiff {
-        let mut opt = Settings::new(n, n);
-        opt.certificate_tol = f64::INFINITY;
-        let res = scheme::run(&scn, &opt, &mut Penalty::new(s), &mut |_, _, _| {})?;
-        let overshoot = res
-            .contact
-            .iter()
-            .map(|c| c.u_nu - scn.g)
-            .fold(f64::NEG_INFINITY, f64::max);
-        let diff: Vec<f64> = res.u.iter().zip(&exact.u).map(|(a, e)| a - e).collect();
-        let rel = crate::norms::energy_norm(&b, &diff) / crate::norms::energy_norm(&b, &exact.u);
-        // Condition of the Newton matrix on a node pushed past g: (lambda_max(S) + k w (c3 + s)) / lambda_min(S).
-        let cond = (res.s_eigen.1 + kw_max * (scn.law.slope(3) + s)) / res.s_eigen.0;
-        let iters = res.records.iter().map(|r| r.iterations as f64).sum::<f64>() / n as f64;
-        rows.push((s, overshoot / scn.g, rel, cond, iters));
-    }
-    let t = Table::new()
-        .f64("penalty_stiffness", rows.iter().map(|r| r.0).collect())
-        .f64("overshoot_over_g", rows.iter().map(|r| r.1).collect())
-        .f64(
-            "rel_diff_energy_vs_exact",
-            rows.iter().map(|r| r.2).collect(),
-        )
-        .f64(
-            "newton_matrix_condition",
-            rows.iter().map(|r| r.3).collect(),
-        )
-        .f64("mean_iterations", rows.iter().map(|r| r.4).collect());
-    ctx.write(
-        "stability_penalty.csv",
-        &t,
-        "stability",
-        &format!("scenario figure, h = k = 1/{n}, t = T; penalty p += stiffness (u_nu - g)^+ replaces u_nu <= g; compared with the exact bound (newton)"),
-    )?;
-    Ok(())
-}
-
 struct MapFigure {
     cells: Vec<(String, f64, f64, String, f64, f64)>,
 }
 
 fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
-    let df = super::read_csv(path)?;
-    let solver = super::col_str(&df, "solver")?;
+    let df = crate::experiments::read_csv(path)?;
+    let solver = crate::experiments::col_str(&df, "solver")?;
     let (k, c2, hmin) = (
-        super::col_f64(&df, "k")?,
-        super::col_f64(&df, "c2")?,
-        super::col_f64(&df, "hessian_min")?,
+        crate::experiments::col_f64(&df, "k")?,
+        crate::experiments::col_f64(&df, "c2")?,
+        crate::experiments::col_f64(&df, "hessian_min")?,
     );
-    let outcome = super::col_str(&df, "outcome")?;
-    let iters = super::col_f64(&df, "mean_iterations")?;
+    let outcome = crate::experiments::col_str(&df, "outcome")?;
+    let iters = crate::experiments::col_f64(&df, "mean_iterations")?;
     let cells = (0..solver.len())
         .map(|i| {
             (
@@ -456,95 +338,4 @@ impl Figure for MapFigure {
         }
         Ok(())
     }
-}
-
-/// One-parameter sweeps towards the edges of the theory: Young's modulus against the
-/// smallness condition $\beta > m\|\iota\|^2$, the layer thickness $g \to 0$ and the
-/// Poisson ratio $\kappa \to 1/2$ (near-incompressible locking of P1).
-pub fn run_sweeps(ctx: &Ctx) -> Result<(), ExpError> {
-    let n = if ctx.quick { 8 } else { 16 };
-    let base = Scenario::load("figure")?;
-    type Edit = fn(&mut Scenario, f64);
-    let sweeps: [(&str, Vec<f64>, Edit); 3] = [
-        (
-            "E",
-            if ctx.quick {
-                vec![1000.0, 10.0]
-            } else {
-                vec![1000.0, 300.0, 100.0, 30.0, 10.0]
-            },
-            |s, v| s.e = v,
-        ),
-        (
-            "g",
-            if ctx.quick {
-                vec![0.1, 1e-3]
-            } else {
-                vec![0.1, 0.03, 0.01, 1e-3, 1e-4]
-            },
-            |s, v| s.g = v,
-        ),
-        (
-            "kappa",
-            if ctx.quick {
-                vec![0.4, 0.499]
-            } else {
-                vec![0.4, 0.45, 0.49, 0.499, 0.4999]
-            },
-            |s, v| s.kappa = v,
-        ),
-    ];
-    let mut rows = vec![];
-    let swept = crate::step::SOLVERS.iter().filter(|e| e.swept).count();
-    ctx.add_units(sweeps.iter().map(|s| s.1.len() * swept).sum());
-    for (param, values, edit) in &sweeps {
-        for &v in values {
-            let mut scn = base.clone();
-            edit(&mut scn, v);
-            for solver in crate::step::SOLVERS
-                .iter()
-                .filter(|e| e.swept)
-                .map(|e| e.name)
-            {
-                ctx.log(&format!("stability sweep: {param} = {v}, {solver}"));
-                let c = map_cell(&scn, n, n, solver);
-                rows.push((param.to_string(), v, scn.elasticity().coercivity(), c));
-            }
-        }
-    }
-    let t = Table::new()
-        .str("parameter", rows.iter().map(|r| r.0.clone()).collect())
-        .f64("value", rows.iter().map(|r| r.1).collect())
-        .f64("beta_B", rows.iter().map(|r| r.2).collect())
-        .str(
-            "solver",
-            rows.iter().map(|r| r.3.solver.to_string()).collect(),
-        )
-        .f64(
-            "hessian_min",
-            rows.iter().map(|r| r.3.hessian_min).collect(),
-        )
-        .str(
-            "outcome",
-            rows.iter().map(|r| r.3.outcome.clone()).collect(),
-        )
-        .u64(
-            "failed_step",
-            rows.iter().map(|r| r.3.failed_step).collect(),
-        )
-        .f64(
-            "mean_iterations",
-            rows.iter().map(|r| r.3.mean_iterations).collect(),
-        )
-        .f64(
-            "max_certificate_or_residual",
-            rows.iter().map(|r| r.3.certificate).collect(),
-        );
-    ctx.write(
-        "stability_sweeps.csv",
-        &t,
-        "stability",
-        &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness 1e6"),
-    )?;
-    Ok(())
 }
