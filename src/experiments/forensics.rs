@@ -34,7 +34,7 @@
 
 use super::{Ctx, ExpError};
 use crate::certificate::ContactState;
-use crate::mesh::{Dofs, Interpolation, Mesh, Pattern};
+use crate::mesh::{Interpolation, Mesh, Pattern};
 use crate::norms::{FieldNorms, NormGeometry, gamma_l2_sq};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
@@ -194,7 +194,10 @@ struct Group {
 }
 
 /// Runs the group's scenarios at $(n, N)$ and keeps every step whose time is on
-/// the grid of stride `stride` reference steps.
+/// the grid of stride `stride` reference steps. Proportional damping goes by the
+/// reduced loop (one factorisation of $B$; a field formed, and certified on the
+/// full system, only at the kept steps); other damping (plane stress keeps the
+/// plane-strain viscosity) by the general loop, the group in one batch.
 fn run_level(
     group: &Group,
     n: usize,
@@ -204,27 +207,52 @@ fn run_level(
     mut keep: impl FnMut(usize, usize, Field),
 ) -> Result<Mesh, ExpError> {
     let scns: Vec<Scenario> = group.loads.iter().map(|(_, s)| s.clone()).collect();
-    let mesh = scns[0].mesh(n)?;
-    let dofs = Dofs::new(&mesh, true);
+    let disc = crate::scheme::Discretisation::new(&scns[0], n)?;
+    let dofs = &disc.dofs;
     let per = n_ref / steps;
-    super::run_newton_batch_states(
-        &scns,
-        &Settings::new(n, steps),
-        &mut |i, step, _, u, states: &[ContactState]| {
-            let j = step * per;
-            if j.is_multiple_of(stride) {
-                keep(
-                    i,
-                    j,
-                    Field {
-                        u: dofs.expand(u),
-                        sigma: states.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect(),
-                    },
-                );
-            }
-        },
-    )?;
-    Ok(mesh)
+    let kept = |step: usize| (step * per).is_multiple_of(stride);
+    let field = |u: &[f64], states: &[ContactState]| Field {
+        u: dofs.expand(u),
+        sigma: states.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect(),
+    };
+    if crate::reduced::proportional(&scns[0], &disc).is_some() {
+        let mut timings = crate::scheme::Timings::default();
+        let op = crate::reduced::Reduced::new(
+            &scns[0],
+            &disc,
+            crate::scheme::OrderingKind::NestedDissection,
+            true,
+            &mut timings,
+        )?;
+        for (i, scn) in scns.iter().enumerate() {
+            let load = op.load_of(scn);
+            op.march(
+                scn,
+                &load,
+                steps,
+                &mut crate::step::newton::Newton::default(),
+                Settings::new(n, steps).certificate_tol,
+                &kept,
+                &mut timings,
+                &mut |s| {
+                    if let Some(u) = s.field {
+                        keep(i, s.step * per, field(u, s.contact));
+                    }
+                },
+            )?;
+        }
+    } else {
+        super::run_newton_batch_states(
+            &scns,
+            &Settings::new(n, steps),
+            &mut |i, step, _, u, states: &[ContactState]| {
+                if kept(step) {
+                    keep(i, step * per, field(u, states));
+                }
+            },
+        )?;
+    }
+    Ok((*disc.mesh).clone())
 }
 
 /// The levels and reference of the study: Table 1's.
