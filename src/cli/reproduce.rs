@@ -88,8 +88,8 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         })
         .collect();
     // Two lists of about equal wall time, one per core (the full run of
-    // data/reproduce_times.csv: forensics 150 s beside the rest; paths 46, graded 28,
-    // static 16, time 15, stability 11, table1 7 s; the rest under 2 s each).
+    // data/reproduce_times.csv: forensics 103 s beside the rest; paths 41, graded 28,
+    // static 16, time 13, stability 9, table1 5 s; the rest under 2 s each).
     let (heavy, light): (Vec<String>, Vec<String>) = names.into_iter().partition(|n| {
         ["table1", "paths", "graded", "time", "static", "stability"].contains(&n.as_str())
     });
