@@ -131,19 +131,45 @@ pub fn certify(
     law: &Law,
     g: f64,
 ) -> (Certificate, Vec<ContactState>) {
-    let fscale = crate::dense::inf_norm(b)
-        .max(crate::dense::inf_norm(ku))
-        .max(f64::MIN_POSITIVE);
-    let backward_scale = crate::dense::inf_norm(b).max(ku_abs).max(f64::MIN_POSITIVE);
-    let dscale = g
-        .abs()
-        .max(crate::dense::inf_norm(u))
-        .max(f64::MIN_POSITIVE);
-    let delta = rounding_delta(g, crate::dense::inf_norm(u));
-    let mut rho: Vec<f64> = ku.iter().zip(b).map(|(a, c)| a - c).collect();
+    let u_norm = crate::dense::inf_norm(u);
+    let rho: Vec<f64> = ku.iter().zip(b).map(|(a, c)| a - c).collect();
+    let scales = Scales {
+        rhs: crate::dense::inf_norm(b),
+        product: crate::dense::inf_norm(ku),
+        abs_product: ku_abs,
+        solution: u_norm,
+    };
+    let nodes = contact_dofs.iter().map(|&d| (-u[d], d));
+    certify_residual(rho, nodes, kw, law, g, scales)
+}
+
+/// The norms that scale a certificate: of the right-hand side, of the product
+/// of the operator with the solution, of $|\text{operator}|\,|\text{solution}|$, and
+/// of the solution.
+struct Scales {
+    rhs: f64,
+    product: f64,
+    abs_product: f64,
+    solution: f64,
+}
+
+/// The certificate of a residual `rho` (operator times solution minus right-hand
+/// side) whose entries at the contact nodes `(s, d)` are their reactions.
+fn certify_residual(
+    mut rho: Vec<f64>,
+    nodes: impl Iterator<Item = (f64, usize)>,
+    kw: &[f64],
+    law: &Law,
+    g: f64,
+    sc: Scales,
+) -> (Certificate, Vec<ContactState>) {
+    let fscale = sc.rhs.max(sc.product).max(f64::MIN_POSITIVE);
+    let backward_scale = sc.rhs.max(sc.abs_product).max(f64::MIN_POSITIVE);
+    let dscale = g.abs().max(sc.solution).max(f64::MIN_POSITIVE);
+    let delta = rounding_delta(g, sc.solution);
     let mut cert = Certificate::default();
     let states = contact_conditions(
-        contact_dofs.iter().map(|&d| (-u[d], d)),
+        nodes,
         &mut rho,
         kw,
         law,
@@ -213,26 +239,14 @@ pub fn certify_condensed(
             *acc += (sij * rj).abs();
         }
     }
-    let abs_s_r = crate::dense::inf_norm(&abs_s_r);
-    let n0 = crate::dense::inf_norm(&s_r0);
-    let fscale = n0.max(crate::dense::inf_norm(&s_r)).max(f64::MIN_POSITIVE);
-    let backward_scale = n0.max(abs_s_r).max(f64::MIN_POSITIVE);
-    let r_norm = crate::dense::inf_norm(r);
-    let dscale = g.abs().max(r_norm).max(f64::MIN_POSITIVE);
-    let delta = rounding_delta(g, r_norm);
-    let mut rho: Vec<f64> = s_r0.iter().zip(&s_r).map(|(a, b)| a - b).collect();
-    let mut cert = Certificate::default();
-    let states = contact_conditions(
-        r.iter().copied().zip(0..m),
-        &mut rho,
-        kw,
-        law,
-        g,
-        (delta, fscale, dscale),
-        &mut cert,
-    );
-    cert.stationarity = crate::dense::inf_norm(&rho) / backward_scale;
-    (cert, states)
+    let rho: Vec<f64> = s_r0.iter().zip(&s_r).map(|(a, b)| a - b).collect();
+    let scales = Scales {
+        rhs: crate::dense::inf_norm(&s_r0),
+        product: crate::dense::inf_norm(&s_r),
+        abs_product: crate::dense::inf_norm(&abs_s_r),
+        solution: crate::dense::inf_norm(r),
+    };
+    certify_residual(rho, r.iter().copied().zip(0..m), kw, law, g, scales)
 }
 
 /// Regime names in the order no contact, branches by number, limit (deduplicated).

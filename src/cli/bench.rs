@@ -50,6 +50,32 @@ pub struct BenchArgs {
     pub scipy_levels: Vec<usize>,
 }
 
+/// `evhi solve` of the `figure` scene in a child process, into `dir`.
+fn solve_into(
+    dir: &std::path::Path,
+    n: usize,
+    steps: usize,
+    solver: &str,
+    path: &str,
+) -> Result<(), String> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let out = std::process::Command::new(exe)
+        .args(["solve", "--scenario", "figure", "--solver", solver])
+        .args(["--path", path, "--n", &n.to_string(), "--steps"])
+        .arg(steps.to_string())
+        .arg("--out")
+        .arg(dir)
+        .output()
+        .map_err(|e| e.to_string())?;
+    if !out.status.success() {
+        return Err(format!(
+            "n = {n}, steps = {steps}, {solver}, {path} path: {}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    Ok(())
+}
+
 /// One configuration run in a child process; returns the numeric columns of its
 /// summary row (and the iteration totals of steps.csv) as name -> value.
 fn child_run(
@@ -62,33 +88,7 @@ fn child_run(
         "evhi-bench-{}-{n}-{steps}-{solver}-{path}",
         std::process::id()
     ));
-    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-    let out = std::process::Command::new(exe)
-        .args([
-            "solve",
-            "--scenario",
-            "figure",
-            "--solver",
-            solver,
-            "--path",
-            path,
-        ])
-        .args([
-            "--n",
-            &n.to_string(),
-            "--steps",
-            &steps.to_string(),
-            "--out",
-        ])
-        .arg(&dir)
-        .output()
-        .map_err(|e| e.to_string())?;
-    if !out.status.success() {
-        return Err(format!(
-            "n = {n}, steps = {steps}, {solver}, {path} path: {}",
-            String::from_utf8_lossy(&out.stderr)
-        ));
-    }
+    solve_into(&dir, n, steps, solver, path)?;
     // Both files through the project's own CSV reader (polars); string columns are skipped.
     use crate::experiments::{col_f64, read_csv};
     let read =
@@ -332,24 +332,7 @@ fn scipy(
         // The run SciPy's answer is checked against (the reduced loop's).
         let check =
             std::env::temp_dir().join(format!("evhi-bench-scipy-{}-{n}", std::process::id()));
-        let exe = std::env::current_exe()?;
-        let status = std::process::Command::new(exe)
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--n",
-                &n.to_string(),
-                "--steps",
-                &n.to_string(),
-                "--out",
-            ])
-            .arg(&check)
-            .stderr(std::process::Stdio::null())
-            .status()?;
-        if !status.success() {
-            return Err(format!("evhi solve at n = {n} failed").into());
-        }
+        solve_into(&check, n, n, DEFAULT_SOLVER, "reduced")?;
         let (mut sp, mut gen_, mut red) = (vec![], vec![], vec![]);
         for r in 0..args.repeat.max(1) {
             eprintln!("  scipy comparison: n = steps = {n}, round {}", r + 1);

@@ -172,6 +172,38 @@ fn grid_level(step: usize, steps: usize, grid: usize) -> Option<usize> {
         .then(|| step * grid / steps)
 }
 
+/// Marches `scn` under `load` with `steps` steps on `op`, calls `at_level(j, state)`
+/// at every step on the grid $t = j/N_{grid}$, and returns the field at $T$.
+fn march_on_grid(
+    op: &Reduced,
+    scn: &Scenario,
+    load: &crate::reduced::Load,
+    steps: usize,
+    grid: usize,
+    timings: &mut Timings,
+    mut at_level: impl FnMut(usize, &State),
+) -> Result<Vec<f64>, ExpError> {
+    let mut field_t = vec![];
+    op.march(
+        scn,
+        load,
+        steps,
+        &mut Newton::default(),
+        TOL,
+        &|step| step == steps,
+        timings,
+        &mut |s| {
+            if let Some(j) = grid_level(s.step, steps, grid) {
+                at_level(j, s.state);
+            }
+            if let Some(u) = s.field {
+                field_t = u.to_vec();
+            }
+        },
+    )?;
+    Ok(field_t)
+}
+
 impl Reference {
     /// The references of a group of scenarios that share the step matrix, and the
     /// group's $k$ family (the reference mesh, coarser steps): all on one
@@ -184,7 +216,6 @@ impl Reference {
         ctx: &Ctx,
     ) -> Result<(Reference, Vec<Vec<LevelError>>), ExpError> {
         let n_ref = plan.n_ref;
-        let every = n_ref / grid;
         let clock = std::time::Instant::now();
         let disc = Discretisation::new(&scns[0], n_ref)?;
         let mut timings = Timings::default();
@@ -201,24 +232,9 @@ impl Reference {
         for scn in scns {
             let load = op.load_of(scn);
             let mut at = BTreeMap::new();
-            let mut field_t = vec![];
-            op.march(
-                scn,
-                &load,
-                n_ref,
-                &mut Newton::default(),
-                TOL,
-                &|step| step == n_ref,
-                &mut timings,
-                &mut |s| {
-                    if s.step % every == 0 {
-                        at.insert(s.step / every, (s.state.clone(), op.quad(&load, s.state)));
-                    }
-                    if let Some(u) = s.field {
-                        field_t = u.to_vec();
-                    }
-                },
-            )?;
+            let field_t = march_on_grid(&op, scn, &load, n_ref, grid, &mut timings, |j, st| {
+                at.insert(j, (st.clone(), op.quad(&load, st)));
+            })?;
             runs.push((
                 load,
                 RefRun {
@@ -248,30 +264,14 @@ impl Reference {
             let (load, run) = &runs[i];
             for &steps in &plan.levels {
                 let mut acc = Accumulator::default();
-                let mut field_t = vec![];
-                op.march(
-                    scn,
-                    load,
-                    steps,
-                    &mut Newton::default(),
-                    TOL,
-                    &|step| step == steps,
-                    &mut timings,
-                    &mut |s| {
-                        let Some(j) = grid_level(s.step, steps, grid) else {
-                            return;
-                        };
-                        let (st, quad) = &run.at[&j];
-                        acc.add(
-                            op.energy_diff(load, st, s.state),
-                            energy_of_quad(*quad),
-                            j == grid,
-                        );
-                        if let Some(u) = s.field {
-                            field_t = u.to_vec();
-                        }
-                    },
-                )?;
+                let field_t = march_on_grid(&op, scn, load, steps, grid, &mut timings, |j, st| {
+                    let (st_ref, quad) = &run.at[&j];
+                    acc.add(
+                        op.energy_diff(load, st_ref, st),
+                        energy_of_quad(*quad),
+                        j == grid,
+                    );
+                })?;
                 let diff: Vec<f64> = run
                     .field_t
                     .iter()
@@ -344,21 +344,9 @@ impl Reference {
             let d_c: Vec<f64> = disc.contact_dofs.iter().map(|&c| d[c]).collect();
             for (slot, steps) in [(0, n), (1, n_ref)] {
                 let mut acc = Accumulator::default();
-                let mut field_t = vec![];
-                op.march(
-                    scn,
-                    &load,
-                    steps,
-                    &mut Newton::default(),
-                    TOL,
-                    &|step| step == steps,
-                    &mut timings,
-                    &mut |s| {
-                        let Some(j) = grid_level(s.step, steps, self.grid) else {
-                            return;
-                        };
+                let field_t =
+                    march_on_grid(&op, scn, &load, steps, self.grid, &mut timings, |j, st| {
                         let (st_ref, quad_ref) = &run.at[&j];
-                        let st = s.state;
                         let wd: f64 = st.w.iter().zip(&d_c).map(|(a, b)| a * b).sum();
                         let wr: f64 = (st_ref.w.iter().zip(on_contact(&st.r)))
                             .map(|(a, b)| a * b)
@@ -370,11 +358,7 @@ impl Reference {
                             energy_of_quad(*quad_ref),
                             j == self.grid,
                         );
-                        if let Some(u) = s.field {
-                            field_t = u.to_vec();
-                        }
-                    },
-                )?;
+                    })?;
                 let fine = self.dofs.gather(&interp.apply(&disc.dofs.expand(&field_t)));
                 let diff: Vec<f64> = run.field_t.iter().zip(&fine).map(|(a, b)| a - b).collect();
                 acc.regions = self.regions(&diff);
