@@ -86,7 +86,7 @@ pub const NAMES: [&str; 13] = [
 /// fits the page).
 pub const BOOK_TABLES: [(&str, usize, usize); 12] = [
     ("bench_scipy.csv", 1, 5),
-    ("paths.csv", 2, 5),
+    ("paths.csv", 2, 4),
     ("hypotheses.csv", 1, 5),
     ("bench.csv", 3, 6),
     ("bench_sweeps.csv", 1, 5),
