@@ -86,6 +86,7 @@ impl Figure for Chart {
             .label_style(("sans-serif", 16))
             .draw()
             .map_err(e2s)?;
+        let placed = place_labels(|x, y| chart.backend_coord(&(x, y)), &self.series);
         for (label, s, c) in &self.series {
             let c = *c;
             let line: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
@@ -100,20 +101,69 @@ impl Figure for Chart {
                         .map(move |p| Circle::new((p.0, p.1), 5, c.filled())),
                 )
                 .map_err(e2s)?;
-            chart
-                .draw_series(
-                    // Labels alternate above and below their point, so that close
-                    // points do not print over each other.
-                    s.iter().enumerate().map(|(i, p)| {
-                        let dy = if i % 2 == 0 { 1.06 } else { 0.9 };
-                        Text::new(p.2.clone(), (p.0 * 1.05, p.1 * dy), ("sans-serif", 14))
-                    }),
-                )
-                .map_err(e2s)?;
         }
+        chart
+            .draw_series(
+                (placed.into_iter())
+                    .map(|(text, at)| Text::new(text, at, ("sans-serif", 14).into_font())),
+            )
+            .map_err(e2s)?;
         legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)?;
         Ok(())
     }
+}
+
+/// Where each point's label goes: beside its point, at the first of eight
+/// positions (right or left, above or below, near or farther) whose box, in
+/// pixels, overlaps neither an earlier label nor a point. Returns (text, the
+/// label's top-left corner in data coordinates).
+/// `at` maps a point to pixels; both axes are logarithmic.
+fn place_labels(
+    at: impl Fn(f64, f64) -> (i32, i32),
+    series: &[Family],
+) -> Vec<(String, (f64, f64))> {
+    // Pixels per decade on each axis, to turn a pixel offset into a data factor.
+    let (p0, p1) = (at(1.0, 1.0), at(10.0, 10.0));
+    let (dx, dy) = ((p1.0 - p0.0) as f64, (p1.1 - p0.1) as f64);
+    let points: Vec<(i32, i32)> = (series.iter())
+        .flat_map(|(_, s, _)| s.iter().map(|p| at(p.0, p.1)))
+        .collect();
+    let overlaps = |a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)| {
+        a.0 < b.0 + b.2 && b.0 < a.0 + a.2 && a.1 < b.1 + b.3 && b.1 < a.1 + a.3
+    };
+    let mut boxes: Vec<(i32, i32, i32, i32)> = vec![];
+    let mut out = vec![];
+    for (_, s, _) in series {
+        for p in s {
+            let (px, py) = at(p.0, p.1);
+            let (w, h) = (8 * p.2.chars().count() as i32, 16);
+            let candidates = [
+                (8, -h - 2),
+                (8, 4),
+                (-8 - w, -h - 2),
+                (-8 - w, 4),
+                (8, -2 * h - 4),
+                (8, h + 6),
+                (-8 - w, -2 * h - 4),
+                (-8 - w, h + 6),
+            ];
+            let free = |b: (i32, i32, i32, i32)| {
+                !boxes.iter().any(|&o| overlaps(b, o))
+                    && !points
+                        .iter()
+                        .any(|&q| overlaps(b, (q.0 - 5, q.1 - 5, 10, 10)))
+            };
+            let (ox, oy) = (candidates.iter())
+                .copied()
+                .find(|&(ox, oy)| free((px + ox, py + oy, w, h)))
+                .unwrap_or(candidates[0]);
+            boxes.push((px + ox, py + oy, w, h));
+            let to_data =
+                |v: f64, off: i32, per_decade: f64| v * 10f64.powf(off as f64 / per_decade);
+            out.push((p.2.clone(), (to_data(p.0, ox, dx), to_data(p.1, oy, dy))));
+        }
+    }
+    out
 }
 
 /// The paper's reported CPU times (§5): (n = steps, its dof count, seconds), on a
