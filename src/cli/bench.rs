@@ -42,7 +42,8 @@ pub struct BenchArgs {
     /// Only the side-by-side comparison with the independent SciPy implementation
     /// (tools/scipy_reference/, run through its run.sh, which installs NumPy and
     /// SciPy into .tools/venv-scipy on first use), interleaved run by run with
-    /// both of our time loops: data/bench_scipy.csv.
+    /// both of our time loops: data/bench_scipy.csv. Run it from the repository
+    /// root (it calls tools/scipy_reference/run.sh by that path).
     #[arg(long)]
     pub scipy: bool,
     /// Levels n = steps of the SciPy comparison.
