@@ -641,3 +641,31 @@ fn the_time_loop_follows_the_damping() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A finer reference for Table 1 that cannot serve is refused by name, before
+/// any run: not a multiple of the finest level, or too large for memory.
+#[test]
+fn a_bad_table1_reference_is_refused() {
+    let dir = scratch("bad-reference");
+    for bad in ["100", "1048576"] {
+        let out = evhi()
+            .args([
+                "reproduce",
+                "table1",
+                "--quick",
+                "--quiet",
+                "--reference",
+                bad,
+            ])
+            .arg("--data")
+            .arg(dir.join("data"))
+            .arg("--figures")
+            .arg(dir.join("figures"))
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "--reference {bad} must fail");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(bad), "--reference {bad}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
