@@ -160,40 +160,34 @@ impl<'d> Reduced<'d> {
 
     /// $u = B^{-1}(Y f + E_C^\top W)$: one solve.
     pub fn field(&self, load: &Load, st: &State) -> Vec<f64> {
-        let mut rhs = vec![0.0; self.disc.dofs.count];
-        for (&d, w) in self.disc.contact_dofs.iter().zip(&st.w) {
-            rhs[d] = *w;
-        }
-        let v = self.chol.solve(&rhs);
-        v.iter()
-            .zip(&load.binv_f)
-            .map(|(v, b)| st.y * b + v)
-            .collect()
+        self.with_load(load, st, self.chol.solve(&self.contact_rhs(st)))
     }
 
     /// The fields of several states under one load, their solves batched (one
     /// sweep over the factor serves them all; [`Reduced::field`] for one).
     pub fn fields(&self, load: &Load, states: &[&State]) -> Vec<Vec<f64>> {
-        let rhs: Vec<Vec<f64>> = states
-            .iter()
-            .map(|st| {
-                let mut rhs = vec![0.0; self.disc.dofs.count];
-                for (&d, w) in self.disc.contact_dofs.iter().zip(&st.w) {
-                    rhs[d] = *w;
-                }
-                rhs
-            })
-            .collect();
+        let rhs: Vec<Vec<f64>> = states.iter().map(|st| self.contact_rhs(st)).collect();
         let cols: Vec<&[f64]> = rhs.iter().map(Vec::as_slice).collect();
         let v = self.chol.backward_many(self.chol.forward_many(&cols));
-        v.into_iter()
-            .zip(states)
-            .map(|(v, st)| {
-                v.iter()
-                    .zip(&load.binv_f)
-                    .map(|(v, b)| st.y * b + v)
-                    .collect()
-            })
+        (v.into_iter().zip(states))
+            .map(|(v, st)| self.with_load(load, st, v))
+            .collect()
+    }
+
+    /// $E_C^\top W$: the state's contact reactions as a right-hand side.
+    fn contact_rhs(&self, st: &State) -> Vec<f64> {
+        let mut rhs = vec![0.0; self.disc.dofs.count];
+        for (&d, w) in self.disc.contact_dofs.iter().zip(&st.w) {
+            rhs[d] = *w;
+        }
+        rhs
+    }
+
+    /// $Y B^{-1} f + v$, with $v = B^{-1} E_C^\top W$ solved.
+    fn with_load(&self, load: &Load, st: &State, v: Vec<f64>) -> Vec<f64> {
+        v.iter()
+            .zip(&load.binv_f)
+            .map(|(v, b)| st.y * b + v)
             .collect()
     }
 

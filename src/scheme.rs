@@ -283,6 +283,9 @@ fn step_failure(
     }
 }
 
+/// The default certificate tolerance: a step whose relative residual exceeds it fails.
+pub const CERTIFICATE_TOL: f64 = 1e-10;
+
 /// Settings of a run.
 #[derive(Debug, Clone)]
 pub struct Settings {
@@ -317,7 +320,7 @@ impl Settings {
         Settings {
             n,
             steps,
-            certificate_tol: 1e-10,
+            certificate_tol: CERTIFICATE_TOL,
             ordering: OrderingKind::NestedDissection,
             parallel: true,
             mesh: None,

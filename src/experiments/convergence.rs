@@ -172,6 +172,22 @@ fn grid_level(step: usize, steps: usize, grid: usize) -> Option<usize> {
         .then(|| step * grid / steps)
 }
 
+/// The reduced operator of a mesh of the study. Two workers already keep both
+/// cores busy, so its solves take one thread.
+fn operator<'d>(
+    scn: &Scenario,
+    disc: &'d Discretisation,
+    timings: &mut Timings,
+) -> Result<Reduced<'d>, ExpError> {
+    Ok(Reduced::new(
+        scn,
+        disc,
+        OrderingKind::NestedDissection,
+        false,
+        timings,
+    )?)
+}
+
 /// Marches `scn` under `load` with `steps` steps on `op`, calls `at_level(j, state)`
 /// at every step on the grid $t = j/N_{grid}$, and returns the field at $T$.
 fn march_on_grid(
@@ -219,14 +235,7 @@ impl Reference {
         let clock = std::time::Instant::now();
         let disc = Discretisation::new(&scns[0], n_ref)?;
         let mut timings = Timings::default();
-        // Two workers already keep both cores busy: one sweep thread.
-        let op = Reduced::new(
-            &scns[0],
-            &disc,
-            OrderingKind::NestedDissection,
-            false,
-            &mut timings,
-        )?;
+        let op = operator(&scns[0], &disc, &mut timings)?;
         let tensor = scns[0].elasticity();
         let mut runs = Vec::with_capacity(scns.len());
         for scn in scns {
@@ -311,13 +320,7 @@ impl Reference {
     ) -> Result<[Vec<LevelError>; 2], ExpError> {
         let disc = Discretisation::new(&scns[0], n)?;
         let mut timings = Timings::default();
-        let op = Reduced::new(
-            &scns[0],
-            &disc,
-            OrderingKind::NestedDissection,
-            false,
-            &mut timings,
-        )?;
+        let op = operator(&scns[0], &disc, &mut timings)?;
         let interp = Interpolation::nested(&disc.mesh, &self.mesh)?;
         // Per coarse node: its index among the contact nodes.
         let mut contact_index = vec![None; disc.mesh.nodes.len()];
@@ -410,7 +413,7 @@ enum Task {
 const FAMILIES: [&str; 3] = ["h=k", "h", "k"];
 
 /// The step solver's certificate tolerance of every run of the study.
-const TOL: f64 = 1e-10;
+const TOL: f64 = crate::scheme::CERTIFICATE_TOL;
 
 /// What the workers share: the tasks not yet started, the references done so far,
 /// and the first error.

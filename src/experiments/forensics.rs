@@ -231,7 +231,7 @@ fn run_level(
                 &load,
                 steps,
                 &mut crate::step::newton::Newton::default(),
-                Settings::new(n, steps).certificate_tol,
+                crate::scheme::CERTIFICATE_TOL,
                 &kept,
                 &mut timings,
                 &mut |s| {
