@@ -377,7 +377,7 @@ fn scipy(
     ctx.write(
         "bench_scipy.csv",
         &t,
-        "bench",
+        "bench --scipy",
         &format!(
             "machine: {machine}; scenario figure, h = k = 1/n; SciPy: tools/scipy_reference (SuperLU, one BLAS thread), total_s = assembly to last step, without Python start-up; ours: wall_s of `evhi solve` on the general and on the reduced loop, without process start-up and file writing; medians of {} rounds, each round one run of each in turn, each in a fresh process; gaps: SciPy against the reduced run at T, relative",
             args.repeat

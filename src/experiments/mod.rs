@@ -129,7 +129,7 @@ impl Ctx {
     pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
         vec![
             match experiment {
-                "bench" | "bench --sweeps" => format!(
+                "bench" | "bench --sweeps" | "bench --scipy" => format!(
                     "produced by evhi {} `evhi {experiment}`",
                     env!("CARGO_PKG_VERSION")
                 ),

@@ -49,7 +49,7 @@ pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<Str
     ]
 }
 
-/// Peak resident memory of this process (Linux `VmHWM`), MB; NaN where unknown.
+/// Peak resident memory of this process (Linux `VmHWM`), MiB; NaN where unknown.
 pub fn peak_rss_mb() -> f64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
