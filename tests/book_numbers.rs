@@ -10,7 +10,8 @@
 //! "v0.5") and version strings (0.5.4) are exempt. The data values leave out what would
 //! match almost any short decimal: the files `*_nodes.csv`, and in every CSV the columns
 //! x, y, t, n, steps, step, node, i, j, level, h_plus_k and n_ref (coordinates, times,
-//! counts, mesh sizes). A CSV's `#` lines are mined whole, its header line not at all;
+//! counts, mesh sizes), and the git-ignored data/local/ (this machine's own timings).
+//! A CSV's `#` lines are mined whole, its header line not at all;
 //! .md, .txt and .toml files are mined whole.
 
 use std::cell::RefCell;
@@ -105,9 +106,11 @@ fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
 fn data_values() -> Vec<f64> {
     let (mut files, mut out) = (Vec::new(), Vec::new());
     walk(&root().join("data"), &mut files);
+    // data/local/ holds this machine's own measurements (git-ignored): never a source.
+    let local = root().join("data").join("local");
     for path in files
         .iter()
-        .filter(|p| !p.to_string_lossy().ends_with("_nodes.csv"))
+        .filter(|p| !p.to_string_lossy().ends_with("_nodes.csv") && !p.starts_with(&local))
     {
         let text = String::from_utf8_lossy(&std::fs::read(path).expect("a data file")).into_owned();
         if path.extension().is_none_or(|e| e != "csv") {

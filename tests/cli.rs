@@ -669,3 +669,40 @@ fn a_bad_table1_reference_is_refused() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The main job changes no committed file with its own wall times: a full run keeps
+/// them in the git-ignored `local/` of the data directory, and only `--record-times`
+/// writes the table the book quotes.
+#[test]
+fn reproduce_keeps_its_times_local_unless_recorded() {
+    let dir = scratch("times");
+    let (data, figures) = (dir.join("data"), dir.join("figures"));
+    let run = |extra: &[&str]| {
+        succeed(
+            evhi()
+                .args(["reproduce", "fig2", "-q"])
+                .args(extra)
+                .arg("--data")
+                .arg(&data)
+                .arg("--figures")
+                .arg(&figures),
+        )
+    };
+    run(&[]);
+    assert!(data.join("fig2_law.csv").exists());
+    assert!(!data.join("reproduce_times.csv").exists());
+    let local = std::fs::read_to_string(data.join("local/reproduce_times.csv")).unwrap();
+    assert!(local.contains("\nfig2,fig2,"), "{local}");
+    run(&["--record-times"]);
+    let recorded = std::fs::read_to_string(data.join("reproduce_times.csv")).unwrap();
+    let first = recorded.lines().next().unwrap();
+    assert!(
+        first.contains("`evhi reproduce fig2 --record-times`"),
+        "{first}"
+    );
+    assert!(recorded.contains("machine: "), "{recorded}");
+    // The git-ignored directory is the one this checkout ignores.
+    let ignore =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore")).unwrap();
+    assert!(ignore.lines().any(|l| l.trim() == "/data/local/"));
+}

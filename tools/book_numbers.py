@@ -126,6 +126,8 @@ def data_values(origin=None):
                     origin.setdefault(v, os.path.relpath(path, ROOT))
 
     for dirpath, _, files in os.walk(DATA):
+        if os.path.relpath(dirpath, DATA).split(os.sep)[0] == "local":
+            continue  # this machine's own timings, git-ignored: never a source
         for name in files:
             if name.endswith("_nodes.csv"):
                 continue
