@@ -301,6 +301,54 @@ fn stability_prop31_and_map() {
 }
 
 #[test]
+fn exact_solutions() {
+    snapshot_outputs_floor(
+        "exact",
+        &[
+            "exact_convergence.csv",
+            "exact_cea.csv",
+            "exact_crime.csv",
+            "exact_quadrature.csv",
+        ],
+        &["exact_convergence", "exact_cea", "exact_regimes"],
+        1e-11,
+    );
+}
+
+/// The quick study already shows order 1 for (b) on h = k (its last two orders in
+/// [0.8, 1.2]), and every regime of the law in the discrete solution of (b) at every
+/// level: no contact, the three branches and the limit.
+#[test]
+fn exact_orders_and_regimes_quick() {
+    use evhi::experiments::{col_f64, col_str, read_csv};
+    let c = ctx("exact-check");
+    run("exact", &c).unwrap();
+    let t = read_csv(&c.data.join("exact_convergence.csv")).unwrap();
+    let (sol, fam, order) = (
+        col_str(&t, "solution").unwrap(),
+        col_str(&t, "family").unwrap(),
+        col_f64(&t, "order_max").unwrap(),
+    );
+    let orders: Vec<f64> = (0..sol.len())
+        .filter(|&i| sol[i] == "regimes" && fam[i] == "h=k" && order[i].is_finite())
+        .map(|i| order[i])
+        .collect();
+    assert_eq!(orders.len(), 2);
+    assert!(orders.iter().all(|o| (0.8..=1.2).contains(o)), "{orders:?}");
+    let r = read_csv(&c.data.join("exact_regimes.csv")).unwrap();
+    let (sol, n) = (col_str(&r, "solution").unwrap(), col_f64(&r, "n").unwrap());
+    for level in [8.0, 16.0, 32.0] {
+        for regime in evhi::manufactured::run::REGIMES {
+            let count = col_f64(&r, regime).unwrap();
+            let seen =
+                (0..sol.len()).any(|i| sol[i] == "regimes" && n[i] == level && count[i] > 0.0);
+            assert!(seen, "(b) at n = {level} never has a node in {regime}");
+        }
+    }
+    std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
+}
+
+#[test]
 fn every_experiment_is_tested_here() {
     // whitespace removed, so formatting cannot hide a call
     let src: String = include_str!("experiments.rs").split_whitespace().collect();
@@ -328,6 +376,7 @@ fn progress_units_match_the_work_done() {
         "static",
         "example",
         "stability",
+        "exact",
     ] {
         let bar = indicatif::ProgressBar::with_draw_target(
             Some(0),

@@ -7,6 +7,7 @@
 //! snapshot; the full mode is what `evhi reproduce` runs.
 
 pub mod convergence;
+pub mod exact;
 pub mod example;
 pub mod fig2;
 pub mod forensics;
@@ -65,7 +66,7 @@ pub enum ExpError {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 13] = [
+pub const NAMES: [&str; 14] = [
     "hypotheses",
     "fig2",
     "loads",
@@ -79,12 +80,16 @@ pub const NAMES: [&str; 13] = [
     "static",
     "example",
     "stability",
+    "exact",
 ];
 
 /// The CSV tables the book shows, as Markdown renderings beside them: file, key
 /// columns repeated in every part, and the most columns of one part (so a part
 /// fits the page).
-pub const BOOK_TABLES: [(&str, usize, usize); 12] = [
+pub const BOOK_TABLES: [(&str, usize, usize); 15] = [
+    ("exact_convergence.csv", 4, 8),
+    ("exact_cea.csv", 3, 8),
+    ("exact_crime.csv", 2, 8),
     ("bench_scipy.csv", 1, 5),
     ("paths.csv", 2, 4),
     ("hypotheses.csv", 1, 5),
@@ -115,6 +120,7 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         "static" => singular::run(ctx),
         "example" => example::run(ctx),
         "stability" => stability::run(ctx),
+        "exact" => exact::run_study(ctx),
         other => Err(crate::error::InputError::field(
             "experiment",
             other,

@@ -1,0 +1,295 @@
+//! The exact-solution study's figures, drawn from its CSV tables: the errors of every
+//! family against the truth, the Céa terms of (b), and the regimes (b) visits.
+
+use crate::experiments::plot::{
+    Figure, both, circle_legend, dashed_legend, e2s, legend, regime_colour, regime_label,
+};
+use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::manufactured::run::REGIMES;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// A labelled, coloured series of points.
+type Series = (String, Vec<(f64, f64)>, RGBColor);
+
+/// A log–log chart of several series with slope guides.
+struct LogLog {
+    title: String,
+    x_desc: String,
+    y_desc: String,
+    series: Vec<Series>,
+    /// (slope, label) of each dashed guide, drawn through the first series' start.
+    guides: Vec<(f64, String)>,
+}
+
+impl Figure for LogLog {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let pts: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.1.iter().copied())
+            .collect();
+        let xmin = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+        let xmax = pts.iter().map(|p| p.0).fold(0.0, f64::max);
+        let ymin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        let ymax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+        let keys: Vec<f64> = (0..=10)
+            .map(|e| 2f64.powi(e))
+            .filter(|x| *x >= xmin && *x <= xmax)
+            .collect();
+        let (ylo, yhi) = (ymin / 3.0, ymax * 30.0);
+        let ykeys: Vec<f64> = (-16..=3)
+            .map(|e| 10f64.powi(e))
+            .filter(|&y| y >= ylo && y <= yhi)
+            .collect();
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 24))
+            .margin(15)
+            .x_label_area_size(60)
+            .y_label_area_size(90)
+            .build_cartesian_2d(
+                (xmin / 1.3..xmax * 1.3).log_scale().with_key_points(keys),
+                (ylo..yhi).log_scale().with_key_points(ykeys),
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc(self.x_desc.as_str())
+            .y_desc(self.y_desc.as_str())
+            .x_label_formatter(&|x| format!("{}", x.round()))
+            .y_label_formatter(&|y| format!("{y:e}"))
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(e2s)?;
+        for (label, s, c) in &self.series {
+            let c = *c;
+            chart
+                .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
+                .map_err(e2s)?;
+            chart
+                .draw_series(s.iter().map(|&p| Circle::new(p, 5, c.filled())))
+                .map_err(e2s)?
+                .label(label.clone())
+                .legend(move |xy| circle_legend(xy, 12, c.stroke_width(3), 5, c));
+        }
+        if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
+            const DASHES: [(i32, i32); 2] = [(14, 6), (4, 5)];
+            for (i, (slope, label)) in self.guides.iter().enumerate() {
+                let y0 = y0 * 0.4f64.powi(i as i32 + 1);
+                let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
+                let grey = RGBColor(50, 50, 50);
+                let (dash, gap) = DASHES[i % DASHES.len()];
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        pts,
+                        dash as u32,
+                        gap as u32,
+                        grey.stroke_width(2),
+                    ))
+                    .map_err(e2s)?
+                    .label(label.clone())
+                    .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
+            }
+        }
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.9)?;
+        Ok(())
+    }
+}
+
+/// Contact nodes per regime against time.
+struct Regimes {
+    title: String,
+    /// (regime, points (t, count)).
+    series: Vec<(String, Vec<(f64, f64)>)>,
+    nodes: f64,
+}
+
+impl Figure for Regimes {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 24))
+            .margin(15)
+            .x_label_area_size(55)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0.0..1.0, 0.0..self.nodes * 1.45)
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("t")
+            .y_desc("contact nodes")
+            .light_line_style(TRANSPARENT)
+            .y_label_formatter(&|y| format!("{y:.0}"))
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(e2s)?;
+        for (regime, pts) in &self.series {
+            let c = regime_colour(regime);
+            chart
+                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
+                .map_err(e2s)?
+                .label(regime_label(regime))
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
+                });
+        }
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.9)?;
+        Ok(())
+    }
+}
+
+const COLOURS: [(&str, &str, RGBColor); 8] = [
+    ("branch1", "h=k", RGBColor(0, 114, 178)),
+    ("regimes", "h=k", RGBColor(213, 94, 0)),
+    ("regimes", "h", RGBColor(230, 159, 0)),
+    ("regimes", "k", RGBColor(204, 121, 167)),
+    ("steady", "h", RGBColor(0, 158, 115)),
+    ("moving", "h=k", RGBColor(86, 180, 233)),
+    ("p1", "k", RGBColor(60, 60, 60)),
+    ("p1", "h", RGBColor(150, 150, 150)),
+];
+
+fn label_of(sol: &str) -> &'static str {
+    crate::manufactured::SOLUTIONS
+        .iter()
+        .find(|s| s.name() == sol)
+        .map_or("?", |s| s.label())
+}
+
+pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<(), ExpError> {
+    // Errors of every family.
+    let df = read_csv(conv)?;
+    let (sol, fam, n, steps, err) = (
+        col_str(&df, "solution")?,
+        col_str(&df, "family")?,
+        col_f64(&df, "n")?,
+        col_f64(&df, "steps")?,
+        col_f64(&df, "rel_err_max_percent")?,
+    );
+    let series = COLOURS
+        .iter()
+        .map(|&(s, f, c)| {
+            let rows: Vec<usize> = (0..sol.len())
+                .filter(|&i| sol[i] == s && fam[i] == f)
+                .collect();
+            let pts = rows
+                .iter()
+                .map(|&i| (if f == "k" { steps[i] } else { n[i] }, err[i]))
+                .collect::<Vec<_>>();
+            let first = rows.first().copied().unwrap_or(0);
+            let what = match f {
+                "h=k" => "h = k = 1/n".to_string(),
+                "h" if s == "steady" => "h = 1/n, static".to_string(),
+                "h" => format!("h = 1/n, N = {}", steps.get(first).copied().unwrap_or(0.0)),
+                _ => format!("k = 1/N, n = {}", n.get(first).copied().unwrap_or(0.0)),
+            };
+            (format!("{}: {what}", label_of(s)), pts, c)
+        })
+        .filter(|s| !s.1.is_empty())
+        .collect();
+    both(
+        &ctx.figures,
+        "exact_convergence",
+        (1000, 760),
+        &LogLog {
+            title: "Manufactured solutions: the error against the truth".into(),
+            x_desc: "n = 1/h (h = k and h families) or N = T/k (k families)".into(),
+            y_desc: "max over t_n of ||u - u_hk||_E / max ||u||_E (%)".into(),
+            series,
+            guides: vec![(1.0, "slope -1".into())],
+        },
+    )?;
+    // The Céa terms of (b), and R_n of (d).
+    let df = read_csv(cea)?;
+    let (sol, n) = (col_str(&df, "solution")?, col_f64(&df, "n")?);
+    let pick = |s: &str, col: &str| -> Result<Vec<(f64, f64)>, ExpError> {
+        let v = col_f64(&df, col)?;
+        Ok((0..sol.len())
+            .filter(|&i| sol[i] == s && v[i] > 0.0)
+            .map(|i| (n[i], v[i]))
+            .collect())
+    };
+    let series = vec![
+        (
+            "(b) max ||u_n - Πu_n||²_V".to_string(),
+            pick("regimes", "interp_max")?,
+            RGBColor(0, 114, 178),
+        ),
+        (
+            "(b) k Σ ||δ(u_n - Πu_n)||²_V".into(),
+            pick("regimes", "dinterp_sum")?,
+            RGBColor(230, 159, 0),
+        ),
+        (
+            "(b) k Σ ||u_nν - Πu_nν||_L²(Γ3)".into(),
+            pick("regimes", "gamma_sum")?,
+            RGBColor(0, 158, 115),
+        ),
+        (
+            "(b) k Σ ||δ_n||²_V".into(),
+            pick("regimes", "delta_sum")?,
+            RGBColor(204, 121, 167),
+        ),
+        (
+            "(d) k Σ |R_n(Πu_n)| ((b): 0)".into(),
+            pick("moving", "r_sum")?,
+            RGBColor(86, 180, 233),
+        ),
+        (
+            "(b) left side of (4.24)".into(),
+            pick("regimes", "lhs")?,
+            RGBColor(213, 94, 0),
+        ),
+    ];
+    both(
+        &ctx.figures,
+        "exact_cea",
+        (1000, 760),
+        &LogLog {
+            title: "The Céa inequality (4.16) term by term, h = k = 1/n".into(),
+            x_desc: "n = 1/h = 1/k".into(),
+            y_desc: "term".into(),
+            series,
+            guides: vec![(2.0, "slope -2 (h², k²)".into())],
+        },
+    )?;
+    // The regimes (b) visits, at the finest level up to 64.
+    let df = read_csv(regimes)?;
+    let (sol, n, t) = (
+        col_str(&df, "solution")?,
+        col_f64(&df, "n")?,
+        col_f64(&df, "t")?,
+    );
+    let level = (0..sol.len())
+        .filter(|&i| sol[i] == "regimes" && n[i] <= 64.0)
+        .map(|i| n[i])
+        .fold(0.0, f64::max);
+    let series = REGIMES
+        .iter()
+        .map(|r| -> Result<(String, Vec<(f64, f64)>), ExpError> {
+            let c = col_f64(&df, r)?;
+            let pts = (0..sol.len())
+                .filter(|&i| sol[i] == "regimes" && n[i] == level)
+                .map(|i| (t[i], c[i]))
+                .collect();
+            Ok((r.to_string(), pts))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    both(
+        &ctx.figures,
+        "exact_regimes",
+        (1000, 600),
+        &Regimes {
+            title: format!("(b): contact nodes per regime, h = k = 1/{level}"),
+            series,
+            nodes: level + 1.0,
+        },
+    )
+}

@@ -1,0 +1,350 @@
+//! The exact-solution study: Corollary 4.1 and the Céa inequality (4.16) observed
+//! against manufactured solutions ([`crate::manufactured`]), every error measured
+//! against the truth.
+//!
+//! For each solution and family of levels $(n, N)$, $h = 1/n$, $k = T/N$, the relative
+//! energy errors $\max_n\|u(t_n) - u^{hk}_n\|_E / \max_n\|u(t_n)\|_E$, at $t = T$, and in the
+//! discrete $L^2(0, T; E)$ norm, with observed orders $\log_2(e_{\text{coarse}}/e_{\text{fine}})$
+//! between successive levels (each halves $h$, $k$ or both), and the observed constant
+//! of (4.24): its left side in $\|\cdot\|_V$ over $h^2 + k^2$. For (b) and (d) on
+//! $h = k$: each term of the right side of (4.16) with its order; for (b) the same
+//! runs with the compliance integral computed exactly (the variational crime); the
+//! regime counts per step; the quadrature's own error.
+
+mod figure;
+
+use super::{Ctx, ExpError};
+use crate::manufactured::run::{ExactRun, REGIMES, Rule, run, run_rules};
+use crate::manufactured::{Data, Solution, load_vector};
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+
+/// One family of levels of one solution: (n, N) pairs.
+pub struct Family {
+    pub sol: Solution,
+    /// `h=k`, `h` ($N$ fixed) or `k` ($n$ fixed).
+    pub kind: &'static str,
+    pub levels: Vec<(usize, usize)>,
+}
+
+/// The families of the study.
+pub fn families(quick: bool) -> Vec<Family> {
+    use Solution::*;
+    let hk = |ns: &[usize]| ns.iter().map(|&n| (n, n)).collect::<Vec<_>>();
+    let h = |ns: &[usize], steps: usize| ns.iter().map(|&n| (n, steps)).collect::<Vec<_>>();
+    let k = |n: usize, ss: &[usize]| ss.iter().map(|&s| (n, s)).collect::<Vec<_>>();
+    let fam = |sol, kind, levels| Family { sol, kind, levels };
+    if quick {
+        let ns = [8, 16, 32];
+        vec![
+            fam(Branch1, "h=k", hk(&ns)),
+            fam(Regimes, "h=k", hk(&ns)),
+            fam(Regimes, "h", h(&ns, 32)),
+            fam(Regimes, "k", k(32, &[2, 4, 8])),
+            fam(Steady, "h", h(&[8, 16, 32, 64], 1)),
+            fam(Moving, "h=k", hk(&ns)),
+            fam(P1, "k", k(16, &[4, 8, 16, 32])),
+            fam(P1, "h", h(&ns, 16)),
+        ]
+    } else {
+        let ns = [8, 16, 32, 64, 128];
+        vec![
+            fam(Branch1, "h=k", hk(&ns)),
+            fam(Regimes, "h=k", hk(&ns)),
+            fam(Regimes, "h", h(&ns, 256)),
+            fam(Regimes, "k", k(256, &[4, 8, 16, 32])),
+            fam(Steady, "h", h(&[8, 16, 32, 64, 128, 256], 1)),
+            fam(Moving, "h=k", hk(&ns)),
+            fam(P1, "k", k(64, &[4, 8, 16, 32, 64, 128, 256, 512])),
+            fam(P1, "h", h(&ns, 64)),
+        ]
+    }
+}
+
+/// $\log_2(a / b)$ between successive levels (NaN for the first).
+fn orders(v: &[f64]) -> Vec<f64> {
+    (0..v.len())
+        .map(|i| {
+            if i == 0 {
+                f64::NAN
+            } else {
+                (v[i - 1] / v[i]).log2()
+            }
+        })
+        .collect()
+}
+
+/// The study's rows, kept to write its tables.
+struct Study {
+    /// (family index, run) in the order of [`families`].
+    runs: Vec<(usize, ExactRun)>,
+    /// (b) on h = k with the exact rule, and the nodal–exact distance per level.
+    crime: Vec<(ExactRun, f64)>,
+}
+
+pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
+    let scn = Scenario::load("literal")?;
+    if scn.g != crate::manufactured::G {
+        return Err(crate::error::InputError::field(
+            "g",
+            scn.g,
+            format!(
+                "the g = {} the manufactured solutions are built for",
+                crate::manufactured::G
+            ),
+        )
+        .into());
+    }
+    let fams = families(ctx.quick);
+    ctx.add_units(fams.iter().map(|f| f.levels.len()).sum());
+    let mut study = Study {
+        runs: vec![],
+        crime: vec![],
+    };
+    for (fi, fam) in fams.iter().enumerate() {
+        for &(n, steps) in &fam.levels {
+            // (b) on h = k also runs with the exact compliance integral, in lockstep.
+            if fam.sol == Solution::Regimes && fam.kind == "h=k" {
+                let (mut runs, diffs) =
+                    run_rules(fam.sol, &scn, n, steps, &[Rule::Nodal, Rule::Exact])?;
+                let exact = runs.pop().expect("two rules");
+                let nodal = runs.pop().expect("two rules");
+                let umax = nodal.rows.iter().map(|r| r.exact_e).fold(0.0, f64::max);
+                let dmax = diffs.iter().copied().fold(0.0, f64::max);
+                study.crime.push((exact, dmax / umax));
+                study.runs.push((fi, nodal));
+            } else {
+                study.runs.push((fi, run(fam.sol, &scn, n, steps)?));
+            }
+            ctx.log(&format!(
+                "exact {} {} n = {n}, N = {steps}",
+                fam.sol.name(),
+                fam.kind
+            ));
+        }
+    }
+    let conv = write_convergence(ctx, &fams, &study)?;
+    let cea = write_cea(ctx, &fams, &study)?;
+    write_crime(ctx, &fams, &study)?;
+    let regimes = write_regimes(ctx, &fams, &study)?;
+    write_quadrature(ctx, &scn)?;
+    figure::draw_all(ctx, &conv, &cea, &regimes)
+}
+
+const PARAMS: &str = "manufactured solutions of crate::manufactured on the paper's domain, supports, material (E = 1000, kappa = 0.4, alpha = 100, beta = 50), law (5.1) and g = 0.1, T = 1; loads derived from u (weak form, 7-point rule per triangle and 5-point Gauss per contact segment, cut where the data are piecewise); Newton with the full certificate every step";
+
+fn write_convergence(
+    ctx: &Ctx,
+    fams: &[Family],
+    s: &Study,
+) -> Result<std::path::PathBuf, ExpError> {
+    let mut t = Cols::default();
+    for (fi, fam) in fams.iter().enumerate() {
+        let runs: Vec<&ExactRun> = s.runs.iter().filter(|r| r.0 == fi).map(|r| &r.1).collect();
+        let max: Vec<f64> = runs.iter().map(|r| r.rel_max()).collect();
+        let fin: Vec<f64> = runs.iter().map(|r| r.rel_final()).collect();
+        let l2: Vec<f64> = runs.iter().map(|r| r.rel_l2()).collect();
+        let (om, of, ol) = (orders(&max), orders(&fin), orders(&l2));
+        for (i, r) in runs.iter().enumerate() {
+            t.s("solution", fam.sol.name());
+            t.s("family", fam.kind);
+            t.u("n", r.n);
+            t.u("steps", r.steps);
+            t.f("rel_err_max_percent", 100.0 * max[i]);
+            t.f("order_max", om[i]);
+            t.f("rel_err_T_percent", 100.0 * fin[i]);
+            t.f("order_T", of[i]);
+            t.f("rel_err_l2_percent", 100.0 * l2[i]);
+            t.f("order_l2", ol[i]);
+            t.f("lhs_over_h2_plus_k2", r.constant());
+            t.f("max_certificate", r.max_certificate());
+        }
+    }
+    let params = format!(
+        "{PARAMS}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column"
+    );
+    ctx.write("exact_convergence.csv", &t.table(), "exact", &params)
+}
+
+fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf, ExpError> {
+    let mut t = Cols::default();
+    const TERMS: [&str; 5] = [
+        "interp_max",
+        "dinterp_sum",
+        "gamma_sum",
+        "r_sum",
+        "delta_sum",
+    ];
+    for (fi, fam) in fams.iter().enumerate() {
+        if fam.kind != "h=k" || !matches!(fam.sol, Solution::Regimes | Solution::Moving) {
+            continue;
+        }
+        let runs: Vec<&ExactRun> = s.runs.iter().filter(|r| r.0 == fi).map(|r| &r.1).collect();
+        let terms: Vec<[f64; 5]> = runs.iter().map(|r| r.cea_terms()).collect();
+        let lhs: Vec<f64> = runs.iter().map(|r| r.lhs()).collect();
+        let per: Vec<Vec<f64>> = (0..5)
+            .map(|j| orders(&terms.iter().map(|x| x[j]).collect::<Vec<_>>()))
+            .collect();
+        let ol = orders(&lhs);
+        for (i, r) in runs.iter().enumerate() {
+            t.s("solution", fam.sol.name());
+            t.u("n", r.n);
+            t.u("steps", r.steps);
+            for (j, name) in TERMS.iter().enumerate() {
+                t.f(name, terms[i][j]);
+                t.f(&format!("order_{name}"), per[j][i]);
+            }
+            t.f("lhs", lhs[i]);
+            t.f("order_lhs", ol[i]);
+            t.f("lhs_over_h2_plus_k2", lhs[i] / (r.h * r.h + r.k * r.k));
+        }
+    }
+    let params = format!(
+        "{PARAMS}; the right side of (4.16) with v_n = Pi^h u_n (nodal interpolant), h = k = 1/n: interp_max = max_n ||u_n - Pi u_n||_V^2, dinterp_sum = k sum ||delta(u_n - Pi u_n)||_V^2, gamma_sum = k sum ||u_n,nu - Pi u_n,nu||_L2(Gamma3), r_sum = k sum |R_n(Pi u_n)|, delta_sum = k sum ||delta u_n - u'(t_n)||_V^2; predicted orders (4.20)-(4.23): 2 each (h^2 or k^2); lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, predicted 2"
+    );
+    ctx.write("exact_cea.csv", &t.table(), "exact", &params)
+}
+
+fn write_crime(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<(), ExpError> {
+    let fi = fams
+        .iter()
+        .position(|f| f.sol == Solution::Regimes && f.kind == "h=k")
+        .expect("the family (b) h=k");
+    let nodal: Vec<&ExactRun> = s.runs.iter().filter(|r| r.0 == fi).map(|r| &r.1).collect();
+    let crime: Vec<f64> = s.crime.iter().map(|c| c.1).collect();
+    let oc = orders(&crime);
+    let mut t = Cols::default();
+    for (i, (nod, (ex, c))) in nodal.iter().zip(&s.crime).enumerate() {
+        t.u("n", nod.n);
+        t.u("steps", nod.steps);
+        t.f("rel_err_nodal_percent", 100.0 * nod.rel_max());
+        t.f("rel_err_exact_percent", 100.0 * ex.rel_max());
+        t.f("crime_percent", 100.0 * c);
+        t.f("order_crime", oc[i]);
+        t.f("crime_share", c / nod.rel_max());
+        t.f("max_kkt_exact", ex.max_certificate());
+    }
+    let params = format!(
+        "{PARAMS}; solution (b) on h = k = 1/n, the same loads solved with the scheme's nodal (trapezoidal) compliance rule and with the exact integral of j(u_h) on Gamma_3 (crate::manufactured::exact_rule, projected Newton, KKT residual max_kkt_exact); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E; crime = max_n ||u_n(nodal) - u_n(exact)||_E / max_n ||u(t_n)||_E; crime_share = crime / rel_err_nodal"
+    );
+    ctx.write("exact_crime.csv", &t.table(), "exact", &params)?;
+    Ok(())
+}
+
+fn write_regimes(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf, ExpError> {
+    let mut t = Cols::default();
+    for (fi, fam) in fams.iter().enumerate() {
+        if fam.kind != "h=k" || !matches!(fam.sol, Solution::Regimes | Solution::Moving) {
+            continue;
+        }
+        for (_, r) in s.runs.iter().filter(|r| r.0 == fi) {
+            for row in &r.rows {
+                t.s("solution", fam.sol.name());
+                t.u("n", r.n);
+                t.u("steps", r.steps);
+                t.u("step", row.step);
+                t.f("t", row.t);
+                for (j, name) in REGIMES.iter().enumerate() {
+                    t.u(name, row.regimes[j]);
+                }
+                t.u("iterations", row.iterations);
+            }
+        }
+    }
+    let params = format!(
+        "{PARAMS}; solutions (b) and (d) on h = k = 1/n: the number of contact nodes (n + 1) in each regime of the discrete solution after every step, and Newton's iterations"
+    );
+    ctx.write("exact_regimes.csv", &t.table(), "exact", &params)
+}
+
+/// The quadrature's own error: the load vector of (b) at $t = 0.55$ (on the hold,
+/// the limit active) by the study's rules against the same rules on each
+/// triangle's 16 children and each contact segment's 4 quarters.
+fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
+    let (visc, elast) = (scn.viscosity(), scn.elasticity());
+    let data = Data {
+        sol: Solution::Regimes,
+        visc: Some(&visc),
+        elast: &elast,
+        law: &scn.law,
+        g: scn.g,
+    };
+    let levels: &[usize] = if ctx.quick {
+        &[8, 16, 32]
+    } else {
+        &[8, 16, 32, 64, 128]
+    };
+    let mut t = Cols::default();
+    for &n in levels {
+        let mesh = scn.mesh(n)?;
+        let dofs = crate::mesh::Dofs::new(&mesh, true);
+        let f = load_vector(&data, &mesh, &dofs, 0.55, 0);
+        let fine = load_vector(&data, &mesh, &dofs, 0.55, 2);
+        let num = f
+            .iter()
+            .zip(&fine)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let den = fine.iter().map(|b| b.abs()).fold(0.0, f64::max);
+        t.u("n", n);
+        t.f("t", 0.55);
+        t.f("load_rel_diff", num / den);
+    }
+    let params = format!(
+        "{PARAMS}; solution (b) at t = 0.55: load_rel_diff = ||F - F_fine||_inf / ||F_fine||_inf between the load vector by the study's rules and by the same rules on each triangle's 16 children (two midpoint refinements) and each contact segment's 4 quarters"
+    );
+    ctx.write("exact_quadrature.csv", &t.table(), "exact", &params)?;
+    Ok(())
+}
+
+/// Columns filled row by row.
+#[derive(Default)]
+struct Cols {
+    names: Vec<String>,
+    cols: Vec<Col>,
+}
+
+enum Col {
+    F(Vec<f64>),
+    U(Vec<u64>),
+    S(Vec<String>),
+}
+
+impl Cols {
+    fn slot(&mut self, name: &str, make: impl FnOnce() -> Col) -> &mut Col {
+        let i = match self.names.iter().position(|n| n == name) {
+            Some(i) => i,
+            None => {
+                self.names.push(name.to_string());
+                self.cols.push(make());
+                self.cols.len() - 1
+            }
+        };
+        &mut self.cols[i]
+    }
+    fn f(&mut self, name: &str, v: f64) {
+        if let Col::F(c) = self.slot(name, || Col::F(vec![])) {
+            c.push(v)
+        }
+    }
+    fn u(&mut self, name: &str, v: usize) {
+        if let Col::U(c) = self.slot(name, || Col::U(vec![])) {
+            c.push(v as u64)
+        }
+    }
+    fn s(&mut self, name: &str, v: &str) {
+        if let Col::S(c) = self.slot(name, || Col::S(vec![])) {
+            c.push(v.to_string())
+        }
+    }
+    fn table(self) -> Table {
+        self.names
+            .into_iter()
+            .zip(self.cols)
+            .fold(Table::new(), |t, (n, c)| match c {
+                Col::F(v) => t.f64(&n, v),
+                Col::U(v) => t.u64(&n, v),
+                Col::S(v) => t.str(&n, v),
+            })
+    }
+}

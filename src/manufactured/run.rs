@@ -1,0 +1,474 @@
+//! The scheme on a manufactured problem, and its error against the truth.
+//!
+//! The time loop is the scheme's own ([`crate::scheme::StepOperator`], Newton, the
+//! full certificate every step) with $b_n = Au_{n-1} + k\langle f(t_n), \cdot\rangle$ from
+//! [`super::load_vector`]. After each step, with $u_n = u(t_n)$, $\Pi^h$ the nodal
+//! interpolant and $e_n = u_n - u^{hk}_n$, one pass over the quadrature points gives
+//! - the errors $\|e_n\|_E = (\tfrac12(\mathcal G\varepsilon(e_n), \varepsilon(e_n)))^{1/2}$ and
+//!   $\|e_n\|_V = (\varepsilon(e_n), \varepsilon(e_n))^{1/2}$, and $\|u_n\|_E$;
+//! - the terms of the right side of the Céa inequality (4.16) with $v^h_n = \Pi^h u_n$:
+//!   $\|u_n - \Pi^h u_n\|^2_V$, $\|\delta(u_n - \Pi^h u_n)\|^2_V$, $\|u_{n,\nu} - \Pi^h u_{n,\nu}\|_{L^2(\Gamma_3)}$,
+//!   $|R_n(\Pi^h u_n)|$ and $\|\delta_n\|^2_V$, $\delta_n = \delta u_n - \dot u_n$, where
+//!   $\delta w_n = (w_n - w_{n-1})/k$.
+//!
+//! $R_n$ (4.18) needs no derivative: by the construction of the data,
+//! $\langle A\dot u_n + Bu_n + \iota^*\xi_n - f_n, v\rangle = -\int_{\Gamma_3}\lambda_n v_\nu$, so
+//! $R_n(v) = -\int_{\Gamma_3}\lambda_n (v_\nu - u_{n,\nu})\,ds + \Phi(v) - \Phi(u_n)$, and
+//! $\Phi(\Pi^h u_n) = 0$ because $\Pi^h u_{n,\nu} \le g$ at the nodes and is linear between.
+//!
+//! The static problem ([`Solution::is_static`]) is one step with $\mathcal C$ dropped and
+//! $k = 1$: $Bu + \iota^*\xi = f$ on $U^h$.
+
+use super::{Data, Solution, Strains, contract, energy_density, strains};
+use crate::assembly::SpMat;
+use crate::certificate::ContactState;
+use crate::mesh::Dofs;
+use crate::scenario::Scenario;
+use crate::scheme::{
+    CERTIFICATE_TOL, Discretisation, OrderingKind, RunError, StepOperator, Timings,
+};
+use crate::step::{Status, StepSolver, newton::Newton};
+
+use std::time::Instant;
+
+/// The regimes counted per step, in this order.
+pub const REGIMES: [&str; 5] = ["no_contact", "branch1", "branch2", "branch3", "limit"];
+
+/// One step's errors and Céa terms.
+#[derive(Debug, Clone, Default)]
+pub struct StepRow {
+    pub step: usize,
+    pub t: f64,
+    /// $\|e_n\|_E$ and $\|e_n\|^2_V$.
+    pub err_e: f64,
+    pub err_v_sq: f64,
+    /// $\|u_n\|_E$.
+    pub exact_e: f64,
+    /// $\|u_n - \Pi^h u_n\|^2_V$.
+    pub interp_v_sq: f64,
+    /// $\|\delta(u_n - \Pi^h u_n)\|^2_V$.
+    pub dinterp_v_sq: f64,
+    /// $\|u_{n,\nu} - \Pi^h u_{n,\nu}\|_{L^2(\Gamma_3)}$.
+    pub gamma_l2: f64,
+    /// $|R_n(\Pi^h u_n)|$.
+    pub r_n: f64,
+    /// $\|\delta_n\|^2_V$.
+    pub delta_v_sq: f64,
+    pub certificate: f64,
+    pub iterations: usize,
+    /// Contact nodes in each of [`REGIMES`].
+    pub regimes: [usize; 5],
+}
+
+/// A run against the exact solution.
+#[derive(Debug, Clone)]
+pub struct ExactRun {
+    pub sol: Solution,
+    pub n: usize,
+    pub steps: usize,
+    pub h: f64,
+    pub k: f64,
+    pub rows: Vec<StepRow>,
+    pub wall_s: f64,
+}
+
+impl ExactRun {
+    fn sum(&self, f: impl Fn(&StepRow) -> f64) -> f64 {
+        self.k * self.rows.iter().map(f).sum::<f64>()
+    }
+    fn max(&self, f: impl Fn(&StepRow) -> f64) -> f64 {
+        self.rows.iter().map(f).fold(0.0, f64::max)
+    }
+    /// $\max_n\|e_n\|_E / \max_n\|u_n\|_E$.
+    pub fn rel_max(&self) -> f64 {
+        self.max(|r| r.err_e) / self.max(|r| r.exact_e)
+    }
+    /// $\|e\|_E / \|u\|_E$ at $t = T$.
+    pub fn rel_final(&self) -> f64 {
+        let last = self.rows.last().expect("a step");
+        last.err_e / last.exact_e
+    }
+    /// The discrete $L^2(0, T; E)$ part: $(k\sum\|e_n\|^2_E)^{1/2} / (k\sum\|u_n\|^2_E)^{1/2}$.
+    pub fn rel_l2(&self) -> f64 {
+        (self.sum(|r| r.err_e * r.err_e) / self.sum(|r| r.exact_e * r.exact_e)).sqrt()
+    }
+    /// The left side of (4.24): $\max_n\|e_n\|^2_V + k\sum_n\|e_n\|^2_V$.
+    pub fn lhs(&self) -> f64 {
+        self.max(|r| r.err_v_sq) + self.sum(|r| r.err_v_sq)
+    }
+    /// The Céa terms of (4.16), in the order of the book's table:
+    /// $\max\|u_n - \Pi^h u_n\|^2_V$, $k\sum\|\delta(u_n - \Pi^h u_n)\|^2_V$,
+    /// $k\sum\|u_{n,\nu} - \Pi^h u_{n,\nu}\|_{L^2(\Gamma_3)}$, $k\sum|R_n|$, $k\sum\|\delta_n\|^2_V$.
+    pub fn cea_terms(&self) -> [f64; 5] {
+        [
+            self.max(|r| r.interp_v_sq),
+            self.sum(|r| r.dinterp_v_sq),
+            self.sum(|r| r.gamma_l2),
+            self.sum(|r| r.r_n),
+            self.sum(|r| r.delta_v_sq),
+        ]
+    }
+    /// The observed constant of (4.24): [`ExactRun::lhs`] over $h^2 + k^2$; for the
+    /// static problem (one solve, no time) $\|e\|^2_V / h^2$.
+    pub fn constant(&self) -> f64 {
+        if self.sol.is_static() {
+            self.max(|r| r.err_v_sq) / (self.h * self.h)
+        } else {
+            self.lhs() / (self.h * self.h + self.k * self.k)
+        }
+    }
+    pub fn max_certificate(&self) -> f64 {
+        self.max(|r| r.certificate)
+    }
+}
+
+/// A quadrature point of one step: its triangle, weight, and the exact strains at
+/// $t_n$ and $t_{n-1}$.
+struct Point {
+    tri: usize,
+    x: [f64; 2],
+    w: f64,
+    now: Strains,
+    prev: [f64; 3],
+}
+
+/// Strains of a P1 field (nodal values `v`) on triangle `p` with vertices `tri`.
+fn p1_strain(p: [[f64; 2]; 3], vals: [[f64; 2]; 3]) -> [f64; 3] {
+    let (_, bm) = crate::element::strain_matrix(p);
+    let mut e = [0.0; 3];
+    for a in 0..3 {
+        for c in 0..2 {
+            for (r, er) in e.iter_mut().enumerate() {
+                *er += bm[(r, 2 * a + c)] * vals[a][c];
+            }
+        }
+    }
+    e[2] *= 0.5; // the strain matrix's third row is 2 eps_12
+    e
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// How the scheme integrates the compliance term on $\Gamma_3$.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rule {
+    /// The scheme's nodal (trapezoidal) rule $\sum_i w_i\, j(u_{\nu,i})$, certified every step.
+    Nodal,
+    /// The exact integral of $j(u^h_\nu)$ ([`super::exact_rule`]).
+    Exact,
+}
+
+impl Rule {
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Nodal => "nodal",
+            Rule::Exact => "exact",
+        }
+    }
+}
+
+/// Runs the scheme on the manufactured problem of `sol` with the paper's geometry,
+/// supports, material and law from `scn`, on the mesh with `n` segments and `steps`
+/// time steps (one static solve for a static solution), and measures it.
+pub fn run(sol: Solution, scn: &Scenario, n: usize, steps: usize) -> Result<ExactRun, RunError> {
+    let (mut runs, _) = run_rules(sol, scn, n, steps, &[Rule::Nodal])?;
+    Ok(runs.remove(0))
+}
+
+/// [`run`] for several contact rules in lockstep on the same loads; also returns,
+/// per step, $\|u^{(0)}_n - u^{(1)}_n\|_E$ between the first two rules' solutions
+/// (empty for one rule).
+pub fn run_rules(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+    rules: &[Rule],
+) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
+    let clock = Instant::now();
+    let steps = if sol.is_static() { 1 } else { steps };
+    let mut disc = Discretisation::new(scn, n)?;
+    if sol.is_static() {
+        let zero = vec![0.0; disc.a.val().len()];
+        disc.a = SpMat::new(disc.a.symbolic().to_owned().expect("allocation"), zero);
+    }
+    let (visc, elast) = (scn.viscosity(), scn.elasticity());
+    let data = Data {
+        sol,
+        visc: (!sol.is_static()).then_some(&visc),
+        elast: &elast,
+        law: &scn.law,
+        g: scn.g,
+    };
+    let k = if sol.is_static() {
+        1.0
+    } else {
+        scn.t_end / steps as f64
+    };
+    let op = StepOperator::new(
+        &disc,
+        k,
+        OrderingKind::NestedDissection,
+        true,
+        scn.law.min_slope(),
+        &mut Timings::default(),
+    )?;
+    let mesh = disc.mesh.clone();
+    let m = op.kw.len();
+    let xs: Vec<f64> = mesh.contact.iter().map(|&c| mesh.nodes[c][0]).collect();
+    // Per rule: its solver, A u_{n-1}, the condensed unknowns, its rows.
+    let mut solvers: Vec<Box<dyn StepSolver>> = rules
+        .iter()
+        .map(|rule| -> Box<dyn StepSolver> {
+            match rule {
+                Rule::Nodal => Box::new(Newton::default()),
+                Rule::Exact => Box::new(super::exact_rule::ExactRule {
+                    x: xs.clone(),
+                    k,
+                    tol: 1e-11,
+                    max_iter: 100,
+                }),
+            }
+        })
+        .collect();
+    let mut au = vec![vec![0.0; disc.dofs.count]; rules.len()];
+    let mut r = vec![vec![0.0; m]; rules.len()];
+    let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
+    let mut diffs = vec![];
+    let mut nodal_prev: Vec<[f64; 2]> = vec![[0.0; 2]; mesh.nodes.len()];
+    // The previous step's points and strains at its t_n: its t_{n-1} strains here
+    // when the cuts, and so the points, are the same.
+    let mut last: Option<(Vec<f64>, Vec<Point>)> = None;
+    for step in 1..=steps {
+        let t = if sol.is_static() {
+            0.0
+        } else {
+            step as f64 * k
+        };
+        let t_prev = t - k;
+        let mut cuts = sol.cuts(t);
+        if !sol.is_static() {
+            cuts.extend(sol.cuts(t_prev));
+        }
+        let points = quadrature_points(sol, &mesh, &cuts, t, t_prev, last.take());
+        let f = load_from_points(&data, &mesh, &disc.dofs, &points, t);
+        let nodal: Vec<[f64; 2]> = mesh.nodes.iter().map(|p| sol.u(p[0], p[1], t)).collect();
+        let mut fields = vec![];
+        for (i, rule) in rules.iter().enumerate() {
+            let b: Vec<f64> = au[i].iter().zip(&f).map(|(a, f)| a + k * f).collect();
+            let mut one: [&mut dyn StepSolver; 1] = [solvers[i].as_mut()];
+            let (u, infos) = op.step(
+                std::slice::from_ref(&b),
+                std::slice::from_ref(scn),
+                &mut one,
+                std::slice::from_mut(&mut r[i]),
+                &mut Timings::default(),
+            );
+            let info = infos.into_iter().next().expect("one solve");
+            let (rec, states) = op.record(&u[0], &b, &mut au[i], scn, (step, t, 0.0), info);
+            // The nodal rule is certified on the full system; the exact rule, whose
+            // step is another problem, by its own KKT residual (the recovery of u
+            // from r is the same code as the nodal rule's).
+            let certificate = match rule {
+                Rule::Nodal => rec.certificate.max(),
+                Rule::Exact => rec.solver_residual,
+            };
+            if rec.status != Status::Converged
+                || certificate.is_nan()
+                || certificate > CERTIFICATE_TOL
+            {
+                return Err(RunError::Step {
+                    scenario: format!("manufactured {} ({} rule)", sol.name(), rule.name()),
+                    step,
+                    t,
+                    solver: solvers[i].name().into(),
+                    status: rec.status,
+                    iterations: rec.iterations,
+                    residual: rec.solver_residual,
+                    certificate,
+                    tol: CERTIFICATE_TOL,
+                });
+            }
+            let nodal_h = disc.dofs.expand(&u[0]);
+            let mut row = measure(
+                &data,
+                &mesh,
+                &points,
+                (t, k),
+                [&nodal, &nodal_prev, &nodal_h],
+            );
+            row.step = step;
+            row.t = t;
+            row.certificate = certificate;
+            row.iterations = rec.iterations;
+            row.regimes = count_regimes(&states, scn);
+            rows[i].push(row);
+            fields.push(u.into_iter().next().expect("one field"));
+        }
+        if fields.len() >= 2 {
+            let d: Vec<f64> = fields[0]
+                .iter()
+                .zip(&fields[1])
+                .map(|(a, b)| a - b)
+                .collect();
+            diffs.push(crate::norms::energy_norm(&disc.b, &d));
+        }
+        nodal_prev = nodal;
+        last = Some((cuts, points));
+    }
+    let wall_s = clock.elapsed().as_secs_f64();
+    let runs = rows
+        .into_iter()
+        .map(|rows| ExactRun {
+            sol,
+            n,
+            steps,
+            h: 1.0 / n as f64,
+            k,
+            rows,
+            wall_s,
+        })
+        .collect();
+    Ok((runs, diffs))
+}
+
+/// Contact nodes per regime of [`REGIMES`].
+fn count_regimes(states: &[ContactState], scn: &Scenario) -> [usize; 5] {
+    let mut out = [0; 5];
+    for s in states {
+        let name = s.regime(&scn.law, scn.g);
+        if let Some(i) = REGIMES.iter().position(|r| *r == name) {
+            out[i] += 1;
+        }
+    }
+    out
+}
+
+/// The quadrature points of a step on `mesh` cut at `cuts`, with the exact strains
+/// at $t$ and $t_{\rm prev}$; the previous step's points (with its `cuts`) give the
+/// latter without new evaluations when the cuts did not move. The evaluations run
+/// on two threads.
+fn quadrature_points(
+    sol: Solution,
+    mesh: &crate::mesh::Mesh,
+    cuts: &[f64],
+    t: f64,
+    t_prev: f64,
+    last: Option<(Vec<f64>, Vec<Point>)>,
+) -> Vec<Point> {
+    let mut points = Vec::with_capacity(7 * mesh.triangles.len());
+    for (i, tri) in mesh.triangles.iter().enumerate() {
+        let p = tri.map(|v| mesh.nodes[v]);
+        for (x, w) in crate::quadrature::triangle_points(p, cuts) {
+            let now = Strains::default();
+            points.push(Point {
+                tri: i,
+                x,
+                w,
+                now,
+                prev: [0.0; 3],
+            });
+        }
+    }
+    let reuse = last.filter(|(c, pts)| c.as_slice() == cuts && pts.len() == points.len());
+    let half = points.len().div_ceil(2).max(1);
+    std::thread::scope(|s| {
+        for (j, chunk) in points.chunks_mut(half).enumerate() {
+            let reuse = reuse.as_ref();
+            s.spawn(move || {
+                for (i, pt) in chunk.iter_mut().enumerate() {
+                    pt.now = strains(sol, pt.x[0], pt.x[1], t);
+                    pt.prev = if sol.is_static() {
+                        pt.now.eps
+                    } else if let Some((_, old)) = reuse {
+                        old[j * half + i].now.eps
+                    } else {
+                        strains(sol, pt.x[0], pt.x[1], t_prev).eps
+                    };
+                }
+            });
+        }
+    });
+    points
+}
+
+/// $\langle f(t), \varphi_i\rangle$ as [`super::load_vector`] computes it, from the
+/// strains already at the points.
+fn load_from_points(
+    data: &Data,
+    mesh: &crate::mesh::Mesh,
+    dofs: &Dofs,
+    points: &[Point],
+    t: f64,
+) -> Vec<f64> {
+    let mut out = vec![0.0; dofs.count];
+    let mut s = vec![[0.0; 3]; mesh.triangles.len()];
+    for pt in points {
+        let sig = super::stress(&pt.now, data.visc, data.elast);
+        (0..3).for_each(|c| s[pt.tri][c] += pt.w * sig[c]);
+    }
+    for (tri, s) in mesh.triangles.iter().zip(&s) {
+        super::add_element_load(mesh, dofs, tri, s, &mut out);
+    }
+    super::add_contact_load(data, mesh, dofs, t, 0, &mut out);
+    out
+}
+
+/// The errors and Céa terms of one step (see the module header) from the step's
+/// quadrature points; `nodal` holds $u(t_n)$, $u(t_{n-1})$ at the nodes and the
+/// discrete $u_n$.
+fn measure(
+    data: &Data,
+    mesh: &crate::mesh::Mesh,
+    points: &[Point],
+    (t, k): (f64, f64),
+    [nodal, nodal_prev, nodal_h]: [&[[f64; 2]]; 3],
+) -> StepRow {
+    let sol = data.sol;
+    let mut row = StepRow::default();
+    let (mut err_e_sq, mut exact_e_sq) = (0.0, 0.0);
+    let mut last = usize::MAX;
+    let (mut eh, mut ei, mut ei_prev) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    for pt in points {
+        if pt.tri != last {
+            last = pt.tri;
+            let tri = mesh.triangles[pt.tri];
+            let p = tri.map(|v| mesh.nodes[v]);
+            eh = p1_strain(p, tri.map(|v| nodal_h[v]));
+            ei = p1_strain(p, tri.map(|v| nodal[v]));
+            ei_prev = p1_strain(p, tri.map(|v| nodal_prev[v]));
+        }
+        let e = sub(pt.now.eps, eh);
+        err_e_sq += pt.w * energy_density(data.elast, e);
+        row.err_v_sq += pt.w * contract(e);
+        exact_e_sq += pt.w * energy_density(data.elast, pt.now.eps);
+        row.interp_v_sq += pt.w * contract(sub(pt.now.eps, ei));
+        if !sol.is_static() {
+            let du = sub(pt.now.eps, pt.prev);
+            let dpi = sub(ei, ei_prev);
+            let d = sub(du, dpi).map(|x| x / k);
+            row.dinterp_v_sq += pt.w * contract(d);
+            let dn = sub(du.map(|x| x / k), pt.now.eps_dot);
+            row.delta_v_sq += pt.w * contract(dn);
+        }
+    }
+    row.err_e = err_e_sq.max(0.0).sqrt();
+    row.exact_e = exact_e_sq.max(0.0).sqrt();
+    // Gamma_3: the interpolation error of u_nu and R_n(Pi u_n) = -int lambda (Pi u_nu - u_nu).
+    let (mut gamma_sq, mut r_n) = (0.0, 0.0);
+    for w in mesh.contact.windows(2) {
+        let (xa, xb) = (mesh.nodes[w[0]][0], mesh.nodes[w[1]][0]);
+        let (ya, yb) = (-nodal[w[0]][1], -nodal[w[1]][1]);
+        let pi = |x: f64| ya + (yb - ya) * (x - xa) / (xb - xa);
+        let cut = sol.cuts(t);
+        gamma_sq += crate::quadrature::segment(xa, xb, &cut, |x| (data.u_nu(x, t) - pi(x)).powi(2));
+        r_n -= crate::quadrature::segment(xa, xb, &cut, |x| {
+            sol.reaction(x, t) * (pi(x) - data.u_nu(x, t))
+        });
+    }
+    row.gamma_l2 = gamma_sq.sqrt();
+    row.r_n = r_n.abs();
+    row
+}

@@ -1,0 +1,231 @@
+//! The four exact solutions of the study, each one small function $u(x, y, t)$ on
+//! the paper's domain, generic over the scalar so that hyper-dual numbers give its
+//! derivatives exactly. With $\nu = (0, -1)$ on $\Gamma_3$, $u_\nu = -u_y(x, 0, t)$.
+//!
+//! Shared pieces ($S(s) = 3s^2 - 2s^3$ on $[0, 1]$, $0$ below, $1$ above, is $C^1$):
+//! - $\eta(y) = (1 - 2y)^2$ for $y < 1/2$, $0$ above: $u_y$ vanishes on the upper half,
+//!   so $u = 0$ on $\Gamma_1 = \{0, 2\}\times[1/2, 1]$; $\eta \in C^1$, so $u \in H^2$.
+//! - $u_x = \rho(t)\,A \sin(\pi x)\,(1 + y)/2$ with $A = 0.02$: zero at $x \in \{0, 2\}$,
+//!   and it loads the top and the sides as well.
+//!
+//! (a) `branch1`: $\rho(t) = S(t)$, $u_\nu = \rho(t)\,(0.04 - 0.01 (x-1)^2) \in [0, 0.04]$:
+//!     the first branch of the law only ($u_1 = 0.05$), no limit.
+//! (b) `regimes`: $\rho(t) = S(t/0.4) - \tfrac12 S((t - 0.7)/0.3)$ (rise, hold on $[0.4, 0.7]$,
+//!     fall to $\tfrac12$), $u_\nu = \rho(t)\,w(x)$ with $w = g - G_0\,(d/L)^2$,
+//!     $d = (|x - 1| - R)_+$, $R = 0.25$, $L = 0.75$, $G_0 = 0.16$: on the hold the
+//!     plateau $[0.75, 1.25]$ sits at $g$, and outward $u_\nu$ falls through branch 3,
+//!     the softening branch 2, branch 1 and below 0. The reaction
+//!     $\lambda = \Lambda\,\mu(t)\,(1 - ((x-1)/R)^2)^2$ on the plateau, $\mu = \sin^2(\pi (t - 0.4)/0.3)$
+//!     on the hold, $\Lambda = 20$, is $\ge 0$ exactly where $u_\nu = g$. $w \in C^1$ with
+//!     kinks of $w''$ at the fixed points $1 \pm R$: $u_\nu \in H^2(\Gamma_3)$, (4.14)–(4.15) hold.
+//! (c) `steady`: $u = (0, -\delta\,\eta(y))$, $\delta = 0.06$, time-independent, solved as the
+//!     static problem ($\mathcal C$ dropped): $u_\nu = \delta$ on all of $\Gamma_3$, on the
+//!     softening branch, $p(\delta) = 200\cdot 0.05 - 100\cdot 0.01 = 9$.
+//! (d) `moving`: (b) with the plateau's half-width $R(t) = 0.25 + 0.1\,S((t - 0.4)/0.3)$
+//!     growing on the hold: the contact zone's ends move with $t$ and cross mesh cells.
+//! (e) `p1`: $\rho(t)$ of (b) times $\Pi_4 v$, the P1 interpolant on the coarsest mesh
+//!     ($n = 4$) of $v = (A\sin(\pi x)(1+y)/2,\; -0.8\,w(x)\,\eta(y))$. It lies in every
+//!     $V^h$ of the nested family, so its space error is the nodal contact rule's alone
+//!     and its $k$ family shows the time error by itself; $u_\nu \le 0.08 < g$.
+
+use super::Scalar;
+
+/// The unilateral limit every solution is built for (the shipped scenarios' $g$).
+pub const G: f64 = 0.1;
+
+/// Which exact solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Solution {
+    /// (a) the first branch of the law only.
+    Branch1,
+    /// (b) every regime of the law, the limit on a fixed set for part of the time.
+    Regimes,
+    /// (c) a time-independent solution of the static problem, checkable by hand.
+    Steady,
+    /// (d) (b) with contact-zone ends that move with $t$.
+    Moving,
+    /// (e) (b)'s time profile on a field of the coarsest mesh's P1 space.
+    P1,
+}
+
+/// The solutions, in the book's order.
+pub const SOLUTIONS: [Solution; 5] = [
+    Solution::Branch1,
+    Solution::Regimes,
+    Solution::Steady,
+    Solution::Moving,
+    Solution::P1,
+];
+
+const A: f64 = 0.02;
+const G0: f64 = 0.16;
+const L: f64 = 0.75;
+const R0: f64 = 0.25;
+const LAMBDA: f64 = 20.0;
+const DELTA: f64 = 0.06;
+/// The hold $[T_1, T_2]$ of (b) and (d).
+const T1: f64 = 0.4;
+const T2: f64 = 0.7;
+
+fn c<D: Scalar>(v: f64) -> D {
+    D::from(v)
+}
+
+/// $S(s) = 3s^2 - 2s^3$ on $[0, 1]$, constant outside.
+fn smoothstep<D: Scalar>(s: D) -> D {
+    if s.re() <= 0.0 {
+        c(0.0)
+    } else if s.re() >= 1.0 {
+        c(1.0)
+    } else {
+        s * s * (c::<D>(3.0) - s * 2.0)
+    }
+}
+
+/// $\eta(y) = (1 - 2y)^2$ below $y = 1/2$, zero above.
+fn eta<D: Scalar>(y: D) -> D {
+    if y.re() >= 0.5 {
+        c(0.0)
+    } else {
+        let s = c::<D>(1.0) - y * 2.0;
+        s * s
+    }
+}
+
+/// $(|x - 1| - R)_+$.
+fn dist<D: Scalar>(x: D, r: D) -> D {
+    let d = (x - 1.0).abs() - r;
+    if d.re() <= 0.0 { c(0.0) } else { d }
+}
+
+/// The P1 interpolant on the $n = 4$ mesh (cells of side $1/2$, cut lower-left to
+/// upper-right) of $(A\sin(\pi x)(1+y)/2,\; -0.8\,w(x)\,\eta(y))$ with (b)'s $w$.
+fn coarse_p1<D: Scalar>(x: D, y: D) -> [D; 2] {
+    let node = |i: usize, j: usize| -> [f64; 2] {
+        let (xn, yn) = (0.5 * i as f64, 0.5 * j as f64);
+        let d = ((xn - 1.0).abs() - R0).max(0.0) / L;
+        let w = G - G0 * d * d;
+        [
+            A / 2.0 * (std::f64::consts::PI * xn).sin() * (1.0 + yn),
+            -0.8 * w * eta(yn),
+        ]
+    };
+    let (i, j) = (
+        ((x.re() / 0.5).floor() as usize).min(3),
+        ((y.re() / 0.5).floor() as usize).min(1),
+    );
+    let (xi, zeta) = ((x - 0.5 * i as f64) * 2.0, (y - 0.5 * j as f64) * 2.0);
+    let (ll, lr, ur, ul) = (
+        node(i, j),
+        node(i + 1, j),
+        node(i + 1, j + 1),
+        node(i, j + 1),
+    );
+    std::array::from_fn(|c| {
+        if zeta.re() <= xi.re() {
+            xi * (lr[c] - ll[c]) + zeta * (ur[c] - lr[c]) + ll[c]
+        } else {
+            xi * (ur[c] - ul[c]) + zeta * (ul[c] - ll[c]) + ll[c]
+        }
+    })
+}
+
+impl Solution {
+    /// The name in tables and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Solution::Branch1 => "branch1",
+            Solution::Regimes => "regimes",
+            Solution::Steady => "steady",
+            Solution::Moving => "moving",
+            Solution::P1 => "p1",
+        }
+    }
+
+    /// The book's label.
+    pub fn label(self) -> &'static str {
+        match self {
+            Solution::Branch1 => "(a) first branch only",
+            Solution::Regimes => "(b) every regime, fixed zone",
+            Solution::Steady => "(c) steady, static problem",
+            Solution::Moving => "(d) moving zone ends",
+            Solution::P1 => "(e) P1 in space",
+        }
+    }
+
+    /// Solved as the static problem $Bu + \iota^*\xi = f$ (one solve, no viscosity).
+    pub fn is_static(self) -> bool {
+        self == Solution::Steady
+    }
+
+    /// The load factor $\rho(t)$ of (a), (b), (d).
+    fn rho<D: Scalar>(self, t: D) -> D {
+        match self {
+            Solution::Branch1 => smoothstep(t),
+            Solution::Regimes | Solution::Moving | Solution::P1 => {
+                smoothstep(t / T1) - smoothstep((t - T2) / (1.0 - T2)) * 0.5
+            }
+            Solution::Steady => c(1.0),
+        }
+    }
+
+    /// The half-width $R(t)$ of the plateau where $u_\nu = g$ on the hold.
+    fn half_width<D: Scalar>(self, t: D) -> D {
+        match self {
+            Solution::Moving => c::<D>(R0) + smoothstep((t - T1) / (T2 - T1)) * 0.1,
+            _ => c(R0),
+        }
+    }
+
+    // ANCHOR: u
+    /// The exact displacement $u(x, y, t)$.
+    pub fn u<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
+        let ux = self.rho(t) * (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
+        let u_nu = match self {
+            Solution::Branch1 => {
+                let s = x - 1.0;
+                self.rho(t) * (c::<D>(0.04) - s * s * 0.01)
+            }
+            Solution::Regimes | Solution::Moving => {
+                let d = dist(x, self.half_width(t)) / L;
+                self.rho(t) * (c::<D>(G) - d * d * G0)
+            }
+            Solution::Steady => return [c(0.0), -eta(y) * DELTA],
+            Solution::P1 => {
+                let v = coarse_p1(x, y);
+                return [self.rho(t) * v[0], self.rho(t) * v[1]];
+            }
+        };
+        [ux, -u_nu * eta(y)]
+    }
+    // ANCHOR_END: u
+
+    /// The unilateral reaction $\lambda = -\sigma^2_\nu \ge 0$ on $\Gamma_3$: positive
+    /// only where $u_\nu = g$.
+    pub fn reaction(self, x: f64, t: f64) -> f64 {
+        match self {
+            Solution::Regimes | Solution::Moving if (T1..=T2).contains(&t) => {
+                let r = self.half_width(t);
+                let s = (x - 1.0) / r;
+                if s.abs() >= 1.0 {
+                    return 0.0;
+                }
+                let mu = (std::f64::consts::PI * (t - T1) / (T2 - T1)).sin().powi(2);
+                LAMBDA * mu * (1.0 - s * s).powi(2)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// The vertical lines $x = c$ across which $u(\cdot, t)$ is smooth only
+    /// piecewise (quadrature cuts there): the plateau's ends.
+    pub fn cuts(self, t: f64) -> Vec<f64> {
+        match self {
+            Solution::Regimes | Solution::Moving => {
+                let r = self.half_width(t);
+                vec![1.0 - r, 1.0 + r]
+            }
+            _ => vec![],
+        }
+    }
+}
