@@ -34,7 +34,7 @@
 pub mod exact_rule;
 mod solutions;
 
-pub use solutions::{G, SOLUTIONS, Solution};
+pub use solutions::{G, SOLUTIONS, Solution, parameters};
 
 use crate::law::Law;
 use crate::material::Isotropic;

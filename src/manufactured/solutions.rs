@@ -58,6 +58,13 @@ pub const SOLUTIONS: [Solution; 5] = [
 ];
 
 const A: f64 = 0.02;
+/// (a): $u_\nu = \rho(t)\,(B_0 - B_2 (x - 1)^2)$.
+const B0: f64 = 0.04;
+const B2: f64 = 0.01;
+/// (d): the growth of the plateau's half-width over the hold.
+const GROW: f64 = 0.1;
+/// (e): the scale of (b)'s $w$.
+const P1_SCALE: f64 = 0.8;
 const G0: f64 = 0.16;
 const L: f64 = 0.75;
 const R0: f64 = 0.25;
@@ -107,7 +114,7 @@ fn coarse_p1<D: Scalar>(x: D, y: D) -> [D; 2] {
         let w = G - G0 * d * d;
         [
             A / 2.0 * (std::f64::consts::PI * xn).sin() * (1.0 + yn),
-            -0.8 * w * eta(yn),
+            -P1_SCALE * w * eta(yn),
         ]
     };
     let (i, j) = (
@@ -128,6 +135,26 @@ fn coarse_p1<D: Scalar>(x: D, y: D) -> [D; 2] {
             xi * (ur[c] - ul[c]) + zeta * (ul[c] - ll[c]) + ll[c]
         }
     })
+}
+
+/// The constants of the solutions, written into the study's tables.
+pub fn parameters() -> String {
+    format!(
+        "the solutions' constants: A = {A} (u_x = rho A sin(pi x) (1 + y)/2), eta = (1 - 2y)^2 below y = 0.5; \
+         (a) rho = S(t), u_nu = rho ({B0} - {B2} (x - 1)^2); \
+         (b) rho = S(t/{T1}) - S((t - {T2})/{:.1})/2, u_nu = rho (g - G0 (d/L)^2), d = (|x - 1| - R)_+, R = {R0}, L = {L}, G0 = {G0}, \
+         w(0) = {:.2}, plateau [{}, {}], reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) (1 - ((x - 1)/R)^2)^2 on the hold; \
+         (c) u = (0, -delta eta), delta = {DELTA}, p(delta) = {}; \
+         (d) R(t) = {R0} + {GROW} S((t - {T1})/{:.1}); \
+         (e) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -{P1_SCALE} w eta)",
+        1.0 - T2,
+        G - G0,
+        1.0 - R0,
+        1.0 + R0,
+        T2 - T1,
+        crate::law::paper_law().p(DELTA),
+        T2 - T1,
+    )
 }
 
 impl Solution {
@@ -172,7 +199,7 @@ impl Solution {
     /// The half-width $R(t)$ of the plateau where $u_\nu = g$ on the hold.
     fn half_width<D: Scalar>(self, t: D) -> D {
         match self {
-            Solution::Moving => c::<D>(R0) + smoothstep((t - T1) / (T2 - T1)) * 0.1,
+            Solution::Moving => c::<D>(R0) + smoothstep((t - T1) / (T2 - T1)) * GROW,
             _ => c(R0),
         }
     }
@@ -184,7 +211,7 @@ impl Solution {
         let u_nu = match self {
             Solution::Branch1 => {
                 let s = x - 1.0;
-                self.rho(t) * (c::<D>(0.04) - s * s * 0.01)
+                self.rho(t) * (c::<D>(B0) - s * s * B2)
             }
             Solution::Regimes | Solution::Moving => {
                 let d = dist(x, self.half_width(t)) / L;

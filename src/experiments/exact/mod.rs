@@ -131,6 +131,11 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     figure::draw_all(ctx, &conv, &cea, &regimes)
 }
 
+/// The provenance every table of the study shares.
+fn params() -> String {
+    format!("{PARAMS}; {}", crate::manufactured::parameters())
+}
+
 const PARAMS: &str = "manufactured solutions of crate::manufactured on the paper's domain, supports, material (E = 1000, kappa = 0.4, alpha = 100, beta = 50), law (5.1) and g = 0.1, T = 1; loads derived from u (weak form, 7-point rule per triangle and 5-point Gauss per contact segment, cut where the data are piecewise); Newton with the full certificate every step";
 
 fn write_convergence(
@@ -161,7 +166,8 @@ fn write_convergence(
         }
     }
     let params = format!(
-        "{PARAMS}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column"
+        "{}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column",
+        params()
     );
     ctx.write("exact_convergence.csv", &t.table(), "exact", &params)
 }
@@ -200,7 +206,8 @@ fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf
         }
     }
     let params = format!(
-        "{PARAMS}; the right side of (4.16) with v_n = Pi^h u_n (nodal interpolant), h = k = 1/n: interp_max = max_n ||u_n - Pi u_n||_V^2, dinterp_sum = k sum ||delta(u_n - Pi u_n)||_V^2, gamma_sum = k sum ||u_n,nu - Pi u_n,nu||_L2(Gamma3), r_sum = k sum |R_n(Pi u_n)|, delta_sum = k sum ||delta u_n - u'(t_n)||_V^2; predicted orders (4.20)-(4.23): 2 each (h^2 or k^2); lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, predicted 2"
+        "{}; the right side of (4.16) with v_n = Pi^h u_n (nodal interpolant), h = k = 1/n: interp_max = max_n ||u_n - Pi u_n||_V^2, dinterp_sum = k sum ||delta(u_n - Pi u_n)||_V^2, gamma_sum = k sum ||u_n,nu - Pi u_n,nu||_L2(Gamma3), r_sum = k sum |R_n(Pi u_n)|, delta_sum = k sum ||delta u_n - u'(t_n)||_V^2; predicted orders (4.20)-(4.23): 2 each (h^2 or k^2); lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, predicted 2",
+        params()
     );
     ctx.write("exact_cea.csv", &t.table(), "exact", &params)
 }
@@ -225,7 +232,8 @@ fn write_crime(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<(), ExpError> {
         t.f("max_kkt_exact", ex.max_certificate());
     }
     let params = format!(
-        "{PARAMS}; solution (b) on h = k = 1/n, the same loads solved with the scheme's nodal (trapezoidal) compliance rule and with the exact integral of j(u_h) on Gamma_3 (crate::manufactured::exact_rule, projected Newton, KKT residual max_kkt_exact); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E; crime = max_n ||u_n(nodal) - u_n(exact)||_E / max_n ||u(t_n)||_E; crime_share = crime / rel_err_nodal"
+        "{}; solution (b) on h = k = 1/n, the same loads solved with the scheme's nodal (trapezoidal) compliance rule and with the exact integral of j(u_h) on Gamma_3 (crate::manufactured::exact_rule, projected Newton, KKT residual max_kkt_exact); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E; crime = max_n ||u_n(nodal) - u_n(exact)||_E / max_n ||u(t_n)||_E; crime_share = crime / rel_err_nodal",
+        params()
     );
     ctx.write("exact_crime.csv", &t.table(), "exact", &params)?;
     Ok(())
@@ -252,7 +260,8 @@ fn write_regimes(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::Pat
         }
     }
     let params = format!(
-        "{PARAMS}; solutions (b) and (d) on h = k = 1/n: the number of contact nodes (n + 1) in each regime of the discrete solution after every step, and Newton's iterations"
+        "{}; solutions (b) and (d) on h = k = 1/n: the number of contact nodes (n + 1) in each regime of the discrete solution after every step, and Newton's iterations",
+        params()
     );
     ctx.write("exact_regimes.csv", &t.table(), "exact", &params)
 }
@@ -291,7 +300,8 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         t.f("load_rel_diff", num / den);
     }
     let params = format!(
-        "{PARAMS}; solution (b) at t = 0.55: load_rel_diff = ||F - F_fine||_inf / ||F_fine||_inf between the load vector by the study's rules and by the same rules on each triangle's 16 children (two midpoint refinements) and each contact segment's 4 quarters"
+        "{}; solution (b) at t = 0.55: load_rel_diff = ||F - F_fine||_inf / ||F_fine||_inf between the load vector by the study's rules and by the same rules on each triangle's 16 children (two midpoint refinements) and each contact segment's 4 quarters",
+        params()
     );
     ctx.write("exact_quadrature.csv", &t.table(), "exact", &params)?;
     Ok(())

@@ -1,0 +1,310 @@
+//! The book's claims about `data/` are tests. A sentence that states an order, a range,
+//! a comparison or a cause measured in `data/` carries `<!-- claim: NAME -->`, and the test
+//! `NAME` here reads the CSV and asserts what the sentence says; a rerun that moves the
+//! data cannot leave the sentence silently false. The last test checks the pairing:
+//! every marker has its test and every test its marker.
+
+use std::collections::{BTreeSet, HashMap};
+use std::path::Path;
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The rows of `data/<file>` as maps from column to text (provenance lines skipped).
+fn rows(file: &str) -> Vec<HashMap<String, String>> {
+    let path = root().join("data").join(file);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<String> = lines
+        .next()
+        .expect("a header")
+        .split(',')
+        .map(String::from)
+        .collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(row: &HashMap<String, String>, col: &str) -> f64 {
+    row.get(col)
+        .unwrap_or_else(|| panic!("no column {col}"))
+        .parse()
+        .unwrap_or_else(|e| panic!("{col}: {e}"))
+}
+
+/// The values of `col` in `file` over the rows whose `key` columns have the given values.
+fn column(file: &str, keys: &[(&str, &str)], col: &str) -> Vec<f64> {
+    rows(file)
+        .iter()
+        .filter(|r| keys.iter().all(|(k, v)| r[*k] == *v))
+        .map(|r| num(r, col))
+        .collect()
+}
+
+fn last<const N: usize>(v: &[f64]) -> [f64; N] {
+    v[v.len() - N..].try_into().expect("enough levels")
+}
+
+// ---- Chapter "Exact solutions" (exact.md) ----
+
+#[test]
+fn exact_quadrature_far_below() {
+    let diff = column("exact_quadrature.csv", &[], "load_rel_diff");
+    let err = column(
+        "exact_convergence.csv",
+        &[("solution", "regimes"), ("family", "h=k")],
+        "rel_err_max_percent",
+    );
+    assert_eq!(diff.len(), err.len());
+    for (d, e) in diff.iter().zip(&err) {
+        assert!(*d < 1e-6 * e / 100.0, "quadrature {d} against error {e} %");
+    }
+}
+
+#[test]
+fn exact_regimes_all_visited() {
+    let data = rows("exact_regimes.csv");
+    let levels: BTreeSet<String> = data
+        .iter()
+        .filter(|r| r["solution"] == "regimes")
+        .map(|r| r["n"].clone())
+        .collect();
+    assert!(levels.len() >= 3);
+    for n in &levels {
+        for regime in evhi::manufactured::run::REGIMES {
+            assert!(
+                data.iter()
+                    .any(|r| r["solution"] == "regimes" && &r["n"] == n && num(r, regime) > 0.0),
+                "(b) at n = {n} never visits {regime}"
+            );
+        }
+    }
+}
+
+#[test]
+fn exact_hk_order_b() {
+    let o = column(
+        "exact_convergence.csv",
+        &[("solution", "regimes"), ("family", "h=k")],
+        "order_max",
+    );
+    let tail: [f64; 3] = last(&o);
+    assert!(tail.iter().all(|o| (0.9..=1.15).contains(o)), "{tail:?}");
+}
+
+#[test]
+fn exact_constant_bounded() {
+    let c = column(
+        "exact_convergence.csv",
+        &[("solution", "regimes"), ("family", "h=k")],
+        "lhs_over_h2_plus_k2",
+    );
+    let (lo, hi) = c
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    assert!(hi / lo < 1.5, "{c:?}");
+    let [a, b]: [f64; 2] = last(&c);
+    assert!((b - a).abs() < 0.02 * b, "not settled: {c:?}");
+}
+
+#[test]
+fn exact_branch1_order() {
+    let o = column(
+        "exact_convergence.csv",
+        &[("solution", "branch1"), ("family", "h=k")],
+        "order_max",
+    );
+    assert!(o[1..].iter().all(|&x| x > 0.96 && x <= 1.0), "{o:?}");
+}
+
+#[test]
+fn exact_steady_order() {
+    let o = column(
+        "exact_convergence.csv",
+        &[("solution", "steady")],
+        "order_max",
+    );
+    let n = column("exact_convergence.csv", &[("solution", "steady")], "n");
+    assert_eq!(n.last(), Some(&256.0));
+    assert!(o[1..].iter().all(|&x| x > 0.97 && x <= 1.0), "{o:?}");
+}
+
+#[test]
+fn exact_a_under_c() {
+    let a = column(
+        "exact_convergence.csv",
+        &[("solution", "branch1")],
+        "rel_err_max_percent",
+    );
+    let c = column(
+        "exact_convergence.csv",
+        &[("solution", "steady")],
+        "rel_err_max_percent",
+    );
+    for (x, y) in a.iter().zip(&c) {
+        assert!((x - y).abs() < 0.01 * y, "{x} {y}");
+    }
+}
+
+#[test]
+fn exact_h_family_as_hk() {
+    let h = column(
+        "exact_convergence.csv",
+        &[("solution", "regimes"), ("family", "h")],
+        "order_max",
+    );
+    let hk = column(
+        "exact_convergence.csv",
+        &[("solution", "regimes"), ("family", "h=k")],
+        "order_max",
+    );
+    for (a, b) in h[1..].iter().zip(&hk[1..]) {
+        assert!((a - b).abs() < 0.03, "{a} {b}");
+    }
+}
+
+#[test]
+fn exact_p1_h_flat() {
+    let e = column(
+        "exact_convergence.csv",
+        &[("solution", "p1"), ("family", "h")],
+        "rel_err_max_percent",
+    );
+    let (lo, hi) = e
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    assert!(hi < 1.06 * lo && (lo * 10.0).round() == 12.0, "{e:?}");
+}
+
+#[test]
+fn exact_p1_k_order() {
+    let o = column(
+        "exact_convergence.csv",
+        &[("solution", "p1"), ("family", "k")],
+        "order_max",
+    );
+    let [a, b]: [f64; 2] = last(&o);
+    assert!(
+        (0.95..=1.05).contains(&a) && (0.95..=1.05).contains(&b),
+        "{o:?}"
+    );
+    // pre-asymptotic before: every earlier order below 0.9
+    assert!(o[1..o.len() - 2].iter().all(|&x| x < 0.9), "{o:?}");
+}
+
+#[test]
+fn exact_cea_orders() {
+    for term in ["interp_max", "dinterp_sum", "gamma_sum", "delta_sum"] {
+        let o = column(
+            "exact_cea.csv",
+            &[("solution", "regimes")],
+            &format!("order_{term}"),
+        );
+        let tail: [f64; 3] = last(&o);
+        assert!(
+            tail.iter().all(|x| (x - 2.0).abs() <= 0.15),
+            "{term}: {o:?}"
+        );
+        // as the sentence writes them, to three decimals
+        let r = |x: f64| (x * 1000.0).round() / 1000.0;
+        assert!(
+            o[1..].iter().all(|&x| (1.877..=2.031).contains(&r(x))),
+            "{term}: {o:?}"
+        );
+    }
+    let l = column("exact_cea.csv", &[("solution", "regimes")], "order_lhs");
+    assert!((l[l.len() - 1] - 2.0).abs() < 0.01, "{l:?}");
+}
+
+#[test]
+fn exact_r_zero_b() {
+    let r = column("exact_cea.csv", &[("solution", "regimes")], "r_sum");
+    assert!(r.iter().all(|&x| x == 0.0), "{r:?}");
+}
+
+#[test]
+fn exact_r_moving_fast() {
+    let o = column("exact_cea.csv", &[("solution", "moving")], "order_r_sum");
+    assert!(o[1..].iter().all(|&x| x > 2.5), "{o:?}");
+}
+
+#[test]
+fn exact_crime_small() {
+    let share = column("exact_crime.csv", &[], "crime_share");
+    assert!(share.iter().all(|&s| s < 0.01), "{share:?}");
+    assert!(
+        share.windows(2).all(|w| w[1] < w[0]),
+        "the share does not shrink: {share:?}"
+    );
+    let o = column("exact_crime.csv", &[], "order_crime");
+    assert!(o[1..].iter().all(|&x| x > 1.0), "{o:?}");
+}
+
+#[test]
+fn exact_rules_agree() {
+    let a = column("exact_crime.csv", &[], "rel_err_nodal_percent");
+    let b = column("exact_crime.csv", &[], "rel_err_exact_percent");
+    for (x, y) in a.iter().zip(&b) {
+        let digits = |v: f64| format!("{:.2e}", v);
+        assert_eq!(digits(*x), digits(*y));
+    }
+}
+
+#[test]
+fn exact_moving_as_b() {
+    let m = column(
+        "exact_convergence.csv",
+        &[("solution", "moving"), ("family", "h=k")],
+        "order_max",
+    );
+    let b = column(
+        "exact_convergence.csv",
+        &[("solution", "regimes"), ("family", "h=k")],
+        "order_max",
+    );
+    for (x, y) in m[1..].iter().zip(&b[1..]) {
+        assert!((x - y).abs() < 0.02, "{x} {y}");
+    }
+}
+
+// ---- The pairing ----
+
+#[test]
+fn every_claim_has_a_test_and_every_test_a_claim() {
+    let mut markers = BTreeSet::new();
+    for entry in std::fs::read_dir(root().join("book/src")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            for (i, _) in text.match_indices("<!-- claim: ") {
+                let rest = &text[i + "<!-- claim: ".len()..];
+                let name = rest[..rest.find(" -->").expect("a closed marker")]
+                    .trim()
+                    .to_string();
+                markers.insert(name);
+            }
+        }
+    }
+    let src = include_str!("claims.rs");
+    let mut tests = BTreeSet::new();
+    for (i, _) in src.match_indices("#[test]\nfn ") {
+        let rest = &src[i + "#[test]\nfn ".len()..];
+        tests.insert(rest[..rest.find('(').unwrap()].to_string());
+    }
+    tests.remove("every_claim_has_a_test_and_every_test_a_claim");
+    let untested: Vec<_> = markers.difference(&tests).collect();
+    let unclaimed: Vec<_> = tests.difference(&markers).collect();
+    assert!(untested.is_empty(), "claims without a test: {untested:?}");
+    assert!(
+        unclaimed.is_empty(),
+        "tests without a claim in the book: {unclaimed:?}"
+    );
+}
