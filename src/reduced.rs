@@ -347,6 +347,7 @@ impl<'d> Reduced<'d> {
                 time_s: info.time_s,
                 check,
             };
+            crate::scheme::check_resolution(&certificate, scn, step)?;
             let failed = info.status != Status::Converged
                 || certificate.max().is_nan()
                 || certificate.max() > tol;

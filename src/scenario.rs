@@ -186,6 +186,23 @@ fn finite(field: &str, v: f64) -> Result<f64, InputError> {
 }
 
 /// A load vector: exactly two finite components.
+/// Refuses a top traction that cannot act: under `supports = "rollers"` the top edge
+/// is clamped (both components fixed), so a traction there would be dropped without
+/// a word. `field` names it as the user wrote it (`loads.f2` in a file, `f2` on the
+/// command line).
+fn check_traction(supports: Supports, field: &str, f2: [f64; 2]) -> Result<(), InputError> {
+    if supports == Supports::Rollers && f2 != [0.0, 0.0] {
+        return Err(InputError::field(
+            field,
+            format!("[{}, {}]", f2[0], f2[1]),
+            "[0, 0] under geometry.supports = \"rollers\": the top edge is clamped there, \
+             so a traction on it would have no effect (load the body with f0, or use the \
+             paper's supports)",
+        ));
+    }
+    Ok(())
+}
+
 fn vector(field: &str, v: &[f64]) -> Result<[f64; 2], InputError> {
     let [x, y] = v else {
         return Err(InputError::field(
@@ -340,6 +357,7 @@ impl Scenario {
             &jumps,
             raw.law.p_left,
         )?;
+        check_traction(supports, "loads.f2", f2)?;
         Ok(Scenario {
             name: raw.name,
             description: raw.description,
@@ -382,6 +400,7 @@ impl Scenario {
             self.f0 = v;
         }
         if let Some(v) = f2 {
+            check_traction(self.supports, "f2", v)?;
             self.f2 = v;
         }
         Ok(self)

@@ -166,6 +166,24 @@ pub enum RunError {
     #[error("condensation failed: {0}")]
     Condense(String),
     #[error(
+        "scenario `{scenario}`, step {step}: the displacements are too large for the contact \
+         conditions to be resolved in double precision: u_nu is known to about {delta:.1e} \
+         (1e-13 of the displacement scale {scale:.3e}), which is {ratio:.1e} of {length:.3e}, \
+         the smallest length the limit g = {g:e} and the law's breakpoints must resolve \
+         (at most {max:.0e} is accepted). Reduce the loads (f0, f2) or raise g and the \
+         breakpoint gaps (law.breakpoints)"
+    )]
+    Unresolvable {
+        scenario: String,
+        step: usize,
+        delta: f64,
+        scale: f64,
+        ratio: f64,
+        length: f64,
+        max: f64,
+        g: f64,
+    },
+    #[error(
         "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}",
         step_failure(.solver, .status, .iterations, .residual, .certificate, .tol)
     )]
@@ -430,6 +448,7 @@ pub fn run_batch_states(
             let (rec, states) = timed(&mut timings.certificates, || {
                 op.record(&u[i], &b[i], &mut au[i], &scns[i], (step, t, time_s), info)
             });
+            check_resolution(&rec.certificate, &scns[i], step)?;
             let failed = rec.status != Status::Converged
                 || rec.certificate.max().is_nan()
                 || rec.certificate.max() > opt.certificate_tol;
@@ -472,6 +491,31 @@ pub fn run_batch_states(
             hessian_min: op.hessian_min,
         })
         .collect())
+}
+
+/// Refuses a step whose contact values cannot be resolved against $g$ and the law's
+/// breakpoints ([`crate::certificate::Certificate::resolution`]).
+pub(crate) fn check_resolution(
+    cert: &crate::certificate::Certificate,
+    scn: &Scenario,
+    step: usize,
+) -> Result<(), RunError> {
+    use crate::certificate::{RESOLUTION_MAX, ROUNDING, resolved_length};
+    if cert.resolution <= RESOLUTION_MAX {
+        return Ok(());
+    }
+    let length = resolved_length(&scn.law, scn.g);
+    let delta = cert.resolution * length;
+    Err(RunError::Unresolvable {
+        scenario: scn.name.clone(),
+        step,
+        delta,
+        scale: delta / ROUNDING,
+        ratio: cert.resolution,
+        length,
+        max: RESOLUTION_MAX,
+        g: scn.g,
+    })
 }
 
 /// Refuses a batch that cannot run: a step count out of range, a solver count that

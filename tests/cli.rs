@@ -706,3 +706,79 @@ fn reproduce_keeps_its_times_local_unless_recorded() {
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore")).unwrap();
     assert!(ignore.lines().any(|l| l.trim() == "/data/local/"));
 }
+
+/// `solve --scenario smooth --f2 0,-1e6` (the top is clamped there) is refused naming
+/// `f2`, before any work.
+#[test]
+fn solve_refuses_a_traction_on_a_clamped_top() {
+    let dir = scratch("clamped-f2");
+    let out = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "smooth",
+            "--n",
+            "8",
+            "--steps",
+            "2",
+            "--f2",
+            "0,-1e6",
+            "--out",
+        ])
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("f2") && err.contains("rollers"), "{err}");
+    assert!(!dir.join("run").join("summary.csv").exists());
+}
+
+/// The certificate judges the limit on its own scale: runs whose displacements dwarf
+/// g (or the law's breakpoint gaps) so far that double precision cannot tell u_nu
+/// from g are refused, naming the scale, on both time loops; none is certified. The
+/// cases of the hostile run that were certified before (u_nu = -1.5 g labelled
+/// `limit`; nodes 0.23 g below the limit labelled `limit`; 1.6e-4 g off).
+#[test]
+fn displacements_that_dwarf_g_are_refused_not_certified() {
+    let dir = scratch("unresolvable");
+    let cases = [
+        // E = 1e-6 with huge loads, g = 1, a two-branch law.
+        "name = \"tiny-E\"\nT = 1.0\ng = 1.0\n[material]\nE = 1e-6\nkappa = 0.4\nalpha = 2e-7\nbeta = 1e-7\n\
+         [loads]\nf0 = [0.0, -1e9]\nf2 = [0.0, -1e10]\n[law]\nbreakpoints = [0.0]\nslopes = [0.0, 200.0]\n",
+        // The paper's material and law with g = 1e-12 and large loads.
+        "name = \"thin-layer\"\nT = 1.0\ng = 1e-12\n[material]\nE = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0\n\
+         [loads]\nf0 = [0.0, -5e4]\nf2 = [0.0, -1e6]\n[law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n",
+        // E = 1, g = 1e-3, f2 = -1e8.
+        "name = \"soft\"\nT = 1.0\ng = 1e-3\n[material]\nE = 1.0\nkappa = 0.4\nalpha = 0.1\nbeta = 0.05\n\
+         [loads]\nf0 = [0.0, 0.0]\nf2 = [0.0, -1e8]\n[law]\nbreakpoints = [0.0]\nslopes = [0.0, 200.0]\n",
+    ];
+    for (i, text) in cases.iter().enumerate() {
+        let file = dir.join(format!("case{i}.toml"));
+        std::fs::write(&file, text).unwrap();
+        for path in ["general", "auto"] {
+            let out = evhi()
+                .args([
+                    "solve",
+                    "--n",
+                    "16",
+                    "--steps",
+                    "4",
+                    "--path",
+                    path,
+                    "--scenario",
+                ])
+                .arg(&file)
+                .arg("--out")
+                .arg(dir.join(format!("run{i}-{path}")))
+                .output()
+                .unwrap();
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(!out.status.success(), "case {i} ({path}) was certified");
+            assert!(
+                err.contains("resolved in double precision") && err.contains("g = "),
+                "case {i} ({path}): {err}"
+            );
+        }
+    }
+}

@@ -1,6 +1,8 @@
 //! Extreme but finite values in every numeric field of a scenario: each case is either
 //! rejected at validation, naming its field, or validates and then solves with every
-//! step certified. Nothing in between (a late failure, a NaN, an uncertified step).
+//! step certified, or is refused by the run with a named reason (a nonconvex step;
+//! displacements too large against g for double precision). Nothing in between (a
+//! late failure, a NaN, an uncertified step).
 
 use evhi::experiments::run_newton;
 use evhi::scenario::Scenario;
@@ -102,7 +104,8 @@ fn extreme_values_are_rejected_by_name_or_solved_certified() {
     ] {
         magnitudes.push(10f64.powi(e));
     }
-    let (mut rejected, mut solved, mut not_convex, mut failures) = (0, 0, 0, vec![]);
+    let (mut rejected, mut solved, mut not_convex, mut unresolvable, mut failures) =
+        (0, 0, 0, 0, vec![]);
     for field in FIELDS {
         for &m in &magnitudes {
             for value in [m, -m] {
@@ -131,6 +134,11 @@ fn extreme_values_are_rejected_by_name_or_solved_certified() {
                         // the solver then says so (a stationary point that is not a
                         // minimum) instead of returning it: an honest, named refusal.
                         Err(e) if e.to_string().contains("NotMinimum") => not_convex += 1,
+                        // Displacements that dwarf g or the law's breakpoint gaps beyond
+                        // what double precision resolves: refused, naming the scales.
+                        Err(e) if e.to_string().contains("resolved in double precision") => {
+                            unresolvable += 1
+                        }
                         Err(e) => failures.push(format!("{field} = {value:e}: accepted, then {e}")),
                     },
                 }
@@ -138,7 +146,7 @@ fn extreme_values_are_rejected_by_name_or_solved_certified() {
         }
     }
     eprintln!(
-        "{rejected} rejected by name, {solved} solved certified, {not_convex} refused as nonconvex steps"
+        "{rejected} rejected by name, {solved} solved certified, {not_convex} refused as nonconvex steps, {unresolvable} refused as unresolvable"
     );
     assert!(
         failures.is_empty(),

@@ -76,3 +76,28 @@ fn overrides_are_validated() {
     );
     assert_eq!(s.with_g(0.07).unwrap().g, 0.07);
 }
+
+/// A traction on the clamped top (supports = "rollers") cannot act: it is refused by
+/// name, in a file and as an override, instead of being recorded and silently dropped.
+#[test]
+fn a_traction_on_a_clamped_top_is_refused_by_name() {
+    let smooth = evhi::scenario::Scenario::load("smooth").unwrap();
+    let e = smooth
+        .clone()
+        .with_loads(None, Some([0.0, -1e6]))
+        .unwrap_err();
+    assert_eq!(e.field_name(), Some("f2"), "{e}");
+    assert!(e.to_string().contains("rollers"), "{e}");
+    // A zero traction stays allowed, and the paper's supports take any.
+    assert!(smooth.with_loads(None, Some([0.0, 0.0])).is_ok());
+    let figure = evhi::scenario::Scenario::load("figure").unwrap();
+    assert!(figure.with_loads(None, Some([0.0, -1e6])).is_ok());
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenarios/smooth.toml"
+    ))
+    .unwrap()
+    .replace("f2 = [0.0, 0.0]", "f2 = [0.0, -75.0]");
+    let e = evhi::scenario::Scenario::from_toml(&text, "smooth-with-f2").unwrap_err();
+    assert_eq!(e.field_name(), Some("loads.f2"), "{e}");
+}

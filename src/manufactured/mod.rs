@@ -176,7 +176,8 @@ impl Data<'_> {
 
     /// Where on $[a, b] \subset \Gamma_3$ the integrand $p(u_\nu(\cdot, t))$ is only piecewise
     /// smooth: the solution's cuts and every point where $u_\nu$ crosses a breakpoint
-    /// of the law (sign changes on 8 sub-intervals, then bisection to rounding).
+    /// of the law (a sample on it, or a sign change on 8 sub-intervals, then bisection
+    /// to rounding).
     pub fn gamma3_cuts(&self, a: f64, b: f64, t: f64) -> Vec<f64> {
         let mut cuts: Vec<f64> = self
             .sol
@@ -193,6 +194,13 @@ impl Data<'_> {
         for &bp in self.law.breakpoints() {
             for w in samples.windows(2) {
                 let ((mut lo, flo), (mut hi, _)) = (w[0], w[1]);
+                // A sample exactly on the breakpoint is the kink itself.
+                if flo == bp {
+                    if lo > a {
+                        cuts.push(lo);
+                    }
+                    continue;
+                }
                 if (flo - bp) * (w[1].1 - bp) >= 0.0 {
                     continue;
                 }

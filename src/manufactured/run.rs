@@ -271,6 +271,7 @@ pub fn run_rules(
             // The nodal rule is certified on the full system; the exact rule, whose
             // step is another problem, by its own KKT residual (the recovery of u
             // from r is the same code as the nodal rule's).
+            crate::scheme::check_resolution(&rec.certificate, scn, step)?;
             let certificate = match rule {
                 Rule::Nodal => rec.certificate.max(),
                 Rule::Exact => rec.solver_residual,

@@ -2,7 +2,7 @@
 //! family against the truth, the Céa terms of (b), and the regimes (b) visits.
 
 use crate::experiments::plot::{
-    Figure, both, circle_legend, dashed_legend, e2s, legend, regime_colour, regime_label,
+    Figure, both, dashed_legend, e2s, legend, regime_colour, regime_label,
 };
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::manufactured::run::REGIMES;
@@ -22,10 +22,45 @@ struct LogLog {
     guides: Vec<(f64, String)>,
 }
 
-impl Figure for LogLog {
-    fn draw<DB: DrawingBackend>(
+/// The outline of marker `i` in pixels around its centre: circle, triangle, square,
+/// diamond, inverted triangle, hexagon.
+fn shape(i: usize) -> Vec<(i32, i32)> {
+    let poly = |k: usize, r: f64, phase: f64| -> Vec<(i32, i32)> {
+        (0..k)
+            .map(|j| {
+                let a = phase + std::f64::consts::TAU * j as f64 / k as f64;
+                ((r * a.cos()).round() as i32, (-r * a.sin()).round() as i32)
+            })
+            .collect()
+    };
+    use std::f64::consts::FRAC_PI_2;
+    match i % 6 {
+        0 => poly(16, 6.0, 0.0),
+        1 => poly(3, 8.0, FRAC_PI_2),
+        2 => vec![(-6, -6), (6, -6), (6, 6), (-6, 6)],
+        3 => poly(4, 8.0, 0.0),
+        4 => poly(3, 8.0, -FRAC_PI_2),
+        _ => poly(6, 7.0, 0.0),
+    }
+}
+
+/// Marker `i` at `at` with a line of `half` pixels each side in the series' colour (0
+/// in the plot, 12 in the legend), so the legend shows what the plot draws.
+fn marker<C, DB: DrawingBackend>(i: usize, at: C, c: RGBColor, half: i32) -> Marker<C, DB> {
+    EmptyElement::at(at)
+        + PathElement::new(vec![(-half, 0), (half, 0)], c.stroke_width(3))
+        + Polygon::new(shape(i), c.filled())
+}
+
+type Marker<C, DB> =
+    plotters::element::ComposedElement<C, DB, PathElement<(i32, i32)>, Polygon<(i32, i32)>>;
+
+impl LogLog {
+    /// Draws into `area`; series `i` gets the marker [`marker`] of `first_marker + i`.
+    fn draw_on<DB: DrawingBackend>(
         &self,
-        root: &DrawingArea<DB, plotters::coord::Shift>,
+        area: &DrawingArea<DB, plotters::coord::Shift>,
+        first_marker: usize,
     ) -> Result<(), String> {
         let pts: Vec<(f64, f64)> = self
             .series
@@ -45,8 +80,8 @@ impl Figure for LogLog {
             .map(|e| 10f64.powi(e))
             .filter(|&y| y >= ylo && y <= yhi)
             .collect();
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 24))
+        let mut chart = ChartBuilder::on(area)
+            .caption(&self.title, ("sans-serif", 22))
             .margin(15)
             .x_label_area_size(60)
             .y_label_area_size(90)
@@ -65,16 +100,16 @@ impl Figure for LogLog {
             .axis_desc_style(("sans-serif", 18))
             .draw()
             .map_err(e2s)?;
-        for (label, s, c) in &self.series {
-            let c = *c;
+        for (i, (label, s, c)) in self.series.iter().enumerate() {
+            let (c, m) = (*c, first_marker + i);
             chart
                 .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
                 .map_err(e2s)?;
             chart
-                .draw_series(s.iter().map(|&p| Circle::new(p, 5, c.filled())))
+                .draw_series(s.iter().map(|&p| marker::<(f64, f64), DB>(m, p, c, 0)))
                 .map_err(e2s)?
                 .label(label.clone())
-                .legend(move |xy| circle_legend(xy, 12, c.stroke_width(3), 5, c));
+                .legend(move |(x, y)| marker::<(i32, i32), DB>(m, (x + 12, y), c, 12));
         }
         if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
             const DASHES: [(i32, i32); 2] = [(14, 6), (4, 5)];
@@ -100,12 +135,39 @@ impl Figure for LogLog {
     }
 }
 
+impl Figure for LogLog {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        self.draw_on(root, 0)
+    }
+}
+
+/// Two log–log charts side by side.
+struct TwoPanels {
+    left: LogLog,
+    right: LogLog,
+}
+
+impl Figure for TwoPanels {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let (l, r) = root.split_horizontally(root.dim_in_pixel().0 as i32 * 3 / 5);
+        self.left.draw_on(&l, 0)?;
+        self.right.draw_on(&r, self.left.series.len())
+    }
+}
+
 /// Contact nodes per regime against time.
 struct Regimes {
     title: String,
     /// (regime, points (t, count)).
     series: Vec<(String, Vec<(f64, f64)>)>,
-    nodes: f64,
+    /// The top of the y axis.
+    top: f64,
 }
 
 impl Figure for Regimes {
@@ -118,7 +180,7 @@ impl Figure for Regimes {
             .margin(15)
             .x_label_area_size(55)
             .y_label_area_size(70)
-            .build_cartesian_2d(0.0..1.0, 0.0..self.nodes * 1.45)
+            .build_cartesian_2d(0.0..1.0, 0.0..self.top)
             .map_err(e2s)?;
         chart
             .configure_mesh()
@@ -173,7 +235,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
         col_f64(&df, "steps")?,
         col_f64(&df, "rel_err_max_percent")?,
     );
-    let series = COLOURS
+    let series: Vec<(Series, bool)> = COLOURS
         .iter()
         .map(|&(s, f, c)| {
             let rows: Vec<usize> = (0..sol.len())
@@ -190,20 +252,31 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
                 "h" => format!("h = 1/n, N = {}", steps.get(first).copied().unwrap_or(0.0)),
                 _ => format!("k = 1/N, n = {}", n.get(first).copied().unwrap_or(0.0)),
             };
-            (format!("{}: {what}", label_of(s)), pts, c)
+            ((format!("{}: {what}", label_of(s)), pts, c), f == "k")
         })
-        .filter(|s| !s.1.is_empty())
+        .filter(|s| !s.0.1.is_empty())
         .collect();
+    let (k, h): (Vec<_>, Vec<_>) = series.into_iter().partition(|s| s.1);
+    let y_desc = "max over t_n of ||u - u_hk||_E / max ||u||_E (%)".to_string();
     both(
         &ctx.figures,
         "exact_convergence",
-        (1000, 760),
-        &LogLog {
-            title: "Manufactured solutions: the error against the truth".into(),
-            x_desc: "n = 1/h (h = k and h families) or N = T/k (k families)".into(),
-            y_desc: "max over t_n of ||u - u_hk||_E / max ||u||_E (%)".into(),
-            series,
-            guides: vec![(1.0, "slope -1".into())],
+        (1500, 760),
+        &TwoPanels {
+            left: LogLog {
+                title: "In h: h = k and h families, against the truth".into(),
+                x_desc: "n = 1/h".into(),
+                y_desc: y_desc.clone(),
+                series: h.into_iter().map(|s| s.0).collect(),
+                guides: vec![(1.0, "slope -1".into())],
+            },
+            right: LogLog {
+                title: "In k: k families".into(),
+                x_desc: "N = T/k".into(),
+                y_desc,
+                series: k.into_iter().map(|s| s.0).collect(),
+                guides: vec![(1.0, "slope -1".into())],
+            },
         },
     )?;
     // The Céa terms of (b), and R_n of (d).
@@ -287,9 +360,16 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
         "exact_regimes",
         (1000, 600),
         &Regimes {
-            title: format!("(b): contact nodes per regime, h = k = 1/{level}"),
+            title: format!(
+                "(b): contact nodes per regime, h = k = 1/{level} ({} nodes)",
+                level + 1.0
+            ),
+            top: 1.5
+                * series
+                    .iter()
+                    .flat_map(|s| s.1.iter().map(|p| p.1))
+                    .fold(1.0, f64::max),
             series,
-            nodes: level + 1.0,
         },
     )
 }
