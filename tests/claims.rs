@@ -380,6 +380,105 @@ fn exact_moving_as_b() {
     }
 }
 
+// ---- Chapter "Time" (time.md) ----
+
+#[test]
+fn time_figure_k_against_model() {
+    // The scalar model against N_ref = 512 is rendered in data/time_study.md only.
+    let md = std::fs::read_to_string(root().join("data/time_study.md")).unwrap();
+    let line = md
+        .lines()
+        .find(|l| l.starts_with("| model |"))
+        .expect("the model's row");
+    let model: Vec<f64> = line
+        .split('|')
+        .filter_map(|c| c.trim().parse().ok())
+        .collect();
+    let fig = column(
+        "table1.csv",
+        &[("scenario", "figure"), ("family", "k")],
+        "rel_err_max_percent",
+    );
+    assert_eq!(model.len(), fig.len());
+    for (i, (f, m)) in fig.iter().zip(&model).enumerate() {
+        assert_eq!(
+            *f > *m,
+            i >= 2,
+            "k = 1/{}: figure {f} against the model {m}",
+            4 << i
+        );
+    }
+}
+
+// ---- Chapter "Results" (results.md) ----
+
+#[test]
+fn results_uniform_vs_increments() {
+    let inc = |load: &str| column("table1_increments.csv", &[("load", load)], "order");
+    let uni = |load: &str| {
+        column(
+            "graded_convergence.csv",
+            &[("load", load), ("family", "uniform")],
+            "order_dofs",
+        )
+    };
+    let n_inc = column("table1_increments.csv", &[("load", "figure")], "n");
+    let n_uni = column(
+        "graded_convergence.csv",
+        &[("load", "figure"), ("family", "uniform")],
+        "n",
+    );
+    let at = |ns: &[f64], v: &[f64], n: f64| v[ns.iter().position(|&x| x == n).unwrap()];
+    let (fi, fu) = (inc("figure"), uni("figure"));
+    // figure: apart at n = 16 and 32 (by more than 0.04), together from 64 on (within 0.015)
+    for n in [16.0, 32.0] {
+        assert!(
+            at(&n_uni, &fu, n) - at(&n_inc, &fi, n) > 0.04,
+            "figure n = {n}"
+        );
+    }
+    for n in [64.0, 128.0] {
+        assert!(
+            (at(&n_uni, &fu, n) - at(&n_inc, &fi, n)).abs() < 0.015,
+            "figure n = {n}"
+        );
+    }
+    let n_inc = column("table1_increments.csv", &[("load", "literal")], "n");
+    let n_uni = column(
+        "graded_convergence.csv",
+        &[("load", "literal"), ("family", "uniform")],
+        "n",
+    );
+    let (li, lu) = (inc("literal"), uni("literal"));
+    for n in [16.0, 32.0, 64.0, 128.0] {
+        assert!(
+            (at(&n_uni, &lu, n) - at(&n_inc, &li, n)).abs() < 0.03,
+            "literal n = {n}"
+        );
+    }
+}
+
+#[test]
+fn results_cells_h_reference() {
+    let f = rows("table1_forensics.csv");
+    let r = f
+        .iter()
+        .find(|r| r["candidate"] == "literal/plane_strain/cells_h/energy/T/reference")
+        .expect("the cells_h energy row");
+    let d256 = column(
+        "table1_increments.csv",
+        &[("load", "literal")],
+        "increment_percent",
+    );
+    let n = column("table1_increments.csv", &[("load", "literal")], "n");
+    let d = d256[n.iter().position(|&x| x == 256.0).unwrap()];
+    assert!(
+        (num(r, "err_n128_percent") - d).abs() < 1e-8 * d,
+        "{} {d}",
+        r["err_n128_percent"]
+    );
+}
+
 // ---- The pairing ----
 
 #[test]
