@@ -94,8 +94,9 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         })
         .collect();
     // Two lists of about equal wall time, one per core (the full run of
-    // data/reproduce_times.csv: forensics 103 s beside the rest; paths 41, graded 28,
-    // static 16, time 13, stability 9, table1 5 s; the rest under 2 s each).
+    // data/reproduce_times.csv: forensics 129 s and exact 36 s beside the rest; paths
+    // 55, graded 28, static 17, time 16, stability 12, table1 7 s; the rest under 2 s
+    // each).
     let (heavy, light): (Vec<String>, Vec<String>) = names.into_iter().partition(|n| {
         ["table1", "paths", "graded", "time", "static", "stability"].contains(&n.as_str())
     });
@@ -225,8 +226,9 @@ fn record_times(
         &t,
         &command,
         &format!(
-            "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); machine: {}; two threads, each experiment timed while the others of its set run beside it",
+            "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); the rows of a set were measured by `evhi reproduce [SET] {}` (SET left out for all); machine: {}; two threads, each experiment timed while the others of its set run beside it",
             PAPER_SET.join(" "),
+            if file == RECORDED_TIMES { "--record-times" } else { "" },
             crate::timing::machine()
         ),
     )?;
