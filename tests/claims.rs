@@ -459,6 +459,23 @@ fn results_uniform_vs_increments() {
 }
 
 #[test]
+fn results_max_equals_t() {
+    for scn in ["literal", "figure"] {
+        let keys = [("scenario", scn), ("family", "h=k")];
+        let n = column("table1.csv", &keys, "n");
+        let t = column("table1.csv", &keys, "rel_err_T_percent");
+        let m = column("table1.csv", &keys, "rel_err_max_percent");
+        for i in 0..n.len() {
+            if n[i] >= 8.0 {
+                assert_eq!(t[i], m[i], "{scn} n = {}", n[i]);
+            } else if scn == "literal" {
+                assert!(m[i] > t[i], "literal n = {}: {} {}", n[i], t[i], m[i]);
+            }
+        }
+    }
+}
+
+#[test]
 fn results_cells_h_reference() {
     let f = rows("table1_forensics.csv");
     let r = f

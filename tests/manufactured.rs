@@ -74,16 +74,9 @@ fn strains_match_finite_differences() {
 #[test]
 fn body_force_is_minus_the_divergence_of_the_stress() {
     let scn = paper();
-    let (visc, elast) = (scn.viscosity(), scn.elasticity());
     let h = 1e-5;
     for sol in SOLUTIONS {
-        let data = Data {
-            sol,
-            visc: (!sol.is_static()).then_some(&visc),
-            elast: &elast,
-            law: &scn.law,
-            g: scn.g,
-        };
+        let data = Data::new(sol, &scn);
         for p in POINTS {
             for t in TIMES {
                 let s = |x: f64, y: f64| data.sigma(x, y, t);
@@ -117,15 +110,8 @@ fn body_force_is_minus_the_divergence_of_the_stress() {
 #[test]
 fn strong_and_weak_load_vectors_agree() {
     let scn = paper();
-    let (visc, elast) = (scn.viscosity(), scn.elasticity());
     for sol in [Solution::Branch1, Solution::Regimes, Solution::Steady] {
-        let data = Data {
-            sol,
-            visc: (!sol.is_static()).then_some(&visc),
-            elast: &elast,
-            law: &scn.law,
-            g: scn.g,
-        };
+        let data = Data::new(sol, &scn);
         for n in [8, 32] {
             let mesh = scn.mesh(n).unwrap();
             let dofs = evhi::mesh::Dofs::new(&mesh, true);
@@ -154,15 +140,8 @@ fn strong_and_weak_load_vectors_agree() {
 #[test]
 fn data_satisfy_the_hypotheses_and_the_contact_conditions() {
     let scn = paper();
-    let (visc, elast) = (scn.viscosity(), scn.elasticity());
     for sol in SOLUTIONS {
-        let data = Data {
-            sol,
-            visc: (!sol.is_static()).then_some(&visc),
-            elast: &elast,
-            law: &scn.law,
-            g: scn.g,
-        };
+        let data = Data::new(sol, &scn);
         for i in 0..=40 {
             let y = 0.5 + i as f64 / 80.0;
             for t in TIMES {
@@ -235,13 +214,7 @@ fn the_steady_solution_by_hand() {
     let scn = paper();
     let elast = scn.elasticity();
     let (a, b, delta) = (elast.a, elast.b, 0.06);
-    let data = Data {
-        sol: Solution::Steady,
-        visc: None,
-        elast: &elast,
-        law: &scn.law,
-        g: scn.g,
-    };
+    let data = Data::new(Solution::Steady, &scn);
     let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * y.abs().max(1.0);
     assert!(close(scn.law.p(delta), 9.0));
     for x in [0.1, 0.7, 1.9] {

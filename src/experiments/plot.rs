@@ -168,6 +168,40 @@ pub fn dashed_legend<DB: DrawingBackend>(
     EmptyElement::at((0, 0)) + seg(0) + seg(1) + seg(2) + seg(3)
 }
 
+/// Dashed slope guides $y \propto x^{-\text{slope}}$ from `x0` to `xmax`, the $i$-th starting at
+/// $y_0\,\text{step}^{i+1}$ (below the series it is compared with), each with its own dash
+/// pattern (long, medium, dots), shown in the legend as drawn.
+pub fn slope_guides<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    guides: &[(f64, String)],
+    (x0, y0): (f64, f64),
+    xmax: f64,
+    step: f64,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    CT: plotters::coord::CoordTranslate<From = (f64, f64)>,
+{
+    const DASHES: [(i32, i32); 3] = [(14, 6), (6, 5), (2, 5)];
+    for (i, (slope, label)) in guides.iter().enumerate() {
+        let y0 = y0 * step.powi(i as i32 + 1);
+        let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
+        let grey = RGBColor(50, 50, 50);
+        let (dash, gap) = DASHES[i % DASHES.len()];
+        chart
+            .draw_series(DashedLineSeries::new(
+                pts,
+                dash as u32,
+                gap as u32,
+                grey.stroke_width(2),
+            ))
+            .map_err(e2s)?
+            .label(label.clone())
+            .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
+    }
+    Ok(())
+}
+
 /// The element [`dashed_legend`] draws: four path segments.
 pub type DashedLegend<DB> = ComposedElement<
     (i32, i32),

@@ -14,7 +14,7 @@
 //! ([`wedge_exponents`]); on uniform meshes the energy error then decays like
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
-use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
+use super::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::assembly::{load, stiffness};
 use crate::linalg::Cholesky;
@@ -379,25 +379,8 @@ impl Figure for StaticFig {
                 .legend(move |xy| circle_legend(xy, 12, c.stroke_width(3), 6, c));
         }
         // Slope guides through the first point of the first series, below it.
-        if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
-            // Each guide its own dash pattern (long, medium, dots), also in the legend.
-            const DASHES: [(i32, i32); 3] = [(14, 6), (6, 5), (2, 5)];
-            for (i, (slope, label)) in self.guides.iter().enumerate() {
-                let y0 = y0 * 0.5f64.powi(i as i32 + 1);
-                let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
-                let grey = RGBColor(50, 50, 50);
-                let (dash, gap) = DASHES[i % DASHES.len()];
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        pts,
-                        dash as u32,
-                        gap as u32,
-                        grey.stroke_width(2),
-                    ))
-                    .map_err(e2s)?
-                    .label(label.clone())
-                    .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
-            }
+        if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
+            slope_guides(&mut chart, &self.guides, start, xmax, 0.5)?;
         }
         legend(&mut chart, SeriesLabelPosition::UpperRight, 18, 0.9)?;
         Ok(())

@@ -104,17 +104,29 @@ pub fn energy_density(t: &Isotropic, e: [f64; 3]) -> f64 {
     0.5 * (t.a * tr * tr + t.b * contract(e))
 }
 
-/// The data of the problem at one time: the operators' tensors, the law, $g$.
+/// The data of the problem: the solution, the operators' tensors, the law, $g$.
 pub struct Data<'a> {
     pub sol: Solution,
     /// $\mathcal C$, or `None` for the static problem.
-    pub visc: Option<&'a Isotropic>,
-    pub elast: &'a Isotropic,
+    pub visc: Option<Isotropic>,
+    pub elast: Isotropic,
     pub law: &'a Law,
     pub g: f64,
 }
 
-impl Data<'_> {
+impl<'a> Data<'a> {
+    /// The data of `sol` with the material, law and $g$ of `scn` (no viscosity for a
+    /// static solution).
+    pub fn new(sol: Solution, scn: &'a crate::scenario::Scenario) -> Self {
+        Data {
+            sol,
+            visc: (!sol.is_static()).then(|| scn.viscosity()),
+            elast: scn.elasticity(),
+            law: &scn.law,
+            g: scn.g,
+        }
+    }
+
     /// $u_\nu(x, t) = -u_y(x, 0, t)$.
     pub fn u_nu(&self, x: f64, t: f64) -> f64 {
         -self.sol.u(x, 0.0, t)[1]
@@ -144,8 +156,8 @@ impl Data<'_> {
             let lap = [v(0, 0, 0) + v(0, 1, 1), v(1, 0, 0) + v(1, 1, 1)];
             [0, 1].map(|c| (t.a + 0.5 * t.b) * grad_div[c] + 0.5 * t.b * lap[c])
         };
-        let g = div(self.elast, |p| p.0);
-        let v = match self.visc {
+        let g = div(&self.elast, |p| p.0);
+        let v = match &self.visc {
             Some(c) => div(c, |p| p.1),
             None => [0.0; 2],
         };
@@ -155,7 +167,7 @@ impl Data<'_> {
 
     /// $\sigma$ at $(x, y, t)$ (11, 22, 12).
     pub fn sigma(&self, x: f64, y: f64, t: f64) -> [f64; 3] {
-        stress(&strains(self.sol, x, y, t), self.visc, self.elast)
+        stress(&strains(self.sol, x, y, t), self.visc.as_ref(), &self.elast)
     }
 
     /// The traction $\sigma n$ on a boundary point with outward normal `n`.

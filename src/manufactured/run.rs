@@ -194,14 +194,7 @@ pub fn run_rules(
         let zero = vec![0.0; disc.a.val().len()];
         disc.a = SpMat::new(disc.a.symbolic().to_owned().expect("allocation"), zero);
     }
-    let (visc, elast) = (scn.viscosity(), scn.elasticity());
-    let data = Data {
-        sol,
-        visc: (!sol.is_static()).then_some(&visc),
-        elast: &elast,
-        law: &scn.law,
-        g: scn.g,
-    };
+    let data = Data::new(sol, scn);
     let k = if sol.is_static() {
         1.0
     } else {
@@ -407,7 +400,7 @@ fn load_from_points(
     let mut out = vec![0.0; dofs.count];
     let mut s = vec![[0.0; 3]; mesh.triangles.len()];
     for pt in points {
-        let sig = super::stress(&pt.now, data.visc, data.elast);
+        let sig = super::stress(&pt.now, data.visc.as_ref(), &data.elast);
         (0..3).for_each(|c| s[pt.tri][c] += pt.w * sig[c]);
     }
     for (tri, s) in mesh.triangles.iter().zip(&s) {
@@ -442,9 +435,9 @@ fn measure(
             ei_prev = p1_strain(p, tri.map(|v| nodal_prev[v]));
         }
         let e = sub(pt.now.eps, eh);
-        err_e_sq += pt.w * energy_density(data.elast, e);
+        err_e_sq += pt.w * energy_density(&data.elast, e);
         row.err_v_sq += pt.w * contract(e);
-        exact_e_sq += pt.w * energy_density(data.elast, pt.now.eps);
+        exact_e_sq += pt.w * energy_density(&data.elast, pt.now.eps);
         row.interp_v_sq += pt.w * contract(sub(pt.now.eps, ei));
         if !sol.is_static() {
             let du = sub(pt.now.eps, pt.prev);

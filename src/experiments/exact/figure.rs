@@ -2,7 +2,7 @@
 //! family against the truth, the Céa terms of (b), and the regimes (b) visits.
 
 use crate::experiments::plot::{
-    Figure, both, dashed_legend, e2s, legend, regime_colour, regime_label,
+    Figure, both, e2s, legend, regime_colour, regime_label, slope_guides,
 };
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::manufactured::run::REGIMES;
@@ -111,24 +111,8 @@ impl LogLog {
                 .label(label.clone())
                 .legend(move |(x, y)| marker::<(i32, i32), DB>(m, (x + 12, y), c, 12));
         }
-        if let Some(&(x0, y0)) = self.series.first().and_then(|s| s.1.first()) {
-            const DASHES: [(i32, i32); 2] = [(14, 6), (4, 5)];
-            for (i, (slope, label)) in self.guides.iter().enumerate() {
-                let y0 = y0 * 0.4f64.powi(i as i32 + 1);
-                let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
-                let grey = RGBColor(50, 50, 50);
-                let (dash, gap) = DASHES[i % DASHES.len()];
-                chart
-                    .draw_series(DashedLineSeries::new(
-                        pts,
-                        dash as u32,
-                        gap as u32,
-                        grey.stroke_width(2),
-                    ))
-                    .map_err(e2s)?
-                    .label(label.clone())
-                    .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
-            }
+        if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
+            slope_guides(&mut chart, &self.guides, start, xmax, 0.4)?;
         }
         legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.9)?;
         Ok(())

@@ -271,7 +271,6 @@ fn write_regimes(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::Pat
 /// (the static one at its only time) by the study's rules against the same rules on
 /// each triangle's 16 children and each contact segment's 4 quarters.
 fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
-    let (visc, elast) = (scn.viscosity(), scn.elasticity());
     let levels: &[usize] = if ctx.quick {
         &[8, 16, 32]
     } else {
@@ -279,13 +278,7 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
     };
     let mut t = Cols::default();
     for sol in crate::manufactured::SOLUTIONS {
-        let data = Data {
-            sol,
-            visc: (!sol.is_static()).then_some(&visc),
-            elast: &elast,
-            law: &scn.law,
-            g: scn.g,
-        };
+        let data = Data::new(sol, scn);
         let times: &[f64] = if sol.is_static() {
             &[0.0]
         } else {
