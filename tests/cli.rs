@@ -782,3 +782,64 @@ fn displacements_that_dwarf_g_are_refused_not_certified() {
         }
     }
 }
+
+/// Re-running `solve` into an earlier run directory that also holds the user's own
+/// files is refused, naming them, and leaves them (and the earlier run) in place.
+#[test]
+fn solve_keeps_the_users_files_in_an_earlier_run_directory() {
+    let dir = scratch("user-files");
+    let out = dir.join("run");
+    let solve = || {
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--n",
+                "8",
+                "--steps",
+                "2",
+                "--out",
+            ])
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    assert!(solve().status.success());
+    // A rerun of a clean run directory is allowed.
+    assert!(solve().status.success());
+    std::fs::write(out.join("my_notes.txt"), "mine").unwrap();
+    std::fs::create_dir(out.join("analysis")).unwrap();
+    let o = solve();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("`my_notes.txt`") && err.contains("`analysis/`"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(out.join("my_notes.txt")).unwrap(),
+        "mine"
+    );
+    assert!(out.join("analysis").is_dir() && out.join("summary.csv").exists());
+}
+
+/// `reproduce --quick` without `--data`/`--figures` writes its coarse levels into the
+/// git-ignored `data/local/quick/` and `figures/local/quick/`, never over the committed
+/// full-level outputs.
+#[test]
+fn reproduce_quick_never_overwrites_the_committed_outputs() {
+    let dir = scratch("quick-default");
+    succeed(
+        evhi()
+            .current_dir(&dir)
+            .args(["reproduce", "fig2", "--quick", "-q"]),
+    );
+    assert!(dir.join("data/local/quick/fig2_law.csv").exists());
+    assert!(dir.join("figures/local/quick/fig2_law.png").exists());
+    assert!(!dir.join("data/fig2_law.csv").exists());
+    assert!(!dir.join("figures/fig2_law.png").exists());
+    let ignore =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore")).unwrap();
+    assert!(ignore.lines().any(|l| l.trim() == "/figures/local/"));
+}

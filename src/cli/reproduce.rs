@@ -28,12 +28,13 @@ pub struct ReproduceArgs {
     /// which git ignores: the main job then changes no committed file.
     #[arg(long)]
     pub record_times: bool,
-    /// Directory of the CSV tables.
-    #[arg(long, default_value = "data")]
-    pub data: PathBuf,
-    /// Directory of the figures.
-    #[arg(long, default_value = "figures")]
-    pub figures: PathBuf,
+    /// Directory of the CSV tables [default: data, or data/local/quick with --quick,
+    /// so that coarse levels never overwrite the committed tables].
+    #[arg(long)]
+    pub data: Option<PathBuf>,
+    /// Directory of the figures [default: figures, or figures/local/quick with --quick].
+    #[arg(long)]
+    pub figures: Option<PathBuf>,
 }
 
 /// Runs the named experiments (all by default).
@@ -41,8 +42,10 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     use crate::experiments::{Ctx, NAMES, run};
     let ctx = Ctx {
         quick: args.quick,
-        data: args.data,
-        figures: args.figures,
+        data: args.data.unwrap_or_else(|| quick_or(args.quick, "data")),
+        figures: args
+            .figures
+            .unwrap_or_else(|| quick_or(args.quick, "figures")),
         verbose: true,
         progress: None,
         reference: args.reference,
@@ -161,6 +164,16 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         Ok(())
     } else {
         Err(format!("experiments failed: {}", failed.join(", ")).into())
+    }
+}
+
+/// The default output directory `dir`, or its git-ignored `local/quick/` for a quick
+/// run (whose coarse levels must not replace the committed full-level outputs).
+fn quick_or(quick: bool, dir: &str) -> PathBuf {
+    if quick {
+        PathBuf::from(dir).join("local").join("quick")
+    } else {
+        PathBuf::from(dir)
     }
 }
 

@@ -23,6 +23,36 @@ pub const MARKER: &str = ".evhi-run";
 /// interrupt the write phase (`EVHI_WRITE_DELAY_MS`).
 pub const DELAY_ENV: &str = "EVHI_WRITE_DELAY_MS";
 
+/// The files a run writes into its directory (besides [`MARKER`] and the numbered
+/// snapshots `solution_NNNNNN.vtu` of `--vtk-every`).
+pub const RUN_FILES: [&str; 14] = [
+    "contact.csv",
+    "summary.csv",
+    "steps.csv",
+    "nodes.csv",
+    "evolution.csv",
+    "regimes.csv",
+    "scenario.toml",
+    "solution.vtu",
+    "solution.pvd",
+    "deformed.png",
+    "deformed.svg",
+    "evolution.png",
+    "evolution.svg",
+    MARKER,
+];
+
+/// Whether `name` is a file a run writes ([`RUN_FILES`], a numbered snapshot, or a
+/// temporary `.STEM.tmp-PID.EXT` that an interrupted figure left).
+pub fn is_run_file(name: &str) -> bool {
+    RUN_FILES.contains(&name)
+        || (name.starts_with('.') && name.contains(".tmp-"))
+        || name
+            .strip_prefix("solution_")
+            .and_then(|r| r.strip_suffix(".vtu"))
+            .is_some_and(|d| d.len() >= 6 && d.bytes().all(|b| b.is_ascii_digit()))
+}
+
 /// Why the output directory cannot be used.
 #[derive(Debug, thiserror::Error)]
 pub enum OutError {
@@ -89,6 +119,32 @@ impl RunDir {
                 return Err(unusable(format!(
                     "holds files evhi did not write (for example `{}`); choose a new or empty directory",
                     foreign[0]
+                )));
+            }
+            // An earlier run directory is replaced as a whole: refuse if the user has
+            // put anything else in it, rather than delete it with the old set.
+            let mut others: Vec<String> = foreign
+                .iter()
+                .filter(|n| !is_run_file(n))
+                .map(|n| {
+                    if target.join(n).is_dir() {
+                        format!("{n}/")
+                    } else {
+                        n.clone()
+                    }
+                })
+                .collect();
+            if !others.is_empty() {
+                others.sort();
+                return Err(unusable(format!(
+                    "is an earlier run directory that also holds files evhi did not write ({}); \
+                     a new run replaces the whole directory, so move them out or choose \
+                     another --out",
+                    others
+                        .iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 )));
             }
         }
