@@ -284,7 +284,21 @@ impl Scenario {
 
     fn validate(raw: RawScenario) -> Result<Scenario, InputError> {
         if raw.name.trim().is_empty() {
-            return Err(InputError::field("name", "\"\"", "a non-empty name"));
+            return Err(InputError::field(
+                "name",
+                format!("{:?}", raw.name),
+                "a name that is not blank",
+            ));
+        }
+        // Names and descriptions go into the `#` lines of every table: one line each.
+        for (field, text) in [("name", &raw.name), ("description", &raw.description)] {
+            if text.chars().any(char::is_control) {
+                return Err(InputError::field(
+                    field,
+                    format!("{text:?}"),
+                    "text without control characters (line feeds, carriage returns, tabs)",
+                ));
+            }
         }
         let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
         let g = limit("g", raw.g)?;

@@ -843,3 +843,44 @@ fn reproduce_quick_never_overwrites_the_committed_outputs() {
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore")).unwrap();
     assert!(ignore.lines().any(|l| l.trim() == "/figures/local/"));
 }
+
+/// A line feed or carriage return cannot break out of a provenance line: refused in a
+/// scenario's name, escaped in a path on the command line (issue 27, case 4).
+#[test]
+fn control_characters_stay_out_of_the_provenance_lines() {
+    let dir = scratch("control-chars");
+    let text = std::fs::read_to_string("data/scenarios/figure.toml")
+        .unwrap()
+        .replace("name = \"figure\"", "name = \"fig\\nure\"");
+    let file = dir.join("nl.toml");
+    std::fs::write(&file, text).unwrap();
+    let o = evhi().args(["show"]).arg(&file).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("`name`"), "{err}");
+    for bad in ["cr\rrun", "lf\nrun"] {
+        let out = dir.join(bad);
+        succeed(
+            evhi()
+                .args([
+                    "solve",
+                    "--scenario",
+                    "figure",
+                    "--n",
+                    "8",
+                    "--steps",
+                    "2",
+                    "--out",
+                ])
+                .arg(&out),
+        );
+        let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+        let lines: Vec<&str> = contact.lines().collect();
+        assert!(lines[0].starts_with("# produced by evhi") && lines[1].starts_with("# scenario"));
+        assert_eq!(lines[2], "x,u_nu,sigma_nu1,sigma_nu2,regime", "{contact}");
+        assert!(
+            lines[0].contains("\\r") || lines[0].contains("\\n"),
+            "{}",
+            lines[0]
+        );
+    }
+}

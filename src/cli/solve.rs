@@ -233,7 +233,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         None => std::fs::read_to_string(&args.scenario)?,
     };
     let prov = Provenance {
-        command: std::env::args().skip(1).collect::<Vec<_>>().join(" "),
+        command: crate::output::run::quote_args(std::env::args().skip(1)),
         solver: solver.name().to_string(),
         ordering: args.ordering.clone(),
         path: (if reduced { "reduced" } else { "general" }).to_string(),

@@ -23,13 +23,45 @@ pub struct Provenance {
     pub path: String,
 }
 
+/// `text` on one line: control characters (a line feed or carriage return in a path)
+/// written as escapes, so that a provenance line cannot break out of its `#`.
+pub fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// A command line as a shell would read it back: arguments with spaces, quotes or
+/// control characters in single quotes (control characters escaped, see [`one_line`]).
+pub fn quote_args(args: impl IntoIterator<Item = String>) -> String {
+    args.into_iter()
+        .map(|a| {
+            let plain = !a.is_empty()
+                && a.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_./=,:+@%".contains(c));
+            if plain {
+                a
+            } else {
+                format!("'{}'", one_line(&a).replace('\'', "'\\''"))
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// The `#` lines that open every CSV of a run: the command and the data it solved.
 pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<String> {
     vec![
         format!(
             "produced by evhi {} `evhi {}`",
             env!("CARGO_PKG_VERSION"),
-            p.command
+            one_line(&p.command)
         ),
         format!(
             "scenario {}; n = {n}, steps = {steps}, T = {}; solver {}, ordering {}; g = {}; \
@@ -327,7 +359,7 @@ pub fn write(
         format!(
             "# The scenario of this run, as read. Command-line overrides apply on top of it:\n\
              # evhi {}\n# (summary.csv records the values solved.)\n{toml}",
-            prov.command
+            one_line(&prov.command)
         )
         .as_bytes(),
     )?;
