@@ -884,3 +884,53 @@ fn control_characters_stay_out_of_the_provenance_lines() {
         );
     }
 }
+
+/// Two `reproduce` into one output set cannot mix: the second fails at once while the
+/// first holds the set's lock; and the temporaries of a killed run are removed by the
+/// next one (issue 27, cases 5 and 6).
+#[test]
+fn reproduce_locks_its_outputs_and_cleans_a_killed_runs_temporaries() {
+    let dir = scratch("reproduce-lock");
+    let (data, figures) = (dir.join("data"), dir.join("figures"));
+    std::fs::create_dir_all(&data).unwrap();
+    std::fs::create_dir_all(&figures).unwrap();
+    // A killed run's leftovers (no process has this id: above Linux's pid_max).
+    let stale = [
+        data.join(".fig2_law.csv.tmp-999999999"),
+        figures.join(".fig2_law.tmp-999999999.png"),
+    ];
+    for s in &stale {
+        std::fs::write(s, "partial").unwrap();
+    }
+    let run = || {
+        evhi()
+            .args(["reproduce", "fig2", "--quick", "-q", "--data"])
+            .arg(&data)
+            .arg("--figures")
+            .arg(&figures)
+            .output()
+            .unwrap()
+    };
+    let lock = std::fs::File::options()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(data.join(".reproduce.lock"))
+        .unwrap();
+    lock.try_lock().unwrap();
+    let o = run();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("another `evhi reproduce`"),
+        "{err}"
+    );
+    assert!(
+        stale.iter().all(|s| s.exists()),
+        "a refused run must touch nothing"
+    );
+    drop(lock);
+    let o = run();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stale.iter().all(|s| !s.exists()), "stale temporaries left");
+    assert!(data.join("fig2_law.csv").exists());
+}

@@ -50,6 +50,11 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         progress: None,
         reference: args.reference,
     };
+    // One writer of an output set at a time; then the temporaries a killed run left.
+    let _lock = lock_outputs(&ctx.data)?;
+    for dir in [&ctx.data, &ctx.figures] {
+        remove_stale_temporaries(dir);
+    }
     let names: Vec<String> = if args.names.is_empty() {
         NAMES.iter().map(|s| s.to_string()).collect()
     } else {
@@ -164,6 +169,53 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         Ok(())
     } else {
         Err(format!("experiments failed: {}", failed.join(", ")).into())
+    }
+}
+
+/// Takes the lock of an output set: `.reproduce.lock` in its data directory, a file
+/// that is never deleted (the kernel releases the lock when the process ends). A
+/// second `reproduce` into the same directories fails at once instead of mixing its
+/// tables and figures with the first one's.
+fn lock_outputs(data: &std::path::Path) -> Result<std::fs::File, String> {
+    std::fs::create_dir_all(data).map_err(|e| format!("cannot create {}: {e}", data.display()))?;
+    let path = data.join(".reproduce.lock");
+    let file = std::fs::File::options()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?;
+    file.try_lock().map_err(|_| {
+        format!(
+            "another `evhi reproduce` is writing {} (it holds {}); wait for it to finish",
+            data.display(),
+            path.display()
+        )
+    })?;
+    Ok(file)
+}
+
+/// Removes the temporaries `.NAME.tmp-PID` (of [`crate::output::write_atomic`] and the
+/// figures) that a killed process left in `dir`: those whose process is gone.
+fn remove_stale_temporaries(dir: &std::path::Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(pid) = name
+            .strip_prefix('.')
+            .and_then(|n| n.rsplit_once(".tmp-"))
+            .map(|(_, rest)| rest.split('.').next().unwrap_or(""))
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let alive =
+            pid == std::process::id() || std::path::Path::new(&format!("/proc/{pid}")).exists();
+        if !alive && entry.path().is_file() {
+            let _ = std::fs::remove_file(entry.path());
+        }
     }
 }
 
