@@ -934,3 +934,38 @@ fn reproduce_locks_its_outputs_and_cleans_a_killed_runs_temporaries() {
     assert!(stale.iter().all(|s| !s.exists()), "stale temporaries left");
     assert!(data.join("fig2_law.csv").exists());
 }
+
+/// H(s) is judged with the trace constant of the run's own mesh, which grows with n:
+/// slopes [0, 200, -290, 300] pass on the 1/64 mesh's constant but fail on 1/256's
+/// (issue 27, case 12: the 1/64 constant used to be taken for every n).
+#[test]
+fn smallness_uses_the_runs_own_trace_constant() {
+    let dir = scratch("hs-trace");
+    let file = figure_file(
+        &dir,
+        "soft.toml",
+        "slopes = [0.0, 200.0, -100.0, 300.0]",
+        "slopes = [0.0, 200.0, -290.0, 300.0]",
+    );
+    let show = |n: &str| {
+        let o = evhi()
+            .args(["show"])
+            .arg(&file)
+            .args(["--n", n])
+            .output()
+            .unwrap();
+        String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr)
+    };
+    let line = |text: &str| {
+        text.lines()
+            .find(|l| l.starts_with("H(s)"))
+            .unwrap()
+            .to_string()
+    };
+    assert!(line(&show("64")).ends_with("holds"), "{}", show("64"));
+    let at256 = line(&show("256"));
+    assert!(
+        at256.contains("(n = 256)") && at256.ends_with("fails"),
+        "{at256}"
+    );
+}
