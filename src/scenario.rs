@@ -261,15 +261,42 @@ impl Scenario {
                 source_name: name_or_path.to_string(),
                 message: e.to_string(),
             };
-            let size = std::fs::metadata(path).map_err(read_err)?.len();
-            if size > MAX_FILE_BYTES {
+            // A regular file only (a FIFO would block, /dev/zero never end), and never
+            // more than the cap read, whatever size the file reports.
+            let meta = std::fs::metadata(path).map_err(read_err)?;
+            if !meta.is_file() {
                 return Err(InputError::field(
+                    "scenario",
+                    name_or_path,
+                    "a regular TOML file (not a directory, device or pipe)",
+                ));
+            }
+            let too_big = |size: String| {
+                InputError::field(
                     "scenario",
                     format!("{name_or_path} ({size} bytes)"),
                     format!("a scenario file of at most {MAX_FILE_BYTES} bytes"),
-                ));
+                )
+            };
+            if meta.len() > MAX_FILE_BYTES {
+                return Err(too_big(meta.len().to_string()));
             }
-            let text = std::fs::read_to_string(path).map_err(read_err)?;
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(
+                &mut std::io::Read::take(
+                    std::fs::File::open(path).map_err(read_err)?,
+                    MAX_FILE_BYTES + 1,
+                ),
+                &mut bytes,
+            )
+            .map_err(read_err)?;
+            if bytes.len() as u64 > MAX_FILE_BYTES {
+                return Err(too_big(format!("more than {MAX_FILE_BYTES}")));
+            }
+            let text = String::from_utf8(bytes).map_err(|e| InputError::Parse {
+                source_name: name_or_path.to_string(),
+                message: format!("not UTF-8 text: {e}"),
+            })?;
             return Scenario::from_toml(&text, name_or_path);
         }
         Err(InputError::field(

@@ -101,3 +101,25 @@ fn a_traction_on_a_clamped_top_is_refused_by_name() {
     let e = evhi::scenario::Scenario::from_toml(&text, "smooth-with-f2").unwrap_err();
     assert_eq!(e.field_name(), Some("loads.f2"), "{e}");
 }
+
+/// A scenario path that is not a regular file is refused by name, without reading it
+/// (issue 27, case 9: `show /dev/zero` grew without bound, a FIFO blocked).
+#[test]
+fn a_scenario_that_is_not_a_regular_file_is_refused() {
+    for path in ["/dev/zero", "/tmp"] {
+        let e = evhi::scenario::Scenario::load(path).unwrap_err();
+        assert_eq!(e.field_name(), Some("scenario"), "{path}: {e}");
+        assert!(e.to_string().contains("regular"), "{e}");
+    }
+    let fifo = std::env::temp_dir().join(format!("evhi-fifo-{}.toml", std::process::id()));
+    let _ = std::fs::remove_file(&fifo);
+    if std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        let e = evhi::scenario::Scenario::load(fifo.to_str().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("regular"), "{e}");
+        let _ = std::fs::remove_file(&fifo);
+    }
+}

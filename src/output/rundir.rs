@@ -5,7 +5,8 @@
 //! `renameat2(RENAME_EXCHANGE)`; elsewhere two renames). A reader of the target
 //! therefore sees the previous set or the new one, never a mix, whatever interrupts
 //! the run. A lock beside the target (`.NAME.lock`, released by the kernel when
-//! the process dies) makes a second writer fail at once. Leftovers of a killed run
+//! the process dies, and never deleted, so that every writer locks the same file)
+//! makes a second writer fail at once. Leftovers of a killed run
 //! (staging directories, an old set that was swapped out) are removed by the next
 //! run that takes the lock.
 //!
@@ -81,7 +82,6 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutError + '_ {
 pub struct RunDir {
     target: PathBuf,
     staging: PathBuf,
-    lock_path: PathBuf,
     _lock: File,
     delay: Option<std::time::Duration>,
 }
@@ -184,7 +184,6 @@ impl RunDir {
         Ok(RunDir {
             target: target.to_path_buf(),
             staging,
-            lock_path,
             _lock: lock,
             delay,
         })
@@ -251,7 +250,9 @@ impl Drop for RunDir {
     /// its staging directory (a published one is already gone).
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.staging);
-        let _ = std::fs::remove_file(&self.lock_path);
+        // The lock file stays: deleting it while locked would let a process that
+        // opened it before the deletion and one that creates a new one both hold
+        // "the" lock. The kernel releases the lock when `_lock` closes.
     }
 }
 
