@@ -76,7 +76,9 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Show(args) => cli::show::run(args),
-        Command::Plot { run_dir } => evhi::experiments::runplot::draw(&run_dir)
+        Command::Plot { run_dir } => evhi::output::rundir::lock_run_dir(&run_dir)
+            .map_err(|e| e.to_string())
+            .and_then(|_lock| evhi::experiments::runplot::draw(&run_dir).map_err(|e| e.to_string()))
             .map_err(|e| format!("{}: {e}", run_dir.display()).into()),
     };
     match result {

@@ -209,12 +209,47 @@ pub fn memory_estimate(n: usize) -> f64 {
     30e6 + 20.0 * 6.0 * dofs * dofs.log2()
 }
 
-/// Memory the kernel can give this process now (Linux `MemAvailable`), bytes.
+/// Memory this process can still obtain, bytes: the least of the machine's
+/// `MemAvailable`, what the address-space limit (`ulimit -v`, `RLIMIT_AS`) leaves
+/// above the process's current size, and what its cgroup's `memory.max` leaves above
+/// the group's usage. `None` where none of them can be read.
 pub fn available_memory() -> Option<f64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024.0)
+    let kb_field = |text: &str, key: &str| -> Option<f64> {
+        let line = text.lines().find(|l| l.starts_with(key))?;
+        Some(line.split_whitespace().nth(1)?.parse::<f64>().ok()? * 1024.0)
+    };
+    let mut limits = vec![];
+    if let Ok(info) = std::fs::read_to_string("/proc/meminfo") {
+        limits.extend(kb_field(&info, "MemAvailable:"));
+    }
+    #[cfg(target_os = "linux")]
+    {
+        let mut lim = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: getrlimit writes into the struct we own; no other effect.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut lim) } == 0;
+        if ok && lim.rlim_cur != libc::RLIM_INFINITY {
+            let size = std::fs::read_to_string("/proc/self/status")
+                .ok()
+                .and_then(|s| kb_field(&s, "VmSize:"))
+                .unwrap_or(0.0);
+            limits.push((lim.rlim_cur as f64 - size).max(0.0));
+        }
+    }
+    let read = |p: &str| {
+        std::fs::read_to_string(p)
+            .ok()
+            .map(|s| s.trim().to_string())
+    };
+    if let (Some(max), Some(current)) = (
+        read("/sys/fs/cgroup/memory.max").and_then(|s| s.parse::<f64>().ok()),
+        read("/sys/fs/cgroup/memory.current").and_then(|s| s.parse::<f64>().ok()),
+    ) {
+        limits.push((max - current).max(0.0));
+    }
+    limits.into_iter().reduce(f64::min)
 }
 
 /// Refuses a mesh whose run would not fit in the available memory, before any work.

@@ -969,3 +969,62 @@ fn smallness_uses_the_runs_own_trace_constant() {
         "{at256}"
     );
 }
+
+/// `plot RUN_DIR` takes the run directory's lock: it cannot redraw while a `solve`
+/// writes there (issue 27, case 8).
+#[test]
+fn plot_waits_for_no_one_and_mixes_nothing() {
+    let dir = scratch("plot-lock");
+    let out = dir.join("run");
+    succeed(
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--n",
+                "8",
+                "--steps",
+                "2",
+                "--out",
+            ])
+            .arg(&out),
+    );
+    let lock = std::fs::File::options()
+        .write(true)
+        .open(dir.join(".run.lock"))
+        .unwrap();
+    lock.try_lock().unwrap();
+    let o = evhi().arg("plot").arg(&out).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("another evhi run"),
+        "{err}"
+    );
+    drop(lock);
+    succeed(evhi().arg("plot").arg(&out));
+}
+
+/// The memory guard also reads the address-space limit: under `ulimit -v 3000000` a
+/// mesh that cannot fit is refused before any work, with the estimate, instead of
+/// aborting in an allocation (issue 27, case 11).
+#[test]
+fn the_memory_guard_reads_the_address_space_limit() {
+    let dir = scratch("ulimit");
+    let o = std::process::Command::new("bash")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 3000000; exec '{}' solve --scenario figure --n 2048 --steps 1 --out '{}'",
+            env!("CARGO_BIN_EXE_evhi"),
+            dir.join("run").display()
+        ))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("fits in memory") && !err.contains("backtrace"),
+        "{err}"
+    );
+    assert!(!dir.join("run").exists());
+}

@@ -150,24 +150,7 @@ impl RunDir {
         }
         std::fs::create_dir_all(&parent)
             .map_err(|e| unusable(format!("its parent cannot be created: {e}")))?;
-        let lock_path = parent.join(format!(".{name}.lock"));
-        let lock = File::options()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(|e| {
-                unusable(format!(
-                    "cannot create a file beside it (`{}`): {e}",
-                    lock_path.display()
-                ))
-            })?;
-        if lock.try_lock().is_err() {
-            return Err(OutError::Busy {
-                path: target.display().to_string(),
-                lock: lock_path.display().to_string(),
-            });
-        }
+        let lock = lock_beside(target, &parent, &name)?;
         clean_leftovers(&parent, &name, target);
         let staging = parent.join(format!(".{name}.staging-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&staging);
@@ -243,6 +226,49 @@ impl RunDir {
         }
         Ok(())
     }
+}
+
+/// Takes the lock `.NAME.lock` beside the run directory `target` (in `parent`, the
+/// directory's name `name`), or fails at once if another process holds it.
+fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<File, OutError> {
+    let lock_path = parent.join(format!(".{name}.lock"));
+    let lock = File::options()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .map_err(|e| OutError::Unusable {
+            path: target.display().to_string(),
+            message: format!(
+                "cannot create a file beside it (`{}`): {e}",
+                lock_path.display()
+            ),
+        })?;
+    if lock.try_lock().is_err() {
+        return Err(OutError::Busy {
+            path: target.display().to_string(),
+            lock: lock_path.display().to_string(),
+        });
+    }
+    Ok(lock)
+}
+
+/// Takes the lock of an existing run directory for a reader that rewrites part of it
+/// (`evhi plot`), so that it never mixes its figures with a `solve` writing there.
+pub fn lock_run_dir(dir: &Path) -> Result<File, OutError> {
+    let name = dir
+        .file_name()
+        .filter(|n| !n.is_empty() && *n != "." && *n != "..")
+        .map(|n| n.to_string_lossy().into_owned())
+        .ok_or_else(|| OutError::Unusable {
+            path: dir.display().to_string(),
+            message: "name a run directory (not `.`, `..` or `/`)".into(),
+        })?;
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    lock_beside(dir, &parent, &name)
 }
 
 impl Drop for RunDir {
