@@ -476,6 +476,31 @@ fn results_max_equals_t() {
 }
 
 #[test]
+fn results_static_literal_closer() {
+    let gap = |scn: &str| -> Vec<f64> {
+        let keys = [("scenario", scn), ("family", "h=k")];
+        let n = column("table1.csv", &keys, "n");
+        let t = column("table1.csv", &keys, "rel_err_T_percent");
+        let sn = column("static_control.csv", &[("scenario", scn)], "n");
+        let s = column(
+            "static_control.csv",
+            &[("scenario", scn)],
+            "rel_err_vs_n512",
+        );
+        n.iter()
+            .zip(&t)
+            .map(|(n, t)| {
+                let j = sn.iter().position(|x| x == n).expect("the same level");
+                (t / (100.0 * s[j]) - 1.0).abs()
+            })
+            .collect()
+    };
+    let (l, f) = (gap("literal"), gap("figure"));
+    assert!(l.iter().zip(&f).all(|(a, b)| a < b), "{l:?} {f:?}");
+    assert!(l.iter().all(|&a| a < 0.01), "{l:?}");
+}
+
+#[test]
 fn results_cells_h_reference() {
     let f = rows("table1_forensics.csv");
     let r = f
