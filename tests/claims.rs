@@ -501,6 +501,22 @@ fn results_static_literal_closer() {
 }
 
 #[test]
+fn results_smooth_every_regime() {
+    // Not stored in data/: recomputed (h = k = 1/64, a fraction of a second).
+    let scn = evhi::scenario::Scenario::load("smooth").unwrap();
+    let run = evhi::experiments::run_newton(&scn, 64, 64).unwrap();
+    let seen: BTreeSet<String> = run
+        .contact
+        .iter()
+        .map(|c| c.regime(&scn.law, scn.g))
+        .collect();
+    let expected: BTreeSet<String> = ["branch1", "branch2", "branch3", "limit"]
+        .map(String::from)
+        .into();
+    assert_eq!(seen, expected, "smooth's regimes at T");
+}
+
+#[test]
 fn results_cells_h_reference() {
     let f = rows("table1_forensics.csv");
     let r = f
