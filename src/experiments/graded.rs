@@ -17,7 +17,7 @@
 //! $n_{ref}$ with $k = 1/n_{ref}$. The error is the relative energy norm at $t = T$
 //! (where the time part of the error is below 0.3 % at every level of Table 1).
 
-use super::plot::{Figure, both, circle_legend, e2s, legend};
+use super::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::bisection::{Forest, Leaves};
 use crate::mesh::{Dofs, Mesh, Supports};
@@ -296,7 +296,7 @@ impl Figure for GradedFig {
             .collect();
         let mut chart = ChartBuilder::on(root)
             .caption(
-                "Energy error at t = T against unknowns: uniform and graded meshes",
+                "Energy error at the final time, uniform and graded meshes",
                 ("sans-serif", 22),
             )
             .margin(15)
@@ -352,25 +352,12 @@ impl Figure for GradedFig {
         }
         // Slope guides N^(-1/2) (order 1 in h) and N^(-1/4) (order 1/2), from the
         // first graded point, below the data.
-        if let Some(&(x0, y0)) = self.series.get(1).and_then(|s| s.1.first()) {
-            for (i, (slope, label, dash)) in [
-                (0.5, "N^(-1/2): order 1 in h", 8),
-                (0.25, "N^(-1/4): order 1/2 in h", 3),
-            ]
-            .into_iter()
-            .enumerate()
-            {
-                let y0 = y0 * 0.45;
-                let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
-                let grey = RGBColor(40 + 70 * i as u8, 40 + 70 * i as u8, 40 + 70 * i as u8);
-                chart
-                    .draw_series(DashedLineSeries::new(pts, dash, 4, grey.stroke_width(2)))
-                    .map_err(e2s)?
-                    .label(label)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], grey.stroke_width(2))
-                    });
-            }
+        if let Some(&start) = self.series.get(1).and_then(|s| s.1.first()) {
+            let guides = [
+                (0.5, "N^(-1/2): order 1 in h".to_string()),
+                (0.25, "N^(-1/4): order 1/2 in h".to_string()),
+            ];
+            slope_guides(&mut chart, &guides, start, xmax, 0.45)?;
         }
         legend(&mut chart, SeriesLabelPosition::LowerLeft, 17, 0.9)?;
         Ok(())

@@ -12,7 +12,7 @@
 //! $y_n = 1 - (1 + k/\tau)^{-n}$, predicts the relative error without any mesh; the
 //! table carries it beside the measurement.
 
-use super::plot::{Figure, both, circle_legend, e2s, legend};
+use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::history::History;
 use crate::norms::energy_norm;
@@ -553,7 +553,7 @@ impl Figure for TimeFig {
                 ))
                 .map_err(e2s)?
                 .label("slope 1")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], RGBColor(90, 90, 90)));
+                .legend(|xy| dashed_legend(xy, 3, 5, RGBColor(90, 90, 90).stroke_width(1)));
         }
         legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())
