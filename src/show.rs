@@ -44,7 +44,7 @@ impl Smallness {
         };
         Ok(Smallness {
             beta_b: scn.elasticity().coercivity(),
-            m: -scn.law.min_slope(),
+            m: (-scn.law.min_slope()).max(0.0),
             trace_sq,
             n,
             extrapolated,
@@ -54,7 +54,7 @@ impl Smallness {
     pub fn unknown(scn: &Scenario, n: usize) -> Smallness {
         Smallness {
             beta_b: scn.elasticity().coercivity(),
-            m: -scn.law.min_slope(),
+            m: (-scn.law.min_slope()).max(0.0),
             trace_sq: f64::NAN,
             n,
             extrapolated: false,
@@ -127,7 +127,7 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
             if l == r { "" } else { " (a jump)" }
         );
     }
-    let m = -law.min_slope();
+    let m = (-law.min_slope()).max(0.0);
     let _ = writeln!(
         s,
         "  H(j): constant m = max(0, -min slope) = {m} (relaxed monotonicity)"

@@ -1028,3 +1028,49 @@ fn the_memory_guard_reads_the_address_space_limit() {
     );
     assert!(!dir.join("run").exists());
 }
+
+/// Small messages of issue 27, case 16: `show` prints m = 0 (not -0) for a monotone
+/// law and caps --steps as `solve` does; a symbolic link as --out is named as one.
+#[test]
+fn show_and_out_messages_say_what_is_wrong() {
+    let dir = scratch("messages");
+    let mono = figure_file(
+        &dir,
+        "mono.toml",
+        "slopes = [0.0, 200.0, -100.0, 300.0]",
+        "slopes = [0.0, 200.0, 100.0, 300.0]",
+    );
+    let o = evhi().arg("show").arg(&mono).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("= 0 (relaxed monotonicity)") && !text.contains("-0"),
+        "{text}"
+    );
+    let o = evhi()
+        .args(["show", "figure", "--steps", "2000000"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("`steps`"), "{err}");
+    std::fs::create_dir(dir.join("real")).unwrap();
+    std::os::unix::fs::symlink(dir.join("real"), dir.join("link")).unwrap();
+    let o = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "figure",
+            "--n",
+            "8",
+            "--steps",
+            "2",
+            "--out",
+        ])
+        .arg(dir.join("link"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("symbolic link"),
+        "{err}"
+    );
+}

@@ -19,8 +19,13 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     crate::mesh::check_n(args.n)?;
     crate::scheme::check_memory(args.n)?;
-    if args.steps == 0 {
-        return Err(crate::error::InputError::field("steps", 0, "an integer >= 1").into());
+    if args.steps == 0 || args.steps > 1_000_000 {
+        return Err(crate::error::InputError::field(
+            "steps",
+            args.steps,
+            "an integer in 1..=1000000",
+        )
+        .into());
     }
     let (text, warnings) = crate::show::report(&scn, args.n, args.steps);
     print!("{text}");

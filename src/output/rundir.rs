@@ -105,6 +105,13 @@ impl RunDir {
             _ => PathBuf::from("."),
         };
         if let Ok(meta) = std::fs::symlink_metadata(target) {
+            if meta.file_type().is_symlink() {
+                return Err(unusable(
+                    "is a symbolic link; a run replaces its directory as a whole, so name \
+                     the directory itself (or a new path)"
+                        .into(),
+                ));
+            }
             if !meta.is_dir() {
                 return Err(unusable(
                     "exists and is not a directory; choose a directory path".into(),
