@@ -1074,3 +1074,34 @@ fn show_and_out_messages_say_what_is_wrong() {
         "{err}"
     );
 }
+
+/// `--vtk-every` is bounded by the volume it would write: 1e6 steps at n = 128 with a
+/// snapshot every step (about 1 TB) is refused before any work, naming the option and
+/// the estimate (issue 27, case 10).
+#[test]
+fn a_vtk_series_that_cannot_fit_is_refused() {
+    let dir = scratch("vtk-volume");
+    let o = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "figure",
+            "--n",
+            "128",
+            "--steps",
+            "1000000",
+            "--vtk-every",
+            "1",
+            "--out",
+        ])
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("`vtk-every`") && err.contains("GB in all"),
+        "{err}"
+    );
+    assert!(!dir.join("run/summary.csv").exists());
+}

@@ -147,6 +147,9 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     opt.parallel = args.threads == 2;
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
+    if let Some(every) = args.vtk_every {
+        check_vtk_volume(&args.out, args.n, args.steps, every)?;
+    }
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
     let steps = args.steps as u64;
@@ -281,4 +284,66 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     Ok(())
+}
+
+/// The largest VTK series `--vtk-every` may write, bytes.
+pub const VTK_CAP_BYTES: f64 = 20e9;
+
+/// Refuses a `--vtk-every` series that would not fit: about 120 bytes per mesh node
+/// per file (0.95 MB at n = 128), one file every `every` steps and one at T, against
+/// [`VTK_CAP_BYTES`] and the free space where the run is written.
+fn check_vtk_volume(
+    out: &std::path::Path,
+    n: usize,
+    steps: usize,
+    every: u64,
+) -> Result<(), crate::error::InputError> {
+    let nodes = ((n + 1) * (n / 2 + 1)) as f64;
+    let files = (steps as u64).div_ceil(every) as f64 + 1.0;
+    let bytes = 120.0 * nodes * files;
+    let free = free_bytes(
+        out.parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new(".")),
+    );
+    let limit = free.map_or(VTK_CAP_BYTES, |f| f.min(VTK_CAP_BYTES));
+    if bytes > limit {
+        return Err(crate::error::InputError::field(
+            "vtk-every",
+            every,
+            format!(
+                "a series that fits: {files} files of about {:.2} MB each, {:.1} GB in all, \
+                 but at most {:.1} GB may be written ({}); write fewer snapshots",
+                120.0 * nodes / 1e6,
+                bytes / 1e9,
+                limit / 1e9,
+                match free {
+                    Some(f) if f < VTK_CAP_BYTES =>
+                        format!("the free space there, {:.1} GB", f / 1e9),
+                    _ => format!("the cap of {:.0} GB", VTK_CAP_BYTES / 1e9),
+                }
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Free bytes for an unprivileged writer on the file system of `dir` (`statvfs`).
+fn free_bytes(dir: &std::path::Path) -> Option<f64> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        let path = std::ffi::CString::new(dir.as_os_str().as_bytes()).ok()?;
+        // SAFETY: statvfs writes into the zeroed struct we own; the path is a valid C string.
+        let mut st: libc::statvfs = unsafe { std::mem::zeroed() };
+        if unsafe { libc::statvfs(path.as_ptr(), &mut st) } != 0 {
+            return None;
+        }
+        Some(st.f_bavail as f64 * st.f_frsize as f64)
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = dir;
+        None
+    }
 }
