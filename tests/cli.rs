@@ -1105,3 +1105,47 @@ fn a_vtk_series_that_cannot_fit_is_refused() {
     );
     assert!(!dir.join("run/summary.csv").exists());
 }
+
+/// `plot` refuses a tampered table, naming file, line and column, instead of drawing
+/// text as 0, an empty table, NaN or 1e300 (issue 27, case 15).
+#[test]
+fn plot_refuses_tampered_tables() {
+    let dir = scratch("tampered");
+    let out = dir.join("run");
+    succeed(
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--n",
+                "8",
+                "--steps",
+                "2",
+                "--out",
+            ])
+            .arg(&out),
+    );
+    let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let lines: Vec<&str> = contact.lines().collect();
+    let first = lines[3]; // after two provenance lines and the header
+    let fields: Vec<&str> = first.split(',').collect();
+    for (bad, expect) in [("abc", "`abc`"), ("NaN", "`NaN`"), ("1e300", "`1e300`")] {
+        let row = format!("{},{bad},{}", fields[0], fields[2..].join(","));
+        let text = contact.replacen(first, &row, 1);
+        std::fs::write(out.join("contact.csv"), text).unwrap();
+        let o = evhi().arg("plot").arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{bad} drawn");
+        assert!(
+            err.contains("contact.csv:4") && err.contains("`u_nu`") && err.contains(expect),
+            "{err}"
+        );
+    }
+    let header_only: String = lines[..3].iter().map(|l| format!("{l}\n")).collect();
+    std::fs::write(out.join("contact.csv"), header_only).unwrap();
+    let o = evhi().arg("plot").arg(&out).output().unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no data row"));
+    std::fs::write(out.join("contact.csv"), contact).unwrap();
+    succeed(evhi().arg("plot").arg(&out));
+}

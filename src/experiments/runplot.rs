@@ -9,8 +9,83 @@ use crate::certificate::regime_order;
 use plotters::prelude::*;
 use std::path::Path;
 
+/// The run's tables the figures read, with the columns that may hold text (every
+/// other column must hold finite numbers).
+const TABLES: [(&str, &[&str]); 4] = [
+    ("contact.csv", &["regime"]),
+    ("nodes.csv", &[]),
+    ("evolution.csv", &["regime"]),
+    ("regimes.csv", &[]),
+];
+
+/// The largest magnitude a run's table holds (loads and moduli are bounded by 1e12,
+/// displacements and stresses far below this).
+const PLAUSIBLE: f64 = 1e100;
+
+/// Refuses a run table the figures would misdraw: missing, without a data row, a
+/// row of the wrong length, or a number that is not finite or beyond [`PLAUSIBLE`] in
+/// a numeric column; the error names the file, the line and the column.
+pub fn validate_tables(dir: &Path) -> Result<(), ExpError> {
+    for (file, text_cols) in TABLES {
+        let path = dir.join(file);
+        let err = |line: usize, message: String| ExpError::Table {
+            path: format!("{}:{line}", path.display()),
+            message,
+        };
+        let text = std::fs::read_to_string(&path).map_err(|e| ExpError::Io {
+            path: path.display().to_string(),
+            source: e,
+        })?;
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.starts_with('#'));
+        let Some((hl, header)) = lines.next() else {
+            return Err(err(1, "no header line".into()));
+        };
+        let cols: Vec<&str> = header.split(',').collect();
+        let mut rows = 0;
+        for (i, line) in lines {
+            let fields: Vec<&str> = line.split(',').collect();
+            if fields.len() != cols.len() {
+                return Err(err(
+                    i + 1,
+                    format!(
+                        "{} fields where the header has {}",
+                        fields.len(),
+                        cols.len()
+                    ),
+                ));
+            }
+            for (c, f) in cols.iter().zip(&fields) {
+                if text_cols.contains(c) {
+                    continue;
+                }
+                match f.trim().parse::<f64>() {
+                    Ok(x) if x.is_finite() && x.abs() <= PLAUSIBLE => {}
+                    _ => {
+                        return Err(err(
+                            i + 1,
+                            format!(
+                                "column `{c}` holds `{f}`, not a finite number of magnitude at \
+                                 most {PLAUSIBLE:e} (the table was not written by this run)"
+                            ),
+                        ));
+                    }
+                }
+            }
+            rows += 1;
+        }
+        if rows == 0 {
+            return Err(err(hl + 1, "a header and no data row".into()));
+        }
+    }
+    Ok(())
+}
+
 /// Draws both figures of the run directory `dir` into it.
 pub fn draw(dir: &Path) -> Result<(), ExpError> {
+    validate_tables(dir)?;
     let summary = read_csv(&dir.join("summary.csv"))?;
     let first = |c: &str| -> Result<f64, ExpError> {
         col_f64(&summary, c)?
