@@ -75,8 +75,21 @@ impl Convexify {
 }
 
 impl Convexify {
-    /// Solves the convex subproblem with linear concave term `eta`; returns $r$ and Clarabel's iterations.
-    fn subproblem(&self, p: &StepProblem, eta: &[f64]) -> Result<(Vec<f64>, u32), String> {
+    /// Solves the convex subproblem with linear concave term `eta`, starting near `r`;
+    /// returns $r$ and Clarabel's iterations.
+    ///
+    /// Clarabel's tolerances are absolute in places, so the subproblem is scaled to
+    /// unit size first: displacements by $L = \max(\|r_0\|_\infty, \|r\|_\infty)$ (the step's own
+    /// scale), the objective by $F = L^2 \max|P|$. With $x = L\hat x$ the problem
+    /// $\min \tfrac12 x^\top P x + q^\top x$, $Ax + s = b$ becomes
+    /// $\min \tfrac12 \hat x^\top (L^2 P/F)\hat x + (L q/F)^\top \hat x$, $A\hat x + \hat s = b/L$: the same
+    /// minimiser, found to the same relative accuracy whatever the units.
+    fn subproblem(
+        &self,
+        p: &StepProblem,
+        eta: &[f64],
+        r: &[f64],
+    ) -> Result<(Vec<f64>, u32), String> {
         let m = p.m();
         let (a, runs) = p.law.convex_runs(p.g);
         let nr = runs.len();
@@ -150,6 +163,17 @@ impl Convexify {
             acp.push(arv.len());
         }
         let am = CscMatrix::new(nrows, nvar, acp, arv, anz);
+        let length = super::inf_norm(p.r0)
+            .max(super::inf_norm(r))
+            .max(f64::MIN_POSITIVE);
+        let pmax = pm.nzval.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let force = (length * length * pmax).max(f64::MIN_POSITIVE);
+        let mut pm = pm;
+        pm.nzval
+            .iter_mut()
+            .for_each(|v| *v *= length * length / force);
+        q.iter_mut().for_each(|v| *v *= length / force);
+        b.iter_mut().for_each(|v| *v /= length);
         let cones = [
             SupportedConeT::ZeroConeT(m),
             SupportedConeT::NonnegativeConeT(n_nonneg),
@@ -170,7 +194,7 @@ impl Convexify {
         let sol = &solver.solution;
         match sol.status {
             SolverStatus::Solved | SolverStatus::AlmostSolved => Ok((
-                sol.x[..m].iter().map(|&x| x.min(p.g)).collect(),
+                sol.x[..m].iter().map(|&x| (x * length).min(p.g)).collect(),
                 sol.iterations,
             )),
             s => Err(format!("clarabel status {s:?}")),
@@ -198,7 +222,7 @@ impl StepSolver for Convexify {
         };
         for it in 0..st.max_iter {
             let eta: Vec<f64> = r.iter().map(|&s| p.law.concave_slope(s)).collect();
-            let (next, ipm_iters) = match self.subproblem(p, &eta) {
+            let (next, ipm_iters) = match self.subproblem(p, &eta, r) {
                 Ok(x) => x,
                 Err(msg) => {
                     info.status = Status::Failed(msg);
