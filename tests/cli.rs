@@ -24,6 +24,24 @@ fn succeed(cmd: &mut Command) {
     );
 }
 
+/// `evhi solve --scenario figure --n 8 --steps 2 --out OUT`: the smallest run, for the
+/// tests of outputs and messages.
+fn small_solve(out: &std::path::Path) -> Command {
+    let mut cmd = evhi();
+    cmd.args([
+        "solve",
+        "--scenario",
+        "figure",
+        "--n",
+        "8",
+        "--steps",
+        "2",
+        "--out",
+    ])
+    .arg(out);
+    cmd
+}
+
 #[test]
 fn solve_writes_all_outputs() {
     let dir = scratch("cli");
@@ -789,22 +807,7 @@ fn displacements_that_dwarf_g_are_refused_not_certified() {
 fn solve_keeps_the_users_files_in_an_earlier_run_directory() {
     let dir = scratch("user-files");
     let out = dir.join("run");
-    let solve = || {
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--n",
-                "8",
-                "--steps",
-                "2",
-                "--out",
-            ])
-            .arg(&out)
-            .output()
-            .unwrap()
-    };
+    let solve = || small_solve(&out).output().unwrap();
     assert!(solve().status.success());
     // A rerun of a clean run directory is allowed.
     assert!(solve().status.success());
@@ -859,20 +862,7 @@ fn control_characters_stay_out_of_the_provenance_lines() {
     assert!(!o.status.success() && err.contains("`name`"), "{err}");
     for bad in ["cr\rrun", "lf\nrun"] {
         let out = dir.join(bad);
-        succeed(
-            evhi()
-                .args([
-                    "solve",
-                    "--scenario",
-                    "figure",
-                    "--n",
-                    "8",
-                    "--steps",
-                    "2",
-                    "--out",
-                ])
-                .arg(&out),
-        );
+        succeed(&mut small_solve(&out));
         let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
         let lines: Vec<&str> = contact.lines().collect();
         assert!(lines[0].starts_with("# produced by evhi") && lines[1].starts_with("# scenario"));
@@ -976,20 +966,7 @@ fn smallness_uses_the_runs_own_trace_constant() {
 fn plot_waits_for_no_one_and_mixes_nothing() {
     let dir = scratch("plot-lock");
     let out = dir.join("run");
-    succeed(
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--n",
-                "8",
-                "--steps",
-                "2",
-                "--out",
-            ])
-            .arg(&out),
-    );
+    succeed(&mut small_solve(&out));
     let lock = std::fs::File::options()
         .write(true)
         .open(dir.join(".run.lock"))
@@ -1054,20 +1031,7 @@ fn show_and_out_messages_say_what_is_wrong() {
     assert!(!o.status.success() && err.contains("`steps`"), "{err}");
     std::fs::create_dir(dir.join("real")).unwrap();
     std::os::unix::fs::symlink(dir.join("real"), dir.join("link")).unwrap();
-    let o = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "figure",
-            "--n",
-            "8",
-            "--steps",
-            "2",
-            "--out",
-        ])
-        .arg(dir.join("link"))
-        .output()
-        .unwrap();
+    let o = small_solve(&dir.join("link")).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         !o.status.success() && err.contains("symbolic link"),
@@ -1112,20 +1076,7 @@ fn a_vtk_series_that_cannot_fit_is_refused() {
 fn plot_refuses_tampered_tables() {
     let dir = scratch("tampered");
     let out = dir.join("run");
-    succeed(
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--n",
-                "8",
-                "--steps",
-                "2",
-                "--out",
-            ])
-            .arg(&out),
-    );
+    succeed(&mut small_solve(&out));
     let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
     let lines: Vec<&str> = contact.lines().collect();
     let first = lines[3]; // after two provenance lines and the header

@@ -179,20 +179,15 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
 fn lock_outputs(data: &std::path::Path) -> Result<std::fs::File, String> {
     std::fs::create_dir_all(data).map_err(|e| format!("cannot create {}: {e}", data.display()))?;
     let path = data.join(".reproduce.lock");
-    let file = std::fs::File::options()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&path)
-        .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?;
-    file.try_lock().map_err(|_| {
-        format!(
-            "another `evhi reproduce` is writing {} (it holds {}); wait for it to finish",
-            data.display(),
-            path.display()
-        )
-    })?;
-    Ok(file)
+    crate::output::try_lock_file(&path)
+        .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?
+        .ok_or_else(|| {
+            format!(
+                "another `evhi reproduce` is writing {} (it holds {}); wait for it to finish",
+                data.display(),
+                path.display()
+            )
+        })
 }
 
 /// Removes the temporaries `.NAME.tmp-PID` (of [`crate::output::write_atomic`] and the

@@ -96,13 +96,17 @@ impl ExactRule {
 
     /// The relative KKT residual of `r` (see the module header).
     pub fn residual(&self, p: &StepProblem, r: &[f64]) -> f64 {
-        let (g, _) = self.gradient(p, r);
+        self.residual_with(p, r, &self.gradient(p, r).0)
+    }
+
+    /// [`ExactRule::residual`] with the gradient `g` of $q$ at `r` already at hand.
+    fn residual_with(&self, p: &StepProblem, r: &[f64], g: &[f64]) -> f64 {
         let scale = crate::dense::inf_norm(&sym_matvec(p.s, r))
             .max(crate::dense::inf_norm(&sym_matvec(p.s, p.r0)))
             .max(f64::MIN_POSITIVE);
         let tol = 1e-13 * p.g.abs().max(crate::dense::inf_norm(r));
         r.iter()
-            .zip(&g)
+            .zip(g)
             .map(|(&ri, &gi)| {
                 let feas = (ri - p.g).max(0.0) / p.g.abs().max(f64::MIN_POSITIVE);
                 let stat = if ri >= p.g - tol {
@@ -127,7 +131,8 @@ impl StepSolver for ExactRule {
         let mut history = vec![];
         let mut inner = 0;
         for it in 0..self.max_iter {
-            let res = self.residual(p, r);
+            let (g, hj) = self.gradient(p, r);
+            let res = self.residual_with(p, r, &g);
             history.push(res);
             if res <= self.tol {
                 return Info {
@@ -139,7 +144,6 @@ impl StepSolver for ExactRule {
                     time_s: 0.0,
                 };
             }
-            let (g, hj) = self.gradient(p, r);
             // Bound-active nodes: at the limit and pushed outward.
             let eps = (1e-8 * p.g.abs()).min(res * p.g.abs());
             let active: Vec<bool> = (0..m).map(|i| r[i] >= p.g - eps && g[i] < 0.0).collect();

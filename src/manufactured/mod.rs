@@ -355,8 +355,7 @@ pub fn strong_load_vector(data: &Data, mesh: &Mesh, dofs: &Dofs, t: f64) -> Vec<
                 out[d] += len
                     * crate::quadrature::segment(0.0, 1.0, &[], |s| {
                         let x = [pa[0] + s * (pb[0] - pa[0]), pa[1] + s * (pb[1] - pa[1])];
-                        let hat = if from_a { 1.0 - s } else { s };
-                        data.traction(x[0], x[1], t, n)[comp] * hat
+                        data.traction(x[0], x[1], t, n)[comp] * hat(0.0, 1.0, s, from_a)
                     });
             }
         }

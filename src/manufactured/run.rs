@@ -248,6 +248,7 @@ pub fn run_rules(
         let points = quadrature_points(sol, &mesh, &cuts, t, t_prev, last.take());
         let f = load_from_points(&data, &mesh, &disc.dofs, &points, t);
         let nodal: Vec<[f64; 2]> = mesh.nodes.iter().map(|p| sol.u(p[0], p[1], t)).collect();
+        let exact = measure_exact(&data, &mesh, &points, (t, k), [&nodal, &nodal_prev]);
         let mut fields = vec![];
         for (i, rule) in rules.iter().enumerate() {
             let b: Vec<f64> = au[i].iter().zip(&f).map(|(a, f)| a + k * f).collect();
@@ -285,14 +286,12 @@ pub fn run_rules(
                     tol: CERTIFICATE_TOL,
                 });
             }
-            let nodal_h = disc.dofs.expand(&u[0]);
-            let mut row = measure(
-                &data,
-                &mesh,
-                &points,
-                (t, k),
-                [&nodal, &nodal_prev, &nodal_h],
-            );
+            let (err_e, err_v_sq) = measure_error(&data, &mesh, &points, &disc.dofs.expand(&u[0]));
+            let mut row = StepRow {
+                err_e,
+                err_v_sq,
+                ..exact.clone()
+            };
             row.step = step;
             row.t = t;
             row.certificate = certificate;
@@ -410,33 +409,29 @@ fn load_from_points(
     out
 }
 
-/// The errors and Céa terms of one step (see the module header) from the step's
-/// quadrature points; `nodal` holds $u(t_n)$, $u(t_{n-1})$ at the nodes and the
-/// discrete $u_n$.
-fn measure(
+/// The terms of one step that depend on the exact solution alone (see the module
+/// header): $\|u_n\|_E$ and the Céa terms, from the step's quadrature points; `nodal`
+/// holds $u(t_n)$ and $u(t_{n-1})$ at the nodes. The same for every contact rule.
+fn measure_exact(
     data: &Data,
     mesh: &crate::mesh::Mesh,
     points: &[Point],
     (t, k): (f64, f64),
-    [nodal, nodal_prev, nodal_h]: [&[[f64; 2]]; 3],
+    [nodal, nodal_prev]: [&[[f64; 2]]; 2],
 ) -> StepRow {
     let sol = data.sol;
     let mut row = StepRow::default();
-    let (mut err_e_sq, mut exact_e_sq) = (0.0, 0.0);
+    let mut exact_e_sq = 0.0;
     let mut last = usize::MAX;
-    let (mut eh, mut ei, mut ei_prev) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    let (mut ei, mut ei_prev) = ([0.0; 3], [0.0; 3]);
     for pt in points {
         if pt.tri != last {
             last = pt.tri;
             let tri = mesh.triangles[pt.tri];
             let p = tri.map(|v| mesh.nodes[v]);
-            eh = p1_strain(p, tri.map(|v| nodal_h[v]));
             ei = p1_strain(p, tri.map(|v| nodal[v]));
             ei_prev = p1_strain(p, tri.map(|v| nodal_prev[v]));
         }
-        let e = sub(pt.now.eps, eh);
-        err_e_sq += pt.w * energy_density(&data.elast, e);
-        row.err_v_sq += pt.w * contract(e);
         exact_e_sq += pt.w * energy_density(&data.elast, pt.now.eps);
         row.interp_v_sq += pt.w * contract(sub(pt.now.eps, ei));
         if !sol.is_static() {
@@ -448,15 +443,14 @@ fn measure(
             row.delta_v_sq += pt.w * contract(dn);
         }
     }
-    row.err_e = err_e_sq.max(0.0).sqrt();
     row.exact_e = exact_e_sq.max(0.0).sqrt();
     // Gamma_3: the interpolation error of u_nu and R_n(Pi u_n) = -int lambda (Pi u_nu - u_nu).
     let (mut gamma_sq, mut r_n) = (0.0, 0.0);
+    let cut = sol.cuts(t);
     for w in mesh.contact.windows(2) {
         let (xa, xb) = (mesh.nodes[w[0]][0], mesh.nodes[w[1]][0]);
         let (ya, yb) = (-nodal[w[0]][1], -nodal[w[1]][1]);
         let pi = |x: f64| ya + (yb - ya) * (x - xa) / (xb - xa);
-        let cut = sol.cuts(t);
         gamma_sq += crate::quadrature::segment(xa, xb, &cut, |x| (data.u_nu(x, t) - pi(x)).powi(2));
         r_n -= crate::quadrature::segment(xa, xb, &cut, |x| {
             sol.reaction(x, t) * (pi(x) - data.u_nu(x, t))
@@ -465,4 +459,27 @@ fn measure(
     row.gamma_l2 = gamma_sq.sqrt();
     row.r_n = r_n.abs();
     row
+}
+
+/// The error of the discrete $u_n$ (nodal values `nodal_h`): $(\|e_n\|_E, \|e_n\|^2_V)$.
+fn measure_error(
+    data: &Data,
+    mesh: &crate::mesh::Mesh,
+    points: &[Point],
+    nodal_h: &[[f64; 2]],
+) -> (f64, f64) {
+    let (mut err_e_sq, mut err_v_sq) = (0.0, 0.0);
+    let mut last = usize::MAX;
+    let mut eh = [0.0; 3];
+    for pt in points {
+        if pt.tri != last {
+            last = pt.tri;
+            let tri = mesh.triangles[pt.tri];
+            eh = p1_strain(tri.map(|v| mesh.nodes[v]), tri.map(|v| nodal_h[v]));
+        }
+        let e = sub(pt.now.eps, eh);
+        err_e_sq += pt.w * energy_density(&data.elast, e);
+        err_v_sq += pt.w * contract(e);
+    }
+    (err_e_sq.max(0.0).sqrt(), err_v_sq)
 }

@@ -12,6 +12,18 @@ pub mod vtu;
 use std::io::Write;
 use std::path::Path;
 
+/// Opens (creating it if missing, never truncating or deleting it) the lock file
+/// `path` and takes its exclusive lock: `Ok(None)` when another process holds it.
+/// The kernel releases the lock when the returned file is closed or the process ends.
+pub fn try_lock_file(path: &Path) -> std::io::Result<Option<std::fs::File>> {
+    let file = std::fs::File::options()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(path)?;
+    Ok(file.try_lock().is_ok().then_some(file))
+}
+
 /// Writes `bytes` to `path` atomically (temporary file + rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let dir = path

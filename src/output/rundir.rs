@@ -94,16 +94,7 @@ impl RunDir {
             path: target.display().to_string(),
             message,
         };
-        let name = target
-            .file_name()
-            .filter(|n| !n.is_empty() && *n != "." && *n != "..")
-            .ok_or_else(|| unusable("name a directory (not `.`, `..` or `/`)".into()))?
-            .to_string_lossy()
-            .into_owned();
-        let parent = match target.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
+        let (parent, name) = parent_and_name(target)?;
         if let Ok(meta) = std::fs::symlink_metadata(target) {
             if meta.file_type().is_symlink() {
                 return Err(unusable(
@@ -239,42 +230,45 @@ impl RunDir {
 /// directory's name `name`), or fails at once if another process holds it.
 fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<File, OutError> {
     let lock_path = parent.join(format!(".{name}.lock"));
-    let lock = File::options()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&lock_path)
-        .map_err(|e| OutError::Unusable {
+    match super::try_lock_file(&lock_path) {
+        Ok(Some(lock)) => Ok(lock),
+        Ok(None) => Err(OutError::Busy {
+            path: target.display().to_string(),
+            lock: lock_path.display().to_string(),
+        }),
+        Err(e) => Err(OutError::Unusable {
             path: target.display().to_string(),
             message: format!(
                 "cannot create a file beside it (`{}`): {e}",
                 lock_path.display()
             ),
-        })?;
-    if lock.try_lock().is_err() {
-        return Err(OutError::Busy {
-            path: target.display().to_string(),
-            lock: lock_path.display().to_string(),
-        });
+        }),
     }
-    Ok(lock)
+}
+
+/// The directory that holds `target` (`.` for a bare name) and `target`'s own name,
+/// which must name a directory (not `.`, `..` or `/`).
+fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
+    let name = target
+        .file_name()
+        .filter(|n| !n.is_empty() && *n != "." && *n != "..")
+        .ok_or_else(|| OutError::Unusable {
+            path: target.display().to_string(),
+            message: "name a directory (not `.`, `..` or `/`)".into(),
+        })?
+        .to_string_lossy()
+        .into_owned();
+    let parent = match target.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    Ok((parent, name))
 }
 
 /// Takes the lock of an existing run directory for a reader that rewrites part of it
 /// (`evhi plot`), so that it never mixes its figures with a `solve` writing there.
 pub fn lock_run_dir(dir: &Path) -> Result<File, OutError> {
-    let name = dir
-        .file_name()
-        .filter(|n| !n.is_empty() && *n != "." && *n != "..")
-        .map(|n| n.to_string_lossy().into_owned())
-        .ok_or_else(|| OutError::Unusable {
-            path: dir.display().to_string(),
-            message: "name a run directory (not `.`, `..` or `/`)".into(),
-        })?;
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let (parent, name) = parent_and_name(dir)?;
     lock_beside(dir, &parent, &name)
 }
 
