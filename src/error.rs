@@ -41,11 +41,24 @@ impl InputError {
     }
 }
 
-/// A value as a reader wants it echoed: long numbers (`1e308` prints 309 digits) in
-/// exponent notation, anything else cut to 200 characters.
+/// A value as a reader wants it echoed: long or tiny numbers in exponent notation,
+/// anything else cut to 200 characters.
 fn readable(v: String) -> String {
-    if let Some(x) = (v.len() > 24).then(|| v.parse::<f64>().ok()).flatten() {
+    // Long numbers (`1e308` prints 309 digits, `1e-20` 22) in exponent notation.
+    if let Ok(x) = v.parse::<f64>()
+        && x.is_finite()
+        && x != 0.0
+        && (v.len() > 24 || x.abs() < 1e-4)
+    {
         return format!("{x:e}");
+    }
+    // Integers beyond 2^53 were rounded when read: say so rather than echo digits
+    // the user did not write as if they had.
+    if let Ok(x) = v.parse::<f64>()
+        && x.abs() >= 9007199254740992.0
+        && x.is_finite()
+    {
+        return format!("{x:e} (the double nearest to the number written)");
     }
     match v.char_indices().nth(200) {
         None => v,
@@ -57,6 +70,10 @@ fn readable(v: String) -> String {
 /// problem (stiffness times displacement squared) leave the range where a double
 /// precision solve can be certified.
 pub const MAX_MAGNITUDE: f64 = 1e12;
+
+/// The smallest magnitude of a modulus or coefficient, written as a literal so that
+/// messages print it as `1e-12` (`1.0 / MAX_MAGNITUDE` prints 9.999999999999999e-13).
+pub const MIN_MAGNITUDE: f64 = 1e-12;
 
 /// `v` if finite with $|v| \le$ `max`, else an error naming `field`.
 pub fn bounded(field: &str, v: f64, max: f64) -> Result<f64, InputError> {

@@ -3,7 +3,7 @@
 //! Every field is checked; a bad value is rejected with the field's name, the
 //! value and what is allowed, and unknown keys are errors.
 
-use crate::error::{InputError, MAX_MAGNITUDE, bounded, in_range};
+use crate::error::{InputError, MAX_MAGNITUDE, MIN_MAGNITUDE, bounded, in_range};
 use crate::history::History;
 use crate::law::Law;
 use crate::material::Isotropic;
@@ -237,7 +237,7 @@ fn poisson(field: &str, kappa: f64) -> Result<f64, InputError> {
 }
 
 fn positive(field: &str, v: f64) -> Result<f64, InputError> {
-    in_range(field, v, 1.0 / MAX_MAGNITUDE, MAX_MAGNITUDE)
+    in_range(field, v, MIN_MAGNITUDE, MAX_MAGNITUDE)
 }
 
 impl Scenario {

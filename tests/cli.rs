@@ -1100,3 +1100,22 @@ fn plot_refuses_tampered_tables() {
     std::fs::write(out.join("contact.csv"), contact).unwrap();
     succeed(evhi().arg("plot").arg(&out));
 }
+
+#[test]
+fn two_threads_with_amd_are_refused_and_amd_alone_runs_on_one() {
+    let dir = scratch("threads-amd");
+    let out = small_solve(&dir.join("run"))
+        .args(["--threads", "2", "--ordering", "amd"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        err.contains("`threads`") && err.contains("--ordering amd"),
+        "{err}"
+    );
+    assert!(!dir.join("run").exists(), "refused before any work");
+    succeed(small_solve(&dir.join("run")).args(["--ordering", "amd"]));
+    let summary = std::fs::read_to_string(dir.join("run/summary.csv")).unwrap();
+    assert!(summary.contains("amd"));
+}

@@ -123,3 +123,20 @@ fn a_scenario_that_is_not_a_regular_file_is_refused() {
         let _ = std::fs::remove_file(&fifo);
     }
 }
+
+#[test]
+fn refused_numbers_are_echoed_as_read_and_bounds_as_written() {
+    let cases = [
+        // A tiny value in exponent notation, not 0.00000000000000000001.
+        ("E = 1e-20", "got 1e-20, expected a number in [1e-12, 1e12]"),
+        // Beyond 2^53 the digits written are not the digits read: say so.
+        (
+            "E = 9007199254740993",
+            "got 9.007199254740992e15 (the double nearest to the number written)",
+        ),
+    ];
+    for (to, expect) in cases {
+        let err = Scenario::from_toml(&with("E = 1000.0", to), "test").unwrap_err();
+        assert!(err.to_string().contains(expect), "{err}");
+    }
+}

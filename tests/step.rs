@@ -105,3 +105,12 @@ fn bad_settings_are_refused_by_name() {
         assert_eq!(info.iterations, 0);
     }
 }
+
+#[test]
+fn every_registered_solver_reports_its_own_name() {
+    // The name reaches summary.csv and every error message: `newton-no-line-search`
+    // was once reported as `newton`.
+    for entry in evhi::step::SOLVERS.iter() {
+        assert_eq!(entry.build().name(), entry.name);
+    }
+}

@@ -63,10 +63,12 @@ pub struct SolveArgs {
     /// two halves two threads solve at once) or `amd` (approximate minimum degree).
     #[arg(long, default_value = "nd", value_parser = ["nd", "amd"])]
     pub ordering: String,
-    /// Threads for the triangular sweeps (1 or 2; 2 needs `--ordering nd`, and small
-    /// meshes, where a second thread does not pay, use one anyway).
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
-    pub threads: u8,
+    /// Threads for the triangular sweeps: 1 or 2 (default: 2 with `--ordering nd`,
+    /// 1 with `amd`, whose elimination tree has no two halves; `--threads 2 --ordering
+    /// amd` is refused). Small meshes, where a second thread does not pay, use one
+    /// anyway (`sweep_threads` in summary.csv says which).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
+    pub threads: Option<u8>,
     /// Time loop: `reduced` (for proportional damping, C = c G as in the paper's data:
     /// each step is the contact problem on the m = n + 1 contact nodes alone, and the
     /// field is formed only where it is written, with a full certificate there; every
@@ -144,7 +146,19 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         "amd" => OrderingKind::Amd,
         _ => OrderingKind::NestedDissection,
     };
-    opt.parallel = args.threads == 2;
+    opt.parallel = match (args.threads, opt.ordering) {
+        (Some(2), OrderingKind::Amd) => {
+            return Err(crate::error::InputError::field(
+                "threads",
+                2,
+                "1 with --ordering amd (only nested dissection splits the sweeps in two halves); \
+                 use --ordering nd for two threads",
+            )
+            .into());
+        }
+        (Some(t), _) => t == 2,
+        (None, kind) => kind == OrderingKind::NestedDissection,
+    };
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
     if let Some(every) = args.vtk_every {
@@ -216,6 +230,14 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             "warning: H(j) fails: p jumps down by {:e} at s = {at:e}, so no finite m makes j relaxed \
              monotone; the paper's theory does not cover this law",
             -jump
+        );
+    }
+    if !entry.certified {
+        let over = crate::output::run::max_overshoot(&run.records);
+        eprintln!(
+            "note: solver `{}` let u_nu exceed g by up to {over:.3e} g (max_overshoot_over_g in \
+             summary.csv); the exact bound has none",
+            entry.name
         );
     }
     if run.hessian_min <= 0.0 {

@@ -272,6 +272,7 @@ pub fn write(
         )
         .f64("max_certificate", vec![max_cert])
         .f64("wall_s", vec![wall_s])
+        .f64("max_overshoot_over_g", vec![max_overshoot(r)])
         .str("scenario", vec![scn.name.clone()])
         .str("solver", vec![prov.solver.clone()])
         .f64("h", vec![1.0 / run.n as f64])
@@ -384,4 +385,14 @@ pub fn nodes_table(mesh: &Mesh, disp: &[[f64; 2]], stride: usize) -> Table {
         .f64("y", y)
         .f64("ux", ux)
         .f64("uy", uy)
+}
+
+/// The largest overshoot of the limit over the run, $\max_n \max_i (u_{\nu,i} - g)^+ / g$
+/// beyond rounding (each step's feasibility): 0 for a certified run, the price of
+/// the penalty for the penalty solver.
+pub fn max_overshoot(records: &[crate::scheme::StepRecord]) -> f64 {
+    records
+        .iter()
+        .map(|s| s.certificate.feasibility)
+        .fold(0.0, f64::max)
 }

@@ -186,11 +186,11 @@ pub const SOLVERS: [SolverEntry; 5] = [
     SolverEntry {
         name: "penalty",
         label: "penalty",
-        about: "the limit g replaced by a penalty of stiffness 1e6, which lets u_nu overshoot g",
+        about: "the limit g replaced by a stiff penalty (1e3 times the step's stiffest mode), which lets u_nu overshoot g",
         certified: false,
         benchmarked: false,
         swept: true,
-        make: || Box::new(penalty::Penalty::new(1e6)),
+        make: || Box::new(penalty::Penalty::relative(penalty::RELATIVE_STIFFNESS)),
     },
 ];
 

@@ -240,8 +240,10 @@ fn prox_node(p: &StepProblem, i: usize, gamma: f64, v: f64) -> (f64, f64, usize)
 
 impl StepSolver for Newton {
     fn name(&self) -> &'static str {
-        if self.settings.newton {
+        if self.settings.newton && self.settings.line_search {
             "newton"
+        } else if self.settings.newton {
+            "newton-no-line-search"
         } else {
             "proxgrad"
         }
