@@ -1037,6 +1037,21 @@ fn show_and_out_messages_say_what_is_wrong() {
         !o.status.success() && err.contains("symbolic link"),
         "{err}"
     );
+    // A last component too long for the staging directory beside it is refused
+    // before anything (lock included) is written.
+    let long = dir.join("a".repeat(245));
+    let o = small_solve(&long).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("245 bytes long; at most 235"),
+        "{err}"
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().len() > 200)
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
 }
 
 /// `--vtk-every` is bounded by the volume it would write: 1e6 steps at n = 128 with a

@@ -248,6 +248,9 @@ fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<File, OutErro
 
 /// The directory that holds `target` (`.` for a bare name) and `target`'s own name,
 /// which must name a directory (not `.`, `..` or `/`).
+/// The longest last component of a run directory's path, in bytes.
+pub const MAX_NAME_BYTES: usize = 235;
+
 fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
     let name = target
         .file_name()
@@ -258,6 +261,19 @@ fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
         })?
         .to_string_lossy()
         .into_owned();
+    // The run writes beside its directory `.{name}.staging-{pid}` (and `.lock`):
+    // 20 bytes more than the name, within the 255 bytes a file name may have.
+    if name.len() > MAX_NAME_BYTES {
+        return Err(OutError::Unusable {
+            path: target.display().to_string(),
+            message: format!(
+                "its last component is {} bytes long; at most {MAX_NAME_BYTES} are allowed \
+                 (the run stages its files beside it under a name 20 bytes longer, and a file \
+                 name has at most 255)",
+                name.len()
+            ),
+        });
+    }
     let parent = match target.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
