@@ -466,6 +466,99 @@ fn results_uniform_vs_increments() {
     }
 }
 
+/// The values of `col` on the rows of family `f` and load `l` of graded_convergence.csv
+/// whose `n` is in `ns`, in the order of `ns`.
+fn graded(l: &str, f: &str, col: &str, ns: &[f64]) -> Vec<f64> {
+    let keys = [("load", l), ("family", f)];
+    let n = column("graded_convergence.csv", &keys, "n");
+    let v = column("graded_convergence.csv", &keys, col);
+    ns.iter()
+        .map(|m| {
+            v[n.iter()
+                .position(|x| x == m)
+                .unwrap_or_else(|| panic!("n = {m}"))]
+        })
+        .collect()
+}
+
+fn rounded(v: &[f64]) -> Vec<f64> {
+    v.iter().map(|x| (x * 100.0).round() / 100.0).collect()
+}
+
+#[test]
+fn results_graded_increments() {
+    let ns = [8.0, 16.0, 32.0];
+    for (l, stated) in [
+        ("literal", [0.85, 0.99, 1.02]),
+        ("figure", [0.82, 0.97, 1.04]),
+    ] {
+        let inc = graded(l, "graded", "order_increment_dofs", &ns);
+        assert_eq!(rounded(&inc), stated, "{l}");
+        // Within 0.03 of the orders against the reference at the same rows.
+        let err = graded(l, "graded", "order_dofs", &ns);
+        for (a, b) in inc.iter().zip(&err) {
+            assert!((a - b).abs() <= 0.03, "{l}: {inc:?} against {err:?}");
+        }
+        // Uniform: between 0.58 and 0.66 from n = 16 on.
+        for o in graded(l, "uniform", "order_increment_dofs", &[16.0, 32.0, 64.0]) {
+            assert!(
+                (0.58..=0.66).contains(&((o * 100.0).round() / 100.0)),
+                "{l}: {o}"
+            );
+        }
+    }
+}
+
+#[test]
+fn results_half_grading() {
+    let ns = [8.0, 16.0, 32.0, 64.0];
+    for l in ["literal", "figure"] {
+        for o in rounded(&graded(l, "clamp ends", "order_dofs", &ns)) {
+            assert!((0.68..=0.78).contains(&o), "{l} clamp ends: {o}");
+        }
+        let top = rounded(&graded(l, "top corners", "order_dofs", &ns));
+        assert!(top.iter().all(|&o| o < 0.95), "{l}: {top:?}");
+    }
+    assert_eq!(
+        rounded(&graded("figure", "top corners", "order_dofs", &[64.0])),
+        [0.59]
+    );
+    assert_eq!(
+        rounded(&graded("literal", "top corners", "order_dofs", &[64.0])),
+        [0.64]
+    );
+}
+
+#[test]
+fn results_graded_max_over_time() {
+    for l in ["literal", "figure"] {
+        for f in ["uniform", "graded", "clamp ends", "top corners"] {
+            let keys = [("load", l), ("family", f)];
+            let n = column("graded_convergence.csv", &keys, "n");
+            let t = column("graded_convergence.csv", &keys, "t_of_increment_max");
+            let o = column("graded_convergence.csv", &keys, "order_increment_max_dofs");
+            for i in 0..n.len() {
+                if n[i] >= 16.0 && t[i].is_finite() {
+                    assert_eq!(t[i], 1.0 / n[i], "{l} {f} n = {}", n[i]);
+                }
+                if o[i].is_finite() {
+                    assert!(o[i] < 1.0, "{l} {f} n = {}: order {}", n[i], o[i]);
+                }
+            }
+        }
+    }
+    let at = |l| {
+        rounded(&graded(
+            l,
+            "graded",
+            "order_increment_max_dofs",
+            &[16.0, 32.0],
+        ))
+    };
+    assert_eq!(at("figure"), [0.62, 0.51]);
+    assert_eq!(at("literal"), [0.68, 0.68]);
+}
+
 #[test]
 fn results_max_equals_t() {
     for scn in ["literal", "figure"] {

@@ -13,15 +13,22 @@
 //!   $\mu = 0.4$, below the clamp end's exponent $\tfrac12$. A function $r^\lambda$ is then
 //!   approximated at the rate of a smooth one (Babuška, Kellogg, Pitkäranta 1979).
 //!
+//! Two more graded families refine towards half of the points only, to tell the two
+//! kinds of singularity apart: `clamp ends` (the two ends of the clamped sides on
+//! the contact line's level, exponent $\tfrac12$) and `top corners` (exponent about
+//! 0.65). Grading towards one kind leaves the other's order in place.
+//!
 //! Level $n$ runs with $k = 1/n$; the reference is the graded mesh of level
 //! $n_{ref}$ with $k = 1/n_{ref}$. The error is the relative energy norm at $t = T$
 //! (where the time part of the error is below 0.3 % at every level of Table 1).
+//! Beside it, reference-free: the increment of each level to the next of its own
+//! family, $\|u_n - u_{2n}\| / \|u_{2n}\|$ in the energy norm, at $T$ and its
+//! maximum over the level's time grid $t_j = j/n$, with the time where it occurs.
 
-use super::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
+use super::plot::{Figure, both, e2s, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::bisection::{Forest, Leaves};
 use crate::mesh::{Dofs, Mesh, Supports};
-use crate::norms::field_norms;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::Settings;
@@ -31,8 +38,16 @@ use std::sync::Arc;
 /// The grading exponent $\mu$ (below the smallest corner exponent, $\tfrac12$).
 pub const MU: f64 = 0.4;
 
-/// The singular points of the paper's scene.
+/// The singular points of the paper's scene: the clamp ends, then the top corners.
 pub const SINGULAR: [[f64; 2]; 4] = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
+
+/// The families: name, and the points a graded mesh refines towards (none: uniform).
+pub const FAMILIES: [(&str, &[[f64; 2]]); 4] = [
+    ("uniform", &[]),
+    ("graded", &SINGULAR),
+    ("clamp ends", &[SINGULAR[0], SINGULAR[1]]),
+    ("top corners", &[SINGULAR[2], SINGULAR[3]]),
+];
 
 /// Levels of each family and the reference. A graded level has about five
 /// times the unknowns of the uniform one with the same $n$, so the graded family
@@ -63,10 +78,11 @@ fn diagonal(n: usize) -> f64 {
     2.0 * std::f64::consts::SQRT_2 / n as f64
 }
 
-/// The largest longest edge allowed at `x` on the graded mesh of level `n`.
-pub fn graded_size(n: usize, x: [f64; 2]) -> f64 {
+/// The largest longest edge allowed at `x` on the mesh of level `n` graded towards
+/// `points`.
+pub fn graded_size(n: usize, x: [f64; 2], points: &[[f64; 2]]) -> f64 {
     let d = diagonal(n);
-    let r = SINGULAR
+    let r = points
         .iter()
         .map(|p| (x[0] - p[0]).hypot(x[1] - p[1]))
         .fold(f64::INFINITY, f64::min);
@@ -81,13 +97,13 @@ fn centroid(f: &Forest, t: usize) -> [f64; 2] {
     ]
 }
 
-/// Refines `from` to the uniform or graded mesh of level `n`.
-fn level(forest: &mut Forest, from: &Leaves, n: usize, graded: bool) -> Leaves {
+/// Refines `from` to the mesh of level `n` graded towards `points` (uniform if none).
+fn level(forest: &mut Forest, from: &Leaves, n: usize, points: &[[f64; 2]]) -> Leaves {
     // A hair of slack so that a triangle exactly at the bound is not cut.
     let slack = 1.0 + 1e-12;
-    if graded {
+    if !points.is_empty() {
         forest.refine(from, |f, t| {
-            f.diameter(t) > slack * graded_size(n, centroid(f, t))
+            f.diameter(t) > slack * graded_size(n, centroid(f, t), points)
         })
     } else {
         let d = diagonal(n);
@@ -104,23 +120,76 @@ struct Row {
     triangles: usize,
     min_edge: f64,
     rel_err: f64,
+    /// Increment to the next level of the family at T, its maximum over the level's
+    /// time grid and where that maximum is (NaN at a family's last level).
+    inc_t: f64,
+    inc_max: f64,
+    t_inc_max: f64,
 }
 
 /// The loads of the study (one batched run per mesh).
 pub const LOADS: [&str; 2] = ["literal", "figure"];
 
-fn solve_at_t(scns: &[Scenario], mesh: &Arc<Mesh>, n: usize) -> Result<Vec<Vec<f64>>, ExpError> {
-    let mut last = vec![vec![]; scns.len()];
+/// The fields (`[load][step]`, step 0 included; empty where `keep(step)` is false)
+/// on `mesh` with k = 1/n.
+fn solve_steps(
+    scns: &[Scenario],
+    mesh: &Arc<Mesh>,
+    n: usize,
+    keep: impl Fn(usize) -> bool,
+) -> Result<Vec<Vec<Vec<f64>>>, ExpError> {
+    let mut fields = vec![vec![vec![]; n + 1]; scns.len()];
     let opt = Settings {
         mesh: Some(mesh.clone()),
         ..Settings::new(n, n)
     };
     super::run_newton_batch_with(scns, &opt, &mut |i, step, _, u| {
-        if step == n {
-            last[i] = u.to_vec();
+        if keep(step) {
+            fields[i][step] = u.to_vec();
         }
     })?;
-    Ok(last)
+    Ok(fields)
+}
+
+/// One level of a family, solved.
+struct Level {
+    n: usize,
+    leaves: Leaves,
+    mesh: Arc<Mesh>,
+    dofs: Dofs,
+    fields: Vec<Vec<Vec<f64>>>,
+}
+
+/// The relative energy increment from `coarse` to `fine` (the next level of its
+/// family) for load `i`: at T, its maximum over the coarse time grid, and where.
+fn increments(
+    forest: &Forest,
+    coarse: &Level,
+    fine: &Level,
+    i: usize,
+    g: &crate::material::Isotropic,
+) -> (f64, f64, f64) {
+    let interp = forest.interpolation(&coarse.leaves, &fine.mesh);
+    let geo = crate::norms::NormGeometry::new(&fine.mesh);
+    let ratio = fine.n / coarse.n;
+    let (mut at_t, mut max, mut t_max) = (f64::NAN, 0.0, f64::NAN);
+    for j in 1..=coarse.n {
+        let uf = fine.dofs.expand(&fine.fields[i][ratio * j]);
+        let uc = interp.apply(&coarse.dofs.expand(&coarse.fields[i][j]));
+        let diff: Vec<[f64; 2]> = uf
+            .iter()
+            .zip(&uc)
+            .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
+            .collect();
+        let rel = (geo.norms(&fine.mesh, g, &diff).energy_sq
+            / geo.norms(&fine.mesh, g, &uf).energy_sq)
+            .sqrt();
+        if rel > max {
+            (max, t_max) = (rel, j as f64 / coarse.n as f64);
+        }
+        at_t = rel;
+    }
+    (at_t, max, t_max)
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -129,18 +198,21 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         .iter()
         .map(|s| Scenario::load(s))
         .collect::<Result<Vec<_>, _>>()?;
-    ctx.add_units(plan.uniform.len() + plan.graded.len() + 1);
+    let levels_of = |f: usize| if f == 0 { &plan.uniform } else { &plan.graded };
+    ctx.add_units(
+        (0..FAMILIES.len())
+            .map(|f| levels_of(f).len())
+            .sum::<usize>()
+            + 1,
+    );
     let (mut forest, root) = Forest::new(4, Supports::Paper)?;
     // Meshes first (the forest grows), then the runs.
     let mut families: Vec<(&'static str, Vec<(usize, Leaves)>)> = vec![];
-    for (family, graded, levels) in [
-        ("uniform", false, &plan.uniform),
-        ("graded", true, &plan.graded),
-    ] {
+    for (f, (family, points)) in FAMILIES.iter().enumerate() {
         let mut prev = root.clone();
         let mut list = vec![];
-        for &n in levels {
-            prev = level(&mut forest, &prev, n, graded);
+        for &n in levels_of(f) {
+            prev = level(&mut forest, &prev, n, points);
             list.push((n, prev.clone()));
         }
         families.push((family, list));
@@ -149,12 +221,15 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut n = *plan.graded.last().expect("levels");
     while n < plan.n_ref {
         n *= 2;
-        prev = level(&mut forest, &prev, n, true);
+        prev = level(&mut forest, &prev, n, &SINGULAR);
     }
     let ref_leaves = prev;
     let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
     let clock = std::time::Instant::now();
-    let reference = solve_at_t(&scns, &ref_mesh, plan.n_ref)?;
+    let reference: Vec<Vec<f64>> = solve_steps(&scns, &ref_mesh, plan.n_ref, |s| s == plan.n_ref)?
+        .into_iter()
+        .map(|mut steps| steps.pop().expect("the last step"))
+        .collect();
     let ref_dofs = Dofs::new(&ref_mesh, true);
     ctx.log(&format!(
         "graded reference: {} dofs, k = 1/{} ({:.1} s)",
@@ -163,60 +238,83 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         clock.elapsed().as_secs_f64()
     ));
     let g = scns[0].elasticity();
+    let ref_geo = crate::norms::NormGeometry::new(&ref_mesh);
     let ref_fields: Vec<Vec<[f64; 2]>> = reference.iter().map(|u| ref_dofs.expand(u)).collect();
     let ref_norms: Vec<f64> = ref_fields
         .iter()
-        .map(|u| field_norms(&ref_mesh, &g, u).energy_sq)
+        .map(|u| ref_geo.norms(&ref_mesh, &g, u).energy_sq)
         .collect();
     let mut rows = vec![];
     for (family, list) in &families {
+        let mut solved: Vec<Level> = vec![];
         for (n, leaves) in list {
             let clock = std::time::Instant::now();
             let mesh = Arc::new(forest.mesh(leaves, *n));
             let dofs = Dofs::new(&mesh, true);
-            let fields = solve_at_t(&scns, &mesh, *n)?;
-            let interp = forest.interpolation(leaves, &ref_mesh);
-            let min_edge = leaves
+            let fields = solve_steps(&scns, &mesh, *n, |_| true)?;
+            solved.push(Level {
+                n: *n,
+                leaves: leaves.clone(),
+                mesh,
+                dofs,
+                fields,
+            });
+            ctx.log(&format!(
+                "{family} level {n}: {} dofs ({:.1} s)",
+                solved.last().expect("pushed").dofs.count,
+                clock.elapsed().as_secs_f64()
+            ));
+        }
+        for (l, lev) in solved.iter().enumerate() {
+            let interp = forest.interpolation(&lev.leaves, &ref_mesh);
+            let min_edge = lev
+                .leaves
                 .0
                 .iter()
                 .map(|&t| forest.diameter(t))
                 .fold(f64::INFINITY, f64::min);
-            for (i, u) in fields.iter().enumerate() {
-                let pu = interp.apply(&dofs.expand(u));
+            for i in 0..scns.len() {
+                let pu = interp.apply(&lev.dofs.expand(&lev.fields[i][lev.n]));
                 let diff: Vec<[f64; 2]> = ref_fields[i]
                     .iter()
                     .zip(&pu)
                     .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
                     .collect();
-                let e = field_norms(&ref_mesh, &g, &diff).energy_sq;
+                let e = ref_geo.norms(&ref_mesh, &g, &diff).energy_sq;
+                let (inc_t, inc_max, t_inc_max) = match solved.get(l + 1) {
+                    Some(next) => increments(&forest, lev, next, i, &g),
+                    None => (f64::NAN, f64::NAN, f64::NAN),
+                };
                 rows.push(Row {
                     family,
                     load: scns[i].name.clone(),
-                    n: *n,
-                    dofs: dofs.count,
-                    triangles: mesh.triangles.len(),
+                    n: lev.n,
+                    dofs: lev.dofs.count,
+                    triangles: lev.mesh.triangles.len(),
                     min_edge,
                     rel_err: (e / ref_norms[i]).sqrt(),
+                    inc_t,
+                    inc_max,
+                    t_inc_max,
                 });
             }
-            ctx.log(&format!(
-                "{family} level {n}: {} dofs ({:.1} s)",
-                dofs.count,
-                clock.elapsed().as_secs_f64()
-            ));
         }
     }
     rows.sort_by(|a, b| (a.load.as_str(), a.family, a.n).cmp(&(b.load.as_str(), b.family, b.n)));
-    let order: Vec<f64> = rows
-        .iter()
-        .enumerate()
-        .map(|(i, r)| match i.checked_sub(1).map(|j| &rows[j]) {
-            Some(p) if p.load == r.load && p.family == r.family => {
-                -2.0 * (r.rel_err / p.rel_err).ln() / (r.dofs as f64 / p.dofs as f64).ln()
-            }
-            _ => f64::NAN,
-        })
-        .collect();
+    let order_of = |v: &dyn Fn(&Row) -> f64| -> Vec<f64> {
+        rows.iter()
+            .enumerate()
+            .map(|(i, r)| match i.checked_sub(1).map(|j| &rows[j]) {
+                Some(p) if p.load == r.load && p.family == r.family => {
+                    -2.0 * (v(r) / v(p)).ln() / (r.dofs as f64 / p.dofs as f64).ln()
+                }
+                _ => f64::NAN,
+            })
+            .collect()
+    };
+    let order = order_of(&|r| r.rel_err);
+    let order_inc = order_of(&|r| r.inc_t);
+    let order_inc_max = order_of(&|r| r.inc_max);
     let t = Table::new()
         .str("load", rows.iter().map(|r| r.load.clone()).collect())
         .str(
@@ -237,45 +335,94 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "rel_err_T_percent",
             rows.iter().map(|r| 100.0 * r.rel_err).collect(),
         )
-        .f64("order_dofs", order);
+        .f64("order_dofs", order)
+        .f64(
+            "increment_T_percent",
+            rows.iter().map(|r| 100.0 * r.inc_t).collect(),
+        )
+        .f64("order_increment_dofs", order_inc)
+        .f64(
+            "increment_max_percent",
+            rows.iter().map(|r| 100.0 * r.inc_max).collect(),
+        )
+        .f64("order_increment_max_dofs", order_inc_max)
+        .f64(
+            "t_of_increment_max",
+            rows.iter().map(|r| r.t_inc_max).collect(),
+        );
     let params = format!(
-        "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= D min(1, max(r, D^(1/mu))^(1-mu)) with D = 2 sqrt2 / n, mu = {MU}, r = distance of the triangle's centroid to the nearest clamp end or top corner; min_longest_edge = the shortest longest edge of the mesh; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh)",
+        "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= D min(1, max(r, D^(1/mu))^(1-mu)) with D = 2 sqrt2 / n, mu = {MU}, r = distance of the triangle's centroid to the nearest clamp end or top corner (family graded), clamp end only (clamp ends), top corner only (top corners); min_longest_edge = the shortest longest edge of the mesh; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh); increment = ||u_n - u_2n||_E / ||u_2n||_E against the next level of the same family (no reference), at T and its maximum over t_j = j/n, with the t where it occurs; order_increment_dofs and order_increment_max_dofs from increment_T and increment_max",
         plan.n_ref, ref_dofs.count, plan.n_ref
     );
     let path = ctx.write("graded_convergence.csv", &t, "graded", &params)?;
     draw(ctx, &path)
 }
 
-/// A series: label, (unknowns, error) points, colour, and whether it is graded.
-type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
+/// A series: label, (unknowns, value) points, colour, and its family's index.
+type Series = (String, Vec<(f64, f64)>, RGBColor, usize);
 
+/// Two panels: the error at T against the reference, and the largest increment
+/// over time to the next level (no reference).
 struct GradedFig {
-    series: Vec<Series>,
+    panels: [(String, String, Vec<Series>); 2],
 }
 
 fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
     let df = read_csv(path)?;
     let (load, family) = (col_str(&df, "load")?, col_str(&df, "family")?);
-    let (dofs, err) = (col_f64(&df, "dofs")?, col_f64(&df, "rel_err_T_percent")?);
-    // Colour-blind-safe (Okabe–Ito): blue and vermillion by load; filled circles
-    // for graded, open squares for uniform.
+    let dofs = col_f64(&df, "dofs")?;
+    // Colour-blind-safe (Okabe–Ito): blue and vermillion by load; the marker says
+    // the family.
     let colours = [RGBColor(0, 114, 178), RGBColor(213, 94, 0)];
-    let mut series = vec![];
-    for (li, l) in LOADS.iter().enumerate() {
-        for f in ["uniform", "graded"] {
-            let pts: Vec<(f64, f64)> = (0..load.len())
-                .filter(|&i| load[i] == *l && family[i] == f)
-                .map(|i| (dofs[i], err[i]))
-                .collect();
-            series.push((format!("{l}, {f}"), pts, colours[li], f == "graded"));
+    let panel = |col: &str| -> Result<Vec<Series>, ExpError> {
+        let v = col_f64(&df, col)?;
+        let mut series = vec![];
+        for (li, l) in LOADS.iter().enumerate() {
+            for (fi, (f, _)) in FAMILIES.iter().enumerate() {
+                let pts: Vec<(f64, f64)> = (0..load.len())
+                    .filter(|&i| load[i] == *l && family[i] == *f && v[i].is_finite())
+                    .map(|i| (dofs[i], v[i]))
+                    .collect();
+                series.push((format!("{l}, {f}"), pts, colours[li], fi));
+            }
         }
+        Ok(series)
+    };
+    let fig = GradedFig {
+        panels: [
+            (
+                "(a) error at T against the graded reference".into(),
+                "relative energy error at T, %".into(),
+                panel("rel_err_T_percent")?,
+            ),
+            (
+                "(b) largest increment over time to the next level".into(),
+                "max over t of ||u_n - u_2n|| / ||u_2n||, %".into(),
+                panel("increment_max_percent")?,
+            ),
+        ],
+    };
+    both(&ctx.figures, "graded_convergence", (1500, 700), &fig)
+}
+
+/// The outline of family `f`'s marker: square (uniform), octagon (graded towards all
+/// four points), triangle (clamp ends), diamond (top corners).
+fn shape(f: usize) -> Vec<(i32, i32)> {
+    match f {
+        0 => vec![(-6, -6), (6, -6), (6, 6), (-6, 6)],
+        1 => vec![
+            (-3, -7),
+            (3, -7),
+            (7, -3),
+            (7, 3),
+            (3, 7),
+            (-3, 7),
+            (-7, 3),
+            (-7, -3),
+        ],
+        2 => vec![(0, -8), (8, 6), (-8, 6)],
+        _ => vec![(0, -8), (8, 0), (0, 8), (-8, 0)],
     }
-    both(
-        &ctx.figures,
-        "graded_convergence",
-        (900, 650),
-        &GradedFig { series },
-    )
 }
 
 impl Figure for GradedFig {
@@ -283,83 +430,90 @@ impl Figure for GradedFig {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let pts: Vec<(f64, f64)> = self.series.iter().flat_map(|s| s.1.clone()).collect();
-        let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-            (a.min(p.0), b.max(p.0))
-        });
-        let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-            (a.min(p.1), b.max(p.1))
-        });
-        let keys: Vec<f64> = (1..=7)
-            .map(|e| 10f64.powi(e))
-            .filter(|x| *x >= xmin / 2.0 && *x <= xmax * 2.0)
-            .collect();
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Energy error at the final time, uniform and graded meshes",
-                ("sans-serif", 22),
-            )
-            .margin(15)
-            .x_label_area_size(60)
-            .y_label_area_size(80)
-            .build_cartesian_2d(
-                (xmin / 1.5..xmax * 1.5).log_scale().with_key_points(keys),
-                (ymin / 2.0..ymax * 2.0)
-                    .log_scale()
-                    .with_key_points(vec![0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_desc("unknowns N")
-            .y_desc("relative energy error at T, %")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y}"))
-            .label_style(("sans-serif", 18))
-            .axis_desc_style(("sans-serif", 20))
-            .draw()
-            .map_err(e2s)?;
-        for (label, s, c, graded) in &self.series {
-            let (c, graded) = (*c, *graded);
-            let style = if graded {
-                c.stroke_width(3)
-            } else {
-                c.mix(0.8).stroke_width(2)
+        let (w, _) = root.dim_in_pixel();
+        let areas = root.split_horizontally(w / 2);
+        for (k, (area, (title, ydesc, series))) in
+            [areas.0, areas.1].iter().zip(&self.panels).enumerate()
+        {
+            let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
+            let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.0), b.max(p.0))
+            });
+            let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.1), b.max(p.1))
+            });
+            // Key points only inside the ranges: plotters draws one outside at the
+            // edge of the label area, a stray axis line.
+            let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 2.0, ymax * 2.0));
+            let inside = |r: (f64, f64), v: &[f64]| -> Vec<f64> {
+                v.iter()
+                    .copied()
+                    .filter(|x| *x >= r.0 && *x <= r.1)
+                    .collect()
             };
-            chart
-                .draw_series(LineSeries::new(s.clone(), style))
+            let keys = inside(xr, &(1..=7).map(|e| 10f64.powi(e)).collect::<Vec<_>>());
+            let ykeys = inside(yr, &[0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
+            let mut chart = ChartBuilder::on(area)
+                .caption(title, ("sans-serif", 22))
+                .margin(15)
+                .x_label_area_size(60)
+                .y_label_area_size(80)
+                .build_cartesian_2d(
+                    (xr.0..xr.1).log_scale().with_key_points(keys),
+                    (yr.0..yr.1).log_scale().with_key_points(ykeys),
+                )
                 .map_err(e2s)?;
-            let marks: Vec<_> = s.clone();
-            if graded {
+            chart
+                .configure_mesh()
+                .x_desc("unknowns N")
+                .y_desc(ydesc.as_str())
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .y_label_formatter(&|y| format!("{y}"))
+                .label_style(("sans-serif", 18))
+                .axis_desc_style(("sans-serif", 20))
+                .draw()
+                .map_err(e2s)?;
+            for (label, s, c, f) in series {
+                let (c, f) = (*c, *f);
+                let style = if f == 0 {
+                    c.mix(0.8).stroke_width(2)
+                } else {
+                    c.stroke_width(3)
+                };
                 chart
-                    .draw_series(marks.iter().map(|&p| Circle::new(p, 6, c.filled())))
-                    .map_err(e2s)?
-                    .label(label.clone())
-                    .legend(move |xy| circle_legend(xy, 12, c.stroke_width(3), 6, c));
-            } else {
-                chart
-                    .draw_series(marks.iter().map(|&p| {
-                        EmptyElement::at(p) + Rectangle::new([(-6, -6), (6, 6)], c.stroke_width(2))
-                    }))
-                    .map_err(e2s)?
-                    .label(label.clone())
-                    .legend(move |(x, y)| {
+                    .draw_series(LineSeries::new(s.clone(), style))
+                    .map_err(e2s)?;
+                // The uniform family's markers pale, the graded ones solid.
+                let fill = if f == 0 {
+                    c.mix(0.45).filled()
+                } else {
+                    c.filled()
+                };
+                let drawn = chart
+                    .draw_series(
+                        s.iter()
+                            .map(|&p| EmptyElement::at(p) + Polygon::new(shape(f), fill)),
+                    )
+                    .map_err(e2s)?;
+                if k == 0 {
+                    drawn.label(label.clone()).legend(move |(x, y)| {
                         EmptyElement::at((x + 12, y))
-                            + PathElement::new(vec![(-12, 0), (12, 0)], c.stroke_width(2))
-                            + Rectangle::new([(-6, -6), (6, 6)], c.stroke_width(2))
+                            + PathElement::new(vec![(-12, 0), (12, 0)], style)
+                            + Polygon::new(shape(f), fill)
                     });
+                }
             }
+            // Slope guides N^(-1/2) (order 1 in h) and N^(-1/4) (order 1/2), from the
+            // first graded point of the first load, below the data.
+            if let Some(&start) = series.get(1).and_then(|s| s.1.first()) {
+                let guides = [
+                    (0.5, "N^(-1/2): order 1 in h".to_string()),
+                    (0.25, "N^(-1/4): order 1/2 in h".to_string()),
+                ];
+                slope_guides(&mut chart, &guides, start, xmax, 0.45)?;
+            }
+            legend(&mut chart, SeriesLabelPosition::LowerLeft, 15, 0.9)?;
         }
-        // Slope guides N^(-1/2) (order 1 in h) and N^(-1/4) (order 1/2), from the
-        // first graded point, below the data.
-        if let Some(&start) = self.series.get(1).and_then(|s| s.1.first()) {
-            let guides = [
-                (0.5, "N^(-1/2): order 1 in h".to_string()),
-                (0.25, "N^(-1/4): order 1/2 in h".to_string()),
-            ];
-            slope_guides(&mut chart, &guides, start, xmax, 0.45)?;
-        }
-        legend(&mut chart, SeriesLabelPosition::LowerLeft, 17, 0.9)?;
         Ok(())
     }
 }

@@ -306,7 +306,7 @@ fn draw(
         .map(|(s, c)| {
             let pts = (0..sc.len())
                 .filter(|&i| sc[i] == *s && d[i].is_finite() && d[i] > 0.0)
-                .map(|i| (n[i], d[i]))
+                .map(|i| (n[i], 100.0 * d[i]))
                 .collect();
             (format!("{s}: ||u_h/2 - u_h||_E / ||u||_E"), pts, c)
         })
@@ -349,10 +349,10 @@ impl Figure for StaticFig {
             .y_label_area_size(90)
             .build_cartesian_2d(
                 (3.0..xmax * 1.3).log_scale().with_key_points(keys),
-                (ymin / 3.0..ymax * 8.0).log_scale().with_key_points(
-                    (-6..=1)
+                (ymin / 3.0..ymax * 2.5).log_scale().with_key_points(
+                    (-6..=3)
                         .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
-                        .filter(|&y| y >= ymin / 3.0 && y <= ymax * 8.0)
+                        .filter(|&y| y >= ymin / 3.0 && y <= ymax * 2.5)
                         .collect::<Vec<f64>>(),
                 ),
             )
@@ -360,7 +360,7 @@ impl Figure for StaticFig {
         chart
             .configure_mesh()
             .x_desc("n = 1/h (the difference to the next level, 2n)")
-            .y_desc("relative energy norm")
+            .y_desc("relative energy norm of the difference, %")
             .x_label_formatter(&|x| format!("{}", x.round()))
             .y_label_formatter(&|y| format!("{y}"))
             .label_style(("sans-serif", 20))
