@@ -2,3 +2,107 @@
 
 #[allow(unused_imports)]
 use super::{column, last, num, rows};
+
+/// The number after `key` in `text` (up to a comma, blank, semicolon or parenthesis).
+fn after(text: &str, key: &str) -> f64 {
+    let i = text
+        .find(key)
+        .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
+        + key.len();
+    let rest = &text[i..];
+    let end = rest
+        .find(|c: char| c == ',' || c == ' ' || c == ';' || c == ')')
+        .unwrap_or(rest.len());
+    rest[..end]
+        .parse()
+        .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
+}
+
+#[test]
+fn own_trace_grows_with_n() {
+    let n = column("hypotheses.csv", &[], "n");
+    let t = column("hypotheses.csv", &[], "trace_norm");
+    assert!(n.len() >= 3 && n.windows(2).all(|w| w[1] > w[0]), "{n:?}");
+    assert!(t.windows(2).all(|w| w[1] > w[0]), "{t:?}");
+}
+
+#[test]
+fn own_example_no_warning() {
+    let show =
+        std::fs::read_to_string(super::root().join("data/example_five_branch_show.txt")).unwrap();
+    let line = |start: &str| {
+        show.lines()
+            .find(|l| l.trim_start().starts_with(start))
+            .unwrap_or_else(|| panic!("no line {start:?}"))
+            .to_string()
+    };
+    assert!(!show.contains("warning"), "{show}");
+    // the jump is upward
+    let jump = show
+        .lines()
+        .find(|l| l.contains("(a jump)"))
+        .expect("the jump's line");
+    assert!(after(jump, "p(s+) = ") > after(jump, "p(s-) = "), "{jump}");
+    // H(j) with m from the softening branch: m = -(the only negative slope)
+    let law = line("law:");
+    let slopes: Vec<f64> = law[law.find("slopes [").unwrap() + 8..]
+        .trim_end_matches(']')
+        .split(", ")
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let negative: Vec<f64> = slopes.iter().copied().filter(|&c| c < 0.0).collect();
+    assert_eq!(negative.len(), 1, "{slopes:?}");
+    assert_eq!(after(&line("H(j):"), ") = "), -negative[0]);
+    // H(s) holds, with the trace constant of data/hypotheses.csv at n = 64
+    let hs = line("H(s):");
+    assert!(hs.ends_with(": holds"), "{hs}");
+    let beta = after(&hs, "beta_B = ");
+    let rhs = after(&hs[hs.find("* ").unwrap()..], "= ");
+    assert!(beta > rhs, "{hs}");
+    let m_iota = column("hypotheses.csv", &[("n", "64")], "m_trace_norm_sq")[0];
+    assert_eq!(format!("{m_iota:.6e}"), format!("{rhs:.6e}"));
+    // every step convex
+    let convex = line("step convexity");
+    assert!(after(&convex, "curvature ") > 0.0, "{convex}");
+    // the ramp makes the data compatible
+    let hf = line("H(f), H(0)");
+    assert!(hf.contains(": hold "), "{hf}");
+    assert!(line("loads:").contains("history: ramp"));
+}
+
+#[test]
+fn own_example_regimes_at_t() {
+    let nodes = rows("example_five_branch_contact.csv");
+    let rank = |r: &str| -> usize {
+        match r {
+            "limit" => 5,
+            b => b.trim_start_matches("branch").parse().expect("a branch"),
+        }
+    };
+    let ranks: Vec<usize> = nodes.iter().map(|r| rank(&r["regime"])).collect();
+    let x: Vec<f64> = nodes.iter().map(|r| num(r, "x")).collect();
+    let limit: Vec<usize> = (0..ranks.len()).filter(|&i| ranks[i] == 5).collect();
+    assert_eq!(limit.len(), 19);
+    // one central block
+    let (a, b) = (limit[0], limit[limit.len() - 1]);
+    assert_eq!(b - a + 1, limit.len(), "not contiguous");
+    assert!(
+        (x[a] + x[b] - 2.0).abs() < 1e-12,
+        "not central: {} {}",
+        x[a],
+        x[b]
+    );
+    // outwards the regimes step down, to branch 1 at the two corners only
+    assert!(ranks[..=a].windows(2).all(|w| w[0] <= w[1]), "{ranks:?}");
+    assert!(ranks[b..].windows(2).all(|w| w[0] >= w[1]), "{ranks:?}");
+    let ones: Vec<f64> = (0..ranks.len())
+        .filter(|&i| ranks[i] == 1)
+        .map(|i| x[i])
+        .collect();
+    assert_eq!(ones, [0.0, 2.0]);
+    // the same counts in the last row of the regimes per step
+    let per_step = rows("example_five_branch_regimes.csv");
+    let end = per_step.last().expect("a step");
+    assert_eq!(num(end, "limit"), 19.0);
+    assert_eq!(num(end, "branch1"), 2.0);
+}
