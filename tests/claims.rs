@@ -560,6 +560,39 @@ fn results_graded_max_over_time() {
 }
 
 #[test]
+fn results_forensics_closest() {
+    let mut r = rows("table1_forensics.csv");
+    r.sort_by(|a, b| num(a, "distance").total_cmp(&num(b, "distance")));
+    let key = |x: &HashMap<String, String>| {
+        ["load", "material", "mesh", "norm", "time", "against"].map(|c| x[c].clone())
+    };
+    let first = &r[0];
+    assert_eq!(
+        key(first),
+        ["literal", "plane_strain", "diagonal", "l2", "T", "next_finer"].map(String::from)
+    );
+    assert_eq!((num(first, "distance") * 1e4).round() / 1e4, 0.0604);
+    // The runner-up: the same norm, levels and comparison, L2 in time.
+    let second = &r[1];
+    assert_eq!(
+        key(second),
+        ["literal", "plane_strain", "diagonal", "l2", "l2_t", "next_finer"].map(String::from)
+    );
+    assert_eq!((num(second, "distance") * 1e3).round() / 1e3, 0.230);
+    // The closest of another norm, and the closest energy-norm reading.
+    let other = r.iter().find(|x| x["norm"] != "l2").unwrap();
+    assert_eq!(
+        key(other),
+        ["literal", "plane_strain", "diagonal", "gamma3_sigma_nu", "T", "reference"]
+            .map(String::from)
+    );
+    assert_eq!((num(other, "distance") * 1e3).round() / 1e3, 0.247);
+    let energy = r.iter().find(|x| x["norm"] == "energy").unwrap();
+    assert_eq!((num(energy, "distance") * 100.0).round() / 100.0, 1.75);
+    assert_eq!((num(energy, "distance").exp() * 100.0).round() / 100.0, 5.76);
+}
+
+#[test]
 fn results_max_equals_t() {
     for scn in ["literal", "figure"] {
         let keys = [("scenario", scn), ("family", "h=k")];
