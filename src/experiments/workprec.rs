@@ -11,6 +11,19 @@ type Family = (String, Vec<(f64, f64, String)>, RGBColor);
 
 struct Chart {
     series: Vec<Family>,
+    /// The estimated own error of the $h = 1/512$ mesh (percent), below which the
+    /// $k$ family's total error cannot go: its errors are measured against a
+    /// reference on its own mesh, so they are time errors only.
+    floor: Option<f64>,
+}
+
+/// The orthogonal estimate of the 1/512 mesh's own error for `figure`, percent, from
+/// `data/table1_reference_error.csv` (written by the forensics), if there.
+fn mesh_floor(ctx: &Ctx) -> Option<f64> {
+    let df = read_csv(&ctx.data_path("table1_reference_error.csv")).ok()?;
+    let load = col_str(&df, "load").ok()?;
+    let v = col_f64(&df, "reference_error_orthogonal_percent").ok()?;
+    load.iter().position(|l| l == "figure").map(|i| v[i])
 }
 
 /// Draws `figures/work_precision.{png,svg}` from `data/work_precision.csv`.
@@ -34,11 +47,12 @@ pub fn draw(ctx: &Ctx, path: &Path) -> Result<(), ExpError> {
             ("h = k = 1/n".into(), pick("h=k"), RGBColor(0, 114, 178)),
             ("h = 1/n, k = 1/512".into(), pick("h"), RGBColor(213, 94, 0)),
             (
-                "h = 1/512, k = 1/N".into(),
+                "h = 1/512, k = 1/N: time error only".into(),
                 pick("k"),
                 RGBColor(0, 158, 115),
             ),
         ],
+        floor: mesh_floor(ctx),
     };
     both(&ctx.figures, "work_precision", (1000, 750), &chart)
 }
@@ -101,6 +115,21 @@ impl Figure for Chart {
                         .map(move |p| Circle::new((p.0, p.1), 5, c.filled())),
                 )
                 .map_err(e2s)?;
+        }
+        if let Some(f) = self.floor {
+            let grey = RGBColor(90, 90, 90).stroke_width(2);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(xmin * 0.7, f), (xmax * 1.5, f)],
+                    8,
+                    6,
+                    grey,
+                ))
+                .map_err(e2s)?
+                .label(format!(
+                    "own error of the h = 1/512 mesh, about {f:.1} % (estimate)"
+                ))
+                .legend(move |xy| super::plot::dashed_legend(xy, 8, 6, grey));
         }
         chart
             .draw_series(
