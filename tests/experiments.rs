@@ -92,8 +92,8 @@ fn table1_convergence() {
 fn time_study() {
     snapshot_outputs(
         "time",
-        &["time_study.csv"],
-        &["time_study_max", "time_study_T"],
+        &["time_study.csv", "time_controls.csv"],
+        &["time_study_max", "time_study_T", "time_controls"],
     );
 }
 

@@ -99,22 +99,62 @@ pub struct Row {
     pub model_t: f64,
     /// First time at which a contact node of the reference run sits at the limit $g$.
     pub t_first_limit: f64,
+    /// The level's time $t_n$ where the error is largest.
+    pub t_err_max: f64,
+    /// The relaxation time $\tau$ and the limit $g$ of the run.
+    pub tau: f64,
+    pub g: f64,
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let plan = plan(ctx.quick);
     let rows = study(&plan, ctx)?;
+    let path = write_rows(ctx, &plan, &rows, "time_study.csv", "history")?;
+    write_markdown(ctx, &path, &plan)?;
+    draw(ctx, &path)?;
+    // One batch per material: a batch shares its step matrix.
+    let all = controls()?;
+    let mut rows = vec![];
+    let mut materials: Vec<(f64, f64)> = vec![];
+    for c in &all {
+        if !materials.contains(&(c.2.alpha, c.2.beta)) {
+            materials.push((c.2.alpha, c.2.beta));
+        }
+    }
+    for m in materials {
+        let group: Vec<_> = all
+            .iter()
+            .filter(|c| (c.2.alpha, c.2.beta) == m)
+            .cloned()
+            .collect();
+        rows.extend(study_of(&plan, ctx, &group)?);
+    }
+    let path = write_rows(ctx, &plan, &rows, "time_controls.csv", "variant")?;
+    draw_controls(ctx, &path)
+}
+
+/// Writes the rows of a study as `file`; `label` names the column of the row's label.
+fn write_rows(
+    ctx: &Ctx,
+    plan: &Plan,
+    rows: &[Row],
+    file: &str,
+    label: &str,
+) -> Result<std::path::PathBuf, ExpError> {
     let params = format!(
         "fixed mesh n = 1/h = {}; k = T/N for N in {:?}; reference N_ref = {} on the same mesh; solver newton; \
          errors in the energy norm relative to the reference: max over the level's times t_n of ||u_ref(t_n) - u_n||_E \
          / max there of ||u_ref(t_n)||_E, and at t = T; model_*: the scalar backward-Euler model of the layer \
-         (tau = C/G = {}), same measure; t_first_limit: first reference time with a contact node at u_nu = g (NaN: never)",
+         (tau = C/G of the row), same measure; t_of_err_max: the level's time where the error is largest; \
+         t_first_limit: first reference time with a contact node at u_nu = g (NaN: never){}",
         plan.n,
         plan.levels,
         plan.n_ref,
-        Scenario::load("figure")?
-            .relaxation_time()
-            .unwrap_or(f64::NAN),
+        if label == "variant" {
+            "; variants: alpha and beta scaled by 0.1 and 10 (tau = C/G scaled, E kept; constant load), and figure with g = 1 (no node lands) under the constant load and the ramp to t = 1"
+        } else {
+            ""
+        },
     );
     let order = |v: &[f64], i: usize| -> f64 {
         if i == 0
@@ -133,9 +173,15 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "scenario",
             rows.iter().map(|r| r.scenario.clone()).collect(),
         )
-        .str("history", rows.iter().map(|r| r.history.clone()).collect())
+        .str(label, rows.iter().map(|r| r.history.clone()).collect())
+        .f64("tau", rows.iter().map(|r| r.tau).collect())
+        .f64("g", rows.iter().map(|r| r.g).collect())
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
         .f64("k", rows.iter().map(|r| 1.0 / r.steps as f64).collect())
+        .f64(
+            "k_over_tau",
+            rows.iter().map(|r| 1.0 / r.steps as f64 / r.tau).collect(),
+        )
         .f64(
             "rel_err_max_percent",
             em.iter().map(|e| 100.0 * e).collect(),
@@ -154,13 +200,12 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "model_T_percent",
             rows.iter().map(|r| 100.0 * r.model_t).collect(),
         )
+        .f64("t_of_err_max", rows.iter().map(|r| r.t_err_max).collect())
         .f64(
             "t_first_limit",
             rows.iter().map(|r| r.t_first_limit).collect(),
         );
-    let path = ctx.write("time_study.csv", &t, "time", &params)?;
-    write_markdown(ctx, &path, &plan)?;
-    draw(ctx, &path)
+    ctx.write(file, &t, "time", &params)
 }
 
 /// `x` to three significant digits, plain where that reads well.
@@ -267,9 +312,54 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
         for (label, h) in histories() {
             let mut s = Scenario::load(name)?.with_history(h)?;
             s.name = format!("{name}/{label}");
-            scns.push((name, label, s));
+            scns.push((name.to_string(), label.to_string(), s));
         }
     }
+    study_of(plan, ctx, &scns)
+}
+
+// ANCHOR: controls
+/// The controls of the layer, all under the constant load: the relaxation time
+/// $\tau = \mathcal C/\mathcal G$ scaled by 0.1 and 10 (the viscosity $\alpha, \beta$
+/// scaled, the elasticity kept) for `literal` and `figure`, with the shipped $\tau$ as
+/// the baseline, and `figure` with $g = 1$, ten times the shipped limit, so that no
+/// contact node lands on it, under the constant load and under the ramp to $t = 1$.
+pub fn controls() -> Result<Vec<(String, String, Scenario)>, ExpError> {
+    let mut out = vec![];
+    for name in SCENARIOS {
+        for scale in [0.1, 1.0, 10.0] {
+            let mut s = Scenario::load(name)?;
+            s.alpha *= scale;
+            s.beta *= scale;
+            let tau = s.relaxation_time().unwrap_or(f64::NAN);
+            let label = format!("tau = {}", sig3(tau));
+            s.name = format!("{name}/{label}");
+            out.push((name.to_string(), label, s));
+        }
+    }
+    for (label, history) in [
+        ("no landing (g = 1)", History::Constant),
+        (
+            "no landing (g = 1) under the ramp to 1",
+            History::Ramp { t_r: 1.0 },
+        ),
+    ] {
+        let mut s = Scenario::load("figure")?
+            .with_g(1.0)?
+            .with_history(history)?;
+        s.name = format!("figure/{label}");
+        out.push(("figure".into(), label.into(), s));
+    }
+    Ok(out)
+}
+// ANCHOR_END: controls
+
+/// Runs the scenarios `scns` (scenario name, label, scenario) at every level.
+pub fn study_of(
+    plan: &Plan,
+    ctx: &Ctx,
+    scns: &[(String, String, Scenario)],
+) -> Result<Vec<Row>, ExpError> {
     let batch: Vec<Scenario> = scns.iter().map(|s| s.2.clone()).collect();
     let disc = Discretisation::new(&batch[0], plan.n)?;
     let n_max = *plan.levels.iter().max().expect("levels");
@@ -312,12 +402,15 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
         let mut e_max = vec![0.0f64; nb];
         let mut r_max = vec![0.0f64; nb];
         let mut e_t = vec![0.0f64; nb];
+        let mut t_max = vec![f64::NAN; nb];
         let opt = Settings::new(plan.n, steps);
-        super::run_newton_batch_with(&batch, &opt, &mut |i, step, _t, u| {
+        super::run_newton_batch_with(&batch, &opt, &mut |i, step, t, u| {
             let j = step * ratio;
             let diff: Vec<f64> = u.iter().zip(&refs[i][j]).map(|(a, b)| a - b).collect();
             let e = energy_norm(&disc.b, &diff);
-            e_max[i] = e_max[i].max(e);
+            if e > e_max[i] {
+                (e_max[i], t_max[i]) = (e, t);
+            }
             r_max[i] = r_max[i].max(ref_norms[i][j]);
             if step == steps {
                 e_t[i] = e / ref_norms[i][j];
@@ -329,14 +422,17 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
                 None => (f64::NAN, f64::NAN),
             };
             rows.push(Row {
-                scenario: name.to_string(),
-                history: label.to_string(),
+                scenario: name.clone(),
+                history: label.clone(),
                 steps,
                 err_max: e_max[i] / r_max[i],
                 err_t: e_t[i],
                 model_max,
                 model_t,
                 t_first_limit: first_limit[i],
+                t_err_max: t_max[i],
+                tau: s.relaxation_time().unwrap_or(f64::NAN),
+                g: s.g,
             });
         }
     }
@@ -556,6 +652,170 @@ impl Figure for TimeFig {
                 .legend(|xy| dashed_legend(xy, 3, 5, RGBColor(90, 90, 90).stroke_width(1)));
         }
         legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
+        Ok(())
+    }
+}
+
+/// A series of the controls' figure: label, (k/τ, error) points, colour, marker
+/// (0 circle for `figure`, 1 triangle for `literal`), dashed (the scalar model).
+type ControlSeries = (String, Vec<(f64, f64)>, RGBColor, usize, bool);
+
+struct ControlFig {
+    panels: Vec<(String, Vec<ControlSeries>)>,
+}
+
+/// `figures/time_controls.png`: the errors of the controls against k/τ, the maximum
+/// over time. If the layer sets the error, the τ curves fall on one another.
+fn draw_controls(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let (sc, va) = (col_str(&df, "scenario")?, col_str(&df, "variant")?);
+    let x = col_f64(&df, "k_over_tau")?;
+    let mut variants: Vec<String> = va.clone();
+    variants.sort();
+    variants.dedup();
+    // The constant load only: the ramp's errors are another story (chapter "Time").
+    variants.retain(|v| !v.contains("ramp"));
+    // Okabe–Ito: the three relaxation times, then the no-landing control.
+    let colour = |v: &str, i: usize| {
+        if v.starts_with("no landing") {
+            RGBColor(0, 0, 0)
+        } else {
+            [
+                RGBColor(0, 114, 178),
+                RGBColor(213, 94, 0),
+                RGBColor(0, 158, 115),
+            ][i % 3]
+        }
+    };
+    let mut panels = vec![];
+    // The maximum over time only: at T the short relaxation times leave errors at
+    // the reference's rounding, which say nothing of the layer.
+    for (title, col, model) in [("max over t", "rel_err_max_percent", "model_max_percent")] {
+        let (e, m) = (col_f64(&df, col)?, col_f64(&df, model)?);
+        let mut series = vec![];
+        for (vi, v) in variants.iter().enumerate() {
+            for (si, s) in ["figure", "literal"].iter().enumerate() {
+                let pts: Vec<(f64, f64)> = (0..x.len())
+                    .filter(|&i| sc[i] == *s && va[i] == *v && e[i] > 0.0)
+                    .map(|i| (x[i], e[i]))
+                    .collect();
+                if !pts.is_empty() {
+                    series.push((format!("{s}, {v}"), pts, colour(v, vi), si, false));
+                }
+            }
+            let pts: Vec<(f64, f64)> = (0..x.len())
+                .filter(|&i| sc[i] == "figure" && va[i] == *v && m[i] > 0.0)
+                .map(|i| (x[i], m[i]))
+                .collect();
+            if !v.starts_with("no landing") {
+                series.push((String::new(), pts, colour(v, vi), 9, true));
+            }
+        }
+        panels.push((title.to_string(), series));
+    }
+    both(
+        &ctx.figures,
+        "time_controls",
+        (900, 700),
+        &ControlFig { panels },
+    )
+}
+
+impl Figure for ControlFig {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        for (k, (title, series)) in self.panels.iter().enumerate() {
+            let area = root;
+            let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
+            let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.0), b.max(p.0))
+            });
+            let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+                (a.min(p.1), b.max(p.1))
+            });
+            let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 30.0));
+            let keys: Vec<f64> = (-4..=3)
+                .map(|e| 10f64.powi(e))
+                .filter(|v| *v >= xr.0 && *v <= xr.1)
+                .collect();
+            let ykeys: Vec<f64> = (-8..=3)
+                .map(|e| 10f64.powi(e))
+                .filter(|v| *v >= yr.0 && *v <= yr.1)
+                .collect();
+            let mut chart = ChartBuilder::on(area)
+                .caption(
+                    format!("Time error against k/tau: {title}"),
+                    ("sans-serif", 22),
+                )
+                .margin(15)
+                .x_label_area_size(60)
+                .y_label_area_size(80)
+                .build_cartesian_2d(
+                    (xr.0..xr.1).log_scale().with_key_points(keys),
+                    (yr.0..yr.1).log_scale().with_key_points(ykeys),
+                )
+                .map_err(e2s)?;
+            chart
+                .configure_mesh()
+                .x_desc("k / tau")
+                .y_desc("relative error in energy norm, %")
+                .x_label_formatter(&|x| format!("{x:e}"))
+                .y_label_formatter(&|y| format!("{y:e}"))
+                .label_style(("sans-serif", 17))
+                .axis_desc_style(("sans-serif", 19))
+                .draw()
+                .map_err(e2s)?;
+            for (label, pts, c, marker, dashed) in series {
+                let (c, m) = (*c, *marker);
+                if *dashed {
+                    chart
+                        .draw_series(DashedLineSeries::new(pts.clone(), 8, 6, c.stroke_width(2)))
+                        .map_err(e2s)?;
+                    continue;
+                }
+                let style = c.stroke_width(if m == 0 { 3 } else { 1 });
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), style))
+                    .map_err(e2s)?;
+                let drawn = if m == 0 {
+                    chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 6, c.filled())))
+                        .map_err(e2s)?
+                } else {
+                    chart
+                        .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.stroke_width(2))))
+                        .map_err(e2s)?
+                };
+                if k == 0 {
+                    let r = if m == 0 { 6 } else { 4 };
+                    let st = if m == 0 {
+                        c.filled()
+                    } else {
+                        c.stroke_width(2)
+                    };
+                    drawn.label(label.clone()).legend(move |(x, y)| {
+                        EmptyElement::at((x + 12, y))
+                            + PathElement::new(vec![(-12, 0), (12, 0)], style)
+                            + Circle::new((0, 0), r, st)
+                    });
+                }
+            }
+            if k == 0 {
+                let grey = RGBColor(60, 60, 60).stroke_width(2);
+                chart
+                    .draw_series(std::iter::once(PathElement::new(vec![], grey)))
+                    .map_err(e2s)?
+                    .label("scalar model (dashed), figure")
+                    .legend(move |(x, y)| {
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (10, 0)], grey)
+                            + PathElement::new(vec![(16, 0), (24, 0)], grey)
+                    });
+            }
+            legend(&mut chart, SeriesLabelPosition::UpperLeft, 15, 0.9)?;
+        }
         Ok(())
     }
 }
