@@ -64,7 +64,7 @@ fn graded_meshes_conform_and_are_finer_near_the_corners() {
             (p[0][0] + p[1][0] + p[2][0]) / 3.0,
             (p[0][1] + p[1][1] + p[2][1]) / 3.0,
         ];
-        f.diameter(t) > (1.0 + 1e-12) * graded_size(n, c)
+        f.diameter(t) > (1.0 + 1e-12) * graded_size(n, c, &SINGULAR)
     });
     let m = forest.mesh(&leaves, n);
     assert_conforming(&m);

@@ -11,7 +11,7 @@ fn after(text: &str, key: &str) -> f64 {
         + key.len();
     let rest = &text[i..];
     let end = rest
-        .find(|c: char| c == ',' || c == ' ' || c == ';' || c == ')')
+        .find([',', ' ', ';', ')'])
         .unwrap_or(rest.len());
     rest[..end]
         .parse()
