@@ -276,6 +276,7 @@ fn example_five_branch() {
         &[
             "example_five_branch_contact.csv",
             "example_five_branch_regimes.csv",
+            "example_five_branch_steps.csv",
         ],
         &[
             "example_five_branch_deformed",

@@ -88,5 +88,94 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         }
     }
     let _ = std::fs::remove_dir_all(&scratch);
+    step_control(ctx, &scn, n)
+}
+
+/// What one run of the example shows on $\Gamma_3$ over time.
+struct Trace {
+    steps: usize,
+    /// Steps at which a node moved back to a lower regime (branch, or off the limit).
+    reversals: usize,
+    t_last_reversal: f64,
+    /// $-\sigma_\nu$ at the middle node $x = 1$: its peak, when, and at $T$.
+    peak: f64,
+    t_peak: f64,
+    at_t: f64,
+    /// When the middle node first sits at the limit.
+    t_landing: f64,
+}
+
+fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
+    let mut prev: Option<Vec<i32>> = None;
+    let mut tr = Trace {
+        steps,
+        reversals: 0,
+        t_last_reversal: f64::NAN,
+        peak: 0.0,
+        t_peak: f64::NAN,
+        at_t: f64::NAN,
+        t_landing: f64::NAN,
+    };
+    let mid = n / 2;
+    crate::scheme::run_with_states(
+        scn,
+        &Settings::new(n, steps),
+        &mut Newton::default(),
+        &mut |_, t, _, c| {
+            let codes: Vec<i32> = c.iter().map(|s| s.regime_code(&scn.law, scn.g)).collect();
+            if let Some(p) = &prev {
+                let back = codes.iter().zip(p).filter(|(a, b)| a < b).count();
+                if back > 0 {
+                    tr.reversals += back;
+                    tr.t_last_reversal = t;
+                }
+            }
+            let s = -(c[mid].sigma_nu1 + c[mid].sigma_nu2);
+            if s > tr.peak {
+                (tr.peak, tr.t_peak) = (s, t);
+            }
+            if tr.t_landing.is_nan() && c[mid].at_limit {
+                tr.t_landing = t;
+            }
+            tr.at_t = s;
+            prev = Some(codes);
+        },
+    )?;
+    Ok(tr)
+}
+
+/// The example at the same mesh with 1, 4 and 16 times the steps: does the regime
+/// chatter and the force peak at the landing follow the time step (a numerical
+/// artefact) or stay (the solution's own)? `data/example_five_branch_steps.csv`.
+fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
+    let rows: Vec<Trace> = [1, 4, 16]
+        .iter()
+        .map(|m| trace(scn, n, m * n))
+        .collect::<Result<_, _>>()?;
+    let t = crate::output::csv::Table::new()
+        .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
+        .f64("k", rows.iter().map(|r| 1.0 / r.steps as f64).collect())
+        .u64(
+            "reversals",
+            rows.iter().map(|r| r.reversals as u64).collect(),
+        )
+        .f64(
+            "t_last_reversal",
+            rows.iter().map(|r| r.t_last_reversal).collect(),
+        )
+        .f64("t_landing_mid", rows.iter().map(|r| r.t_landing).collect())
+        .f64("sigma_peak_mid", rows.iter().map(|r| r.peak).collect())
+        .f64("t_sigma_peak_mid", rows.iter().map(|r| r.t_peak).collect())
+        .f64("sigma_T_mid", rows.iter().map(|r| r.at_t).collect());
+    ctx.write(
+        "example_five_branch_steps.csv",
+        &t,
+        "example",
+        &format!(
+            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2)",
+            4 * n,
+            16 * n
+        ),
+    )?;
     Ok(())
 }

@@ -10,9 +10,7 @@ fn after(text: &str, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
         + key.len();
     let rest = &text[i..];
-    let end = rest
-        .find([',', ' ', ';', ')'])
-        .unwrap_or(rest.len());
+    let end = rest.find([',', ' ', ';', ')']).unwrap_or(rest.len());
     rest[..end]
         .parse()
         .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
@@ -105,4 +103,32 @@ fn own_example_regimes_at_t() {
     let end = per_step.last().expect("a step");
     assert_eq!(num(end, "limit"), 19.0);
     assert_eq!(num(end, "branch1"), 2.0);
+}
+
+#[test]
+fn own_example_no_reversals() {
+    let r = column("example_five_branch_steps.csv", &[], "reversals");
+    let steps = column("example_five_branch_steps.csv", &[], "steps");
+    assert_eq!(steps, [64.0, 256.0, 1024.0]);
+    assert!(r.iter().all(|x| *x == 0.0), "{r:?}");
+}
+
+#[test]
+fn own_example_landing_spike() {
+    let f = "example_five_branch_steps.csv";
+    let peak = column(f, &[], "sigma_peak_mid");
+    let land = column(f, &[], "t_landing_mid");
+    let at_t = column(f, &[], "sigma_T_mid");
+    let r = |v: &[f64], d: f64| v.iter().map(|x| (x * d).round() / d).collect::<Vec<_>>();
+    assert_eq!(r(&peak, 10.0)[0], 81.8);
+    assert_eq!(r(&peak, 1.0)[1..], [165.0, 219.0]);
+    assert!(peak.windows(2).all(|w| w[1] > w[0]), "grows as k shrinks");
+    assert_eq!(r(&land, 1000.0), [0.234, 0.230, 0.228]);
+    assert!(land.windows(2).all(|w| w[1] < w[0]));
+    assert_eq!(r(&at_t, 100.0), [65.30, 65.30, 65.30]);
+    // The evolution's table at t = T agrees (the middle node of contact.csv).
+    let c = rows("example_five_branch_contact.csv");
+    let mid = c.iter().find(|x| num(x, "x") == 1.0).unwrap();
+    let s = -(num(mid, "sigma_nu1") + num(mid, "sigma_nu2"));
+    assert!((s - at_t[0]).abs() < 1e-9 * s);
 }
