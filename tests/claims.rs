@@ -14,6 +14,8 @@ mod beyond;
 mod errata;
 #[path = "claims/own.rs"]
 mod own;
+#[path = "claims/results.rs"]
+mod results;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
