@@ -95,9 +95,8 @@ pub const RESOLUTION_MAX: f64 = 1e-4;
 /// infinite $g$, the penalty method's, is left out).
 pub fn resolved_length(law: &Law, g: f64) -> f64 {
     let mut pts: Vec<f64> = law
-        .breakpoints()
-        .iter()
-        .copied()
+        .kinks()
+        .into_iter()
         .filter(|&b| !g.is_finite() || b < g)
         .collect();
     let mut length = f64::INFINITY;

@@ -271,7 +271,7 @@ impl<'d> Reduced<'d> {
     ) -> Result<March, RunError> {
         let k = scn.t_end / steps as f64;
         let at = timed(&mut timings.condensation, || {
-            self.at(k, scn.law.min_slope())
+            self.at(k, scn.law.curvature_min())
         })?;
         let (ck, a) = (self.c + k, self.c / (self.c + k));
         let m = load.q.len();

@@ -306,7 +306,7 @@ pub fn step_curvature(scn: &Scenario, n: usize, steps: usize) -> Result<f64, Run
         k,
         OrderingKind::NestedDissection,
         false,
-        scn.law.min_slope(),
+        scn.law.curvature_min(),
         &mut Timings::default(),
     )?;
     Ok(op.hessian_min)
@@ -454,7 +454,7 @@ pub fn run_batch_states(
     let mut timings = Timings::default();
     let (disc, loads) = timed(&mut timings.assembly, || discretise(scns, opt))?;
     let k = scn.t_end / opt.steps as f64;
-    let cmin = (scns.iter().map(|s| s.law.min_slope())).fold(f64::INFINITY, f64::min);
+    let cmin = (scns.iter().map(|s| s.law.curvature_min())).fold(f64::INFINITY, f64::min);
     let op = StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?;
     timings.one_solve = op.one_solve(&disc.f);
     let (nd, m, nb) = (disc.dofs.count, op.kw.len(), scns.len());

@@ -44,7 +44,7 @@ impl Smallness {
         };
         Ok(Smallness {
             beta_b: scn.elasticity().coercivity(),
-            m: (-scn.law.min_slope()).max(0.0),
+            m: (-scn.law.curvature_min()).max(0.0),
             trace_sq,
             n,
             extrapolated,
@@ -54,7 +54,7 @@ impl Smallness {
     pub fn unknown(scn: &Scenario, n: usize) -> Smallness {
         Smallness {
             beta_b: scn.elasticity().coercivity(),
-            m: (-scn.law.min_slope()).max(0.0),
+            m: (-scn.law.curvature_min()).max(0.0),
             trace_sq: f64::NAN,
             n,
             extrapolated: false,
@@ -113,21 +113,10 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         }
     }
     let law = &scn.law;
-    let _ = writeln!(
-        s,
-        "law: breakpoints {:?}, slopes {:?}",
-        law.breakpoints(),
-        law.slopes()
-    );
-    for &b in law.breakpoints() {
-        let (l, r) = law.p_sides(b);
-        let _ = writeln!(
-            s,
-            "  at s = {b}: p(s-) = {l}, p(s+) = {r}{}",
-            if l == r { "" } else { " (a jump)" }
-        );
+    for line in law.describe() {
+        let _ = writeln!(s, "{line}");
     }
-    let m = (-law.min_slope()).max(0.0);
+    let m = (-law.curvature_min()).max(0.0);
     let _ = writeln!(
         s,
         "  H(j): constant m = max(0, -min slope) = {m} (relaxed monotonicity)"

@@ -56,9 +56,9 @@ fn condensed_step_equals_full_space_solve() {
             pinned += 1;
         } else {
             // d/du_d of kw j(-u_d) = -kw (p_b(0) - c_b u_d)
-            let br = scn.law.branch(s);
-            h[(d, d)] += kw * scn.law.slopes()[br];
-            rhs[(d, 0)] += kw * scn.law.p_on(br, 0.0);
+            let t = scn.law.tangent(s);
+            h[(d, d)] += kw * t.slope;
+            rhs[(d, 0)] += kw * t.at_zero;
         }
     }
     assert!(pinned > 0, "the test step should have nodes at the limit");

@@ -20,7 +20,7 @@ fn solve_all(law: &Law, r0: &[f64], expected: &[f64]) {
     let m = r0.len();
     let s = faer::Mat::from_fn(m, m, |i, j| if i == j { 1000.0 } else { 0.0 });
     let kw = vec![1.0; m];
-    let cmin = law.min_slope().min(0.0);
+    let cmin = law.curvature_min().min(0.0);
     let p = StepProblem {
         s: s.as_ref(),
         r0,

@@ -15,17 +15,9 @@ const VERMILLION: RGBColor = RGBColor(213, 94, 0);
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
     let g = scn.g;
-    // The law is piecewise linear: its vertices draw it exactly (both sides of a jump).
+    // The law's own polyline: for the paper's, its vertices (both sides of a jump).
     let lo = -0.025;
-    let mut u = vec![lo];
-    let mut sig = vec![scn.law.p(lo)];
-    for &s in scn.law.breakpoints().iter().filter(|&&s| s > lo && s < g) {
-        let (a, b) = scn.law.p_sides(s);
-        u.extend([s, s]);
-        sig.extend([a, b]);
-    }
-    u.push(g);
-    sig.push(scn.law.p_sides(g).0);
+    let (mut u, mut sig): (Vec<f64>, Vec<f64>) = scn.law.polyline(lo, g).into_iter().unzip();
     let mut part = vec!["compliance".to_string(); u.len()];
     // The wall at g: -sigma_nu takes every value above p(g).
     let top = 2.0 * scn.law.p(g).max(1.0);
@@ -34,7 +26,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         sig.push(v);
         part.push("unilateral".to_string());
     }
-    let mut bp_u = scn.law.breakpoints().to_vec();
+    let mut bp_u = scn.law.kinks();
     bp_u.push(g);
     let bp_s: Vec<f64> = bp_u.iter().map(|&s| scn.law.p(s)).collect();
     let params = format!("law of scenario `figure` (paper (5.1)-(5.2)), g = {g}");

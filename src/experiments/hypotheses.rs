@@ -25,7 +25,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     };
     let visc = scn.viscosity();
     let elas = scn.elasticity();
-    let m = -scn.law.min_slope();
+    let m = -scn.law.curvature_min();
     let mut rows = vec![];
     for &n in &levels {
         let trace_sq = crate::norms::trace_norm_sq(&scn, n).map_err(|message| ExpError::Table {

@@ -34,7 +34,7 @@ pub fn integrals(law: &Law, x: &[f64], r: &[f64]) -> (f64, Vec<f64>, Vec<[f64; 3
         let len = xb - xa;
         // Pieces in the local coordinate s in [0, 1]: cut where u crosses a breakpoint.
         let mut cuts = vec![0.0, 1.0];
-        for &b in law.breakpoints() {
+        for b in law.kinks() {
             if (ua - b) * (ub - b) < 0.0 {
                 cuts.push((b - ua) / (ub - ua));
             }
@@ -47,7 +47,7 @@ pub fn integrals(law: &Law, x: &[f64], r: &[f64]) -> (f64, Vec<f64>, Vec<[f64; 3
             }
             // The slope on this piece, read at its midpoint.
             let mid = ua + (ub - ua) * 0.5 * (s0 + s1);
-            let slope = law.slope(law.branch(mid));
+            let slope = law.tangent(mid).slope;
             for (q, wq) in GAUSS2 {
                 let s = s0 + (s1 - s0) * q;
                 let wgt = wq * (s1 - s0) * len;

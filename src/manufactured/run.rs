@@ -205,7 +205,7 @@ pub fn run_rules(
         k,
         OrderingKind::NestedDissection,
         true,
-        scn.law.min_slope(),
+        scn.law.curvature_min(),
         &mut Timings::default(),
     )?;
     let mesh = disc.mesh.clone();

@@ -91,7 +91,7 @@ impl Convexify {
         r: &[f64],
     ) -> Result<(Vec<f64>, u32), String> {
         let m = p.m();
-        let (a, runs) = p.law.convex_runs(p.g);
+        let (a, runs) = p.law.convex_split(p.g).ok_or_else(|| declined(p.law))?;
         let nr = runs.len();
         let nvar = m + m * nr;
         // P: upper triangle of S in the r block, diagonal in the t block.
@@ -202,6 +202,16 @@ impl Convexify {
     }
 }
 
+/// Why the convexification cannot take a law: its subproblems are built from the
+/// quadratic runs of an affine law's convex part.
+fn declined(law: &crate::law::Law) -> String {
+    format!(
+        "solver `convexify` needs a piecewise-affine law (its convex subproblems are built from \
+         the law's affine pieces); the scenario's law is `{}`: use `newton` or `proxgrad`",
+        law.kind()
+    )
+}
+
 impl StepSolver for Convexify {
     fn name(&self) -> &'static str {
         "convexify"
@@ -210,6 +220,9 @@ impl StepSolver for Convexify {
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
         if let Err(e) = self.settings.validate() {
             return Info::refused(e.to_string());
+        }
+        if p.law.convex_split(p.g).is_none() {
+            return Info::refused(declined(p.law));
         }
         let st = self.settings.clone();
         let mut info = Info {
@@ -221,7 +234,7 @@ impl StepSolver for Convexify {
             time_s: 0.0,
         };
         for it in 0..st.max_iter {
-            let eta: Vec<f64> = r.iter().map(|&s| p.law.concave_slope(s)).collect();
+            let eta: Vec<f64> = r.iter().map(|&s| p.law.concave_supergradient(s)).collect();
             let (next, ipm_iters) = match self.subproblem(p, &eta, r) {
                 Ok(x) => x,
                 Err(msg) => {
@@ -246,7 +259,8 @@ impl StepSolver for Convexify {
             }
         }
         info.residual = p.residual(r);
-        if st.polish && info.status == Status::Converged {
+        // Polishing solves on the pieces found: exact only for a piecewise-affine law.
+        if st.polish && info.status == Status::Converged && p.law.piecewise_affine() {
             let tol = 1e3 * st.ipm_tol * inf_norm(p.r0).max(inf_norm(r));
             let pieces: Vec<Piece> = p.pieces_of(r, tol);
             if let Some(x) = p.solve_on_pieces(&pieces) {

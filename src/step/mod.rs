@@ -280,12 +280,12 @@ impl StepProblem<'_> {
         }
         let tol = 1e-12 * self.g.abs().max(inf_norm(r)).min(1e300);
         let pieces = self.pieces_of(r, tol);
-        let free: Vec<(usize, usize)> = pieces
+        let free: Vec<(usize, f64)> = pieces
             .iter()
             .enumerate()
             .filter_map(|(i, p)| match p {
-                // a node sitting on a breakpoint is on the boundary of two branches: not free
-                Piece::Branch(b) if !self.law.near_breakpoint(r[i], tol) => Some((i, *b)),
+                // a node sitting on a kink is on the boundary of two pieces: not free
+                Piece::Free(t) if !self.law.near_kink(r[i], tol) => Some((i, t.slope)),
                 _ => None,
             })
             .collect();
@@ -293,28 +293,24 @@ impl StepProblem<'_> {
             return None;
         }
         let h = Mat::from_fn(free.len(), free.len(), |a, c| {
-            let (i, b) = free[a];
-            self.s[(i, free[c].0)]
-                + if a == c {
-                    self.kw[i] * self.law.slope(b)
-                } else {
-                    0.0
-                }
+            let (i, slope) = free[a];
+            self.s[(i, free[c].0)] + if a == c { self.kw[i] * slope } else { 0.0 }
         });
         let eig = h.self_adjoint_eigenvalues(faer::Side::Lower).ok()?;
         Some(eig.into_iter().fold(f64::INFINITY, f64::min))
     }
 
     // ANCHOR: pieces
-    /// Solves the step exactly once each node's piece is known: a node on
-    /// branch $b$ satisfies $(S(r - r_0))_i + k w_i\, p_b(r_i) = 0$ with $p_b$ affine;
-    /// a pinned node (at $g$ or at a jump of $p$) sits at its pin. This is one
-    /// symmetric linear system in the free nodes.
+    /// Solves the step exactly once each node's piece is known: a free node
+    /// satisfies $(S(r - r_0))_i + k w_i\, p_b(r_i) = 0$ with $p_b$ the tangent of its
+    /// piece (the law itself on an affine piece, so the answer is exact for a
+    /// piecewise-affine law); a pinned node (at $g$ or at a jump of $p$) sits at its
+    /// pin. This is one symmetric linear system in the free nodes.
     pub fn solve_on_pieces(&self, pieces: &[Piece]) -> Option<Vec<f64>> {
         let m = self.m();
         let mut r = vec![0.0; m];
         let free: Vec<usize> = (0..m)
-            .filter(|&i| matches!(pieces[i], Piece::Branch(_)))
+            .filter(|&i| matches!(pieces[i], Piece::Free(_)))
             .collect();
         for (i, p) in pieces.iter().enumerate() {
             if let Piece::Pinned(s) = p {
@@ -331,15 +327,14 @@ impl StepProblem<'_> {
         let mut h = Mat::<f64>::zeros(nf, nf);
         let mut rhs = Mat::<f64>::zeros(nf, 1);
         for (a, &i) in free.iter().enumerate() {
-            let Piece::Branch(b) = pieces[i] else {
+            let Piece::Free(t) = pieces[i] else {
                 unreachable!()
             };
             for (c, &j) in free.iter().enumerate() {
                 h[(a, c)] = self.s[(i, j)];
             }
-            let c_b = self.law.slope(b);
-            h[(a, a)] += self.kw[i] * c_b;
-            rhs[(a, 0)] = sr0[i] - sra[i] - self.kw[i] * self.law.p_on(b, 0.0);
+            h[(a, a)] += self.kw[i] * t.slope;
+            rhs[(a, 0)] = sr0[i] - sra[i] - self.kw[i] * t.at_zero;
         }
         let x = dense_solve(h, rhs)?;
         for (a, &i) in free.iter().enumerate() {
@@ -352,7 +347,7 @@ impl StepProblem<'_> {
     /// The piece each node of `r` lies on, pinning nodes within `tol` of $g$
     /// or of a jump of $p$.
     pub fn pieces_of(&self, r: &[f64], tol: f64) -> Vec<Piece> {
-        let jumps = self.law.jumps();
+        let jumps = self.law.pins();
         r.iter()
             .map(|&x| {
                 if x >= self.g - tol {
@@ -360,17 +355,18 @@ impl StepProblem<'_> {
                 } else if let Some(&s) = jumps.iter().find(|&&s| (x - s).abs() <= tol) {
                     Piece::Pinned(s)
                 } else {
-                    Piece::Branch(self.law.branch(x))
+                    Piece::Free(self.law.tangent(x))
                 }
             })
             .collect()
     }
 }
 
-/// Where a contact node sits: inside a branch of the law, or pinned at a point
-/// ($g$, or a jump of $p$) where $\partial_{Cl} j + N$ is an interval.
+/// Where a contact node sits: free on a piece of the law (with the tangent of $p$
+/// there), or pinned at a point ($g$, or a jump of $p$) where $\partial_{Cl} j + N$ is
+/// an interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Piece {
-    Branch(usize),
+    Free(crate::law::Tangent),
     Pinned(f64),
 }

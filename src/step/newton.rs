@@ -122,8 +122,11 @@ struct Eval {
     rbar: Vec<f64>,
     /// Prox slope per node: 0 at a pin.
     slope: Vec<f64>,
-    /// Branch per free node (meaningful where slope > 0).
-    branch: Vec<usize>,
+    /// $p'$ at each node's prox point: its curvature in the Newton matrix.
+    curvature: Vec<f64>,
+    /// The law's piece per free node (meaningful where slope > 0; a cache key for
+    /// piecewise-affine laws).
+    piece: Vec<usize>,
     envelope: f64,
     res: Vec<f64>,
 }
@@ -151,7 +154,7 @@ impl Newton {
 
     fn gamma(&self, p: &StepProblem) -> f64 {
         let mut gamma = self.settings.gamma_fraction / p.lipschitz;
-        let cmin = p.law.min_slope();
+        let cmin = p.law.curvature_min();
         let kwmax = p.kw.iter().fold(0.0f64, |a, &b| a.max(b));
         if cmin < 0.0 {
             gamma = gamma.min(0.5 / (kwmax * -cmin));
@@ -162,16 +165,14 @@ impl Newton {
     fn eval(p: &StepProblem, gamma: f64, r: &[f64]) -> Eval {
         let grad = p.grad(r);
         let m = r.len();
-        let (mut rbar, mut slope, mut branch) = (vec![0.0; m], vec![0.0; m], vec![0; m]);
-        let mut phi = 0.0;
+        let (mut rbar, mut slope) = (vec![0.0; m], vec![0.0; m]);
+        let (mut curvature, mut piece) = (vec![0.0; m], vec![0; m]);
         for i in 0..m {
             let v = r[i] - gamma * grad[i];
-            let (s, d, b) = prox_node(p, i, gamma, v);
-            rbar[i] = s;
-            slope[i] = d;
-            branch[i] = b;
-            phi += p.kw[i] * p.law.j(s);
+            let x = p.law.prox(v, gamma, p.kw[i], p.g);
+            (rbar[i], slope[i], curvature[i], piece[i]) = (x.s, x.slope, x.curvature, x.piece);
         }
+        let phi: f64 = (0..m).map(|i| p.kw[i] * p.law.j(rbar[i])).sum();
         let res: Vec<f64> = r.iter().zip(&rbar).map(|(a, b)| a - b).collect();
         let d: Vec<f64> = r.iter().zip(p.r0).map(|(a, b)| a - b).collect();
         let f = 0.5 * grad.iter().zip(&d).map(|(a, b)| a * b).sum::<f64>();
@@ -180,7 +181,8 @@ impl Newton {
         Eval {
             rbar,
             slope,
-            branch,
+            curvature,
+            piece,
             envelope: f + lin + sq / (2.0 * gamma) + phi,
             res,
         }
@@ -206,16 +208,19 @@ impl Newton {
             let i = free[a];
             -e.res[i] / (gamma * e.slope[i]) - sda[i]
         });
-        let key: Vec<(usize, usize)> = free.iter().map(|&i| (i, e.branch[i])).collect();
+        let key: Vec<(usize, usize)> = free.iter().map(|&i| (i, e.piece[i])).collect();
         let print = fingerprint(p);
-        let hit = (self.cache.0.as_ref()).is_some_and(|c| c.key == key && c.fingerprint == print);
+        // The pieces fix the matrix only when the law is affine on each of them; a
+        // smooth law's curvature moves with the point, so its matrix is rebuilt.
+        let hit = p.law.piecewise_affine()
+            && (self.cache.0.as_ref()).is_some_and(|c| c.key == key && c.fingerprint == print);
         if !hit {
             let mut h = Mat::<f64>::zeros(nf, nf);
             for (a, &i) in free.iter().enumerate() {
                 for (c, &j) in free.iter().enumerate() {
                     h[(a, c)] = p.s[(i, j)];
                 }
-                h[(a, a)] += p.kw[i] * p.law.slope(e.branch[i]);
+                h[(a, a)] += p.kw[i] * e.curvature[i];
             }
             self.cache.0 = Some(Factored {
                 key,
@@ -232,10 +237,6 @@ impl Newton {
         }
         Some(d)
     }
-}
-
-fn prox_node(p: &StepProblem, i: usize, gamma: f64, v: f64) -> (f64, f64, usize) {
-    p.law.prox(v, gamma, p.kw[i], p.g)
 }
 
 impl StepSolver for Newton {

@@ -72,8 +72,9 @@ impl Penalty {
         }
     }
 
-    /// The law with the penalty branch added at `g` (see [`Law::penalised`]).
-    pub fn penalised(law: &Law, g: f64, stiffness: f64) -> Law {
+    /// The law with the penalty branch added at `g` (see [`Law::penalised`]), or
+    /// `None` for a family without one.
+    pub fn penalised(law: &Law, g: f64, stiffness: f64) -> Option<Law> {
         law.penalised(g, stiffness)
     }
 }
@@ -104,12 +105,14 @@ impl StepSolver for Penalty {
         }
         let fresh = !matches!(&self.cache, Some((l, g, s, _)) if l == p.law && *g == p.g && *s == stiffness);
         if fresh {
-            self.cache = Some((
-                p.law.clone(),
-                p.g,
-                stiffness,
-                Self::penalised(p.law, p.g, stiffness),
-            ));
+            let Some(law) = Self::penalised(p.law, p.g, stiffness) else {
+                return Info::refused(format!(
+                    "solver `penalty` needs a piecewise-affine law (the penalty is an affine \
+                     branch beyond g); the scenario's law is `{}`: use `newton` or `proxgrad`",
+                    p.law.kind()
+                ));
+            };
+            self.cache = Some((p.law.clone(), p.g, stiffness, law));
         }
         let law = &self.cache.as_ref().expect("cached").3;
         let q = StepProblem {

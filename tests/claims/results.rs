@@ -587,9 +587,9 @@ fn results_static_vs_n512() {
 fn results_literal_linear_springs() {
     // Not stored in data/: recomputed (h = k = 1/8 and 1/32, a fraction of a second).
     let scn = evhi::scenario::Scenario::load("literal").unwrap();
-    let u1 = scn.law.breakpoints()[1];
+    let u1 = scn.law.kinks()[1];
     assert_eq!(u1, 0.05);
-    let stiffness = scn.law.slope(1);
+    let stiffness = scn.law.tangent(0.5 * u1).slope;
     assert_eq!(stiffness, 200.0);
     for n in [8, 32] {
         let mut largest = 0.0f64;

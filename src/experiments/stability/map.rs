@@ -40,8 +40,15 @@ pub(super) struct Cell {
     pub(super) spread: f64,
 }
 
-pub(super) fn map_cell(scn: &Scenario, n: usize, steps: usize, solver: &'static str) -> Cell {
-    let c2 = scn.law.slope(2);
+/// One cell: `scn` (whose softening slope is `c2`, recorded with the cell) run with
+/// `solver` at h = 1/n and `steps` steps.
+pub(super) fn map_cell(
+    scn: &Scenario,
+    c2: f64,
+    n: usize,
+    steps: usize,
+    solver: &'static str,
+) -> Cell {
     let mut opt = Settings::new(n, steps);
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
     if !entry.certified {
@@ -148,7 +155,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 ctx.log(&format!(
                     "stability map: c2 = {c2:e}, steps = {st}, {solver}"
                 ));
-                cells.push(map_cell(&scn, n, st, solver));
+                cells.push(map_cell(&scn, c2, n, st, solver));
             }
         }
     }

@@ -39,7 +39,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         let diff: Vec<f64> = res.u.iter().zip(&exact.u).map(|(a, e)| a - e).collect();
         let rel = crate::norms::energy_norm(&b, &diff) / crate::norms::energy_norm(&b, &exact.u);
         // Condition of the Newton matrix on a node pushed past g: (lambda_max(S) + k w (c3 + s)) / lambda_min(S).
-        let cond = (res.s_eigen.1 + kw_max * (scn.law.slope(3) + s)) / res.s_eigen.0;
+        let cond = (res.s_eigen.1 + kw_max * (scn.law.tangent(scn.g).slope + s)) / res.s_eigen.0;
         let iters = res.records.iter().map(|r| r.iterations as f64).sum::<f64>() / n as f64;
         rows.push((s, overshoot / scn.g, rel, cond, iters));
     }

@@ -1,4 +1,4 @@
-//! The normal compliance law: a piecewise-linear, possibly discontinuous
+//! The piecewise-affine family: a piecewise-linear, possibly discontinuous
 //! function $p$, its potential $j(s) = \int_0^s p$ and the Clarke subdifferential
 //! $\partial_{Cl} j(s)$ (paper §4, (4.5); the paper's instance is (5.1)).
 //!
@@ -11,30 +11,16 @@
 //! gradient of $j$ at $s$ is the closed convex hull of the one-sided limits:
 //! $\partial_{Cl} j(s) = [\min(p(s^-), p(s^+)), \max(p(s^-), p(s^+))]$, a single
 //! point wherever $p$ is continuous.
+//!
+//! Branch indices, slopes and `p_on` stay in this room: the rest of the code asks
+//! [`super::Law`] for what the mathematics needs.
 
+use super::{Interval, Regime};
 use crate::error::{InputError, bounded};
-
-/// A closed interval $[lo, hi]$ of the real line; `hi` may be $+\infty$.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Interval {
-    pub lo: f64,
-    pub hi: f64,
-}
-
-impl Interval {
-    /// The point of the interval nearest to `x`.
-    pub fn clamp(&self, x: f64) -> f64 {
-        x.clamp(self.lo, self.hi)
-    }
-    /// Distance from `x` to the interval.
-    pub fn dist(&self, x: f64) -> f64 {
-        (self.lo - x).max(x - self.hi).max(0.0)
-    }
-}
 
 /// A piecewise-linear normal compliance law, validated on construction.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Law {
+pub struct Affine {
     /// Breakpoints $s_1 < \dots < s_K$.
     breaks: Vec<f64>,
     /// Slopes $c_0, \dots, c_K$, one per branch.
@@ -53,8 +39,8 @@ pub struct Law {
 // ANCHOR: law_paper
 /// The paper's law (5.1): $p = 0$ for $s \le 0$, slope $c_1 = 200$ up to
 /// $u_1 = 0.05$, slope $c_2 = -100$ up to $u_2 = 0.075$, slope $c_3 = 300$ beyond.
-pub fn paper_law() -> Law {
-    Law::new(
+pub fn paper_law() -> super::Law {
+    super::Law::new(
         &[0.0, 0.05, 0.075],
         &[0.0, 200.0, -100.0, 300.0],
         &[0.0; 3],
@@ -64,7 +50,7 @@ pub fn paper_law() -> Law {
 }
 // ANCHOR_END: law_paper
 
-impl Law {
+impl Affine {
     /// Builds a law from its breakpoints, the slope on each branch, the jump
     /// at each breakpoint and the value `p_left` $= p(s_1^-)$ (or $p(0)$ when there
     /// are no breakpoints). Every input is checked; an error names the field.
@@ -73,7 +59,7 @@ impl Law {
         slopes: &[f64],
         jumps: &[f64],
         p_left: f64,
-    ) -> Result<Law, InputError> {
+    ) -> Result<Affine, InputError> {
         for (i, &s) in breaks.iter().enumerate() {
             bounded(&format!("law.breakpoints[{i}]"), s, f64::MAX)?;
             if i > 0 && s <= breaks[i - 1] {
@@ -126,7 +112,7 @@ impl Law {
                 prim_start[b - 1] + start[b - 1] * len + 0.5 * slopes[b - 1] * len * len;
             start[b] = end_val + jumps[b - 1];
         }
-        let mut law = Law {
+        let mut law = Affine {
             breaks: breaks.to_vec(),
             slopes: slopes.to_vec(),
             start,
@@ -319,44 +305,9 @@ pub struct ConvexRun {
     pub quad: f64,
 }
 
-/// Where a contact node's normal displacement sits in the law: no contact
-/// (left of the first breakpoint, where $p \equiv 0$), on branch $b$ of $p$, or at
-/// the unilateral limit $g$.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Regime {
-    NoContact,
-    Branch(usize),
-    Limit,
-}
-
-impl Regime {
-    /// The name in tables and figures: `no_contact`, `branch{b}`, `limit`.
-    pub fn name(&self) -> String {
-        match self {
-            Regime::NoContact => "no_contact".into(),
-            Regime::Branch(b) => format!("branch{b}"),
-            Regime::Limit => "limit".into(),
-        }
-    }
-
-    /// The integer of field output: 0 no contact, $b$ on branch $b$, $K + 1$ at the
-    /// limit for a law with $K$ breakpoints.
-    pub fn code(&self, law: &Law) -> i32 {
-        match self {
-            Regime::NoContact => 0,
-            Regime::Branch(b) => *b as i32,
-            Regime::Limit => law.breakpoints().len() as i32 + 1,
-        }
-    }
-}
-
-impl Law {
-    /// The regime of a normal displacement `u_nu` that is (`at_limit`) or is not at
-    /// the limit.
-    pub fn regime(&self, u_nu: f64, at_limit: bool) -> Regime {
-        if at_limit {
-            return Regime::Limit;
-        }
+impl Affine {
+    /// The regime of a normal displacement `u_nu` not at the limit.
+    pub fn regime(&self, u_nu: f64) -> Regime {
         let b = self.branch(u_nu);
         if b == 0 && self.slopes()[0] == 0.0 && self.p_on(0, u_nu) == 0.0 {
             Regime::NoContact
@@ -364,16 +315,55 @@ impl Law {
             Regime::Branch(b)
         }
     }
+
+    /// $p$ on the branch holding `s`, as $p(0\text{-extension}) + c_b\,s$.
+    pub fn tangent(&self, s: f64) -> super::Tangent {
+        let b = self.branch(s);
+        super::Tangent {
+            at_zero: self.p_on(b, 0.0),
+            slope: self.slopes[b],
+        }
+    }
+
+    /// The vertices of the law on $[lo, hi]$: `lo`, both sides of every breakpoint
+    /// inside, and the left limit at `hi`.
+    pub fn polyline(&self, lo: f64, hi: f64) -> Vec<(f64, f64)> {
+        let mut out = vec![(lo, self.p(lo))];
+        for &s in self.breaks.iter().filter(|&&s| s > lo && s < hi) {
+            let (a, b) = self.p_sides(s);
+            out.extend([(s, a), (s, b)]);
+        }
+        out.push((hi, self.p_sides(hi).0));
+        out
+    }
+
+    /// The law in words: breakpoints, slopes, the values on both sides of each
+    /// breakpoint.
+    pub fn describe(&self) -> Vec<String> {
+        let mut out = vec![format!(
+            "law: breakpoints {:?}, slopes {:?}",
+            self.breakpoints(),
+            self.slopes()
+        )];
+        for &b in self.breakpoints() {
+            let (l, r) = self.p_sides(b);
+            out.push(format!(
+                "  at s = {b}: p(s-) = {l}, p(s+) = {r}{}",
+                if l == r { "" } else { " (a jump)" }
+            ));
+        }
+        out
+    }
 }
 
-impl Law {
+impl Affine {
     // ANCHOR: prox
     /// $\operatorname{prox}$ of $\gamma\,kw\,j$ restricted to $s \le g$, at $v$: on each
     /// branch (cut at $g$) the objective $kw\, j(s) + (s - v)^2/(2\gamma)$ is a strictly
     /// convex quadratic; its minimiser clamped to the branch is the branch's best
     /// point, and the best branch wins. Returns the point, the slope of the prox
     /// there (0 when clamped to a branch end, i.e. pinned) and the branch.
-    pub fn prox(&self, v: f64, gamma: f64, kw: f64, g: f64) -> (f64, f64, usize) {
+    pub fn prox(&self, v: f64, gamma: f64, kw: f64, g: f64) -> super::Prox {
         let law = self;
         let bps = law.breakpoints();
         let mut best = (f64::INFINITY, 0.0, 0.0, 0usize);
@@ -401,14 +391,19 @@ impl Law {
                 best = (obj, s, slope, b);
             }
         }
-        (best.1, best.2, best.3)
+        super::Prox {
+            s: best.1,
+            slope: best.2,
+            curvature: self.slopes[best.3],
+            piece: best.3,
+        }
     }
     // ANCHOR_END: prox
 }
 
-impl Law {
+impl Affine {
     /// The law with the penalty branch added at `g`.
-    pub fn penalised(&self, g: f64, stiffness: f64) -> Law {
+    pub fn penalised(&self, g: f64, stiffness: f64) -> Affine {
         let law = self;
         let mut breaks: Vec<f64> = law
             .breakpoints()
@@ -431,7 +426,7 @@ impl Law {
         let mut jumps = jumps_below;
         jumps.push(0.0);
         let p_left = law.p_sides(breaks[0]).0;
-        Law::new(&breaks, &slopes, &jumps, p_left)
+        Affine::new(&breaks, &slopes, &jumps, p_left)
             .expect("a valid law stays valid with a penalty branch")
     }
 }
