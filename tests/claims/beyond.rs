@@ -77,9 +77,7 @@ fn after(text: &str, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
         + key.len();
     let rest = &text[i..];
-    let end = rest
-        .find([',', ' ', ';', ')'])
-        .unwrap_or(rest.len());
+    let end = rest.find([',', ' ', ';', ')']).unwrap_or(rest.len());
     rest[..end]
         .parse()
         .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
