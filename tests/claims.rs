@@ -16,6 +16,8 @@ mod errata;
 mod own;
 #[path = "claims/results.rs"]
 mod results;
+#[path = "claims/time.rs"]
+mod time;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
