@@ -65,15 +65,101 @@ struct RawLoads {
     history: Option<toml::Value>,
 }
 
+/// The `[law]` table: `kind = "piecewise"` (the default: `breakpoints`, `slopes`,
+/// optional `jumps` and `p_left`) or `kind = "softening"` (`stiffness`, `length`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLaw {
-    breakpoints: Vec<f64>,
-    slopes: Vec<f64>,
+    #[serde(default)]
+    kind: Option<String>,
+    #[serde(default)]
+    breakpoints: Option<Vec<f64>>,
+    #[serde(default)]
+    slopes: Option<Vec<f64>>,
     #[serde(default)]
     jumps: Option<Vec<f64>>,
     #[serde(default)]
-    p_left: f64,
+    p_left: Option<f64>,
+    #[serde(default)]
+    stiffness: Option<f64>,
+    #[serde(default)]
+    length: Option<f64>,
+}
+
+/// The law of a `[law]` table: each family's fields checked, the other family's
+/// refused by name. Magnitudes are bounded where a double-precision solve can
+/// certify them (the law itself accepts any finite values: the penalty method builds
+/// steeper ones internally).
+fn law_from(raw: &RawLaw) -> Result<Law, InputError> {
+    let kind = raw.kind.as_deref().unwrap_or("piecewise");
+    let given = [
+        ("breakpoints", raw.breakpoints.is_some()),
+        ("slopes", raw.slopes.is_some()),
+        ("jumps", raw.jumps.is_some()),
+        ("p_left", raw.p_left.is_some()),
+        ("stiffness", raw.stiffness.is_some()),
+        ("length", raw.length.is_some()),
+    ];
+    let refuse = |fields: &[&str], takes: &str| -> Result<(), InputError> {
+        match given.iter().find(|(f, on)| *on && fields.contains(f)) {
+            Some((f, _)) => Err(InputError::field(
+                format!("law.{f}"),
+                "a value",
+                format!("nothing: a law of kind \"{kind}\" takes {takes}"),
+            )),
+            None => Ok(()),
+        }
+    };
+    match kind {
+        "piecewise" => {
+            refuse(
+                &["stiffness", "length"],
+                "breakpoints, slopes, jumps and p_left",
+            )?;
+            let breakpoints = raw.breakpoints.clone().ok_or_else(|| {
+                InputError::field("law.breakpoints", "nothing", "a list of breakpoints")
+            })?;
+            let slopes = raw.slopes.clone().ok_or_else(|| {
+                InputError::field("law.slopes", "nothing", "a list of slopes, one per branch")
+            })?;
+            for (i, &s) in breakpoints.iter().enumerate() {
+                bounded(&format!("law.breakpoints[{i}]"), s, 1e6)?;
+            }
+            for (i, &c) in slopes.iter().enumerate() {
+                bounded(&format!("law.slopes[{i}]"), c, MAX_LAW)?;
+            }
+            for (i, &d) in raw.jumps.iter().flatten().enumerate() {
+                bounded(&format!("law.jumps[{i}]"), d, MAX_LAW_VALUE)?;
+            }
+            let p_left = raw.p_left.unwrap_or(0.0);
+            bounded("law.p_left", p_left, MAX_LAW_VALUE)?;
+            let jumps = raw
+                .jumps
+                .clone()
+                .unwrap_or_else(|| vec![0.0; breakpoints.len()]);
+            Law::new(&breakpoints, &slopes, &jumps, p_left)
+        }
+        "softening" => {
+            refuse(
+                &["breakpoints", "slopes", "jumps", "p_left"],
+                "stiffness and length",
+            )?;
+            let c = raw.stiffness.ok_or_else(|| {
+                InputError::field("law.stiffness", "nothing", "c > 0 in p(s) = c s exp(-s/a)")
+            })?;
+            let a = raw.length.ok_or_else(|| {
+                InputError::field("law.length", "nothing", "a > 0 in p(s) = c s exp(-s/a)")
+            })?;
+            bounded("law.stiffness", c, MAX_LAW)?;
+            bounded("law.length", a, 1e6)?;
+            Ok(Law::Softening(crate::law::Softening::new(c, a)?))
+        }
+        other => Err(InputError::field(
+            "law.kind",
+            other,
+            "\"piecewise\" (breakpoints, slopes, jumps, p_left) or \"softening\" (stiffness, length)",
+        )),
+    }
 }
 
 /// A validated scenario.
@@ -375,29 +461,7 @@ impl Scenario {
                 ));
             }
         };
-        // Magnitudes a double-precision solve can certify (the law itself accepts any
-        // finite values: the penalty method builds steeper ones internally).
-        for (i, &s) in raw.law.breakpoints.iter().enumerate() {
-            bounded(&format!("law.breakpoints[{i}]"), s, 1e6)?;
-        }
-        for (i, &c) in raw.law.slopes.iter().enumerate() {
-            bounded(&format!("law.slopes[{i}]"), c, MAX_LAW)?;
-        }
-        for (i, &d) in raw.law.jumps.iter().flatten().enumerate() {
-            bounded(&format!("law.jumps[{i}]"), d, MAX_LAW_VALUE)?;
-        }
-        bounded("law.p_left", raw.law.p_left, MAX_LAW_VALUE)?;
-        let jumps = raw
-            .law
-            .jumps
-            .clone()
-            .unwrap_or_else(|| vec![0.0; raw.law.breakpoints.len()]);
-        let law = Law::new(
-            &raw.law.breakpoints,
-            &raw.law.slopes,
-            &jumps,
-            raw.law.p_left,
-        )?;
+        let law = law_from(&raw.law)?;
         check_traction(supports, "loads.f2", f2)?;
         Ok(Scenario {
             name: raw.name,

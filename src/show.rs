@@ -119,7 +119,7 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
     let m = (-law.curvature_min()).max(0.0);
     let _ = writeln!(
         s,
-        "  H(j): constant m = max(0, -min slope) = {m} (relaxed monotonicity)"
+        "  H(j): constant m = max(0, -inf p') = {m} (relaxed monotonicity)"
     );
     for (at, jump) in law.down_jumps() {
         warn(

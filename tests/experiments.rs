@@ -277,10 +277,18 @@ fn example_five_branch() {
             "example_five_branch_contact.csv",
             "example_five_branch_regimes.csv",
             "example_five_branch_steps.csv",
+            "example_five_branch_iterations.csv",
+            "example_softening_contact.csv",
+            "example_softening_regimes.csv",
+            "example_softening_iterations.csv",
+            "example_softening_law.csv",
         ],
         &[
             "example_five_branch_deformed",
             "example_five_branch_evolution",
+            "example_softening_deformed",
+            "example_softening_evolution",
+            "example_softening_law",
         ],
     );
 }

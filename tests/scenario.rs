@@ -140,3 +140,37 @@ fn refused_numbers_are_echoed_as_read_and_bounds_as_written() {
         assert!(err.to_string().contains(expect), "{err}");
     }
 }
+
+#[test]
+fn the_law_table_takes_one_family_and_names_the_other_s_keys() {
+    let soft = GOOD.replace(
+        "breakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]",
+        "kind = \"softening\"\nstiffness = 900.0\nlength = 0.03",
+    );
+    assert_ne!(soft, GOOD, "fixture changed");
+    let s = Scenario::from_toml(&soft, "test").unwrap();
+    assert_eq!(s.law.kind(), "softening");
+    let cases = [
+        (
+            soft.replace("length = 0.03", "length = 0.03\nslopes = [1.0]"),
+            "law.slopes",
+        ),
+        (
+            soft.replace("stiffness = 900.0", "stiffness = -1.0"),
+            "law.stiffness",
+        ),
+        (soft.replace("length = 0.03", ""), "law.length"),
+        (soft.replace("\"softening\"", "\"smooth\""), "law.kind"),
+        (
+            with(
+                "slopes = [0.0, 200.0, -100.0, 300.0]",
+                "slopes = [0.0, 200.0, -100.0, 300.0]\nlength = 1.0",
+            ),
+            "law.length",
+        ),
+    ];
+    for (text, field) in cases {
+        let err = Scenario::from_toml(&text, "test").unwrap_err();
+        assert_eq!(err.field_name(), Some(field), "{err}");
+    }
+}

@@ -1,9 +1,11 @@
-//! The worked example of the chapter "Your own scenario": a user scenario
-//! (`data/scenarios/examples/five_branch.toml`: a five-branch law with an upward jump,
-//! loads ramped in) checked as `evhi show` checks it and run as `evhi solve` runs it,
-//! with the same run directory and figures. The report goes to
-//! `data/example_five_branch_show.txt`, the run's tables to
-//! `data/example_five_branch_*.csv`, its figures to `figures/example_five_branch_*`.
+//! The worked examples of the chapter "Your own scenario": user scenarios checked as
+//! `evhi show` checks them and run as `evhi solve` runs them, with the same run
+//! directory and figures. `five_branch` (`data/scenarios/examples/five_branch.toml`:
+//! a five-branch law with an upward jump, loads ramped in) and `softening`
+//! (`data/scenarios/examples/softening.toml`: the smooth law family). The report of
+//! example NAME goes to `data/example_NAME_show.txt`, the run's tables to
+//! `data/example_NAME_*.csv`, its figures to `figures/example_NAME_*`; the law of
+//! `softening` is drawn as Fig. 2 draws the paper's (`figures/example_softening_law`).
 
 use super::{Ctx, ExpError};
 use crate::output::run::{Provenance, Recorder};
@@ -12,8 +14,19 @@ use crate::scenario::Scenario;
 use crate::scheme::Settings;
 use crate::step::newton::Newton;
 
-/// The example's TOML, compiled in.
-pub const TOML: &str = include_str!("../../data/scenarios/examples/five_branch.toml");
+/// The examples: name, TOML (compiled in), its path.
+pub const EXAMPLES: [(&str, &str, &str); 2] = [
+    (
+        "five_branch",
+        include_str!("../../data/scenarios/examples/five_branch.toml"),
+        "data/scenarios/examples/five_branch.toml",
+    ),
+    (
+        "softening",
+        include_str!("../../data/scenarios/examples/softening.toml"),
+        "data/scenarios/examples/softening.toml",
+    ),
+];
 
 fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> ExpError + '_ {
     move |source| ExpError::Io {
@@ -23,13 +36,27 @@ fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> ExpError + '_ {
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
-    let scn = Scenario::from_toml(TOML, "data/scenarios/examples/five_branch.toml")?;
     let n = if ctx.quick { 16 } else { 64 };
-    ctx.add_units(1);
-    ctx.log(&format!("example: five_branch, h = k = 1/{n}"));
+    ctx.add_units(EXAMPLES.len());
+    for (name, toml, path) in EXAMPLES {
+        let scn = Scenario::from_toml(toml, path)?;
+        one(ctx, name, toml, &scn, n)?;
+        if name == "five_branch" {
+            step_control(ctx, &scn, n)?;
+        } else {
+            super::fig2::draw_law(ctx, &scn, &format!("example_{name}_law"))?;
+        }
+    }
+    Ok(())
+}
+
+/// Example `name`: its `show` report, its run directory's tables and figures.
+fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<(), ExpError> {
+    let scn = scn.clone();
+    ctx.log(&format!("example: {name}, h = k = 1/{n}"));
     let (report, _) = crate::show::report(&scn, n, n);
     ctx.write_file(
-        &ctx.data_path("example_five_branch_show.txt"),
+        &ctx.data_path(&format!("example_{name}_show.txt")),
         format!(
             "# produced by evhi {} `evhi reproduce example{}` (the report of `evhi show`)\n{report}",
             env!("CARGO_PKG_VERSION"),
@@ -38,7 +65,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         .as_bytes(),
     )?;
     // The run, written exactly as `evhi solve` writes it, in a scratch directory.
-    let scratch = std::env::temp_dir().join(format!("evhi-example-{}", std::process::id()));
+    let scratch = std::env::temp_dir().join(format!("evhi-example-{name}-{}", std::process::id()));
     let out = RunDir::open(&scratch).map_err(|e| ExpError::Table {
         path: scratch.display().to_string(),
         message: e.to_string(),
@@ -65,9 +92,36 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         path: scratch.display().to_string(),
         message: e.to_string(),
     };
-    crate::output::run::write(&out, &scn, TOML, &res, rec, &prov, 0.0, &h_s).map_err(err)?;
+    crate::output::run::write(&out, &scn, toml, &res, rec, &prov, 0.0, &h_s).map_err(err)?;
     super::runplot::draw(&out.path(""))?;
     out.publish().map_err(err)?;
+    // Newton's work per step, without the timing columns of steps.csv.
+    let r = &res.records;
+    let t = crate::output::csv::Table::new()
+        .u64("step", r.iter().map(|s| s.step as u64).collect())
+        .f64("t", r.iter().map(|s| s.t).collect())
+        .u64(
+            "iterations",
+            r.iter().map(|s| s.iterations as u64).collect(),
+        )
+        .u64(
+            "inner_iterations",
+            r.iter().map(|s| s.inner_iterations as u64).collect(),
+        )
+        .f64(
+            "solver_residual",
+            r.iter().map(|s| s.solver_residual).collect(),
+        )
+        .f64(
+            "certificate",
+            r.iter().map(|s| s.certificate.max()).collect(),
+        );
+    ctx.write(
+        &format!("example_{name}_iterations.csv"),
+        &t,
+        "example",
+        &format!("scenario {name}, h = k = 1/{n}, solver newton; the iterations of each step and its certificate (steps.csv without its timings)"),
+    )?;
     // Tables into data/ (timing columns are not kept: they change from run to run).
     let copy = |from: std::path::PathBuf, to: std::path::PathBuf| -> Result<(), ExpError> {
         let bytes = std::fs::read(&from).map_err(io(&from))?;
@@ -76,19 +130,19 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     for f in ["contact.csv", "regimes.csv"] {
         copy(
             scratch.join(f),
-            ctx.data_path(&format!("example_five_branch_{f}")),
+            ctx.data_path(&format!("example_{name}_{f}")),
         )?;
     }
     for stem in ["deformed", "evolution"] {
         for ext in ["png", "svg"] {
             copy(
                 scratch.join(format!("{stem}.{ext}")),
-                ctx.figure_path(&format!("example_five_branch_{stem}"), ext),
+                ctx.figure_path(&format!("example_{name}_{stem}"), ext),
             )?;
         }
     }
     let _ = std::fs::remove_dir_all(&scratch);
-    step_control(ctx, &scn, n)
+    Ok(())
 }
 
 /// What one run of the example shows on $\Gamma_3$ over time.

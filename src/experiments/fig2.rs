@@ -14,8 +14,59 @@ const VERMILLION: RGBColor = RGBColor(213, 94, 0);
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
+    let labels = Labels {
+        experiment: "fig2",
+        headroom: 1.08,
+        title: "Fig. 2: contact law, -σν against uν".into(),
+        law: "normal compliance -σν¹ = p(uν), (5.1)".into(),
+        points: "branch points 0, u¹ = 0.05, u² = 0.075, g".into(),
+        params: format!(
+            "law of scenario `figure` (paper (5.1)-(5.2)), g = {}",
+            scn.g
+        ),
+    };
+    draw_in(
+        ctx,
+        &scn,
+        ["fig2_law", "fig2_breakpoints", "fig2_law"],
+        &labels,
+    )
+}
+
+/// What a drawing of a law says: its title, the law's and the points' legend
+/// entries, and the provenance line of its tables.
+struct Labels {
+    /// The experiment that writes the tables (their provenance).
+    experiment: &'static str,
+    /// Room above the curve for the legend, as a factor on its largest value.
+    headroom: f64,
+    title: String,
+    law: String,
+    points: String,
+    params: String,
+}
+
+/// Any scenario's law drawn as Fig. 2 draws the paper's: tables `STEM.csv` (the
+/// curve and the wall) and `STEM_kinks.csv`, figure `STEM`.
+pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
+    let labels = Labels {
+        experiment: "example",
+        headroom: 1.5,
+        title: format!("The law of scenario `{}`, -σν against uν", scn.name),
+        law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law.kind()),
+        points: "kinks of p and the limit g".into(),
+        params: format!("law of scenario `{}`, g = {}", scn.name, scn.g),
+    };
+    let kinks = format!("{stem}_kinks");
+    draw_in(ctx, scn, [stem, &kinks, stem], &labels)
+}
+
+/// The law of `scn` into the tables `names[0]`.csv (curve and wall) and
+/// `names[1]`.csv (kinks and g), drawn as figure `names[2]`.
+fn draw_in(ctx: &Ctx, scn: &Scenario, names: [&str; 3], labels: &Labels) -> Result<(), ExpError> {
     let g = scn.g;
-    // The law's own polyline: for the paper's, its vertices (both sides of a jump).
+    // The law's own polyline: for a piecewise-affine law its vertices (both sides of
+    // a jump), for a smooth one samples.
     let lo = -0.025;
     let (mut u, mut sig): (Vec<f64>, Vec<f64>) = scn.law.polyline(lo, g).into_iter().unzip();
     let mut part = vec!["compliance".to_string(); u.len()];
@@ -29,14 +80,23 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut bp_u = scn.law.kinks();
     bp_u.push(g);
     let bp_s: Vec<f64> = bp_u.iter().map(|&s| scn.law.p(s)).collect();
-    let params = format!("law of scenario `figure` (paper (5.1)-(5.2)), g = {g}");
     let table = Table::new()
         .f64("u_nu", u)
         .f64("minus_sigma_nu", sig)
         .str("part", part);
-    let path = ctx.write("fig2_law.csv", &table, "fig2", &params)?;
+    let path = ctx.write(
+        &format!("{}.csv", names[0]),
+        &table,
+        labels.experiment,
+        &labels.params,
+    )?;
     let bp = Table::new().f64("u_nu", bp_u).f64("minus_sigma_nu", bp_s);
-    let bp_path = ctx.write("fig2_breakpoints.csv", &bp, "fig2", &params)?;
+    let bp_path = ctx.write(
+        &format!("{}.csv", names[1]),
+        &bp,
+        labels.experiment,
+        &labels.params,
+    )?;
     // Draw from the CSVs.
     let df = read_csv(&path)?;
     let bdf = read_csv(&bp_path)?;
@@ -47,8 +107,12 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         bu: col_f64(&bdf, "u_nu")?,
         bs: col_f64(&bdf, "minus_sigma_nu")?,
         g,
+        headroom: labels.headroom,
+        title: labels.title.clone(),
+        law_label: labels.law.clone(),
+        points_label: labels.points.clone(),
     };
-    both(&ctx.figures, "fig2_law", (900, 600), &fig)
+    both(&ctx.figures, names[2], (900, 600), &fig)
 }
 
 struct Fig2 {
@@ -58,6 +122,10 @@ struct Fig2 {
     bu: Vec<f64>,
     bs: Vec<f64>,
     g: f64,
+    headroom: f64,
+    title: String,
+    law_label: String,
+    points_label: String,
 }
 
 impl Figure for Fig2 {
@@ -65,10 +133,10 @@ impl Figure for Fig2 {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let ymax = self.s.iter().fold(0.0f64, |a, &b| a.max(b)) * 1.08;
+        let ymax = self.s.iter().fold(0.0f64, |a, &b| a.max(b)) * self.headroom;
         let xmin = self.u.iter().fold(0.0f64, |a, &b| a.min(b));
         let mut chart = ChartBuilder::on(root)
-            .caption("Fig. 2: contact law, -σν against uν", ("sans-serif", 26))
+            .caption(&self.title, ("sans-serif", 26))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70)
@@ -100,7 +168,7 @@ impl Figure for Fig2 {
         chart
             .draw_series(LineSeries::new(comp, OKABE_BLUE.stroke_width(3)))
             .map_err(e2s)?
-            .label("normal compliance -σν¹ = p(uν), (5.1)")
+            .label(self.law_label.clone())
             .legend(|(x, y)| {
                 PathElement::new(vec![(x, y), (x + 20, y)], OKABE_BLUE.stroke_width(3))
             });
@@ -122,7 +190,7 @@ impl Figure for Fig2 {
                     .map(|(&u, &s)| Circle::new((u, s), 6, BLACK.filled())),
             )
             .map_err(e2s)?
-            .label("branch points 0, u¹ = 0.05, u² = 0.075, g")
+            .label(self.points_label.clone())
             .legend(|(x, y)| Circle::new((x + 10, y), 5, BLACK.filled()));
         legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())

@@ -132,3 +132,45 @@ fn own_example_landing_spike() {
     let s = -(num(mid, "sigma_nu1") + num(mid, "sigma_nu2"));
     assert!((s - at_t[0]).abs() < 1e-9 * s);
 }
+
+#[test]
+fn own_softening_hypotheses() {
+    let text =
+        std::fs::read_to_string(super::root().join("data/example_softening_show.txt")).unwrap();
+    let m = 900.0 * (-2.0f64).exp();
+    assert_eq!((m * 10.0).round() / 10.0, 121.8);
+    assert!(
+        text.contains(&format!("H(j): constant m = max(0, -inf p') = {m}")),
+        "{text}"
+    );
+    assert!(text.contains("beta_B = 7.142857e2 > m ||iota_h||^2"));
+    assert!(text.contains("= 2.981600e2 (n = 64): holds"));
+    let curv = text
+        .lines()
+        .find(|l| l.starts_with("step convexity"))
+        .and_then(|l| l.rsplit(' ').next())
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap();
+    assert!(curv > 0.0);
+}
+
+#[test]
+fn own_softening_run() {
+    let last = rows("example_softening_regimes.csv").pop().unwrap();
+    assert_eq!(
+        (
+            num(&last, "limit"),
+            num(&last, "branch2"),
+            num(&last, "branch1")
+        ),
+        (23.0, 40.0, 2.0)
+    );
+    let it = column("example_softening_iterations.csv", &[], "iterations");
+    let lo = it.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = it.iter().copied().fold(0.0, f64::max);
+    assert_eq!((lo, hi), (1.0, 4.0));
+    let most = it.iter().filter(|&&x| x == 2.0 || x == 3.0).count();
+    assert!(2 * most > it.len(), "{most} of {}", it.len());
+    let cert = column("example_softening_iterations.csv", &[], "certificate");
+    assert!(cert.iter().all(|&c| c < 1e-14));
+}
