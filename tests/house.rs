@@ -125,3 +125,61 @@ fn main_rs_is_the_command_line_only() {
         "src/main.rs has {lines} lines; commands belong in src/cli/"
     );
 }
+
+/// The law is an interface (issue 24): its branch indices, slopes and affine pieces
+/// stay in its room, `src/law/`; everything else asks `Law` for what it needs.
+#[test]
+fn the_law_s_internals_stay_in_its_room() {
+    let mut files = vec![];
+    rust_files(&src(), &mut files);
+    let law_room = src().join("law");
+    let forbidden = [
+        ".slope(",
+        ".slopes()",
+        ".p_on(",
+        ".branch(",
+        ".breakpoints()",
+        ".anchor(",
+        "min_slope(",
+        "convex_runs(",
+        "concave_slope(",
+    ];
+    let mut found = vec![];
+    for f in files.iter().filter(|f| !f.starts_with(&law_room)) {
+        let text = std::fs::read_to_string(f).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let c = code(line);
+            for pat in forbidden {
+                if c.contains(pat) {
+                    found.push(format!("{}:{}: {pat}", f.display(), i + 1));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "the law's internals used outside src/law/: {found:#?}"
+    );
+}
+
+/// A solver is selected by its registry entry's name or capability, never by its
+/// position in `step::SOLVERS` (inserting an entry once swapped the map's solvers).
+#[test]
+fn no_solver_is_picked_by_index() {
+    let mut files = vec![];
+    rust_files(&src(), &mut files);
+    let mut found = vec![];
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            let c = code(line);
+            if let Some(at) = c.find("SOLVERS[") {
+                // The default solver is the registry's first entry by definition.
+                if !c.contains("DEFAULT_SOLVER") {
+                    found.push(format!("{}:{}: {}", f.display(), i + 1, &c[at..]));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "solvers picked by index: {found:#?}");
+}

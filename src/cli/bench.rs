@@ -17,7 +17,7 @@ pub struct BenchArgs {
     /// Runs per configuration (the median is kept).
     #[arg(long, default_value_t = 5)]
     pub repeat: usize,
-    /// Levels n = steps at which the three step solvers are compared.
+    /// Levels n = steps at which the registry's benchmarked step solvers are compared.
     #[arg(long, value_delimiter = ',', default_value = "16,32,64")]
     pub solver_levels: Vec<usize>,
     /// Directory of the CSV tables.

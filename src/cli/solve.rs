@@ -24,12 +24,9 @@ pub struct SolveArgs {
     /// Time steps N, k = T/N (the paper uses N = n).
     #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub steps: usize,
-    /// Step solver: `newton` (semismooth Newton, exact, fast), `newton-no-line-search`,
-    /// `convexify` (our reconstruction of the paper's sequence of convex problems, each
-    /// solved by Clarabel), `proxgrad` (plain proximal gradient, the slow baseline) or
-    /// `penalty` (g replaced by a stiff penalty: overshoots g, so its steps are judged
-    /// by their own convergence, not certified).
-    #[arg(long, default_value = crate::step::DEFAULT_SOLVER, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_names()))]
+    /// Step solver, one of the registry `step::SOLVERS` (each described below; an
+    /// uncertified one is judged by its own convergence).
+    #[arg(long, default_value = crate::step::DEFAULT_SOLVER, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
     pub solver: String,
     /// Override the unilateral limit g (> 0, metres).
     #[arg(long, allow_hyphen_values = true)]

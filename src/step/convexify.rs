@@ -225,14 +225,7 @@ impl StepSolver for Convexify {
             return Info::refused(declined(p.law));
         }
         let st = self.settings.clone();
-        let mut info = Info {
-            status: Status::MaxIterations,
-            iterations: 0,
-            inner_iterations: 0,
-            residual: f64::NAN,
-            history: vec![],
-            time_s: 0.0,
-        };
+        let mut info = Info::default();
         for it in 0..st.max_iter {
             let eta: Vec<f64> = r.iter().map(|&s| p.law.concave_supergradient(s)).collect();
             let (next, ipm_iters) = match self.subproblem(p, &eta, r) {

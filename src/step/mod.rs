@@ -74,17 +74,28 @@ pub trait StepSolver {
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
 }
 
+/// A solve not yet run: no iterations, no residual, the iteration limit as status
+/// until the solver says otherwise.
+impl Default for Info {
+    fn default() -> Info {
+        Info {
+            status: Status::MaxIterations,
+            iterations: 0,
+            inner_iterations: 0,
+            residual: f64::NAN,
+            history: vec![],
+            time_s: 0.0,
+        }
+    }
+}
+
 impl Info {
     /// A solve refused before it started (bad settings): no iterations, the
     /// reason in the status.
     pub fn refused(reason: String) -> Info {
         Info {
             status: Status::Failed(reason),
-            iterations: 0,
-            inner_iterations: 0,
-            residual: f64::NAN,
-            history: vec![],
-            time_s: 0.0,
+            ..Info::default()
         }
     }
 }
@@ -126,6 +137,10 @@ pub struct SolverEntry {
     /// Whether the stability sweeps run it (one of each treatment of the limit:
     /// exact with Newton, exact with the convexification, penalised).
     pub swept: bool,
+    /// Whether the stability map runs it (the swept ones and Newton without its line
+    /// search, to show what the line search buys; proximal gradient, too slow for
+    /// the map's steepest cells, is left out).
+    pub mapped: bool,
     make: fn() -> Box<dyn StepSolver>,
 }
 
@@ -149,6 +164,7 @@ pub const SOLVERS: [SolverEntry; 5] = [
         certified: true,
         benchmarked: true,
         swept: true,
+        mapped: true,
         make: || Box::new(newton::Newton::default()),
     },
     SolverEntry {
@@ -158,6 +174,7 @@ pub const SOLVERS: [SolverEntry; 5] = [
         certified: true,
         benchmarked: false,
         swept: false,
+        mapped: true,
         make: || {
             Box::new(newton::Newton::new(newton::Settings {
                 line_search: false,
@@ -172,6 +189,7 @@ pub const SOLVERS: [SolverEntry; 5] = [
         certified: true,
         benchmarked: true,
         swept: true,
+        mapped: true,
         make: || Box::new(convexify::Convexify::default()),
     },
     SolverEntry {
@@ -181,6 +199,7 @@ pub const SOLVERS: [SolverEntry; 5] = [
         certified: true,
         benchmarked: true,
         swept: false,
+        mapped: false,
         make: || Box::new(newton::Newton::proximal_gradient()),
     },
     SolverEntry {
@@ -190,6 +209,7 @@ pub const SOLVERS: [SolverEntry; 5] = [
         certified: false,
         benchmarked: false,
         swept: true,
+        mapped: true,
         make: || Box::new(penalty::Penalty::relative(penalty::RELATIVE_STIFFNESS)),
     },
 ];
@@ -197,6 +217,17 @@ pub const SOLVERS: [SolverEntry; 5] = [
 /// The names of [`SOLVERS`], for the command line.
 pub fn solver_names() -> Vec<&'static str> {
     SOLVERS.iter().map(|s| s.name).collect()
+}
+
+/// The command line's choices of solver, each with its registry description.
+pub fn solver_values() -> Vec<clap::builder::PossibleValue> {
+    SOLVERS
+        .iter()
+        .map(|s| {
+            let note = if s.certified { "" } else { " (not certified)" };
+            clap::builder::PossibleValue::new(s.name).help(format!("{}{note}", s.about))
+        })
+        .collect()
 }
 
 /// The registry entry of a name or label.

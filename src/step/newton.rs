@@ -258,14 +258,7 @@ impl StepSolver for Newton {
         let gamma = self.gamma(p);
         let r0n = inf_norm(p.r0);
         let scale = |x: &[f64]| r0n.max(inf_norm(x)).max(f64::MIN_POSITIVE);
-        let mut info = Info {
-            status: Status::MaxIterations,
-            iterations: 0,
-            inner_iterations: 0,
-            residual: f64::NAN,
-            history: vec![],
-            time_s: 0.0,
-        };
+        let mut info = Info::default();
         let mut e = Self::eval(p, gamma, r);
         let sigma = st.sigma * (1.0 - gamma * p.lipschitz).max(0.0) / (2.0 * gamma);
         for it in 0..=st.max_iter {

@@ -1,5 +1,5 @@
-//! Where methods fail: every registered step solver on a map over the time step
-//! and the softening slope of the law (`data/stability_map.csv`, its figure).
+//! Where methods fail: the registered step solvers marked `mapped` on a map over
+//! the time step and the softening slope of the law (`data/stability_map.csv`, its figure).
 
 use crate::experiments::{Ctx, ExpError};
 use crate::output::csv::Table;
@@ -126,12 +126,14 @@ pub(super) fn map_cell(
     }
 }
 
-pub const SOLVERS: [&str; 4] = [
-    crate::step::SOLVERS[0].label,
-    crate::step::SOLVERS[1].label,
-    crate::step::SOLVERS[2].label,
-    crate::step::SOLVERS[4].label,
-];
+/// The map's solvers: the registry's entries marked `mapped`, in registry order.
+pub fn solvers() -> Vec<&'static str> {
+    crate::step::SOLVERS
+        .iter()
+        .filter(|e| e.mapped)
+        .map(|e| e.label)
+        .collect()
+}
 
 /// The map: every solver on every (time step, softening slope) pair.
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -146,12 +148,13 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     };
     let base = Scenario::load("figure")?;
     let mut cells = vec![];
-    ctx.add_units(c2s.len() * steps.len() * SOLVERS.len());
+    let solvers = solvers();
+    ctx.add_units(c2s.len() * steps.len() * solvers.len());
     for &c2 in &c2s {
         let mut scn = base.clone();
         scn.law = law_with_softening(c2)?;
         for &st in &steps {
-            for solver in SOLVERS {
+            for &solver in &solvers {
                 ctx.log(&format!(
                     "stability map: c2 = {c2:e}, steps = {st}, {solver}"
                 ));
@@ -256,8 +259,9 @@ impl Figure for MapFigure {
         cs.dedup();
         let band = 70;
         let (top, _legend_band) = root.split_vertically(root.dim_in_pixel().1 - band);
-        let panels = top.split_evenly((SOLVERS.len().div_ceil(2), 2));
-        for (solver, area) in SOLVERS.iter().zip(panels.iter()) {
+        let solvers = solvers();
+        let panels = top.split_evenly((solvers.len().div_ceil(2), 2));
+        for (solver, area) in solvers.iter().zip(panels.iter()) {
             let mut chart = ChartBuilder::on(area)
                 .caption(*solver, ("sans-serif", 20))
                 .margin(10)
