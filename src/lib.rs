@@ -24,6 +24,7 @@ pub mod law;
 pub mod linalg;
 pub mod manufactured;
 pub mod material;
+pub mod memory;
 pub mod mesh;
 pub mod norms;
 pub mod ordering;

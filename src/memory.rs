@@ -1,0 +1,77 @@
+//! The memory guard: a run's estimated peak against what this process can still
+//! obtain, checked before any work so that a mesh too large is refused by name
+//! instead of aborting in an allocation.
+
+use crate::error::InputError;
+
+/// Estimated peak memory of a run with $n$ contact segments, bytes. Nested dissection
+/// of the $n \times n/2$ grid fills the factor to about $6\,N\log_2 N$ entries for $N$ dofs
+/// (28.5 M at $n = 512$), and a run peaks at about 20 bytes per entry of the factor
+/// (529 MB at $n = 512$, `data/bench.csv`), plus 30 MB.
+pub fn memory_estimate(n: usize) -> f64 {
+    let dofs = (2 * (n + 1) * (n / 2 + 1)) as f64;
+    30e6 + 20.0 * 6.0 * dofs * dofs.log2()
+}
+
+/// Memory this process can still obtain, bytes: the least of the machine's
+/// `MemAvailable`, what the address-space limit (`ulimit -v`, `RLIMIT_AS`) leaves
+/// above the process's current size, and what its cgroup's `memory.max` leaves above
+/// the group's usage. `None` where none of them can be read.
+pub fn available_memory() -> Option<f64> {
+    let kb_field = |text: &str, key: &str| -> Option<f64> {
+        let line = text.lines().find(|l| l.starts_with(key))?;
+        Some(line.split_whitespace().nth(1)?.parse::<f64>().ok()? * 1024.0)
+    };
+    let mut limits = vec![];
+    if let Ok(info) = std::fs::read_to_string("/proc/meminfo") {
+        limits.extend(kb_field(&info, "MemAvailable:"));
+    }
+    #[cfg(target_os = "linux")]
+    {
+        let mut lim = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: getrlimit writes into the struct we own; no other effect.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut lim) } == 0;
+        if ok && lim.rlim_cur != libc::RLIM_INFINITY {
+            let size = std::fs::read_to_string("/proc/self/status")
+                .ok()
+                .and_then(|s| kb_field(&s, "VmSize:"))
+                .unwrap_or(0.0);
+            limits.push((lim.rlim_cur as f64 - size).max(0.0));
+        }
+    }
+    let read = |p: &str| {
+        std::fs::read_to_string(p)
+            .ok()
+            .map(|s| s.trim().to_string())
+    };
+    if let (Some(max), Some(current)) = (
+        read("/sys/fs/cgroup/memory.max").and_then(|s| s.parse::<f64>().ok()),
+        read("/sys/fs/cgroup/memory.current").and_then(|s| s.parse::<f64>().ok()),
+    ) {
+        limits.push((max - current).max(0.0));
+    }
+    limits.into_iter().reduce(f64::min)
+}
+
+/// Refuses a mesh whose run would not fit in the available memory, before any work.
+pub fn check_memory(n: usize) -> Result<(), InputError> {
+    let need = memory_estimate(n);
+    match available_memory() {
+        Some(have) if need > 0.9 * have => Err(InputError::field(
+            "n",
+            n,
+            format!(
+                "a mesh that fits in memory: n = {n} needs about {:.1} GB (factor of about {:.2e} \
+                 entries), but {:.1} GB are available",
+                need / 1e9,
+                6.0 * (2 * (n + 1) * (n / 2 + 1)) as f64
+                    * ((2 * (n + 1) * (n / 2 + 1)) as f64).log2(),
+                have / 1e9
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
