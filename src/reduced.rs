@@ -410,6 +410,7 @@ pub fn run(
 ) -> Result<Run, RunError> {
     crate::scheme::check_steps(opt)?;
     crate::scheme::check_memory(opt.n)?;
+    solver.validate()?;
     let mut timings = Timings::default();
     let (disc, _) = timed(&mut timings.assembly, || {
         crate::scheme::discretise(std::slice::from_ref(scn), opt)

@@ -492,6 +492,9 @@ fn check_batch(
     solvers: &[&mut dyn StepSolver],
 ) -> Result<(), RunError> {
     check_steps(opt)?;
+    for s in solvers {
+        s.validate()?;
+    }
     let Some(scn) = scns.first() else {
         return Ok(());
     };

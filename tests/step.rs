@@ -114,3 +114,42 @@ fn every_registered_solver_reports_its_own_name() {
         assert_eq!(entry.build().name(), entry.name);
     }
 }
+
+#[test]
+fn a_bad_setting_is_refused_before_the_first_step() {
+    // Named as an input error by the time loop, not reported as a failed step.
+    let scn = evhi::scenario::Scenario::load("figure").unwrap();
+    let mut newton = evhi::step::newton::Newton::new(evhi::step::newton::Settings {
+        tol: -1.0,
+        ..Default::default()
+    });
+    let mut steps = 0;
+    let err = evhi::scheme::run(
+        &scn,
+        &evhi::scheme::Settings::new(8, 4),
+        &mut newton,
+        &mut |_, _, _| steps += 1,
+    )
+    .err()
+    .expect("refused");
+    assert_eq!(steps, 0);
+    let msg = err.to_string();
+    assert!(
+        msg.contains("newton.tol") && !msg.contains("step 1"),
+        "{msg}"
+    );
+    let mut penalty = evhi::step::penalty::Penalty::relative(-1.0);
+    let err = evhi::reduced::run(
+        &scn,
+        &evhi::scheme::Settings::new(8, 4),
+        &mut penalty,
+        &|_| false,
+        &mut |_, _, _, _| {},
+    )
+    .err()
+    .expect("refused");
+    assert!(
+        err.to_string().contains("penalty.relative_stiffness"),
+        "{err}"
+    );
+}

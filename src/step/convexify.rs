@@ -213,6 +213,10 @@ fn declined(law: &crate::law::Law) -> String {
 }
 
 impl StepSolver for Convexify {
+    fn validate(&self) -> Result<(), crate::error::InputError> {
+        self.settings.validate()
+    }
+
     fn name(&self) -> &'static str {
         "convexify"
     }

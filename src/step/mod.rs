@@ -71,6 +71,11 @@ pub struct Info {
 /// entry and the solution on exit.
 pub trait StepSolver {
     fn name(&self) -> &'static str;
+    /// Checks the solver's settings; the time loops call it before any work, so a bad
+    /// setting is refused as an input error naming it, not as a failed first step.
+    fn validate(&self) -> Result<(), crate::error::InputError> {
+        Ok(())
+    }
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
 }
 

@@ -13,6 +13,10 @@ pub struct MultiStart {
 }
 
 impl StepSolver for MultiStart {
+    fn validate(&self) -> Result<(), crate::error::InputError> {
+        self.inner.validate()
+    }
+
     fn name(&self) -> &'static str {
         self.inner.name()
     }

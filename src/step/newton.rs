@@ -240,6 +240,10 @@ impl Newton {
 }
 
 impl StepSolver for Newton {
+    fn validate(&self) -> Result<(), crate::error::InputError> {
+        self.settings.validate()
+    }
+
     fn name(&self) -> &'static str {
         if self.settings.newton && self.settings.line_search {
             "newton"

@@ -84,15 +84,19 @@ impl StepSolver for Penalty {
         "penalty"
     }
 
-    fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
-        // The stiffness is the penalty's one setting (the inner Newton checks its own).
-        let checked = match self.stiffness {
-            Stiffness::Absolute(s) => super::setting("penalty", "stiffness", s, 1e-12, 1e15),
+    fn validate(&self) -> Result<(), crate::error::InputError> {
+        // The stiffness is the penalty's one setting; the inner Newton has its own.
+        match self.stiffness {
+            Stiffness::Absolute(s) => super::setting("penalty", "stiffness", s, 1e-12, 1e15)?,
             Stiffness::Relative(rho) => {
-                super::setting("penalty", "relative_stiffness", rho, 1e-6, 1e8)
+                super::setting("penalty", "relative_stiffness", rho, 1e-6, 1e8)?
             }
-        };
-        if let Err(e) = checked {
+        }
+        self.inner.settings.validate()
+    }
+
+    fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
+        if let Err(e) = self.validate() {
             return Info::refused(e.to_string());
         }
         let stiffness = self.stiffness_on(p);
