@@ -295,13 +295,11 @@ pub fn certify_condensed(
 
 /// Regime names in the order no contact, branches by number, limit (deduplicated).
 pub fn regime_order(regimes: &[String]) -> Vec<String> {
-    let key = |r: &String| match r.as_str() {
-        "no_contact" => 0,
-        "limit" => usize::MAX,
-        b => b
-            .trim_start_matches("branch")
-            .parse::<usize>()
-            .map_or(usize::MAX - 1, |b| b + 1),
+    // By the regime's own order (no contact, the branches, the limit); a name that is
+    // no regime goes last.
+    let key = |r: &String| {
+        r.parse::<crate::law::Regime>()
+            .map_or((1, None), |g| (0, Some(g)))
     };
     let mut out: Vec<String> = regimes.to_vec();
     out.sort_by_key(key);

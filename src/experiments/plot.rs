@@ -31,19 +31,15 @@ pub fn regime_colour(regime: &str) -> RGBColor {
         RGBColor(240, 228, 66),
         RGBColor(60, 60, 60),
     ];
-    match regime {
-        "no_contact" => RGBColor(150, 150, 150),
-        "branch1" => RGBColor(0, 114, 178),
-        "branch2" => RGBColor(230, 159, 0),
-        "branch3" => RGBColor(0, 158, 115),
-        "limit" => RGBColor(213, 94, 0),
-        other => match other
-            .strip_prefix("branch")
-            .and_then(|b| b.parse::<usize>().ok())
-        {
-            Some(b) => MORE[(b - 4) % MORE.len()],
-            None => RGBColor(0, 0, 0),
-        },
+    use crate::law::Regime;
+    match regime.parse::<Regime>() {
+        Ok(Regime::NoContact) => RGBColor(150, 150, 150),
+        Ok(Regime::Branch(1)) => RGBColor(0, 114, 178),
+        Ok(Regime::Branch(2)) => RGBColor(230, 159, 0),
+        Ok(Regime::Branch(3)) => RGBColor(0, 158, 115),
+        Ok(Regime::Limit) => RGBColor(213, 94, 0),
+        Ok(Regime::Branch(b)) => MORE[b.saturating_sub(4) % MORE.len()],
+        Err(_) => RGBColor(0, 0, 0),
     }
 }
 

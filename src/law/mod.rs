@@ -90,6 +90,23 @@ pub enum Regime {
     Limit,
 }
 
+/// The inverse of [`Regime::name`], for figures drawn from tables: the one place a
+/// regime's name is read back.
+impl std::str::FromStr for Regime {
+    type Err = InputError;
+    fn from_str(s: &str) -> Result<Regime, InputError> {
+        match s {
+            "no_contact" => Ok(Regime::NoContact),
+            "limit" => Ok(Regime::Limit),
+            _ => s
+                .strip_prefix("branch")
+                .and_then(|b| b.parse::<usize>().ok())
+                .map(Regime::Branch)
+                .ok_or_else(|| InputError::field("regime", s, "no_contact, branch{b} or limit")),
+        }
+    }
+}
+
 impl Regime {
     /// The name in tables and figures: `no_contact`, `branch{b}`, `limit`.
     pub fn name(&self) -> String {
