@@ -1,0 +1,235 @@
+//! Fig. 5 and its split into the h and k parts, drawn from `data/table1.csv`.
+
+#[allow(unused_imports)]
+use super::*;
+
+/// A plotted series: label, points, colour, and whether it is the second
+/// (dashed, crosses) series of its scenario.
+type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
+
+/// One log–log panel of Fig. 5.
+struct Fig5 {
+    title: String,
+    x_desc: String,
+    series: Vec<Series>,
+}
+
+/// The error split: the h part and the k part, at t = T and over time.
+struct Fig5Split {
+    panels: [Fig5; 2],
+}
+
+/// Okabe–Ito colours (safe for colour-blind readers), in [`SCENARIOS`] order.
+const COLOURS: [RGBColor; 3] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+];
+
+pub(super) fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let (sc, fam) = (col_str(&df, "scenario")?, col_str(&df, "family")?);
+    let (n, steps) = (col_f64(&df, "n")?, col_f64(&df, "steps")?);
+    let (hk, et, em, pp) = (
+        col_f64(&df, "h_plus_k")?,
+        col_f64(&df, "rel_err_T_percent")?,
+        col_f64(&df, "rel_err_max_percent")?,
+        col_f64(&df, "paper_percent")?,
+    );
+    // x: h + k for the h = k family; the varying h = 1/n or k = 1/N for the split.
+    let x_of = |i: usize| match fam[i].as_str() {
+        "h" => 1.0 / n[i],
+        "k" => 1.0 / steps[i],
+        _ => hk[i],
+    };
+    let pick = |s: &str, f: &str, v: &[f64]| -> Vec<(f64, f64)> {
+        (0..sc.len())
+            .filter(|&i| sc[i] == s && fam[i] == f && v[i].is_finite())
+            .map(|i| (x_of(i), v[i]))
+            .collect()
+    };
+    let mut main = vec![(
+        "paper, Table 1".to_string(),
+        pick("literal", "h=k", &pp),
+        BLACK,
+        false,
+    )];
+    for (name, colour) in SCENARIOS.iter().zip(COLOURS) {
+        main.push((
+            format!("{name}, t = T"),
+            pick(name, "h=k", &et),
+            colour,
+            false,
+        ));
+        main.push((
+            format!("{name}, max over t"),
+            pick(name, "h=k", &em),
+            colour,
+            true,
+        ));
+    }
+    both(
+        &ctx.figures,
+        "fig5_errors",
+        (1000, 750),
+        &Fig5 {
+            title: "Fig. 5: relative error in energy norm, h = k".into(),
+            x_desc: "h + k".into(),
+            series: main,
+        },
+    )?;
+    let panel = |title: &str, v: &[f64]| Fig5 {
+        title: title.into(),
+        x_desc: "h (h part, k as the reference's) or k (k part, h as the reference's)".into(),
+        series: SCENARIOS
+            .iter()
+            .zip(COLOURS)
+            .flat_map(|(name, colour)| {
+                [
+                    (format!("{name}, h part"), pick(name, "h", v), colour, false),
+                    (format!("{name}, k part"), pick(name, "k", v), colour, true),
+                ]
+            })
+            .collect(),
+    };
+    both(
+        &ctx.figures,
+        "fig5_split",
+        (1000, 1300),
+        &Fig5Split {
+            panels: [panel("at t = T", &et), panel("maximum over t", &em)],
+        },
+    )
+}
+
+impl Figure for Fig5Split {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let root = root
+            .titled("Error split: the h part and the k part", ("sans-serif", 26))
+            .map_err(e2s)?;
+        let areas = root.split_evenly((2, 1));
+        for (area, panel) in areas.iter().zip(&self.panels) {
+            panel.draw(area)?;
+        }
+        Ok(())
+    }
+}
+
+/// "1/n" for a value close to the reciprocal of an integer, else three decimals.
+fn reciprocal_label(x: f64) -> String {
+    let r = 1.0 / x;
+    if (r - r.round()).abs() < 1e-6 * r {
+        format!("1/{}", r.round())
+    } else {
+        format!("{x:.3}")
+    }
+}
+
+impl Figure for Fig5 {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let pts: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.1.iter().copied())
+            .collect();
+        let (xmin, xmax) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        let (ymin, ymax) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        // A tick and a label at every level.
+        let mut keys: Vec<f64> = pts.iter().map(|p| p.0).collect();
+        keys.sort_by(f64::total_cmp);
+        keys.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+        let ykeys: Vec<f64> = (-6..=3)
+            .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
+            .filter(|&y| y >= ymin * 0.5 && y <= ymax * 2.0)
+            .collect();
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 24))
+            .margin(15)
+            .x_label_area_size(55)
+            .y_label_area_size(80)
+            .build_cartesian_2d(
+                (xmin * 0.8..xmax * 1.25).log_scale().with_key_points(keys),
+                (ymin * 0.5..ymax * 2.0).log_scale().with_key_points(ykeys),
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc(&self.x_desc)
+            .x_label_formatter(&|x| reciprocal_label(*x))
+            .y_label_formatter(&|y| format!("{y}"))
+            .y_desc("relative energy error, %")
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 20))
+            .draw()
+            .map_err(e2s)?;
+        for (label, s, colour, second) in &self.series {
+            if s.is_empty() {
+                continue;
+            }
+            let c = *colour;
+            if *second {
+                // Dashed, with crosses.
+                chart
+                    .draw_series(DashedLineSeries::new(s.clone(), 10, 6, c.stroke_width(2)))
+                    .map_err(e2s)?;
+                chart
+                    .draw_series(s.iter().map(move |&p| Cross::new(p, 7, c.stroke_width(2))))
+                    .map_err(e2s)?
+                    .label(label.clone())
+                    .legend(move |(x, y)| {
+                        EmptyElement::at((x + 14, y))
+                            + PathElement::new(vec![(-14, 0), (-4, 0)], c.stroke_width(2))
+                            + PathElement::new(vec![(4, 0), (14, 0)], c.stroke_width(2))
+                            + Cross::new((0, 0), 6, c.stroke_width(2))
+                    });
+            } else {
+                chart
+                    .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
+                    .map_err(e2s)?;
+                chart
+                    .draw_series(s.iter().map(move |&p| Circle::new(p, 5, c.filled())))
+                    .map_err(e2s)?
+                    .label(label.clone())
+                    .legend(move |xy| circle_legend(xy, 14, c.stroke_width(3), 5, c));
+            }
+        }
+        // Slope guides below the first series' first point: order 1 long dashes,
+        // order 1/2 dots.
+        if let Some(&(x0, y0)) = self
+            .series
+            .iter()
+            .find(|s| !s.1.is_empty())
+            .and_then(|s| s.1.first())
+        {
+            let grey = RGBColor(90, 90, 90);
+            for (slope, y, label, dash, gap) in [
+                (1.0, y0 * 0.45, "slope 1", 12, 6),
+                (0.5, y0 * 0.2, "slope 1/2", 2, 5),
+            ] {
+                let guide = vec![(x0, y), (xmin, y * (xmin / x0).powf(slope))];
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        guide,
+                        dash,
+                        gap,
+                        grey.stroke_width(2),
+                    ))
+                    .map_err(e2s)?
+                    .label(label)
+                    .legend(move |xy| dashed_legend(xy, dash, gap, grey.stroke_width(2)));
+            }
+        }
+        legend(&mut chart, SeriesLabelPosition::LowerRight, 16, 0.9)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,282 @@
+//! The time discretisation error at a fixed mesh: backward Euler's error
+//! $\max_n \|u^{h}(t_n) - u^{hk}_n\|_E$ and $\|u^h(T) - u^{hk}_N\|_E$ for $k = T/N$,
+//! measured against the same mesh run with a much finer step $k_{\text{ref}}$, for
+//! several load histories (see [`crate::history`]).
+//!
+//! Why it matters: the paper's constants give $\mathcal C = 0.07\,\mathcal G$, so away
+//! from contact every mode relaxes with the one time constant $\tau = 0.07$. A load
+//! applied in full at $t = 0$ (incompatible data: H(f) and H(0) fail) starts an
+//! initial layer $u(t) \approx (1 - e^{-t/\tau})\,u_\infty$ that backward Euler cannot
+//! follow until $k \lesssim \tau$. For each constant-load level the scalar model
+//! $\tau \dot y + y = 1$, $y(0) = 0$, solved by backward Euler,
+//! $y_n = 1 - (1 + k/\tau)^{-n}$, predicts the relative error without any mesh; the
+//! table carries it beside the measurement.
+
+use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
+use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::history::History;
+use crate::norms::energy_norm;
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use crate::scheme::{Discretisation, Settings};
+use plotters::prelude::*;
+
+mod figure;
+mod table;
+use figure::{draw, draw_controls};
+pub use table::sig3;
+use table::{write_markdown, write_rows};
+
+/// The load scenarios of the study.
+pub const SCENARIOS: [&str; 2] = ["figure", "literal"];
+
+// ANCHOR: histories
+/// The load histories of the study: (a) the shipped constant load; (b) a compatible
+/// ramp over the whole interval, $\varphi(t) = t$; (c) a compatible ramp to full load
+/// at $t = 1/4$, during which `figure`'s contact nodes reach the limit $g$.
+pub fn histories() -> [(&'static str, History); 3] {
+    [
+        ("a_constant", History::Constant),
+        ("b_ramp1", History::Ramp { t_r: 1.0 }),
+        ("c_ramp0.25", History::Ramp { t_r: 0.25 }),
+    ]
+}
+// ANCHOR_END: histories
+
+/// Mesh, step levels and reference of a study.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    pub n: usize,
+    pub levels: Vec<usize>,
+    pub n_ref: usize,
+}
+
+pub fn plan(quick: bool) -> Plan {
+    if quick {
+        Plan {
+            n: 16,
+            levels: vec![4, 8, 16, 32, 64, 128, 256],
+            n_ref: 16384,
+        }
+    } else {
+        Plan {
+            n: 32,
+            levels: vec![4, 8, 16, 32, 64, 128, 256, 512, 1024],
+            n_ref: 32768,
+        }
+    }
+}
+
+// ANCHOR: scalar_model
+/// The scalar model of the layer: $\tau\dot y + y = \varphi(t)$, $y(0) = 0$, by backward
+/// Euler with $N$ steps on $[0, T]$, $y_n = (\tau y_{n-1} + k\varphi(t_n))/(\tau + k)$,
+/// against the same model with $N_{\text{ref}}$ steps, measured as the study measures
+/// the field: (max over the level's times of the error) / (max of the reference there),
+/// and the error at $T$ over $y_{\text{ref}}(T)$.
+pub fn scalar_model(tau: f64, history: &History, t_end: f64, n: usize, n_ref: usize) -> (f64, f64) {
+    let path = |steps: usize| -> Vec<f64> {
+        let k = t_end / steps as f64;
+        let mut y = vec![0.0; steps + 1];
+        for i in 1..=steps {
+            y[i] = (tau * y[i - 1] + k * history.phi(i as f64 * k)) / (tau + k);
+        }
+        y
+    };
+    let (yk, yr) = (path(n), path(n_ref));
+    let ratio = n_ref / n;
+    let (mut e_max, mut y_max) = (0.0f64, 0.0f64);
+    for i in 1..=n {
+        e_max = e_max.max((yk[i] - yr[i * ratio]).abs());
+        y_max = y_max.max(yr[i * ratio].abs());
+    }
+    (e_max / y_max, (yk[n] - yr[n_ref]).abs() / yr[n_ref].abs())
+}
+// ANCHOR_END: scalar_model
+
+/// One row of the study.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub scenario: String,
+    pub history: String,
+    pub steps: usize,
+    pub err_max: f64,
+    pub err_t: f64,
+    pub model_max: f64,
+    pub model_t: f64,
+    /// First time at which a contact node of the reference run sits at the limit $g$.
+    pub t_first_limit: f64,
+    /// The level's time $t_n$ where the error is largest.
+    pub t_err_max: f64,
+    /// The relaxation time $\tau$ and the limit $g$ of the run.
+    pub tau: f64,
+    pub g: f64,
+}
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let plan = plan(ctx.quick);
+    let rows = study(&plan, ctx)?;
+    let path = write_rows(ctx, &plan, &rows, "time_study.csv", "history")?;
+    write_markdown(ctx, &path, &plan)?;
+    draw(ctx, &path)?;
+    // One batch per material: a batch shares its step matrix.
+    let all = controls()?;
+    let mut rows = vec![];
+    let mut materials: Vec<(f64, f64)> = vec![];
+    for c in &all {
+        if !materials.contains(&(c.2.alpha, c.2.beta)) {
+            materials.push((c.2.alpha, c.2.beta));
+        }
+    }
+    for m in materials {
+        let group: Vec<_> = all
+            .iter()
+            .filter(|c| (c.2.alpha, c.2.beta) == m)
+            .cloned()
+            .collect();
+        rows.extend(study_of(&plan, ctx, &group)?);
+    }
+    let path = write_rows(ctx, &plan, &rows, "time_controls.csv", "variant")?;
+    draw_controls(ctx, &path)
+}
+
+/// Runs every scenario and history at every level (one batched run per level).
+pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
+    let mut scns = vec![];
+    for name in SCENARIOS {
+        for (label, h) in histories() {
+            let mut s = Scenario::load(name)?.with_history(h)?;
+            s.name = format!("{name}/{label}");
+            scns.push((name.to_string(), label.to_string(), s));
+        }
+    }
+    study_of(plan, ctx, &scns)
+}
+
+// ANCHOR: controls
+/// The controls of the layer, all under the constant load: the relaxation time
+/// $\tau = \mathcal C/\mathcal G$ scaled by 0.1 and 10 (the viscosity $\alpha, \beta$
+/// scaled, the elasticity kept) for `literal` and `figure`, with the shipped $\tau$ as
+/// the baseline, and `figure` with $g = 1$, ten times the shipped limit, so that no
+/// contact node lands on it, under the constant load and under the ramp to $t = 1$.
+pub fn controls() -> Result<Vec<(String, String, Scenario)>, ExpError> {
+    let mut out = vec![];
+    for name in SCENARIOS {
+        for scale in [0.1, 1.0, 10.0] {
+            let mut s = Scenario::load(name)?;
+            s.alpha *= scale;
+            s.beta *= scale;
+            let tau = s.relaxation_time().unwrap_or(f64::NAN);
+            let label = format!("tau = {}", sig3(tau));
+            s.name = format!("{name}/{label}");
+            out.push((name.to_string(), label, s));
+        }
+    }
+    for (label, history) in [
+        ("no landing (g = 1)", History::Constant),
+        (
+            "no landing (g = 1) under the ramp to 1",
+            History::Ramp { t_r: 1.0 },
+        ),
+    ] {
+        let mut s = Scenario::load("figure")?
+            .with_g(1.0)?
+            .with_history(history)?;
+        s.name = format!("figure/{label}");
+        out.push(("figure".into(), label.into(), s));
+    }
+    Ok(out)
+}
+// ANCHOR_END: controls
+
+/// Runs the scenarios `scns` (scenario name, label, scenario) at every level.
+pub fn study_of(
+    plan: &Plan,
+    ctx: &Ctx,
+    scns: &[(String, String, Scenario)],
+) -> Result<Vec<Row>, ExpError> {
+    let batch: Vec<Scenario> = scns.iter().map(|s| s.2.clone()).collect();
+    let disc = Discretisation::new(&batch[0], plan.n)?;
+    let n_max = *plan.levels.iter().max().expect("levels");
+    if !plan.n_ref.is_multiple_of(n_max) || plan.levels.iter().any(|l| !n_max.is_multiple_of(*l)) {
+        return Err(crate::error::InputError::field(
+            "time study levels",
+            format!("{:?} / {}", plan.levels, plan.n_ref),
+            "levels that divide the finest, which divides the reference",
+        )
+        .into());
+    }
+    // The reference at the times of the finest level, and when nodes first reach g.
+    ctx.add_units(1 + plan.levels.len());
+    ctx.log(&format!(
+        "time study: reference N = {} at n = {}",
+        plan.n_ref, plan.n
+    ));
+    let stride = plan.n_ref / n_max;
+    let nb = batch.len();
+    let mut refs: Vec<Vec<Vec<f64>>> = vec![vec![vec![0.0; disc.dofs.count]]; nb];
+    let mut first_limit = vec![f64::NAN; nb];
+    let opt = Settings::new(plan.n, plan.n_ref);
+    super::run_newton_batch_with(&batch, &opt, &mut |i, step, t, u| {
+        if step % stride == 0 {
+            refs[i].push(u.to_vec());
+        }
+        let g = batch[i].g;
+        if first_limit[i].is_nan() && disc.contact_dofs.iter().any(|&d| g - (-u[d]) <= 1e-8 * g) {
+            first_limit[i] = t;
+        }
+    })?;
+    let ref_norms: Vec<Vec<f64>> = refs
+        .iter()
+        .map(|r| r.iter().map(|u| energy_norm(&disc.b, u)).collect())
+        .collect();
+    let mut rows = vec![];
+    for &steps in &plan.levels {
+        ctx.log(&format!("time study: N = {steps}"));
+        let ratio = n_max / steps;
+        let mut e_max = vec![0.0f64; nb];
+        let mut r_max = vec![0.0f64; nb];
+        let mut e_t = vec![0.0f64; nb];
+        let mut t_max = vec![f64::NAN; nb];
+        let opt = Settings::new(plan.n, steps);
+        super::run_newton_batch_with(&batch, &opt, &mut |i, step, t, u| {
+            let j = step * ratio;
+            let diff: Vec<f64> = u.iter().zip(&refs[i][j]).map(|(a, b)| a - b).collect();
+            let e = energy_norm(&disc.b, &diff);
+            if e > e_max[i] {
+                (e_max[i], t_max[i]) = (e, t);
+            }
+            r_max[i] = r_max[i].max(ref_norms[i][j]);
+            if step == steps {
+                e_t[i] = e / ref_norms[i][j];
+            }
+        })?;
+        for (i, (name, label, s)) in scns.iter().enumerate() {
+            let (model_max, model_t) = match s.relaxation_time() {
+                Some(tau) => scalar_model(tau, &s.history, s.t_end, steps, plan.n_ref),
+                None => (f64::NAN, f64::NAN),
+            };
+            rows.push(Row {
+                scenario: name.clone(),
+                history: label.clone(),
+                steps,
+                err_max: e_max[i] / r_max[i],
+                err_t: e_t[i],
+                model_max,
+                model_t,
+                t_first_limit: first_limit[i],
+                t_err_max: t_max[i],
+                tau: s.relaxation_time().unwrap_or(f64::NAN),
+                g: s.g,
+            });
+        }
+    }
+    // Group by scenario and history, levels ascending within each.
+    rows.sort_by(|a, b| {
+        (a.scenario.as_str(), a.history.as_str(), a.steps).cmp(&(
+            b.scenario.as_str(),
+            b.history.as_str(),
+            b.steps,
+        ))
+    });
+    Ok(rows)
+}
