@@ -406,7 +406,7 @@ fn control(scenario: &str, variant: &str, col: &str) -> Vec<f64> {
 #[test]
 fn time_landing_control() {
     let no = |c| control("figure", "no landing (g = 1)", c);
-    let with = |c| control("figure", "tau = 0.0700", c);
+    let with = |c| control("figure", "tau = 0.07", c);
     // The limit is never reached without it, always with it.
     assert!(no("t_first_limit").iter().all(|t| t.is_nan()));
     assert!(with("t_first_limit").iter().all(|t| t.is_finite()));
@@ -434,6 +434,7 @@ fn time_landing_control() {
     for i in 0..i16 {
         assert!(e_with[i] < e_no[i], "level {}", steps[i]);
     }
+    assert_eq!((ratio * 100.0).round() / 100.0, 1.12);
     // The plateau with the limit: 14.8, 15.9, 15.4 (table) against literal's shorter one.
     assert_eq!(r1(e_with.clone())[..3], [14.8, 15.9, 15.4]);
 }
@@ -532,10 +533,10 @@ fn time_onset_moves_with_tau() {
     assert!(n >= 50, "{n}");
     // The peaks, where a series has one inside its levels.
     for (s, v) in [
-        ("figure", "tau = 7.00e-3"),
-        ("literal", "tau = 7.00e-3"),
-        ("figure", "tau = 0.0700"),
-        ("literal", "tau = 0.0700"),
+        ("figure", "tau = 0.007"),
+        ("literal", "tau = 0.007"),
+        ("figure", "tau = 0.07"),
+        ("literal", "tau = 0.07"),
         ("figure", "no landing (g = 1)"),
     ] {
         let (x, e) = (
@@ -549,6 +550,40 @@ fn time_onset_moves_with_tau() {
     let lo = peaks.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = peaks.iter().copied().fold(0.0, f64::max);
     assert_eq!((lo, hi), (1.79, 2.23));
+    // The scalar model's first-step error 1/(1 + r) - e^-r peaks near r = 2.5.
+    let f = |r: f64| 1.0 / (1.0 + r) - (-r).exp();
+    let r_star = (1..10000)
+        .map(|i| i as f64 * 1e-3)
+        .max_by(|a, b| f(*a).total_cmp(&f(*b)))
+        .unwrap();
+    assert_eq!((r_star * 10.0).round() / 10.0, 2.5);
+    assert!(lo < r_star && r_star < 2.0 * hi);
+}
+
+#[test]
+fn time_model_gap_split() {
+    // Without landings (g = 1) the measurement over the model, from k = 1/32 on.
+    let v = "no landing (g = 1)";
+    let steps = control("figure", v, "steps");
+    let e = control("figure", v, "rel_err_max_percent");
+    let m = control("figure", v, "model_max_percent");
+    let r: Vec<f64> = (0..steps.len())
+        .filter(|&i| steps[i] >= 32.0)
+        .map(|i| e[i] / m[i])
+        .collect();
+    assert!(r.len() >= 6);
+    let (lo, hi) = r
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    assert_eq!(
+        ((lo * 100.0).round() / 100.0, (hi * 100.0).round() / 100.0),
+        (1.20, 1.22)
+    );
+    // With the landings the gap is the product: normaliser x this.
+    let with_e = control("figure", "tau = 0.07", "rel_err_max_percent");
+    let i = steps.iter().position(|&s| s == 32.0).unwrap();
+    let product = (with_e[i] / e[i]) * (e[i] / m[i]);
+    assert!((product - with_e[i] / m[i]).abs() < 1e-12);
 }
 
 #[test]

@@ -198,11 +198,11 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
     Ok(tr)
 }
 
-/// The example at the same mesh with 1, 4 and 16 times the steps: does the regime
+/// The example at the same mesh with 1, 4, 16 and 64 times the steps: does the regime
 /// chatter and the force peak at the landing follow the time step (a numerical
 /// artefact) or stay (the solution's own)? `data/example_five_branch_steps.csv`.
 fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
-    let rows: Vec<Trace> = [1, 4, 16]
+    let rows: Vec<Trace> = [1, 4, 16, 64]
         .iter()
         .map(|m| trace(scn, n, m * n))
         .collect::<Result<_, _>>()?;
@@ -226,9 +226,10 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         &t,
         "example",
         &format!(
-            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2)",
+            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2)",
             4 * n,
-            16 * n
+            16 * n,
+            64 * n
         ),
     )?;
     Ok(())

@@ -52,7 +52,7 @@ pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
     let labels = Labels {
         experiment: "example",
         headroom: 1.5,
-        title: format!("The law of scenario `{}`, -σν against uν", scn.name),
+        title: format!("The law of scenario {}, -σν against uν", scn.name),
         law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law.kind()),
         points: "kinks of p and the limit g".into(),
         params: format!("law of scenario `{}`, g = {}", scn.name, scn.g),

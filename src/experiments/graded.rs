@@ -391,7 +391,7 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
     let fig = GradedFig {
         panels: [
             (
-                "(a) error at T against the graded reference".into(),
+                "(a) error at t = T, against the graded reference".into(),
                 "relative energy error at T, %".into(),
                 panel("rel_err_T_percent")?,
             ),
@@ -454,7 +454,7 @@ impl Figure for GradedFig {
             let keys = inside(xr, &(1..=7).map(|e| 10f64.powi(e)).collect::<Vec<_>>());
             let ykeys = inside(yr, &[0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
             let mut chart = ChartBuilder::on(area)
-                .caption(title, ("sans-serif", 22))
+                .caption(title, ("sans-serif", 24))
                 .margin(15)
                 .x_label_area_size(60)
                 .y_label_area_size(80)
@@ -469,8 +469,8 @@ impl Figure for GradedFig {
                 .y_desc(ydesc.as_str())
                 .x_label_formatter(&|x| format!("{x:.0e}"))
                 .y_label_formatter(&|y| format!("{y}"))
-                .label_style(("sans-serif", 18))
-                .axis_desc_style(("sans-serif", 20))
+                .label_style(("sans-serif", 20))
+                .axis_desc_style(("sans-serif", 22))
                 .draw()
                 .map_err(e2s)?;
             for (label, s, c, f) in series {
@@ -512,7 +512,7 @@ impl Figure for GradedFig {
                 ];
                 slope_guides(&mut chart, &guides, start, xmax, 0.45)?;
             }
-            legend(&mut chart, SeriesLabelPosition::LowerLeft, 15, 0.9)?;
+            legend(&mut chart, SeriesLabelPosition::LowerLeft, 19, 0.9)?;
         }
         Ok(())
     }

@@ -22,7 +22,7 @@
 //!
 //! Two families: [`affine`] (piecewise affine, possibly discontinuous: the paper's
 //! (5.1) and every law of the shipped scenarios) and [`softening`] (smooth:
-//! $p(s) = c\,s\,e^{-s/a}$ for $s > 0$, adhesive softening past $s = a$). A new family
+//! $p(s) = c\,s\,e^{-s/a}$ for $s > 0$, a foundation that softens, crushes, past $s = a$). A new family
 //! is a new room here and a new arm in [`Law`]'s match; nothing outside this
 //! directory changes but the scenario's law table.
 

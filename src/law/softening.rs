@@ -1,4 +1,4 @@
-//! The softening family: a smooth, nonmonotone law of adhesive type,
+//! The softening family: a smooth, nonmonotone law of a crushable foundation,
 //! $$p(s) = c\,s\,e^{-s/a} \quad (s > 0), \qquad p(s) = 0 \quad (s \le 0),$$
 //! with a stiffness $c > 0$ and a length $a > 0$. The foundation resists in
 //! proportion to the penetration at first (slope $c$ at $s = 0^+$), most at $s = a$

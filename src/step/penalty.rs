@@ -9,8 +9,8 @@
 //! the loads by $10^6$ and the same overshoot needs a stiffness $10^6$ times larger.
 //! So the registered solver states it *relative to the step*: the penalty's curvature
 //! on the weakest contact node, $k w_{\min}\,\varepsilon^{-1}$, is $\rho$ times the
-//! largest eigenvalue of the condensed stiffness $S$ (its bound `lipschitz`),
-//! $$\varepsilon^{-1} = \rho\,\lambda_{\max}(S) / (k\,w_{\min}).$$
+//! bound $\bar\lambda \ge \lambda_{\max}(S)$ on the condensed stiffness (the step's
+//! `lipschitz`), $$\varepsilon^{-1} = \rho\,\bar\lambda / (k\,w_{\min}).$$
 //! Then the overshoot relative to the step's own displacements is about $1/\rho$ on
 //! every scale and mesh, and the condensed matrix's condition grows like $\rho$.
 

@@ -1112,3 +1112,21 @@ fn beyond_penalty_mild_overshoot() {
     assert_eq!(o.len(), 1);
     assert_eq!(fix(o[0], 2), "0.32");
 }
+
+#[test]
+fn beyond_wp_time_below_mesh() {
+    let keys = [("family", "k")];
+    let steps = column("work_precision.csv", &keys, "steps");
+    let err = column("work_precision.csv", &keys, "rel_err_max_percent");
+    let at64 = err[steps.iter().position(|&s| s == 64.0).unwrap()];
+    assert_eq!((at64 * 100.0).round() / 100.0, 4.43);
+    let own = column(
+        "table1_reference_error.csv",
+        &[("load", "figure")],
+        "reference_error_orthogonal_percent",
+    )[0];
+    assert!(at64 < own && own.round() == 5.0, "{at64} {own}");
+    // and not before: at k = 1/32 the time error is still above the mesh's own
+    let at32 = err[steps.iter().position(|&s| s == 32.0).unwrap()];
+    assert!(at32 > own);
+}

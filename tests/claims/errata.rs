@@ -116,6 +116,27 @@ fn errata_figure_histories_differ() {
         .iter()
         .all(|t| t.is_nan())
     );
+    // ... and without landings (g = 1) the histories still differ: the orders of the
+    // maximum and the error at T of the constant load and the ramp to t = 1.
+    let ctl = |v: &str, c: &str| {
+        column(
+            "time_controls.csv",
+            &[("scenario", "figure"), ("variant", v)],
+            c,
+        )
+    };
+    let (c, r) = (
+        "no landing (g = 1)",
+        "no landing (g = 1) under the ramp to 1",
+    );
+    assert!(ctl(r, "t_first_limit").iter().all(|t| t.is_nan()));
+    for col in ["order_max", "rel_err_T_percent"] {
+        let apart = ctl(c, col)
+            .iter()
+            .zip(ctl(r, col))
+            .any(|(x, y)| (x - y).abs() > 0.01);
+        assert!(apart, "no landing, {col}: the histories agree");
+    }
     let a = series("figure", "a_constant");
     for h in RAMPS {
         let r = series("figure", h);

@@ -810,11 +810,12 @@ fn results_uniform_orders() {
 
 #[test]
 fn results_uniform_first_order() {
-    // The first order differs from the increments' (by more than 0.1) ...
-    for l in ["literal", "figure"] {
+    // The first orders differ (by more than 0.1): 0.85 / 0.54 and 0.61 / 0.38 ...
+    for (l, stated) in [("literal", ["0.85", "0.54"]), ("figure", ["0.61", "0.38"])] {
         let uni = super::graded(l, "uniform", "order_dofs", &[8.0])[0];
         let inc = at(&incr(l, "n"), &incr(l, "order"), 8.0);
         assert!((uni - inc).abs() > 0.1, "{l}: {uni} against {inc}");
+        assert_eq!([fix(uni, 2), fix(inc, 2)], stated.map(String::from), "{l}");
     }
     // ... and the unknowns grow by less than 4 between the coarsest levels, the least of
     // all steps.
@@ -866,6 +867,14 @@ fn results_half_grading_limits() {
         // grading the clamp ends away leaves the top corners' exponent: above it throughout
         let ce = super::graded(l, "clamp ends", "order_dofs", &ns);
         assert!(ce.iter().all(|&o| o > top), "{l}: {ce:?}");
+        // ... and the reference-free orders of `clamp ends` lie in 0.73 ... 0.81, the
+        // last the largest (no trend towards 0.650)
+        let ci = super::graded(l, "clamp ends", "order_increment_dofs", &[8.0, 16.0, 32.0]);
+        assert!(
+            ci.iter().all(|&o| (0.725..0.815).contains(&o)),
+            "{l}: {ci:?}"
+        );
+        assert_eq!(ci[2], ci.iter().copied().fold(0.0, f64::max), "{l}: {ci:?}");
         // grading the top corners away leaves the clamp ends' 1/2: those orders fall, the
         // last the closest to 1/2, and below the clamp-end family's
         let tc = super::graded(l, "top corners", "order_dofs", &ns);

@@ -97,7 +97,8 @@ fn write_markdown(
     );
     md.push_str(&format!(
         "The ten readings closest to the paper's Table 1 out of {}, errors in percent \
-         (load / material / mesh / norm / time / compared with); distance = \
+         (load / material / mesh / norm / time / compared with), and last the reading the \
+         paper describes (energy norm at T against the reference); distance = \
          max |ln(ours / paper)|.\n\n",
         rows.len()
     ));
@@ -124,13 +125,24 @@ fn write_markdown(
             && r.time == "T"
             && r.against == "reference"
     });
-    for (d, r) in ranked.iter().take(10).copied().chain(
-        base.map(|b| (distance(levels, &b.values), b))
-            .filter(|(_, b)| !ranked.iter().take(10).any(|(_, r)| std::ptr::eq(*r, *b))),
-    ) {
+    let described = base
+        .map(|b| (distance(levels, &b.values), b))
+        .filter(|(_, b)| !ranked.iter().take(10).any(|(_, r)| std::ptr::eq(*r, *b)));
+    for (d, r) in ranked.iter().take(10).copied().chain(described) {
+        let stated = base.is_some_and(|b| std::ptr::eq(b, r));
         md.push_str(&format!(
-            "| {} {} {} {} {} {} | ",
-            r.load, r.material, r.mesh, r.norm, r.time, r.against
+            "| {}{} {} {} {} {} {} | ",
+            if stated {
+                "the paper's stated reading: "
+            } else {
+                ""
+            },
+            r.load,
+            r.material,
+            r.mesh,
+            r.norm,
+            r.time,
+            r.against
         ));
         for v in &r.values {
             md.push_str(&format!("{} | ", sig(*v)));

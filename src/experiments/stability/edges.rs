@@ -93,7 +93,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         "stability_sweeps.csv",
         &t,
         "stability",
-        &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness rho lambda_max(S) / (k w_min), rho = {:e}", crate::step::penalty::RELATIVE_STIFFNESS),
+        &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e}", crate::step::penalty::RELATIVE_STIFFNESS),
     )?;
     Ok(())
 }

@@ -264,8 +264,10 @@ pub(super) fn draw_controls(ctx: &Ctx, path: &std::path::Path) -> Result<(), Exp
                 .filter(|&i| sc[i] == "figure" && va[i] == *v && m[i] > 0.0)
                 .map(|i| (x[i], m[i]))
                 .collect();
+            // The model depends on the relaxation time only: one grey dashed line per
+            // tau, apart from the measured series it would otherwise hide.
             if !v.starts_with("no landing") {
-                series.push((String::new(), pts, colour(v, vi), 9, true));
+                series.push((String::new(), pts, RGBColor(110, 110, 110), 9, true));
             }
         }
         panels.push((title.to_string(), series));
@@ -292,7 +294,7 @@ impl Figure for ControlFig {
             let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
                 (a.min(p.1), b.max(p.1))
             });
-            let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 30.0));
+            let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
             let keys: Vec<f64> = (-4..=3)
                 .map(|e| 10f64.powi(e))
                 .filter(|v| *v >= xr.0 && *v <= xr.1)
@@ -364,7 +366,7 @@ impl Figure for ControlFig {
                 chart
                     .draw_series(std::iter::once(PathElement::new(vec![], grey)))
                     .map_err(e2s)?
-                    .label("scalar model (dashed), figure")
+                    .label("scalar model (grey dashed), one line per tau")
                     .legend(move |(x, y)| {
                         EmptyElement::at((x, y))
                             + PathElement::new(vec![(0, 0), (10, 0)], grey)
