@@ -68,6 +68,17 @@ fn last<const N: usize>(v: &[f64]) -> [f64; N] {
 // ---- Chapter "Exact solutions" (exact.md) ----
 
 #[test]
+fn exact_study_time() {
+    let t = column(
+        "reproduce_times.csv",
+        &[("set", "all"), ("experiment", "exact")],
+        "wall_s",
+    );
+    assert_eq!(t.len(), 1);
+    assert_eq!((t[0] * 10.0).round() / 10.0, 46.8);
+}
+
+#[test]
 fn exact_quadrature_far_below() {
     let conv = rows("exact_convergence.csv");
     let mut checked = 0;
