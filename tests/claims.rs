@@ -61,6 +61,50 @@ fn column(file: &str, keys: &[(&str, &str)], col: &str) -> Vec<f64> {
         .collect()
 }
 
+// ---- Helpers shared by the chapter modules ----
+
+/// `x` with `d` decimals.
+fn fix(x: f64, d: usize) -> String {
+    format!("{x:.d$}")
+}
+
+fn fixes(v: &[f64], d: usize) -> Vec<String> {
+    v.iter().map(|&x| fix(x, d)).collect()
+}
+
+/// `x` with `d` significant digits.
+fn sig(x: f64, d: usize) -> String {
+    let e = x.abs().log10().floor() as i32;
+    let dec = (d as i32 - 1 - e).max(0) as usize;
+    format!("{x:.dec$}")
+}
+
+fn sigs(v: &[f64], d: usize) -> Vec<String> {
+    v.iter().map(|&x| sig(x, d)).collect()
+}
+
+fn min(v: &[f64]) -> f64 {
+    v.iter().copied().fold(f64::INFINITY, f64::min)
+}
+
+fn max(v: &[f64]) -> f64 {
+    v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// The number after `key` in `text` (up to a comma, blank, semicolon, parenthesis or
+/// line end).
+fn after(text: &str, key: &str) -> f64 {
+    let i = text
+        .find(key)
+        .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
+        + key.len();
+    let rest = &text[i..];
+    let end = rest.find([',', ' ', ';', ')', '\n']).unwrap_or(rest.len());
+    rest[..end]
+        .parse()
+        .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
+}
+
 fn last<const N: usize>(v: &[f64]) -> [f64; N] {
     v[v.len() - N..].try_into().expect("enough levels")
 }

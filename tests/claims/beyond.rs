@@ -1,6 +1,8 @@
 //! The claims of the chapter "Beyond the paper" (beyond.md); helpers from `tests/claims.rs`.
 
 #[allow(unused_imports)]
+use super::{after, fix};
+#[allow(unused_imports)]
 use super::{column, last, num, rows};
 use std::collections::{BTreeSet, HashMap};
 
@@ -28,11 +30,6 @@ fn quoted_rows(file: &str) -> Vec<Row> {
     lines
         .map(|l| header.iter().cloned().zip(split(l)).collect())
         .collect()
-}
-
-/// `x` with `d` decimals.
-fn fix(x: f64, d: usize) -> String {
-    format!("{x:.d$}")
 }
 
 /// `x` in scientific notation with `d` decimals of the mantissa.
@@ -68,19 +65,6 @@ fn beyond_reduced_undercuts_floor() {
     // the general loop cannot go below its floor; the reduced one does, at every level
     assert!(general.iter().all(|&r| r > 1.0), "{general:?}");
     assert!(reduced.iter().all(|&r| r < 1.0), "{reduced:?}");
-}
-
-/// The number after `key` in `text` (up to a comma, blank, semicolon or parenthesis).
-fn after(text: &str, key: &str) -> f64 {
-    let i = text
-        .find(key)
-        .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
-        + key.len();
-    let rest = &text[i..];
-    let end = rest.find([',', ' ', ';', ')']).unwrap_or(rest.len());
-    rest[..end]
-        .parse()
-        .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
 }
 
 #[test]

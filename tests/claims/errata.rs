@@ -1,6 +1,8 @@
 //! The claims of the chapter "Errata" (errata.md); helpers from `tests/claims.rs`.
 
 #[allow(unused_imports)]
+use super::after;
+#[allow(unused_imports)]
 use super::{column, last, num, rows};
 use std::collections::HashMap;
 
@@ -8,19 +10,6 @@ type Row = HashMap<String, String>;
 
 fn text(file: &str) -> String {
     std::fs::read_to_string(super::root().join("data").join(file)).unwrap()
-}
-
-/// The number after `key` in `text` (up to a comma, blank, semicolon or parenthesis).
-fn after(text: &str, key: &str) -> f64 {
-    let i = text
-        .find(key)
-        .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
-        + key.len();
-    let rest = &text[i..];
-    let end = rest.find([',', ' ', ';', ')']).unwrap_or(rest.len());
-    rest[..end]
-        .parse()
-        .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
 }
 
 /// The relaxation time C/G of the shipped scenes, the `tau` column of

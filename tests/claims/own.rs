@@ -1,20 +1,9 @@
 //! The claims of the chapter "Your own scenario" (own.md); helpers from `tests/claims.rs`.
 
 #[allow(unused_imports)]
+use super::after;
+#[allow(unused_imports)]
 use super::{column, last, num, rows};
-
-/// The number after `key` in `text` (up to a comma, blank, semicolon or parenthesis).
-fn after(text: &str, key: &str) -> f64 {
-    let i = text
-        .find(key)
-        .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
-        + key.len();
-    let rest = &text[i..];
-    let end = rest.find([',', ' ', ';', ')']).unwrap_or(rest.len());
-    rest[..end]
-        .parse()
-        .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
-}
 
 #[test]
 fn own_trace_grows_with_n() {

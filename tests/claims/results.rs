@@ -1,41 +1,15 @@
 //! The claims of the chapter "Results" (results.md); helpers from tests/claims.rs.
 
 #[allow(unused_imports)]
+use super::{after, fix, fixes, max, min, sig, sigs};
+#[allow(unused_imports)]
 use super::{column, last, num, rows};
 use std::collections::{BTreeSet, HashMap};
 
 type Row = HashMap<String, String>;
 
-/// `x` with `d` decimals.
-fn fix(x: f64, d: usize) -> String {
-    format!("{x:.d$}")
-}
-
-fn fixes(v: &[f64], d: usize) -> Vec<String> {
-    v.iter().map(|&x| fix(x, d)).collect()
-}
-
-/// `x` with `d` significant digits.
-fn sig(x: f64, d: usize) -> String {
-    let e = x.abs().log10().floor() as i32;
-    let dec = (d as i32 - 1 - e).max(0) as usize;
-    format!("{x:.dec$}")
-}
-
-fn sigs(v: &[f64], d: usize) -> Vec<String> {
-    v.iter().map(|&x| sig(x, d)).collect()
-}
-
 fn finite(v: &[f64]) -> Vec<f64> {
     v.iter().copied().filter(|x| x.is_finite()).collect()
-}
-
-fn min(v: &[f64]) -> f64 {
-    v.iter().copied().fold(f64::INFINITY, f64::min)
-}
-
-fn max(v: &[f64]) -> f64 {
-    v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The value of `v` at the position of `n` in `ns`.
@@ -86,20 +60,6 @@ fn header(file: &str) -> String {
         .filter(|l| l.starts_with('#'))
         .collect::<Vec<_>>()
         .join("\n")
-}
-
-/// The number after `key` in `text` (up to a comma, blank, semicolon, parenthesis or
-/// line end).
-fn after(text: &str, key: &str) -> f64 {
-    let i = text
-        .find(key)
-        .unwrap_or_else(|| panic!("no {key:?} in {text:?}"))
-        + key.len();
-    let rest = &text[i..];
-    let end = rest.find([',', ' ', ';', ')', '\n']).unwrap_or(rest.len());
-    rest[..end]
-        .parse()
-        .unwrap_or_else(|e| panic!("{key}: {:?}: {e}", &rest[..end]))
 }
 
 /// The top corner's exponent as `data/static_control.csv` records it.

@@ -2,6 +2,8 @@
 
 #[allow(unused_imports)]
 use super::{column, last, num, rows};
+#[allow(unused_imports)]
+use super::{fix, fixes, max, min, sig, sigs};
 use std::collections::HashMap;
 
 type Row = HashMap<String, String>;
@@ -10,38 +12,10 @@ const STUDY: &str = "time_study.csv";
 const CONTROLS: &str = "time_controls.csv";
 const HISTORIES: [&str; 3] = ["a_constant", "b_ramp1", "c_ramp0.25"];
 
-/// `x` with `d` decimals.
-fn fix(x: f64, d: usize) -> String {
-    format!("{x:.d$}")
-}
-
-fn fixes(v: &[f64], d: usize) -> Vec<String> {
-    v.iter().map(|&x| fix(x, d)).collect()
-}
-
-/// `x` rounded to `d` significant digits, as text (19.0, 6.90, 0.0925).
-fn sig(x: f64, d: usize) -> String {
-    let e = x.abs().log10().floor() as i32;
-    let dec = (d as i32 - 1 - e).max(0) as usize;
-    format!("{x:.dec$}")
-}
-
-fn sigs(v: &[f64], d: usize) -> Vec<String> {
-    v.iter().map(|&x| sig(x, d)).collect()
-}
-
 /// `x` rounded to `d` significant digits, as a number (827.4 -> 830).
 fn round_sig(x: f64, d: i32) -> f64 {
     let unit = 10f64.powi(x.abs().log10().floor() as i32 - d + 1);
     (x / unit).round() * unit
-}
-
-fn min(v: &[f64]) -> f64 {
-    v.iter().copied().fold(f64::INFINITY, f64::min)
-}
-
-fn max(v: &[f64]) -> f64 {
-    v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
 }
 
 /// The column `col` of the study's series `scenario`, `history`, levels ascending.
