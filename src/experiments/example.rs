@@ -96,26 +96,7 @@ fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<()
     super::runplot::draw(&out.path(""))?;
     out.publish().map_err(err)?;
     // Newton's work per step, without the timing columns of steps.csv.
-    let r = &res.records;
-    let t = crate::output::csv::Table::new()
-        .u64("step", r.iter().map(|s| s.step as u64).collect())
-        .f64("t", r.iter().map(|s| s.t).collect())
-        .u64(
-            "iterations",
-            r.iter().map(|s| s.iterations as u64).collect(),
-        )
-        .u64(
-            "inner_iterations",
-            r.iter().map(|s| s.inner_iterations as u64).collect(),
-        )
-        .f64(
-            "solver_residual",
-            r.iter().map(|s| s.solver_residual).collect(),
-        )
-        .f64(
-            "certificate",
-            r.iter().map(|s| s.certificate.max()).collect(),
-        );
+    let t = crate::output::run::step_work(&res.records);
     ctx.write(
         &format!("example_{name}_iterations.csv"),
         &t,

@@ -221,25 +221,7 @@ pub fn write(
         );
     out.write_table("contact.csv", &contact, &header)?;
     let r = &run.records;
-    let steps = Table::new()
-        .u64("step", r.iter().map(|s| s.step as u64).collect())
-        .f64("t", r.iter().map(|s| s.t).collect())
-        .u64(
-            "iterations",
-            r.iter().map(|s| s.iterations as u64).collect(),
-        )
-        .u64(
-            "inner_iterations",
-            r.iter().map(|s| s.inner_iterations as u64).collect(),
-        )
-        .f64(
-            "solver_residual",
-            r.iter().map(|s| s.solver_residual).collect(),
-        )
-        .f64(
-            "certificate",
-            r.iter().map(|s| s.certificate.max()).collect(),
-        )
+    let steps = step_work(r)
         .f64(
             "stationarity",
             r.iter().map(|s| s.certificate.stationarity).collect(),
@@ -395,4 +377,28 @@ pub fn max_overshoot(records: &[crate::scheme::StepRecord]) -> f64 {
         .iter()
         .map(|s| s.certificate.feasibility)
         .fold(0.0, f64::max)
+}
+
+/// The work of each step: its number and time, the solver's iterations and residual,
+/// and its certificate (the first columns of `steps.csv`, without timings).
+pub fn step_work(r: &[crate::scheme::StepRecord]) -> Table {
+    Table::new()
+        .u64("step", r.iter().map(|s| s.step as u64).collect())
+        .f64("t", r.iter().map(|s| s.t).collect())
+        .u64(
+            "iterations",
+            r.iter().map(|s| s.iterations as u64).collect(),
+        )
+        .u64(
+            "inner_iterations",
+            r.iter().map(|s| s.inner_iterations as u64).collect(),
+        )
+        .f64(
+            "solver_residual",
+            r.iter().map(|s| s.solver_residual).collect(),
+        )
+        .f64(
+            "certificate",
+            r.iter().map(|s| s.certificate.max()).collect(),
+        )
 }
