@@ -44,14 +44,102 @@ fn diagonal() -> String {
     "diagonal".into()
 }
 
+/// The `[material]` table: the elasticity by Young's modulus and Poisson's ratio (`E`,
+/// `kappa`) or by Lamé's constants (`lambda`, `mu`), of a plane-strain (default) or
+/// plane-stress body, and the viscosity (`alpha`, `beta`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawMaterial {
-    #[serde(rename = "E")]
-    e: f64,
-    kappa: f64,
+    #[serde(rename = "E", default)]
+    e: Option<f64>,
+    #[serde(default)]
+    kappa: Option<f64>,
+    #[serde(default)]
+    lambda: Option<f64>,
+    #[serde(default)]
+    mu: Option<f64>,
+    #[serde(default)]
+    plane: Option<String>,
     alpha: f64,
     beta: f64,
+}
+
+/// The elasticity of a `[material]` table as the code's $(E, \kappa)$, the constants of
+/// the printed plane-strain formulas $a = E\kappa/((1+\kappa)(1-2\kappa))$,
+/// $b = E/(1+\kappa)$. Plane strain with `E`, `kappa` passes them through unchanged;
+/// every other form first gives the 2D tensor's $(a, b)$ (plane stress:
+/// $a = E\nu/(1-\nu^2)$ or $2\lambda\mu/(\lambda+2\mu)$, $b = 2\mu$; Lamé in plane
+/// strain: $a = \lambda$, $b = 2\mu$), then $\kappa = a/(b + 2a)$, $E = b(1 + \kappa)$.
+fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
+    let stress = match m.plane.as_deref().unwrap_or("strain") {
+        "strain" => false,
+        "stress" => true,
+        other => {
+            return Err(InputError::field(
+                "material.plane",
+                other,
+                "\"strain\" (the default, the paper's formulas) or \"stress\"",
+            ));
+        }
+    };
+    let lame = m.lambda.is_some() || m.mu.is_some();
+    let young = m.e.is_some() || m.kappa.is_some();
+    if lame && young {
+        let f = if m.e.is_some() { "E" } else { "kappa" };
+        return Err(InputError::field(
+            format!("material.{f}"),
+            "a value",
+            "nothing beside lambda and mu: give either E and kappa or lambda and mu",
+        ));
+    }
+    let need = |field: &str, v: Option<f64>| {
+        v.ok_or_else(|| {
+            InputError::field(
+                format!("material.{field}"),
+                "nothing",
+                "a number (the elasticity needs E and kappa, or lambda and mu)",
+            )
+        })
+    };
+    let (a, b, field) = if lame {
+        let mu = positive("material.mu", need("mu", m.mu)?)?;
+        let lambda = finite("material.lambda", need("lambda", m.lambda)?)?;
+        if lambda + mu <= 0.0 {
+            return Err(InputError::field(
+                "material.lambda",
+                lambda,
+                format!(
+                    "a value > -mu = {} (the elasticity must be positive definite)",
+                    -mu
+                ),
+            ));
+        }
+        if stress {
+            (
+                2.0 * lambda * mu / (lambda + 2.0 * mu),
+                2.0 * mu,
+                "material.lambda",
+            )
+        } else {
+            (lambda, 2.0 * mu, "material.lambda")
+        }
+    } else {
+        let e = positive("material.E", need("E", m.e)?)?;
+        let nu = poisson("material.kappa", need("kappa", m.kappa)?)?;
+        if !stress {
+            return Ok((e, nu));
+        }
+        (e * nu / (1.0 - nu * nu), e / (1.0 + nu), "material.kappa")
+    };
+    let kappa = a / (b + 2.0 * a);
+    poisson(field, kappa).map_err(|_| {
+        InputError::field(
+            field,
+            format!("{kappa:e} as the plane-strain Poisson ratio it implies"),
+            "constants whose plane-strain reading has a Poisson ratio in (-1, 1/2)",
+        )
+    })?;
+    Ok((b * (1.0 + kappa), kappa))
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -416,8 +504,7 @@ impl Scenario {
         let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
         let g = limit("g", raw.g)?;
         let m = &raw.material;
-        let e = positive("material.E", m.e)?;
-        poisson("material.kappa", m.kappa)?;
+        let (e, kappa) = elasticity_from(m)?;
         finite("material.alpha", m.alpha)?;
         let beta = positive("material.beta", m.beta)?;
         if 2.0 * m.alpha + beta <= 0.0 {
@@ -469,7 +556,7 @@ impl Scenario {
             t_end,
             g,
             e,
-            kappa: m.kappa,
+            kappa,
             alpha: m.alpha,
             beta,
             f0,

@@ -174,3 +174,53 @@ fn the_law_table_takes_one_family_and_names_the_other_s_keys() {
         assert_eq!(err.field_name(), Some(field), "{err}");
     }
 }
+
+#[test]
+fn the_elasticity_by_young_or_lame_in_plane_strain_or_stress() {
+    let g = |text: String| Scenario::from_toml(&text, "test").unwrap().elasticity();
+    let base = g(GOOD.to_string());
+    // Plane strain by Lame: a = lambda, b = 2 mu, the same tensor as E = 1000, kappa = 0.4.
+    let (lambda, mu) = (base.a, base.b / 2.0);
+    let lame = g(with(
+        "E = 1000.0\nkappa = 0.4",
+        &format!("lambda = {lambda:e}\nmu = {mu:e}"),
+    ));
+    assert!((lame.a - base.a).abs() < 1e-9 * base.a && (lame.b - base.b).abs() < 1e-9 * base.b);
+    // Plane stress by E and nu: a = E nu / (1 - nu^2), b = E / (1 + nu).
+    let ps = g(with("kappa = 0.4", "kappa = 0.4\nplane = \"stress\""));
+    let (e, nu) = (1000.0, 0.4);
+    assert!((ps.a - e * nu / (1.0 - nu * nu)).abs() < 1e-9 * ps.a);
+    assert!((ps.b - e / (1.0 + nu)).abs() < 1e-9 * ps.b);
+    // Plane stress by Lame: a = 2 lambda mu / (lambda + 2 mu), b = 2 mu.
+    let psl = g(with(
+        "E = 1000.0\nkappa = 0.4",
+        &format!("lambda = {lambda:e}\nmu = {mu:e}\nplane = \"stress\""),
+    ));
+    assert!((psl.a - 2.0 * lambda * mu / (lambda + 2.0 * mu)).abs() < 1e-9 * psl.a);
+    assert!((psl.b - 2.0 * mu).abs() < 1e-9 * psl.b);
+    // Refused by name: a mix, a missing constant, a bad plane, a non-positive mu.
+    let cases = [
+        (with("kappa = 0.4", "kappa = 0.4\nmu = 300.0"), "material.E"),
+        (
+            with("E = 1000.0\nkappa = 0.4", "mu = 300.0"),
+            "material.lambda",
+        ),
+        (
+            with("kappa = 0.4", "kappa = 0.4\nplane = \"axisymmetric\""),
+            "material.plane",
+        ),
+        (
+            with("E = 1000.0\nkappa = 0.4", "lambda = 1.0\nmu = 0.0"),
+            "material.mu",
+        ),
+        (
+            with("E = 1000.0\nkappa = 0.4", "lambda = -5.0\nmu = 1.0"),
+            "material.lambda",
+        ),
+        (with("kappa = 0.4", ""), "material.kappa"),
+    ];
+    for (text, field) in cases {
+        let err = Scenario::from_toml(&text, "test").unwrap_err();
+        assert_eq!(err.field_name(), Some(field), "{err}");
+    }
+}
