@@ -96,7 +96,8 @@ pub const RESOLUTION_MAX: f64 = 1e-4;
 pub fn resolved_length(law: &Law, g: f64) -> f64 {
     let mut pts: Vec<f64> = law
         .kinks()
-        .into_iter()
+        .iter()
+        .copied()
         .filter(|&b| !g.is_finite() || b < g)
         .collect();
     let mut length = f64::INFINITY;

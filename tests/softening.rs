@@ -47,7 +47,7 @@ fn values_potential_and_subdifferential() {
     }
     assert!(!l.piecewise_affine());
     assert!(l.down_jumps().is_empty());
-    assert_eq!(l.kinks(), vec![0.0]);
+    assert_eq!(l.kinks(), [0.0]);
 }
 
 #[test]

@@ -25,12 +25,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             scn.g
         ),
     };
-    draw_in(
-        ctx,
-        &scn,
-        ["fig2_law", "fig2_breakpoints", "fig2_law"],
-        &labels,
-    )
+    draw_in(ctx, &scn, "fig2_law", "fig2_breakpoints", &labels)
 }
 
 /// What a drawing of a law says: its title, the law's and the points' legend
@@ -57,13 +52,18 @@ pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
         points: "kinks of p and the limit g".into(),
         params: format!("law of scenario `{}`, g = {}", scn.name, scn.g),
     };
-    let kinks = format!("{stem}_kinks");
-    draw_in(ctx, scn, [stem, &kinks, stem], &labels)
+    draw_in(ctx, scn, stem, &format!("{stem}_kinks"), &labels)
 }
 
-/// The law of `scn` into the tables `names[0]`.csv (curve and wall) and
-/// `names[1]`.csv (kinks and g), drawn as figure `names[2]`.
-fn draw_in(ctx: &Ctx, scn: &Scenario, names: [&str; 3], labels: &Labels) -> Result<(), ExpError> {
+/// The law of `scn` into the tables `STEM.csv` (curve and wall) and `POINTS.csv`
+/// (kinks and g), drawn as figure `STEM`.
+fn draw_in(
+    ctx: &Ctx,
+    scn: &Scenario,
+    stem: &str,
+    points: &str,
+    labels: &Labels,
+) -> Result<(), ExpError> {
     let g = scn.g;
     // The law's own polyline: for a piecewise-affine law its vertices (both sides of
     // a jump), for a smooth one samples.
@@ -77,7 +77,7 @@ fn draw_in(ctx: &Ctx, scn: &Scenario, names: [&str; 3], labels: &Labels) -> Resu
         sig.push(v);
         part.push("unilateral".to_string());
     }
-    let mut bp_u = scn.law.kinks();
+    let mut bp_u = scn.law.kinks().to_vec();
     bp_u.push(g);
     let bp_s: Vec<f64> = bp_u.iter().map(|&s| scn.law.p(s)).collect();
     let table = Table::new()
@@ -85,14 +85,14 @@ fn draw_in(ctx: &Ctx, scn: &Scenario, names: [&str; 3], labels: &Labels) -> Resu
         .f64("minus_sigma_nu", sig)
         .str("part", part);
     let path = ctx.write(
-        &format!("{}.csv", names[0]),
+        &format!("{stem}.csv"),
         &table,
         labels.experiment,
         &labels.params,
     )?;
     let bp = Table::new().f64("u_nu", bp_u).f64("minus_sigma_nu", bp_s);
     let bp_path = ctx.write(
-        &format!("{}.csv", names[1]),
+        &format!("{points}.csv"),
         &bp,
         labels.experiment,
         &labels.params,
@@ -112,7 +112,7 @@ fn draw_in(ctx: &Ctx, scn: &Scenario, names: [&str; 3], labels: &Labels) -> Resu
         law_label: labels.law.clone(),
         points_label: labels.points.clone(),
     };
-    both(&ctx.figures, names[2], (900, 600), &fig)
+    both(&ctx.figures, stem, (900, 600), &fig)
 }
 
 struct Fig2 {

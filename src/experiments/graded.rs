@@ -25,7 +25,7 @@
 //! family, $\|u_n - u_{2n}\| / \|u_{2n}\|$ in the energy norm, at $T$ and its
 //! maximum over the level's time grid $t_j = j/n$, with the time where it occurs.
 
-use super::plot::{Figure, both, e2s, legend, slope_guides};
+use super::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::bisection::{Forest, Leaves};
 use crate::mesh::{Dofs, Mesh, Supports};
@@ -161,17 +161,31 @@ struct Level {
 }
 
 /// The relative energy increment from `coarse` to `fine` (the next level of its
-/// family) for load `i`: at T, its maximum over the coarse time grid, and where.
+/// family) for each load: at T, its maximum over the coarse time grid, and where.
+/// The embedding and the norm geometry serve every load.
 fn increments(
     forest: &Forest,
     coarse: &Level,
     fine: &Level,
-    i: usize,
     g: &crate::material::Isotropic,
-) -> (f64, f64, f64) {
+) -> Vec<(f64, f64, f64)> {
     let interp = forest.interpolation(&coarse.leaves, &fine.mesh);
     let geo = crate::norms::NormGeometry::new(&fine.mesh);
     let ratio = fine.n / coarse.n;
+    (0..fine.fields.len())
+        .map(|i| increments_of(&interp, &geo, coarse, fine, ratio, i, g))
+        .collect()
+}
+
+fn increments_of(
+    interp: &crate::mesh::Interpolation,
+    geo: &crate::norms::NormGeometry,
+    coarse: &Level,
+    fine: &Level,
+    ratio: usize,
+    i: usize,
+    g: &crate::material::Isotropic,
+) -> (f64, f64, f64) {
     let (mut at_t, mut max, mut t_max) = (f64::NAN, 0.0, f64::NAN);
     for j in 1..=coarse.n {
         let uf = fine.dofs.expand(&fine.fields[i][ratio * j]);
@@ -273,6 +287,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 .iter()
                 .map(|&t| forest.diameter(t))
                 .fold(f64::INFINITY, f64::min);
+            let inc = solved
+                .get(l + 1)
+                .map(|next| increments(&forest, lev, next, &g));
             for i in 0..scns.len() {
                 let pu = interp.apply(&lev.dofs.expand(&lev.fields[i][lev.n]));
                 let diff: Vec<[f64; 2]> = ref_fields[i]
@@ -281,10 +298,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                     .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
                     .collect();
                 let e = ref_geo.norms(&ref_mesh, &g, &diff).energy_sq;
-                let (inc_t, inc_max, t_inc_max) = match solved.get(l + 1) {
-                    Some(next) => increments(&forest, lev, next, i, &g),
-                    None => (f64::NAN, f64::NAN, f64::NAN),
-                };
+                let (inc_t, inc_max, t_inc_max) = inc
+                    .as_ref()
+                    .map_or((f64::NAN, f64::NAN, f64::NAN), |v| v[i]);
                 rows.push(Row {
                     family,
                     load: scns[i].name.clone(),
@@ -442,17 +458,9 @@ impl Figure for GradedFig {
             let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
                 (a.min(p.1), b.max(p.1))
             });
-            // Key points only inside the ranges: plotters draws one outside at the
-            // edge of the label area, a stray axis line.
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 2.0, ymax * 2.0));
-            let inside = |r: (f64, f64), v: &[f64]| -> Vec<f64> {
-                v.iter()
-                    .copied()
-                    .filter(|x| *x >= r.0 && *x <= r.1)
-                    .collect()
-            };
-            let keys = inside(xr, &(1..=7).map(|e| 10f64.powi(e)).collect::<Vec<_>>());
-            let ykeys = inside(yr, &[0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
+            let keys = keys_within(xr, (1..=7).map(|e| 10f64.powi(e)));
+            let ykeys = keys_within(yr, [0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
             let mut chart = ChartBuilder::on(area)
                 .caption(title, ("sans-serif", 24))
                 .margin(15)

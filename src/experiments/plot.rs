@@ -57,6 +57,16 @@ pub fn regime_label(regime: &str) -> &'static str {
 
 pub const REGIMES: [&str; 5] = ["no_contact", "branch1", "branch2", "branch3", "limit"];
 
+/// The candidate key points of a log axis that lie inside its range `(lo, hi)`:
+/// plotters draws a key point outside the range at the edge of the label area, as a
+/// stray axis line.
+pub fn keys_within(range: (f64, f64), candidates: impl IntoIterator<Item = f64>) -> Vec<f64> {
+    candidates
+        .into_iter()
+        .filter(|x| *x >= range.0 && *x <= range.1)
+        .collect()
+}
+
 /// A figure that can be drawn on any plotters backend.
 pub trait Figure {
     fn draw<DB: DrawingBackend>(

@@ -208,10 +208,10 @@ impl Law {
     }
 
     /// Where $p$ or $p'$ is discontinuous, increasing.
-    pub fn kinks(&self) -> Vec<f64> {
+    pub fn kinks(&self) -> &[f64] {
         match self {
-            Law::Affine(l) => l.breakpoints().to_vec(),
-            Law::Softening(_) => vec![0.0],
+            Law::Affine(l) => l.breakpoints(),
+            Law::Softening(_) => &[0.0],
         }
     }
 

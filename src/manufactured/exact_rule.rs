@@ -34,7 +34,7 @@ pub fn integrals(law: &Law, x: &[f64], r: &[f64]) -> (f64, Vec<f64>, Vec<[f64; 3
         let len = xb - xa;
         // Pieces in the local coordinate s in [0, 1]: cut where u crosses a breakpoint.
         let mut cuts = vec![0.0, 1.0];
-        for b in law.kinks() {
+        for &b in law.kinks() {
             if (ua - b) * (ub - b) < 0.0 {
                 cuts.push((b - ua) / (ub - ua));
             }

@@ -203,7 +203,7 @@ impl<'a> Data<'a> {
                 (x, self.u_nu(x, t))
             })
             .collect();
-        for bp in self.law.kinks() {
+        for &bp in self.law.kinks() {
             for w in samples.windows(2) {
                 let ((mut lo, flo), (mut hi, _)) = (w[0], w[1]);
                 // A sample exactly on the breakpoint is the kink itself.

@@ -19,6 +19,7 @@
 //! that lowers the optimality residual, as OSQP and Clarabel users do.
 
 use super::{Info, Piece, Status, StepProblem, StepSolver, inf_norm};
+use crate::law::ConvexRun;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
@@ -87,11 +88,11 @@ impl Convexify {
     fn subproblem(
         &self,
         p: &StepProblem,
+        (a, runs): (f64, &[ConvexRun]),
         eta: &[f64],
         r: &[f64],
     ) -> Result<(Vec<f64>, u32), String> {
         let m = p.m();
-        let (a, runs) = p.law.convex_split(p.g).ok_or_else(|| declined(p.law))?;
         let nr = runs.len();
         let nvar = m + m * nr;
         // P: upper triangle of S in the r block, diagonal in the t block.
@@ -107,7 +108,7 @@ impl Convexify {
             colptr.push(rowval.len());
         }
         for i in 0..m {
-            for run in &runs {
+            for run in runs {
                 let col = colptr.len() - 1;
                 let qv = p.kw[i] * run.quad;
                 if qv != 0.0 {
@@ -225,14 +226,15 @@ impl StepSolver for Convexify {
         if let Err(e) = self.settings.validate() {
             return Info::refused(e.to_string());
         }
-        if p.law.convex_split(p.g).is_none() {
+        // The law's convex model, the same for every subproblem of the step.
+        let Some((a, runs)) = p.law.convex_split(p.g) else {
             return Info::refused(declined(p.law));
-        }
+        };
         let st = self.settings.clone();
         let mut info = Info::default();
         for it in 0..st.max_iter {
             let eta: Vec<f64> = r.iter().map(|&s| p.law.concave_supergradient(s)).collect();
-            let (next, ipm_iters) = match self.subproblem(p, &eta, r) {
+            let (next, ipm_iters) = match self.subproblem(p, (a, &runs), &eta, r) {
                 Ok(x) => x,
                 Err(msg) => {
                     info.status = Status::Failed(msg);

@@ -295,14 +295,8 @@ impl Figure for ControlFig {
                 (a.min(p.1), b.max(p.1))
             });
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
-            let keys: Vec<f64> = (-4..=3)
-                .map(|e| 10f64.powi(e))
-                .filter(|v| *v >= xr.0 && *v <= xr.1)
-                .collect();
-            let ykeys: Vec<f64> = (-8..=3)
-                .map(|e| 10f64.powi(e))
-                .filter(|v| *v >= yr.0 && *v <= yr.1)
-                .collect();
+            let keys = super::super::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
+            let ykeys = super::super::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
             let mut chart = ChartBuilder::on(area)
                 .caption(
                     format!("Time error against k/tau: {title}"),
