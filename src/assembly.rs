@@ -5,6 +5,7 @@
 //! for constant $f_0$, $f_2$.
 
 use crate::element::{element_matrix, twice_area};
+use crate::geometry::Traction;
 use crate::material::Isotropic;
 use crate::mesh::{Dofs, Mesh};
 use faer::sparse::linalg::matmul::sparse_dense_matmul;
@@ -88,11 +89,19 @@ pub fn stiffness(mesh: &Mesh, dofs: &Dofs, tensor: &Isotropic) -> SpMat {
 }
 // ANCHOR_END: assemble
 
-/// The load vector for densities $f_0$ (volume) and $f_2$ (top edge): each
-/// triangle gives $f_0|T|/3$ to each vertex, each top edge $f_2|e|/2$ to each end,
-/// exact for constant densities. With `modulation` $a \ne 0$ the volume force is
-/// $f_0(1 + a\cos \pi x)$, taken at the vertices (vertex quadrature, $O(h^2)$).
-pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2], modulation: f64) -> Vec<f64> {
+/// The load vector for densities $f_0$ (volume) and the tractions (each constant on
+/// a segment of a side; the paper's $f_2$ is one on the whole top): each triangle
+/// gives $f_0|T|/3$ to each vertex, each boundary edge of a traction's segment
+/// $f|e|/2$ to each end, exact for constant densities. With `modulation` $a \ne 0$ the
+/// volume force is $f_0(1 + a\cos \pi x)$, taken at the vertices (vertex quadrature,
+/// $O(h^2)$).
+pub fn load(
+    mesh: &Mesh,
+    dofs: &Dofs,
+    f0: [f64; 2],
+    tractions: &[Traction],
+    modulation: f64,
+) -> Vec<f64> {
     let mut f = vec![0.0; dofs.count];
     let mut add = |node: usize, val: [f64; 2]| {
         for (c, v) in val.iter().enumerate() {
@@ -110,10 +119,18 @@ pub fn load(mesh: &Mesh, dofs: &Dofs, f0: [f64; 2], f2: [f64; 2], modulation: f6
             add(v, [f0[0] * w, f0[1] * w]);
         }
     }
-    for e in &mesh.top_edges {
-        let len = (mesh.nodes[e[1]][0] - mesh.nodes[e[0]][0]).abs();
-        for &v in e {
-            add(v, [f2[0] * len / 2.0, f2[1] * len / 2.0]);
+    let tol = 1e-9 * mesh.width.max(mesh.height);
+    for t in tractions {
+        let f2 = t.f;
+        for (e, side) in &mesh.boundary {
+            let (a, b) = (side.along(mesh.nodes[e[0]]), side.along(mesh.nodes[e[1]]));
+            if *side != t.side || 0.5 * (a + b) < t.from - tol || 0.5 * (a + b) > t.to + tol {
+                continue;
+            }
+            let len = (b - a).abs();
+            for &v in e {
+                add(v, [f2[0] * len / 2.0, f2[1] * len / 2.0]);
+            }
         }
     }
     f

@@ -15,7 +15,8 @@
 
 use crate::element::twice_area;
 use crate::error::InputError;
-use crate::mesh::{Interpolation, Mesh, Pattern, Supports, check_n};
+use crate::geometry::{Geometry, Side};
+use crate::mesh::{Interpolation, Mesh, Pattern, check_n};
 use std::collections::HashMap;
 
 /// All triangles of a bisection family, and their nodes.
@@ -29,9 +30,12 @@ pub struct Forest {
     /// Depth in the forest (0 for the initial triangles).
     depth: Vec<u32>,
     midpoints: HashMap<(usize, usize), usize>,
-    /// The initial grid: $n_0$ segments on $\Gamma_3$.
+    /// The initial grid: $n_0$ segments on the bottom, $n_{y,0}$ rows, cells
+    /// `cell` wide and tall.
     n0: usize,
-    supports: Supports,
+    ny0: usize,
+    cell: [f64; 2],
+    geometry: Geometry,
 }
 
 /// A conforming mesh of the forest: its triangles (sorted ids).
@@ -43,10 +47,11 @@ fn key(a: usize, b: usize) -> (usize, usize) {
 }
 
 impl Forest {
-    /// The paper's structured mesh with $n_0$ segments as the forest's roots.
-    pub fn new(n0: usize, supports: Supports) -> Result<(Forest, Leaves), InputError> {
+    /// The structured mesh with $n_0$ segments on `geometry` as the forest's roots.
+    pub fn new(n0: usize, geometry: &Geometry) -> Result<(Forest, Leaves), InputError> {
         check_n(n0)?;
-        let base = Mesh::build(n0, supports, Pattern::Diagonal)?;
+        let base = Mesh::build(n0, geometry, Pattern::Diagonal)?;
+        let (ny0, cell) = (base.ny, [base.dx(), base.dy()]);
         // Rotate each triangle so that its vertex opposite the diagonal comes first.
         let tris: Vec<[usize; 3]> = base
             .triangles
@@ -70,7 +75,9 @@ impl Forest {
                 tris,
                 midpoints: HashMap::new(),
                 n0,
-                supports,
+                ny0,
+                cell,
+                geometry: geometry.clone(),
             },
             Leaves((0..count).collect()),
         ))
@@ -172,43 +179,40 @@ impl Forest {
             .iter()
             .map(|&t| self.tris[t].map(|v| local[v]))
             .collect();
-        let fixed = nodes
-            .iter()
-            .map(|p| {
-                let side = p[0] == 0.0 || p[0] == 2.0;
-                match self.supports {
-                    Supports::Paper => [side && p[1] >= 0.5; 2],
-                    Supports::Rollers => [side || p[1] == 1.0, p[1] == 1.0],
-                }
-            })
-            .collect();
-        let mut contact: Vec<usize> = (0..nodes.len()).filter(|&v| nodes[v][1] == 0.0).collect();
-        contact.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
-        let mut top_edges = vec![];
+        let geo = &self.geometry;
+        let fixed = nodes.iter().map(|&p| geo.fixed_at(p)).collect();
+        // The boundary edges: both ends on one side, ordered along it (the load takes
+        // an edge's length as the difference of its coordinates along the side).
+        let mut boundary = vec![];
         for t in &triangles {
             for e in 0..3 {
                 let (a, b) = (t[e], t[(e + 1) % 3]);
-                if nodes[a][1] == 1.0 && nodes[b][1] == 1.0 {
-                    // Left to right, as the structured mesh lists them (the load
-                    // takes an edge's length as the difference of its x).
-                    top_edges.push(if nodes[a][0] < nodes[b][0] {
-                        [a, b]
-                    } else {
-                        [b, a]
-                    });
+                for side in Side::ALL {
+                    if geo.on(side, nodes[a]) && geo.on(side, nodes[b]) {
+                        let (pa, pb) = (side.along(nodes[a]), side.along(nodes[b]));
+                        boundary.push((if pa < pb { [a, b] } else { [b, a] }, side));
+                    }
                 }
             }
         }
-        top_edges.sort_by(|x, y| nodes[x[0]][0].total_cmp(&nodes[y[0]][0]));
-        Mesh {
+        boundary.sort_by(|x, y| {
+            (Side::ALL.iter().position(|s| *s == x.1))
+                .cmp(&Side::ALL.iter().position(|s| *s == y.1))
+                .then(
+                    x.1.along(nodes[x.0[0]])
+                        .total_cmp(&y.1.along(nodes[y.0[0]])),
+                )
+        });
+        Mesh::finish(
             n,
-            pattern: Pattern::Bisected,
+            n * self.ny0 / self.n0,
+            geo,
+            Pattern::Bisected,
             nodes,
             triangles,
             fixed,
-            contact,
-            top_edges,
-        }
+            boundary,
+        )
     }
 
     /// The exact P1 embedding of the mesh `coarse` (a mesh of this forest) into
@@ -227,8 +231,8 @@ impl Forest {
                 local.insert(g, i);
             }
         }
-        let (nx, ny) = (self.n0, self.n0 / 2);
-        let side = 2.0 / self.n0 as f64;
+        let (nx, ny) = (self.n0, self.ny0);
+        let [side, dy] = self.cell;
         let weights = fine
             .nodes
             .iter()
@@ -242,7 +246,7 @@ impl Forest {
                 };
                 let worst = |l: [f64; 3]| l[0].min(l[1]).min(l[2]);
                 let i = ((p[0] / side).floor() as usize).min(nx - 1);
-                let j = ((p[1] / side).floor() as usize).min(ny - 1);
+                let j = ((p[1] / dy).floor() as usize).min(ny - 1);
                 let cell = j * nx + i;
                 let mut t = if worst(bary(2 * cell)) >= worst(bary(2 * cell + 1)) {
                     2 * cell
@@ -354,4 +358,66 @@ impl State {
             self.split(forest, t);
         }
     }
+}
+
+/// The largest longest edge allowed at `x` on a mesh of uniform size `d` (the
+/// longest edge of its cells) graded towards `points` with exponent $\mu$:
+/// $d \min(1, \max(r, d^{1/\mu})^{1-\mu})$, $r$ the distance to the nearest point. A
+/// function $r^\lambda$ with $\lambda > \mu$ is then approximated at the rate of a smooth
+/// one (Babuška, Kellogg, Pitkäranta 1979).
+pub fn graded_size(d: f64, x: [f64; 2], points: &[[f64; 2]], mu: f64) -> f64 {
+    let r = points
+        .iter()
+        .map(|p| (x[0] - p[0]).hypot(x[1] - p[1]))
+        .fold(f64::INFINITY, f64::min);
+    d * r.max(d.powf(1.0 / mu)).powf(1.0 - mu).min(1.0)
+}
+
+/// The centroid of triangle `t`.
+pub fn centroid(f: &Forest, t: usize) -> [f64; 2] {
+    let p = f.triangle(t);
+    [
+        (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+        (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+    ]
+}
+
+/// The mesh of level `n` on `geo` graded towards its singular points
+/// ([`Geometry::singular_points`]) with exponent `mu` in $(0, 1)$: newest-vertex
+/// bisection of the coarsest structured mesh that resolves the scene (4, 8, …
+/// segments) until every triangle's longest edge is at most [`graded_size`], with
+/// lengths measured in units of $\min(W, H)$ and $d$ the diagonal of a cell of the
+/// uniform mesh of level $n$. A scene without singular points gets the uniform mesh
+/// of level $n$ by bisection.
+pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError> {
+    crate::error::in_range("grading", mu, 0.05, 0.95)?;
+    check_n(n)?;
+    let uniform = Mesh::build(n, geo, Pattern::Diagonal)?;
+    let mut n0 = 4;
+    let (mut forest, root) = loop {
+        match Forest::new(n0, geo) {
+            Ok(f) => break f,
+            Err(e) if n0 >= n => return Err(e),
+            Err(_) => n0 *= 2,
+        }
+    };
+    let unit = geo.width.min(geo.height);
+    let d = uniform.dx().hypot(uniform.dy()) / unit;
+    let points: Vec<[f64; 2]> = geo
+        .singular_points()
+        .iter()
+        .map(|p| [p[0] / unit, p[1] / unit])
+        .collect();
+    // A hair of slack so that a triangle exactly at the bound is not cut.
+    let slack = 1.0 + 1e-12;
+    let leaves = forest.refine(&root, |f, t| {
+        let c = centroid(f, t);
+        let bound = if points.is_empty() {
+            d
+        } else {
+            graded_size(d, [c[0] / unit, c[1] / unit], &points, mu)
+        };
+        f.diameter(t) / unit > slack * bound
+    });
+    Ok(forest.mesh(&leaves, n))
 }

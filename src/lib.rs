@@ -19,6 +19,7 @@ pub mod dense;
 pub mod element;
 pub mod error;
 pub mod experiments;
+pub mod geometry;
 pub mod history;
 pub mod law;
 pub mod linalg;

@@ -4,12 +4,18 @@
 
 use crate::error::InputError;
 
-/// Estimated peak memory of a run with $n$ contact segments, bytes. Nested dissection
-/// of the $n \times n/2$ grid fills the factor to about $6\,N\log_2 N$ entries for $N$ dofs
+/// Estimated peak memory of a run with $n$ contact segments on the paper's rectangle,
+/// bytes (see [`memory_estimate_rows`]).
+pub fn memory_estimate(n: usize) -> f64 {
+    memory_estimate_rows(n, n / 2)
+}
+
+/// Estimated peak memory of a run on the grid of $n$ columns and $n_y$ rows of cells,
+/// bytes. Nested dissection of the $n \times n/2$ grid fills the factor to about $6\,N\log_2 N$ entries for $N$ dofs
 /// (28.5 M at $n = 512$), and a run peaks at about 20 bytes per entry of the factor
 /// (529 MB at $n = 512$, `data/bench.csv`), plus 30 MB.
-pub fn memory_estimate(n: usize) -> f64 {
-    let dofs = (2 * (n + 1) * (n / 2 + 1)) as f64;
+pub fn memory_estimate_rows(n: usize, ny: usize) -> f64 {
+    let dofs = (2 * (n + 1) * (ny + 1)) as f64;
     30e6 + 20.0 * 6.0 * dofs * dofs.log2()
 }
 
@@ -56,9 +62,10 @@ pub fn available_memory() -> Option<f64> {
     limits.into_iter().reduce(f64::min)
 }
 
-/// Refuses a mesh whose run would not fit in the available memory, before any work.
-pub fn check_memory(n: usize) -> Result<(), InputError> {
-    let need = memory_estimate(n);
+/// Refuses a mesh of $n$ columns and $n_y$ rows whose run would not fit in the
+/// available memory, before any work.
+pub fn check_memory(n: usize, ny: usize) -> Result<(), InputError> {
+    let need = memory_estimate_rows(n, ny);
     match available_memory() {
         Some(have) if need > 0.9 * have => Err(InputError::field(
             "n",
@@ -67,8 +74,7 @@ pub fn check_memory(n: usize) -> Result<(), InputError> {
                 "a mesh that fits in memory: n = {n} needs about {:.1} GB (factor of about {:.2e} \
                  entries), but {:.1} GB are available",
                 need / 1e9,
-                6.0 * (2 * (n + 1) * (n / 2 + 1)) as f64
-                    * ((2 * (n + 1) * (n / 2 + 1)) as f64).log2(),
+                6.0 * (2 * (n + 1) * (ny + 1)) as f64 * ((2 * (n + 1) * (ny + 1)) as f64).log2(),
                 have / 1e9
             ),
         )),

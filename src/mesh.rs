@@ -1,25 +1,13 @@
-//! The structured, nested P1 triangulation of $\Omega = (0,2)\times(0,1)$ (MODEL.md):
-//! $n = 1/h$ segments on $\Gamma_3$, square cells of side $2h$ ($n$ in $x$, $n/2$ in
-//! $y$), each cut by its lower-left–upper-right diagonal. Boundary parts:
-//! $\Gamma_1 = \{0,2\}\times[1/2, 1]$ (clamped), $\Gamma_3 = [0,2]\times\{0\}$
-//! (contact), $\Gamma_2$ the rest (loaded on the top edge, free on the sides).
-//!
-//! A second support layout, [`Supports::Rollers`], serves the regularity study:
-//! the top edge clamped and both sides on rollers ($u_x = 0$, free to slide). Reflected
-//! across a roller side, every corner becomes a point of a straight boundary, so
-//! the solution has no corner singularity.
+//! The structured, nested P1 triangulation of the scene's rectangle
+//! $(0, W) \times (0, H)$ ([`crate::geometry`]; the paper's $(0,2)\times(0,1)$, MODEL.md):
+//! $n$ segments on the bottom, $n$ columns and $n_y = nH/W$ (rounded) rows of cells,
+//! each cut by its lower-left–upper-right diagonal. On the paper's scene $h = 1/n$ and
+//! the cells are squares of side $2h$. The supports fix the components of the
+//! boundary nodes they hold; $\Gamma_3$'s nodes whose normal component is free are
+//! the contact nodes; the boundary edges carry their side (tractions act there).
 
 use crate::error::InputError;
-
-/// Which dofs are held fixed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Supports {
-    /// The paper's: $\{0, 2\} \times [1/2, 1]$ clamped.
-    #[default]
-    Paper,
-    /// Top edge clamped, sides on rollers ($u_x = 0$).
-    Rollers,
-}
+use crate::geometry::{Geometry, Side};
 
 /// How each square cell is cut into triangles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -51,8 +39,13 @@ impl Pattern {
 
 #[derive(Debug, Clone)]
 pub struct Mesh {
-    /// Number of contact segments, $n = 1/h$.
+    /// Number of segments on the bottom, $n = 1/h$ on the paper's scene.
     pub n: usize,
+    /// Rows of cells of the structured mesh of level $n$ ($n/2$ on the paper's scene).
+    pub ny: usize,
+    /// The rectangle's width and height.
+    pub width: f64,
+    pub height: f64,
     /// How the cells are cut.
     pub pattern: Pattern,
     /// Node coordinates.
@@ -61,10 +54,13 @@ pub struct Mesh {
     pub triangles: Vec<[usize; 3]>,
     /// Fixed components of each node (x, y).
     pub fixed: Vec<[bool; 2]>,
-    /// Nodes on $\Gamma_3$, ordered by $x$ (both bottom corners included).
+    /// The nodes of $\Gamma_3$ ordered by $x$, its ends included.
+    pub gamma3: Vec<usize>,
+    /// The contact nodes: those of $\Gamma_3$ whose normal component is free (all of
+    /// them unless a clamp or roller ends on $\Gamma_3$'s end).
     pub contact: Vec<usize>,
-    /// Edges of the top side $(0,2)\times\{1\}$, where $f_2$ acts.
-    pub top_edges: Vec<[usize; 2]>,
+    /// The boundary edges and their sides, each ordered along its side.
+    pub boundary: Vec<([usize; 2], Side)>,
 }
 
 /// Checks a number of contact segments: a positive multiple of 4, so that $y = 1/2$
@@ -80,20 +76,33 @@ pub fn check_n(n: usize) -> Result<(), InputError> {
     Ok(())
 }
 
+/// The rows of cells of the structured mesh of level `n` on `geo`: near-square cells,
+/// $n H / W$ rounded ($n/2$ on the paper's scene).
+pub fn rows(n: usize, geo: &Geometry) -> usize {
+    ((n as f64 * geo.height / geo.width).round() as usize).max(1)
+}
+
+/// Whether `v` lies on a mesh line of spacing `d` (within rounding).
+pub(crate) fn on_line(v: f64, d: f64) -> bool {
+    let q = v / d;
+    (q - q.round()).abs() <= 1e-9 * q.abs().max(1.0)
+}
+
 impl Mesh {
-    /// The mesh with $n$ contact segments; $n$ must be a positive multiple of 4
+    /// The paper's mesh with $n$ contact segments; $n$ must be a positive multiple of 4
     /// so that $y = 1/2$ is a mesh line.
     pub fn structured(n: usize) -> Result<Mesh, InputError> {
-        Mesh::with_supports(n, Supports::Paper)
+        Mesh::build(n, &Geometry::paper(), Pattern::Diagonal)
     }
 
-    /// The mesh with $n$ contact segments and the given supports.
-    pub fn with_supports(n: usize, supports: Supports) -> Result<Mesh, InputError> {
-        Mesh::build(n, supports, Pattern::Diagonal)
+    /// The mesh with $n$ contact segments on the given geometry.
+    pub fn with_supports(n: usize, geo: &Geometry) -> Result<Mesh, InputError> {
+        Mesh::build(n, geo, Pattern::Diagonal)
     }
 
-    /// The mesh with $n$ contact segments, the given supports and cell pattern.
-    pub fn build(n: usize, supports: Supports, pattern: Pattern) -> Result<Mesh, InputError> {
+    /// The mesh with $n$ segments on the bottom, the given geometry and cell pattern.
+    /// Every end of a support segment and of $\Gamma_3$ must fall on a mesh line.
+    pub fn build(n: usize, geo: &Geometry, pattern: Pattern) -> Result<Mesh, InputError> {
         check_n(n)?;
         if pattern == Pattern::Bisected {
             return Err(InputError::field(
@@ -105,19 +114,66 @@ impl Mesh {
         if n > 4096 {
             return Err(InputError::field("n", n, "at most 4096 (memory)"));
         }
-        let (nx, ny) = (n, n / 2);
-        let side = 2.0 / n as f64;
+        let (nx, ny) = (n, rows(n, geo));
+        let side = geo.width / n as f64;
+        // Square cells when the rows fit exactly (the paper's scene), else cells of
+        // height H / ny.
+        let dy = if ny as f64 * side == geo.height {
+            side
+        } else {
+            geo.height / ny as f64
+        };
+        if !(0.5..=2.0).contains(&(dy / side)) {
+            return Err(InputError::field(
+                "n",
+                n,
+                format!(
+                    "a mesh whose cells are near squares: n = {n} gives cells {side:e} wide \
+                     and {dy:e} tall on the {} x {} rectangle; take a larger n",
+                    geo.width, geo.height
+                ),
+            ));
+        }
+        for s in &geo.supports {
+            let d = if s.side.normal() == 0 { dy } else { side };
+            for (end, v) in [("from", s.from), ("to", s.to)] {
+                if !on_line(v, d) {
+                    return Err(InputError::field(
+                        format!("{}.{end}", s.field),
+                        v,
+                        format!(
+                            "a mesh line of the mesh with n = {n}, where the {} side has a node \
+                             every {d}: choose n so that every segment's ends are nodes",
+                            s.side.name()
+                        ),
+                    ));
+                }
+            }
+        }
+        for v in geo.contact {
+            if !on_line(v, side) {
+                return Err(InputError::field(
+                    "geometry.contact",
+                    v,
+                    format!(
+                        "a mesh line of the mesh with n = {n} (a node every {side} on the \
+                         bottom): choose n so that Gamma_3's ends are nodes"
+                    ),
+                ));
+            }
+        }
         let id = |i: usize, j: usize| j * (nx + 1) + i;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
         let mut fixed = Vec::with_capacity(nodes.capacity());
         for j in 0..=ny {
             for i in 0..=nx {
-                nodes.push([i as f64 * side, j as f64 * side]);
-                let side = i == 0 || i == nx;
-                fixed.push(match supports {
-                    Supports::Paper => [side && 2 * j >= ny; 2],
-                    Supports::Rollers => [side || j == ny, j == ny],
+                let p = [i as f64 * side, j as f64 * dy];
+                fixed.push(if i == 0 || i == nx || j == 0 || j == ny {
+                    geo.fixed_at(p)
+                } else {
+                    [false; 2]
                 });
+                nodes.push(p);
             }
         }
         let grid = nodes.len();
@@ -147,43 +203,108 @@ impl Mesh {
         if pattern == Pattern::CrissCross {
             for j in 0..ny {
                 for i in 0..nx {
-                    nodes.push([(i as f64 + 0.5) * side, (j as f64 + 0.5) * side]);
+                    nodes.push([(i as f64 + 0.5) * side, (j as f64 + 0.5) * dy]);
                     fixed.push([false; 2]);
                 }
             }
         }
-        let contact = (0..=nx).map(|i| id(i, 0)).collect();
-        let top_edges = (0..nx).map(|i| [id(i, ny), id(i + 1, ny)]).collect();
-        Ok(Mesh {
+        let mut boundary = vec![];
+        boundary.extend((0..ny).map(|j| ([id(0, j), id(0, j + 1)], Side::Left)));
+        boundary.extend((0..ny).map(|j| ([id(nx, j), id(nx, j + 1)], Side::Right)));
+        boundary.extend((0..nx).map(|i| ([id(i, 0), id(i + 1, 0)], Side::Bottom)));
+        boundary.extend((0..nx).map(|i| ([id(i, ny), id(i + 1, ny)], Side::Top)));
+        Ok(Mesh::finish(
+            n, ny, geo, pattern, nodes, triangles, fixed, boundary,
+        ))
+    }
+
+    /// A mesh from its parts, $\Gamma_3$ and the contact nodes found from the
+    /// coordinates.
+    #[allow(clippy::too_many_arguments)]
+    pub fn finish(
+        n: usize,
+        ny: usize,
+        geo: &Geometry,
+        pattern: Pattern,
+        nodes: Vec<[f64; 2]>,
+        triangles: Vec<[usize; 3]>,
+        fixed: Vec<[bool; 2]>,
+        boundary: Vec<([usize; 2], Side)>,
+    ) -> Mesh {
+        let tol = geo.tol();
+        let [x0, x1] = geo.contact;
+        let mut gamma3: Vec<usize> = (0..nodes.len())
+            .filter(|&v| {
+                let p = nodes[v];
+                geo.on(Side::Bottom, p) && p[0] >= x0 - tol && p[0] <= x1 + tol
+            })
+            .collect();
+        gamma3.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
+        let contact = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        Mesh {
             n,
+            ny,
+            width: geo.width,
+            height: geo.height,
             pattern,
             nodes,
             triangles,
             fixed,
+            gamma3,
             contact,
-            top_edges,
-        })
+            boundary,
+        }
     }
 
-    /// The mesh size $h = 1/n$ of the paper (cells have side $2h$).
+    /// The mesh size $h = W/(2n)$, half a cell's width: $1/n$ on the paper's scene.
     pub fn h(&self) -> f64 {
-        1.0 / self.n as f64
+        self.width / (2 * self.n) as f64
+    }
+
+    /// The width of a cell of the structured mesh, $2h$.
+    pub fn dx(&self) -> f64 {
+        self.width / self.n as f64
+    }
+
+    /// The height of a cell of the structured mesh.
+    pub fn dy(&self) -> f64 {
+        let side = self.dx();
+        if self.ny as f64 * side == self.height {
+            side
+        } else {
+            self.height / self.ny as f64
+        }
+    }
+
+    /// The edges of the top side, where the paper's $f_2$ acts, left to right.
+    pub fn top_edges(&self) -> Vec<[usize; 2]> {
+        self.boundary
+            .iter()
+            .filter(|(_, s)| *s == Side::Top)
+            .map(|(e, _)| *e)
+            .collect()
     }
 
     // ANCHOR: weights
-    /// Trapezoidal weights of the contact nodes: $2h$ inside $\Gamma_3$, $h$ at its ends
-    /// (on a bisected mesh, half the length of the segments at each node).
+    /// Trapezoidal weights of the contact nodes: half the length of the $\Gamma_3$
+    /// segments beside each node ($2h$ inside $\Gamma_3$, $h$ at its ends on a grid).
+    /// A node of $\Gamma_3$ whose normal component a support holds is no contact node:
+    /// its term of the contact functional is a constant.
     pub fn contact_weights(&self) -> Vec<f64> {
-        let m = self.contact.len();
-        if self.pattern == Pattern::Bisected {
-            let x: Vec<f64> = self.contact.iter().map(|&c| self.nodes[c][0]).collect();
-            return (0..m)
-                .map(|i| 0.5 * (x[(i + 1).min(m - 1)] - x[i.saturating_sub(1)]))
-                .collect();
-        }
+        let m = self.gamma3.len();
+        let x: Vec<f64> = self.gamma3.iter().map(|&c| self.nodes[c][0]).collect();
         let h = self.h();
         (0..m)
-            .map(|i| if i == 0 || i == m - 1 { h } else { 2.0 * h })
+            .filter(|&i| !self.fixed[self.gamma3[i]][1])
+            .map(|i| {
+                if self.pattern == Pattern::Bisected {
+                    0.5 * (x[(i + 1).min(m - 1)] - x[i.saturating_sub(1)])
+                } else if i == 0 || i == m - 1 {
+                    h
+                } else {
+                    2.0 * h
+                }
+            })
             .collect()
     }
     // ANCHOR_END: weights
@@ -256,12 +377,12 @@ pub struct Interpolation {
 impl Interpolation {
     pub fn new(coarse: &Mesh, fine: &Mesh) -> Interpolation {
         // Bucket the coarse triangles by the cell of their centroid.
-        let (nx, ny) = (coarse.n, coarse.n / 2);
-        let side = 2.0 / coarse.n as f64;
+        let (nx, ny) = (coarse.n, coarse.ny);
+        let (side, dy) = (coarse.dx(), coarse.dy());
         let mut cells: Vec<Vec<usize>> = vec![vec![]; nx * ny];
         let cell = |x: f64, y: f64| {
             let i = ((x / side).floor() as isize).clamp(0, nx as isize - 1) as usize;
-            let j = ((y / side).floor() as isize).clamp(0, ny as isize - 1) as usize;
+            let j = ((y / dy).floor() as isize).clamp(0, ny as isize - 1) as usize;
             (i, j)
         };
         for (t, tri) in coarse.triangles.iter().enumerate() {
@@ -334,7 +455,7 @@ impl Interpolation {
                 "the paper's diagonal pattern on both meshes (else Interpolation::new)",
             ));
         }
-        if !fine.n.is_multiple_of(coarse.n) {
+        if !fine.n.is_multiple_of(coarse.n) || fine.ny * coarse.n != coarse.ny * fine.n {
             return Err(InputError::field(
                 "n",
                 format!("{} to {}", coarse.n, fine.n),
@@ -350,9 +471,9 @@ impl Interpolation {
             (c, (f - c * r) as f64 / r as f64)
         };
         let mut weights = Vec::with_capacity(fine.nodes.len());
-        for jf in 0..=nxf / 2 {
+        for jf in 0..=fine.ny {
             for if_ in 0..=nxf {
-                let ((ic, a), (jc, b)) = (locate(if_, nxc), locate(jf, nxc / 2));
+                let ((ic, a), (jc, b)) = (locate(if_, nxc), locate(jf, coarse.ny));
                 let (ll, lr, ur, ul) = (
                     idc(ic, jc),
                     idc(ic + 1, jc),

@@ -65,7 +65,7 @@ impl Ordering {
     // ANCHOR: nested_dissection
     /// Geometric nested dissection of the structured `mesh`, then `last` at the end.
     pub fn nested_dissection(mesh: &Mesh, dofs: &Dofs, last: &[usize]) -> Ordering {
-        let (nx, ny) = (mesh.n, mesh.n / 2);
+        let (nx, ny) = (mesh.n, mesh.ny);
         let is_last = mark(dofs.count, last);
         let mut fwd = Vec::with_capacity(dofs.count);
         let mut emit = |fwd: &mut Vec<usize>, i: usize, j: usize| {

@@ -149,13 +149,7 @@ impl<'d> Reduced<'d> {
     /// The load response of a scenario that shares the mesh (its own $f_0$, $f_2$).
     pub fn load_of(&self, scn: &Scenario) -> Load {
         let d = self.disc;
-        self.load(crate::assembly::load(
-            &d.mesh,
-            &d.dofs,
-            scn.f0,
-            scn.f2,
-            scn.f0_modulation,
-        ))
+        self.load(scn.load_vector(&d.mesh, &d.dofs))
     }
 
     /// $u = B^{-1}(Y f + E_C^\top W)$: one solve.
@@ -409,7 +403,7 @@ pub fn run(
     observe: &mut FieldObserver<'_>,
 ) -> Result<Run, RunError> {
     crate::scheme::check_steps(opt)?;
-    crate::scheme::check_memory(opt.n)?;
+    crate::scheme::check_memory(opt.n, crate::mesh::rows(opt.n, &scn.geometry))?;
     solver.validate()?;
     let mut timings = Timings::default();
     let (disc, _) = timed(&mut timings.assembly, || {

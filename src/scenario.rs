@@ -4,10 +4,11 @@
 //! value and what is allowed, and unknown keys are errors.
 
 use crate::error::{InputError, MAX_MAGNITUDE, MIN_MAGNITUDE, bounded, in_range};
+use crate::geometry::{Geometry, Hold, Side, Traction};
 use crate::history::History;
 use crate::law::Law;
 use crate::material::Isotropic;
-use crate::mesh::{Mesh, Pattern, Supports};
+use crate::mesh::{Mesh, Pattern};
 use serde::Deserialize;
 use std::path::Path;
 
@@ -19,7 +20,9 @@ struct RawScenario {
     description: String,
     #[serde(rename = "T")]
     t_end: f64,
-    g: f64,
+    g: toml::Value,
+    #[serde(default)]
+    problem: Option<String>,
     material: RawMaterial,
     loads: RawLoads,
     law: RawLaw,
@@ -30,14 +33,16 @@ struct RawScenario {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawGeometry {
-    #[serde(default = "paper_supports")]
-    supports: String,
+    #[serde(default)]
+    width: Option<f64>,
+    #[serde(default)]
+    height: Option<f64>,
+    #[serde(default)]
+    supports: Option<toml::Value>,
+    #[serde(default)]
+    contact: Option<Vec<f64>>,
     #[serde(default = "diagonal")]
     pattern: String,
-}
-
-fn paper_supports() -> String {
-    "paper".into()
 }
 
 fn diagonal() -> String {
@@ -60,8 +65,10 @@ struct RawMaterial {
     mu: Option<f64>,
     #[serde(default)]
     plane: Option<String>,
-    alpha: f64,
-    beta: f64,
+    #[serde(default)]
+    alpha: Option<f64>,
+    #[serde(default)]
+    beta: Option<f64>,
 }
 
 /// The elasticity of a `[material]` table as the code's $(E, \kappa)$, the constants of
@@ -151,6 +158,45 @@ struct RawLoads {
     f0_modulation: f64,
     #[serde(default)]
     history: Option<toml::Value>,
+    #[serde(default)]
+    traction: Vec<RawTraction>,
+}
+
+/// One `[[loads.traction]]`: a force density on a segment of a side.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTraction {
+    side: String,
+    #[serde(default)]
+    from: Option<f64>,
+    #[serde(default)]
+    to: Option<f64>,
+    f: Vec<f64>,
+}
+
+/// What is solved: the paper's viscoelastic evolution, an elastic body (no
+/// viscosity: each time step the static hemivariational inequality with the loads
+/// at $t_n$), or one steady solve at $t = T$.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Problem {
+    #[default]
+    Viscoelastic,
+    Elastic,
+    Steady,
+}
+
+impl Problem {
+    pub fn name(self) -> &'static str {
+        match self {
+            Problem::Viscoelastic => "viscoelastic",
+            Problem::Elastic => "elastic",
+            Problem::Steady => "steady",
+        }
+    }
+    /// Whether the body has a viscosity.
+    pub fn viscous(self) -> bool {
+        self == Problem::Viscoelastic
+    }
 }
 
 /// The `[law]` table: `kind = "piecewise"` (the default: `breakpoints`, `slopes`,
@@ -257,23 +303,28 @@ pub struct Scenario {
     pub description: String,
     /// Final time $T$.
     pub t_end: f64,
-    /// Unilateral limit $g > 0$.
+    /// Unilateral limit $g > 0$ ($+\infty$: no limit, `g = "none"`).
     pub g: f64,
+    /// What is solved (the paper's viscoelastic evolution by default).
+    pub problem: Problem,
     /// Young's modulus $E$, Poisson's ratio $\kappa$.
     pub e: f64,
     pub kappa: f64,
-    /// Viscosity constants $\alpha$, $\beta$.
+    /// Viscosity constants $\alpha$, $\beta$ (both 0 for an elastic or steady problem).
     pub alpha: f64,
     pub beta: f64,
-    /// Constant volume force $f_0$ and top traction $f_2$.
+    /// Constant volume force $f_0$ and top traction $f_2$ (the paper's, on the whole top).
     pub f0: [f64; 2],
     pub f2: [f64; 2],
+    /// Further tractions on segments of the sides (`[[loads.traction]]`).
+    pub tractions: Vec<Traction>,
     /// $a$ in the volume force $f_0 (1 + a \cos \pi x)$ (0: constant, the paper's case).
     pub f0_modulation: f64,
     /// The load history: $f(t) = \varphi(t)\,(f_0, f_2)$.
     pub history: History,
     pub law: Law,
-    pub supports: Supports,
+    /// The rectangle, its supports and $\Gamma_3$.
+    pub geometry: Geometry,
     /// How the mesh cuts its cells (the paper's diagonal unless a study varies it).
     pub pattern: Pattern,
 }
@@ -359,20 +410,38 @@ fn finite(field: &str, v: f64) -> Result<f64, InputError> {
     bounded(field, v, MAX_MAGNITUDE)
 }
 
-/// A load vector: exactly two finite components.
-/// Refuses a top traction that cannot act: under `supports = "rollers"` the top edge
-/// is clamped (both components fixed), so a traction there would be dropped without
-/// a word. `field` names it as the user wrote it (`loads.f2` in a file, `f2` on the
-/// command line).
-fn check_traction(supports: Supports, field: &str, f2: [f64; 2]) -> Result<(), InputError> {
-    if supports == Supports::Rollers && f2 != [0.0, 0.0] {
-        return Err(InputError::field(
-            field,
-            format!("[{}, {}]", f2[0], f2[1]),
-            "[0, 0] under geometry.supports = \"rollers\": the top edge is clamped there, \
-             so a traction on it would have no effect (load the body with f0, or use the \
-             paper's supports)",
-        ));
+/// Refuses a traction that cannot act: on a clamped part of its segment any nonzero
+/// force, on rollers a nonzero normal component (the support takes it, so it would be
+/// dropped without a word). `t.field` names it as the user wrote it (`loads.f2` or
+/// `loads.traction[0]` in a file, `f2` on the command line).
+fn check_traction(geo: &Geometry, t: &Traction) -> Result<(), InputError> {
+    for s in geo.holds_on(t.side, t.from, t.to) {
+        let c = t.side.normal();
+        let acts = match s.hold {
+            Hold::Clamped => t.f != [0.0, 0.0],
+            Hold::Rollers => t.f[c] != 0.0,
+            Hold::Free => false,
+        };
+        if acts {
+            let what = if s.hold == Hold::Clamped {
+                "[0, 0]".to_string()
+            } else {
+                format!("a zero {} component", ["x", "y"][c])
+            };
+            return Err(InputError::field(
+                &t.field,
+                format!("[{}, {}]", t.f[0], t.f[1]),
+                format!(
+                    "{what} on [{}, {}] of the {} side, which {} holds ({}): a traction there \
+                     would have no effect (load only the free part, or move the support)",
+                    s.from.max(t.from),
+                    s.to.min(t.to),
+                    t.side.name(),
+                    s.field,
+                    s.hold.name()
+                ),
+            ));
+        }
     }
     Ok(())
 }
@@ -394,6 +463,87 @@ fn vector(field: &str, v: &[f64]) -> Result<[f64; 2], InputError> {
 /// The limit $g$: in $[10^{-12}, 10^{6}]$.
 fn limit(field: &str, g: f64) -> Result<f64, InputError> {
     in_range(field, g, 1e-12, 1e6)
+}
+
+/// The file's `g`: a number (the limit) or `"none"` (no unilateral limit, $+\infty$).
+fn limit_value(v: &toml::Value) -> Result<f64, InputError> {
+    match v {
+        toml::Value::Float(g) => limit("g", *g),
+        toml::Value::Integer(g) => limit("g", *g as f64),
+        toml::Value::String(s) if s == "none" => Ok(f64::INFINITY),
+        other => Err(InputError::field(
+            "g",
+            other,
+            "a thickness in [1e-12, 1e6] (metres) or \"none\" (no unilateral limit: pure \
+             normal compliance)",
+        )),
+    }
+}
+
+/// The tractions of a `[loads]` table: `f2` on the whole top first (the paper's), then
+/// each `[[loads.traction]]`.
+fn tractions_from(
+    raw: &RawLoads,
+    f2: [f64; 2],
+    geo: &Geometry,
+) -> Result<Vec<Traction>, InputError> {
+    let mut out = vec![];
+    let top = Traction {
+        side: Side::Top,
+        from: 0.0,
+        to: geo.width,
+        f: f2,
+        field: "loads.f2".into(),
+    };
+    check_traction(geo, &top)?;
+    for (i, t) in raw.traction.iter().enumerate() {
+        let field = format!("loads.traction[{i}]");
+        let side = Side::ALL
+            .into_iter()
+            .find(|s| s.name() == t.side)
+            .ok_or_else(|| {
+                InputError::field(
+                    format!("{field}.side"),
+                    &t.side,
+                    "\"left\", \"right\", \"bottom\" or \"top\"",
+                )
+            })?;
+        let len = geo.length(side);
+        let (from, to) = (t.from.unwrap_or(0.0), t.to.unwrap_or(len));
+        if !(from.is_finite() && to.is_finite() && 0.0 <= from && from < to && to <= len) {
+            return Err(InputError::field(
+                &field,
+                format!("from = {from}, to = {to}"),
+                format!(
+                    "0 <= from < to <= {len} (the length of the {} side)",
+                    side.name()
+                ),
+            ));
+        }
+        if side == Side::Bottom {
+            let [a, b] = geo.contact;
+            if from.max(a) < to.min(b) {
+                return Err(InputError::field(
+                    &field,
+                    format!("from = {from}, to = {to}"),
+                    format!(
+                        "a segment of the bottom outside Gamma_3 = [{a}, {b}] (the contact \
+                         boundary's force is the law's)"
+                    ),
+                ));
+            }
+        }
+        let tr = Traction {
+            side,
+            from,
+            to,
+            f: vector(&format!("{field}.f"), &t.f)?,
+            field,
+        };
+        check_traction(geo, &tr)?;
+        out.push(tr);
+    }
+    Ok(out)
 }
 
 /// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`].
@@ -502,21 +652,59 @@ impl Scenario {
             }
         }
         let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
-        let g = limit("g", raw.g)?;
+        let g = limit_value(&raw.g)?;
+        let problem = match raw.problem.as_deref() {
+            None | Some("viscoelastic") => Problem::Viscoelastic,
+            Some("elastic") => Problem::Elastic,
+            Some("steady") => Problem::Steady,
+            Some(other) => {
+                return Err(InputError::field(
+                    "problem",
+                    other,
+                    "\"viscoelastic\" (the paper's Kelvin-Voigt evolution, the default), \
+                     \"elastic\" (no viscosity: each time step the static problem with the loads \
+                     at t_n) or \"steady\" (no viscosity, one solve at t = T)",
+                ));
+            }
+        };
         let m = &raw.material;
         let (e, kappa) = elasticity_from(m)?;
-        finite("material.alpha", m.alpha)?;
-        let beta = positive("material.beta", m.beta)?;
-        if 2.0 * m.alpha + beta <= 0.0 {
-            return Err(InputError::field(
-                "material.alpha",
-                m.alpha,
-                format!(
-                    "a value > -beta/2 = {} (the viscosity tensor must be positive definite)",
-                    -beta / 2.0
-                ),
-            ));
-        }
+        let (alpha, beta) = if problem.viscous() {
+            let need = |field: &str, v: Option<f64>| {
+                v.ok_or_else(|| {
+                    InputError::field(
+                        format!("material.{field}"),
+                        "nothing",
+                        "a number: a viscoelastic body needs the viscosity alpha and beta \
+                         (or set problem = \"elastic\" or \"steady\")",
+                    )
+                })
+            };
+            let alpha = finite("material.alpha", need("alpha", m.alpha)?)?;
+            let beta = positive("material.beta", need("beta", m.beta)?)?;
+            if 2.0 * alpha + beta <= 0.0 {
+                return Err(InputError::field(
+                    "material.alpha",
+                    alpha,
+                    format!(
+                        "a value > -beta/2 = {} (the viscosity tensor must be positive definite)",
+                        -beta / 2.0
+                    ),
+                ));
+            }
+            (alpha, beta)
+        } else {
+            for (field, v) in [("alpha", m.alpha), ("beta", m.beta)] {
+                if v.is_some() {
+                    return Err(InputError::field(
+                        format!("material.{field}"),
+                        "a value",
+                        format!("nothing: problem = \"{}\" has no viscosity", problem.name()),
+                    ));
+                }
+            }
+            (0.0, 0.0)
+        };
         let f0 = vector("loads.f0", &raw.loads.f0)?;
         let f2 = vector("loads.f2", &raw.loads.f2)?;
         let history = match &raw.loads.history {
@@ -525,18 +713,14 @@ impl Scenario {
         };
         history.validate("loads.history", t_end)?;
         let f0_modulation = bounded("loads.f0_modulation", raw.loads.f0_modulation, 1e6)?;
-        let supports = match raw.geometry.as_ref().map(|g| g.supports.as_str()) {
-            None | Some("paper") => Supports::Paper,
-            Some("rollers") => Supports::Rollers,
-            Some(other) => {
-                return Err(InputError::field(
-                    "geometry.supports",
-                    other,
-                    "\"paper\" or \"rollers\"",
-                ));
-            }
-        };
-        let pattern = match raw.geometry.as_ref().map(|g| g.pattern.as_str()) {
+        let rg = raw.geometry.as_ref();
+        let geometry = Geometry::from_toml(
+            rg.and_then(|g| g.width),
+            rg.and_then(|g| g.height),
+            rg.and_then(|g| g.supports.as_ref()),
+            rg.and_then(|g| g.contact.as_deref()),
+        )?;
+        let pattern = match rg.map(|g| g.pattern.as_str()) {
             None | Some("diagonal") => Pattern::Diagonal,
             Some("antidiagonal") => Pattern::Antidiagonal,
             Some("crisscross") => Pattern::CrissCross,
@@ -549,22 +733,24 @@ impl Scenario {
             }
         };
         let law = law_from(&raw.law)?;
-        check_traction(supports, "loads.f2", f2)?;
+        let tractions = tractions_from(&raw.loads, f2, &geometry)?;
         Ok(Scenario {
             name: raw.name,
             description: raw.description,
             t_end,
             g,
+            problem,
             e,
             kappa,
-            alpha: m.alpha,
+            alpha,
             beta,
             f0,
             f2,
+            tractions,
             f0_modulation,
             history,
             law,
-            supports,
+            geometry,
             pattern,
         })
     }
@@ -592,7 +778,16 @@ impl Scenario {
             self.f0 = v;
         }
         if let Some(v) = f2 {
-            check_traction(self.supports, "f2", v)?;
+            check_traction(
+                &self.geometry,
+                &Traction {
+                    side: Side::Top,
+                    from: 0.0,
+                    to: self.geometry.width,
+                    f: v,
+                    field: "f2".into(),
+                },
+            )?;
             self.f2 = v;
         }
         Ok(self)
@@ -623,14 +818,25 @@ impl Scenario {
     /// so it holds exactly when H(f)'s two conditions hold and $0 \in \partial_{Cl} j(0)$.
     pub fn time_hypotheses(&self) -> TimeHypotheses {
         let phi0 = self.history.phi(0.0);
-        let f2_zero = self.f2.iter().all(|&c| phi0 * c == 0.0);
+        let f2_zero = self
+            .tractions()
+            .iter()
+            .all(|t| t.f.iter().all(|&c| phi0 * c == 0.0));
         // The body force is smooth in x; it lies in V when it vanishes on the
-        // prescribed components of the boundary (sampled at the nodes of a mesh whose
-        // nodes include every support's end points).
-        let mesh = self.mesh(8).expect("n = 8 is a valid mesh");
-        let f0_in_v = mesh.nodes.iter().zip(&mesh.fixed).all(|(x, fixed)| {
-            let shape = 1.0 + self.f0_modulation * (std::f64::consts::PI * x[0]).cos();
-            (0..2).all(|c| !fixed[c] || phi0 * self.f0[c] * shape == 0.0)
+        // components each support holds: sampled at each held segment's ends and middle
+        // (the force varies only with x, so on a side it is constant and on the top or
+        // bottom it vanishes on a segment only if its factor does).
+        let shape = |x: f64| 1.0 + self.f0_modulation * (std::f64::consts::PI * x).cos();
+        let f0_in_v = self.geometry.supports.iter().all(|s| {
+            let fixed = s.hold.fixes(s.side);
+            [s.from, 0.5 * (s.from + s.to), s.to].iter().all(|&a| {
+                let x = match s.side {
+                    Side::Left => 0.0,
+                    Side::Right => self.geometry.width,
+                    Side::Bottom | Side::Top => a,
+                };
+                (0..2).all(|c| !fixed[c] || phi0 * self.f0[c] * shape(x) == 0.0)
+            })
         });
         let zero_in_clarke = {
             let d = self.law.clarke(0.0);
@@ -646,17 +852,57 @@ impl Scenario {
     // ANCHOR_END: time_hypotheses
 
     /// Whether `other` gives the same step matrix $A + kB$ for every $n$ and $N$:
-    /// the same supports, material and final time (the geometry is fixed).
+    /// the same geometry, material and final time.
     pub fn same_operator(&self, other: &Scenario) -> bool {
-        self.supports == other.supports
+        self.geometry == other.geometry
             && self.pattern == other.pattern
             && [self.e, self.kappa, self.alpha, self.beta, self.t_end]
                 == [other.e, other.kappa, other.alpha, other.beta, other.t_end]
     }
 
-    /// The mesh with $n$ contact segments and this scenario's supports and pattern.
+    /// The mesh with $n$ segments on the bottom and this scenario's geometry and
+    /// pattern; every traction's ends must be nodes too.
     pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
-        Mesh::build(n, self.supports, self.pattern)
+        let mesh = Mesh::build(n, &self.geometry, self.pattern)?;
+        for t in &self.tractions {
+            let d = if t.side.normal() == 0 {
+                mesh.dy()
+            } else {
+                mesh.dx()
+            };
+            for (end, v) in [("from", t.from), ("to", t.to)] {
+                if !crate::mesh::on_line(v, d) {
+                    return Err(InputError::field(
+                        format!("{}.{end}", t.field),
+                        v,
+                        format!(
+                            "a mesh line of the mesh with n = {n}, where the {} side has a node \
+                             every {d}: choose n so that every traction's ends are nodes",
+                            t.side.name()
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(mesh)
+    }
+
+    /// Every traction: the paper's $f_2$ on the whole top, then the file's others.
+    pub fn tractions(&self) -> Vec<Traction> {
+        let mut out = vec![Traction {
+            side: Side::Top,
+            from: 0.0,
+            to: self.geometry.width,
+            f: self.f2,
+            field: "loads.f2".into(),
+        }];
+        out.extend(self.tractions.iter().cloned());
+        out
+    }
+
+    /// The load vector of this scenario's loads on `mesh` (see [`crate::assembly::load`]).
+    pub fn load_vector(&self, mesh: &Mesh, dofs: &crate::mesh::Dofs) -> Vec<f64> {
+        crate::assembly::load(mesh, dofs, self.f0, &self.tractions(), self.f0_modulation)
     }
 
     /// The same scenario on meshes of another pattern.
@@ -683,6 +929,9 @@ impl Scenario {
     /// coefficients in the same ratio), else `None`.
     pub fn relaxation_time(&self) -> Option<f64> {
         let (g, c) = (self.elasticity(), self.viscosity());
+        if !self.problem.viscous() {
+            return Some(0.0);
+        }
         let (ta, tb) = (c.a / g.a, c.b / g.b);
         ((ta - tb).abs() <= 1e-12 * ta.abs().max(tb.abs()) && ta > 0.0).then_some(ta)
     }

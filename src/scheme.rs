@@ -48,7 +48,7 @@ impl Discretisation {
         let mesh: std::sync::Arc<Mesh> = mesh.into();
         let dofs = Dofs::new(&mesh, true);
         let [a, b] = assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
-        let f = assembly::load(&mesh, &dofs, scn.f0, scn.f2, scn.f0_modulation);
+        let f = scn.load_vector(&mesh, &dofs);
         let contact_dofs = mesh
             .contact
             .iter()
@@ -228,7 +228,7 @@ pub(crate) fn step_hessian_min(
 /// segments, without running the scheme: $\lambda_{\min}$ of the step Hessian in the
 /// worst case (see [`Run::hessian_min`]). Positive: every step is strictly convex.
 pub fn step_curvature(scn: &Scenario, n: usize, steps: usize) -> Result<f64, RunError> {
-    check_memory(n)?;
+    check_memory(n, crate::mesh::rows(n, &scn.geometry))?;
     let disc = Discretisation::new(scn, n)?;
     let k = scn.t_end / steps as f64;
     let op = StepOperator::new(
@@ -517,7 +517,7 @@ fn check_batch(
         )
         .into());
     }
-    check_memory(opt.n)?;
+    check_memory(opt.n, crate::mesh::rows(opt.n, &scn.geometry))?;
     Ok(())
 }
 
@@ -542,13 +542,7 @@ pub(crate) fn discretise(
     };
     let mut loads = vec![disc.f.clone()];
     for other in &scns[1..] {
-        loads.push(assembly::load(
-            &disc.mesh,
-            &disc.dofs,
-            other.f0,
-            other.f2,
-            other.f0_modulation,
-        ));
+        loads.push(other.load_vector(&disc.mesh, &disc.dofs));
     }
     Ok((disc, loads))
 }

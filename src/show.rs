@@ -81,9 +81,30 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
     let _ = writeln!(s, "scenario `{}`: {}", scn.name, scn.description);
     let _ = writeln!(
         s,
-        "  T = {}, g = {}, supports: {:?}",
-        scn.t_end, scn.g, scn.supports
+        "  T = {}, g = {}, problem: {}",
+        scn.t_end,
+        if scn.g.is_finite() {
+            scn.g.to_string()
+        } else {
+            "none (no unilateral limit)".to_string()
+        },
+        scn.problem.name()
     );
+    for line in scn.geometry.describe() {
+        let _ = writeln!(s, "{line}");
+    }
+    for t in &scn.tractions {
+        let _ = writeln!(
+            s,
+            "  traction {}: [{}, {}] on the {} side over [{}, {}]",
+            t.field,
+            t.f[0],
+            t.f[1],
+            t.side.name(),
+            t.from,
+            t.to
+        );
+    }
     let (g_t, c_t) = (scn.elasticity(), scn.viscosity());
     let _ = writeln!(
         s,

@@ -2,6 +2,7 @@
 //! matrix, and the load vector's total force.
 
 use evhi::assembly::{load, matvec, stiffness};
+use evhi::geometry::{Side, Traction};
 use evhi::material::Isotropic;
 use evhi::mesh::{Dofs, Mesh};
 
@@ -105,7 +106,20 @@ fn matrices_are_symmetric() {
 fn load_vector_sums_to_the_total_force() {
     let mesh = Mesh::structured(8).unwrap();
     let dofs = Dofs::new(&mesh, false);
-    let f = load(&mesh, &dofs, [0.5, -2.0], [3.0, -7.0], 0.0);
+    let top = |f: [f64; 2], side: Side, from: f64, to: f64| Traction {
+        side,
+        from,
+        to,
+        f,
+        field: "test".into(),
+    };
+    let f = load(
+        &mesh,
+        &dofs,
+        [0.5, -2.0],
+        &[top([3.0, -7.0], Side::Top, 0.0, 2.0)],
+        0.0,
+    );
     let (mut fx, mut fy) = (0.0, 0.0);
     for v in 0..mesh.nodes.len() {
         fx += f[dofs.of(v, 0).unwrap()];
@@ -114,4 +128,34 @@ fn load_vector_sums_to_the_total_force() {
     // area 2, top length 2
     assert!((fx - (0.5 * 2.0 + 3.0 * 2.0)).abs() < 1e-12);
     assert!((fy - (-2.0 * 2.0 - 7.0 * 2.0)).abs() < 1e-12);
+    // Tractions on segments of each side: each adds its density times its length,
+    // and nothing outside its segment.
+    let f = load(
+        &mesh,
+        &dofs,
+        [0.0, 0.0],
+        &[
+            top([1.0, 0.0], Side::Left, 0.25, 0.75),
+            top([0.0, 2.0], Side::Right, 0.0, 0.5),
+            top([4.0, 0.0], Side::Top, 1.5, 2.0),
+        ],
+        0.0,
+    );
+    let (mut fx, mut fy) = (0.0, 0.0);
+    for v in 0..mesh.nodes.len() {
+        fx += f[dofs.of(v, 0).unwrap()];
+        fy += f[dofs.of(v, 1).unwrap()];
+        let p = mesh.nodes[v];
+        let on_left = p[0] == 0.0 && (0.25..=0.75).contains(&p[1]);
+        let on_top = p[1] == 1.0 && p[0] >= 1.5;
+        if !on_left && !on_top {
+            assert_eq!(
+                f[dofs.of(v, 0).unwrap()],
+                0.0,
+                "x load off the segments at {p:?}"
+            );
+        }
+    }
+    assert!((fx - (1.0 * 0.5 + 4.0 * 0.5)).abs() < 1e-12);
+    assert!((fy - 2.0 * 0.5).abs() < 1e-12);
 }

@@ -3,7 +3,8 @@
 
 use evhi::bisection::{Forest, Leaves};
 use evhi::experiments::graded::{SINGULAR, graded_size};
-use evhi::mesh::{Mesh, Supports};
+use evhi::geometry::Geometry;
+use evhi::mesh::Mesh;
 use std::collections::HashMap;
 
 /// Every edge lies in two triangles, or in one on the boundary of (0,2) x (0,1);
@@ -40,7 +41,7 @@ fn uniform(forest: &mut Forest, from: &Leaves, n: usize) -> Leaves {
 
 #[test]
 fn uniform_bisection_halves_the_mesh_size_and_conforms() {
-    let (mut forest, root) = Forest::new(4, Supports::Paper).unwrap();
+    let (mut forest, root) = Forest::new(4, &Geometry::paper()).unwrap();
     let mut leaves = root;
     for n in [8, 16, 32] {
         leaves = uniform(&mut forest, &leaves, n);
@@ -56,7 +57,7 @@ fn uniform_bisection_halves_the_mesh_size_and_conforms() {
 
 #[test]
 fn graded_meshes_conform_and_are_finer_near_the_corners() {
-    let (mut forest, root) = Forest::new(4, Supports::Paper).unwrap();
+    let (mut forest, root) = Forest::new(4, &Geometry::paper()).unwrap();
     let n = 16;
     let leaves = forest.refine(&root, |f, t| {
         let p = f.triangle(t);
@@ -95,7 +96,7 @@ fn graded_meshes_conform_and_are_finer_near_the_corners() {
 /// is exact for linear fields everywhere.
 #[test]
 fn interpolation_through_the_forest_is_exact() {
-    let (mut forest, root) = Forest::new(4, Supports::Paper).unwrap();
+    let (mut forest, root) = Forest::new(4, &Geometry::paper()).unwrap();
     let coarse = uniform(&mut forest, &root, 8);
     let fine = forest.refine(&coarse, |f, t| {
         let p = f.triangle(t);
@@ -141,7 +142,7 @@ fn the_scheme_runs_on_bisected_meshes() {
     use evhi::scheme::Settings;
     use std::sync::Arc;
     let scn = evhi::scenario::Scenario::load("figure").unwrap();
-    let (mut forest, root) = Forest::new(4, Supports::Paper).unwrap();
+    let (mut forest, root) = Forest::new(4, &Geometry::paper()).unwrap();
     let mut leaves = root;
     for n in [8, 16] {
         leaves = uniform(&mut forest, &leaves, n);

@@ -1,8 +1,9 @@
 //! The mesh patterns, the general P1 interpolation between nested meshes, the
 //! nested-dissection ordering of criss-cross meshes and the exact P1 norms.
 
+use evhi::geometry::Geometry;
 use evhi::material::Isotropic;
-use evhi::mesh::{Interpolation, Mesh, Pattern, Supports};
+use evhi::mesh::{Interpolation, Mesh, Pattern};
 use evhi::norms::field_norms;
 use evhi::scenario::Scenario;
 
@@ -15,7 +16,7 @@ const PATTERNS: [Pattern; 3] = [
 #[test]
 fn every_pattern_tiles_the_domain_counter_clockwise() {
     for p in PATTERNS {
-        let m = Mesh::build(8, Supports::Paper, p).unwrap();
+        let m = Mesh::build(8, &Geometry::paper(), p).unwrap();
         let per_cell = if p == Pattern::CrissCross { 4 } else { 2 };
         assert_eq!(m.triangles.len(), per_cell * 8 * 4, "{p:?}");
         let area: f64 = m
@@ -39,8 +40,8 @@ fn interpolation_reproduces_linear_fields() {
     let lin = |p: [f64; 2]| [1.0 + 2.0 * p[0] - 3.0 * p[1], -0.5 * p[0] + 4.0 * p[1]];
     for pc in PATTERNS {
         for pf in PATTERNS {
-            let coarse = Mesh::build(4, Supports::Paper, pc).unwrap();
-            let fine = Mesh::build(16, Supports::Paper, pf).unwrap();
+            let coarse = Mesh::build(4, &Geometry::paper(), pc).unwrap();
+            let fine = Mesh::build(16, &Geometry::paper(), pf).unwrap();
             let vals: Vec<[f64; 2]> = coarse.nodes.iter().map(|&p| lin(p)).collect();
             let out = Interpolation::new(&coarse, &fine).apply(&vals);
             for (p, v) in fine.nodes.iter().zip(&out) {
@@ -88,7 +89,7 @@ fn interpolation_equals_the_structured_prolongation() {
     assert!((lhs - rhs).abs() < 1e-12 * lhs.abs(), "{lhs} against {rhs}");
     // Only nested meshes of the paper's pattern.
     assert!(Interpolation::nested(&fine, &coarse).is_err());
-    let cross = Mesh::build(32, Supports::Paper, Pattern::CrissCross).unwrap();
+    let cross = Mesh::build(32, &Geometry::paper(), Pattern::CrissCross).unwrap();
     assert!(Interpolation::nested(&coarse, &cross).is_err());
 }
 
@@ -99,7 +100,7 @@ fn interpolation_equals_the_structured_prolongation() {
 fn field_norms_are_exact_for_linear_fields() {
     let g = Isotropic { a: 3.0, b: 5.0 };
     for p in PATTERNS {
-        let m = Mesh::build(8, Supports::Paper, p).unwrap();
+        let m = Mesh::build(8, &Geometry::paper(), p).unwrap();
         let v: Vec<[f64; 2]> = m.nodes.iter().map(|q| [q[0], q[1] + 1.0]).collect();
         let n = field_norms(&m, &g, &v);
         let close = |a: f64, b: f64| (a - b).abs() < 1e-12 * b.abs().max(1.0);

@@ -73,7 +73,7 @@ fn solve(scn: &Scenario, name: &str, reduced: bool, pattern: Pattern) -> Run {
         opt.certificate_tol = f64::INFINITY;
     }
     if pattern != Pattern::Diagonal {
-        opt.mesh = Some(Arc::new(Mesh::build(16, scn.supports, pattern).unwrap()));
+        opt.mesh = Some(Arc::new(Mesh::build(16, &scn.geometry, pattern).unwrap()));
     }
     let r = if reduced {
         evhi::reduced::run(scn, &opt, solver.as_mut(), &|_| false, &mut |_, _, _, _| {})

@@ -18,7 +18,7 @@ pub struct ShowArgs {
 pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     crate::mesh::check_n(args.n)?;
-    crate::scheme::check_memory(args.n)?;
+    crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
     if args.steps == 0 || args.steps > 1_000_000 {
         return Err(crate::error::InputError::field(
             "steps",

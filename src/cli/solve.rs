@@ -159,7 +159,8 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
     if let Some(every) = args.vtk_every {
-        check_vtk_volume(&args.out, args.n, args.steps, every)?;
+        let ny = crate::mesh::rows(args.n, &scn.geometry);
+        check_vtk_volume(&args.out, args.n, ny, args.steps, every)?;
     }
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
@@ -314,10 +315,11 @@ pub const VTK_CAP_BYTES: f64 = 20e9;
 fn check_vtk_volume(
     out: &std::path::Path,
     n: usize,
+    ny: usize,
     steps: usize,
     every: u64,
 ) -> Result<(), crate::error::InputError> {
-    let nodes = ((n + 1) * (n / 2 + 1)) as f64;
+    let nodes = ((n + 1) * (ny + 1)) as f64;
     let files = (steps as u64).div_ceil(every) as f64 + 1.0;
     let bytes = 120.0 * nodes * files;
     let free = free_bytes(

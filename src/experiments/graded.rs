@@ -27,8 +27,9 @@
 
 use super::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::bisection::{Forest, Leaves};
-use crate::mesh::{Dofs, Mesh, Supports};
+use crate::bisection::{Forest, Leaves, centroid};
+use crate::geometry::Geometry;
+use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::Settings;
@@ -79,22 +80,9 @@ fn diagonal(n: usize) -> f64 {
 }
 
 /// The largest longest edge allowed at `x` on the mesh of level `n` graded towards
-/// `points`.
+/// `points` ([`crate::bisection::graded_size`] with $\mu$ = [`MU`]).
 pub fn graded_size(n: usize, x: [f64; 2], points: &[[f64; 2]]) -> f64 {
-    let d = diagonal(n);
-    let r = points
-        .iter()
-        .map(|p| (x[0] - p[0]).hypot(x[1] - p[1]))
-        .fold(f64::INFINITY, f64::min);
-    d * r.max(d.powf(1.0 / MU)).powf(1.0 - MU).min(1.0)
-}
-
-fn centroid(f: &Forest, t: usize) -> [f64; 2] {
-    let p = f.triangle(t);
-    [
-        (p[0][0] + p[1][0] + p[2][0]) / 3.0,
-        (p[0][1] + p[1][1] + p[2][1]) / 3.0,
-    ]
+    crate::bisection::graded_size(diagonal(n), x, points, MU)
 }
 
 /// Refines `from` to the mesh of level `n` graded towards `points` (uniform if none).
@@ -219,7 +207,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             .sum::<usize>()
             + 1,
     );
-    let (mut forest, root) = Forest::new(4, Supports::Paper)?;
+    let (mut forest, root) = Forest::new(4, &Geometry::paper())?;
     // Meshes first (the forest grows), then the runs.
     let mut families: Vec<(&'static str, Vec<(usize, Leaves)>)> = vec![];
     for (f, (family, points)) in FAMILIES.iter().enumerate() {

@@ -117,7 +117,7 @@ fn nodes_table(scenes: &[(f64, &Scene)], stride: usize) -> Table {
     let (mut g, mut x, mut y, mut ux, mut uy) = (vec![], vec![], vec![], vec![], vec![]);
     for (gv, sc) in scenes {
         let n = sc.mesh.n;
-        for j in (0..=n / 2).step_by(stride) {
+        for j in (0..=sc.mesh.ny).step_by(stride) {
             for i in (0..=n).step_by(stride) {
                 let v = j * (n + 1) + i;
                 g.push(*gv);
@@ -279,6 +279,23 @@ impl Panel {
     }
 }
 
+impl Panel {
+    /// The rectangle's width and height: the lattice's extent.
+    fn width(&self) -> f64 {
+        self.x.iter().copied().fold(0.0, f64::max)
+    }
+    fn height(&self) -> f64 {
+        self.y.iter().copied().fold(0.0, f64::max)
+    }
+    /// The x span the mesh panel shows, and the y span it must show.
+    fn x_span(&self) -> f64 {
+        self.width() + 0.1
+    }
+    fn y_span(&self) -> f64 {
+        self.height() + 0.18
+    }
+}
+
 struct SceneFigure {
     panels: Vec<Panel>,
     title: String,
@@ -294,12 +311,12 @@ impl Figure for SceneFigure {
         let root = root.titled(&self.title, ("sans-serif", 24)).map_err(e2s)?;
         let rows = root.split_evenly((self.panels.len(), 1));
         for (p, area) in self.panels.iter().zip(rows.iter()) {
-            // The mesh panel tall enough to show x in [-0.05, 2.05] and y in
-            // [-0.16, 1.02] at true aspect (plus its caption and labels); the forces
-            // get the rest.
+            // The mesh panel tall enough to show x in [-0.05, W + 0.05] and y in
+            // [-0.16, H + 0.02] at true aspect (plus its caption and labels); the
+            // forces get the rest.
             let (w, h) = area.dim_in_pixel();
             let plot_w = w.saturating_sub(MESH_FRAME.0) as f64;
-            let need = (plot_w * MESH_Y_SPAN / MESH_X_SPAN) as u32 + MESH_FRAME.1;
+            let need = (plot_w * p.y_span() / p.x_span()) as u32 + MESH_FRAME.1;
             let (top, bottom) = area.split_vertically(need.min(h * 3 / 4));
             draw_mesh(p, &top)?;
             draw_forces(p, &bottom, self.paper_law)?;
@@ -311,8 +328,6 @@ impl Figure for SceneFigure {
 /// The mesh panel's x span, the y span it must show, and its frame (pixels
 /// outside the plotting area: y labels and margins across; caption, x labels
 /// and margins down).
-const MESH_X_SPAN: f64 = 2.1;
-const MESH_Y_SPAN: f64 = 1.18;
 const MESH_FRAME: (u32, u32) = (66, 74);
 
 fn draw_mesh<DB: DrawingBackend>(
@@ -334,7 +349,7 @@ fn draw_mesh<DB: DrawingBackend>(
         .x_label_area_size(30)
         .y_label_area_size(50)
         // True aspect: as many metres per pixel down as across.
-        .build_cartesian_2d(-0.05..2.05, -0.16..-0.16 + aspect_span(area))
+        .build_cartesian_2d(-0.05..p.width() + 0.05, -0.16..-0.16 + aspect_span(p, area))
         .map_err(e2s)?;
     chart
         .configure_mesh()
@@ -344,21 +359,29 @@ fn draw_mesh<DB: DrawingBackend>(
         .label_style(("sans-serif", 16))
         .draw()
         .map_err(e2s)?;
-    // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g).
+    // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g;
+    // none without a limit, the layer then fills the panel's foot).
+    let right = p.width() + 0.05;
+    let base = p.g.min(0.16);
+    if p.g.is_finite() {
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(-0.05, -0.16), (right, -p.g)],
+                RGBColor(120, 120, 120).mix(0.5).filled(),
+            )))
+            .map_err(e2s)?;
+    }
     chart
         .draw_series(std::iter::once(Rectangle::new(
-            [(-0.05, -0.16), (2.05, -p.g)],
-            RGBColor(120, 120, 120).mix(0.5).filled(),
-        )))
-        .map_err(e2s)?;
-    chart
-        .draw_series(std::iter::once(Rectangle::new(
-            [(-0.05, -p.g), (2.05, 0.0)],
+            [
+                (-0.05, if p.g.is_finite() { -p.g } else { -base }),
+                (right, 0.0),
+            ],
             RGBColor(240, 200, 120).mix(0.4).filled(),
         )))
         .map_err(e2s)?;
     let nx = p.cells;
-    let ny = nx / 2;
+    let ny = (p.x.len() / (nx + 1)).saturating_sub(1);
     let at = |i: usize, j: usize| {
         let v = j * (nx + 1) + i;
         (p.x[v] + p.ux[v], p.y[v] + p.uy[v])
@@ -396,11 +419,14 @@ fn draw_mesh<DB: DrawingBackend>(
 }
 
 /// The y span that the area's plotting region shows at true aspect.
-fn aspect_span<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shift>) -> f64 {
+fn aspect_span<DB: DrawingBackend>(
+    p: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+) -> f64 {
     let (w, h) = area.dim_in_pixel();
     let plot_w = w.saturating_sub(MESH_FRAME.0).max(1) as f64;
     let plot_h = h.saturating_sub(MESH_FRAME.1).max(1) as f64;
-    (MESH_X_SPAN * plot_h / plot_w).max(MESH_Y_SPAN)
+    (p.x_span() * plot_h / plot_w).max(p.y_span())
 }
 
 fn draw_forces<DB: DrawingBackend>(
@@ -415,7 +441,7 @@ fn draw_forces<DB: DrawingBackend>(
         .margin(8)
         .x_label_area_size(35)
         .y_label_area_size(62)
-        .build_cartesian_2d(-0.05..2.05, 0.0..ymax)
+        .build_cartesian_2d(-0.05..p.width() + 0.05, 0.0..ymax)
         .map_err(e2s)?;
     chart
         .configure_mesh()

@@ -16,7 +16,7 @@
 
 use super::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::assembly::{load, stiffness};
+use crate::assembly::stiffness;
 use crate::linalg::Cholesky;
 use crate::mesh::Dofs;
 use crate::ordering::Ordering;
@@ -117,11 +117,11 @@ fn energies(scn: &Scenario, levels: &[usize], ctx: &Ctx) -> Result<Vec<f64>, Exp
     let mut out = vec![];
     for &n in levels {
         ctx.log(&format!("static control: {} n = {n}", scn.name));
-        crate::scheme::check_memory(n)?;
+        crate::scheme::check_memory(n, n / 2)?;
         let mesh = scn.mesh(n)?;
         let dofs = Dofs::new(&mesh, true);
         let b = stiffness(&mesh, &dofs, &scn.elasticity());
-        let f = load(&mesh, &dofs, scn.f0, scn.f2, scn.f0_modulation);
+        let f = scn.load_vector(&mesh, &dofs);
         let cdofs: Vec<usize> = mesh
             .contact
             .iter()

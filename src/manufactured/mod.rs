@@ -235,8 +235,11 @@ impl<'a> Data<'a> {
 /// The free edges of $\Gamma_2$ on the paper's supports, with their outward normals:
 /// the top edges and the side edges below $y = 1/2$.
 pub fn neumann_edges(mesh: &Mesh) -> Vec<([usize; 2], [f64; 2])> {
-    let mut out: Vec<([usize; 2], [f64; 2])> =
-        mesh.top_edges.iter().map(|&e| (e, [0.0, 1.0])).collect();
+    let mut out: Vec<([usize; 2], [f64; 2])> = mesh
+        .top_edges()
+        .into_iter()
+        .map(|e| (e, [0.0, 1.0]))
+        .collect();
     for (side, normal) in [(0.0, [-1.0, 0.0]), (2.0, [1.0, 0.0])] {
         let mut nodes: Vec<usize> = (0..mesh.nodes.len())
             .filter(|&v| (mesh.nodes[v][0] - side).abs() < 1e-12 && mesh.nodes[v][1] <= 0.5 + 1e-12)

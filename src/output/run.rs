@@ -353,7 +353,7 @@ pub fn write(
 pub fn nodes_table(mesh: &Mesh, disp: &[[f64; 2]], stride: usize) -> Table {
     let (mut x, mut y, mut ux, mut uy) = (vec![], vec![], vec![], vec![]);
     let n = mesh.n;
-    for j in (0..=n / 2).step_by(stride) {
+    for j in (0..=mesh.ny).step_by(stride) {
         for i in (0..=n).step_by(stride) {
             let v = j * (n + 1) + i;
             x.push(mesh.nodes[v][0]);

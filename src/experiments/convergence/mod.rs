@@ -602,7 +602,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 )
                 .into());
             }
-            crate::scheme::check_memory(r)?;
+            crate::scheme::check_memory(r, r / 2)?;
             plan.n_ref = r;
             format!("_ref{r}")
         }
