@@ -15,8 +15,32 @@ pub fn memory_estimate(n: usize) -> f64 {
 /// (28.5 M at $n = 512$), and a run peaks at about 20 bytes per entry of the factor
 /// (529 MB at $n = 512$, `data/bench.csv`), plus 30 MB.
 pub fn memory_estimate_rows(n: usize, ny: usize) -> f64 {
-    let dofs = (2 * (n + 1) * (ny + 1)) as f64;
+    memory_for_dofs(2 * (n + 1) * (ny + 1))
+}
+
+/// Estimated peak memory of a run with `dofs` unknowns, bytes (the grid's rule of
+/// [`memory_estimate_rows`] applied to any mesh).
+pub fn memory_for_dofs(dofs: usize) -> f64 {
+    let dofs = dofs as f64;
     30e6 + 20.0 * 6.0 * dofs * dofs.log2()
+}
+
+/// Refuses a mesh of `dofs` unknowns (a graded one) whose run would not fit.
+pub fn check_memory_dofs(dofs: usize) -> Result<(), InputError> {
+    let need = memory_for_dofs(dofs);
+    match available_memory() {
+        Some(have) if need > 0.9 * have => Err(InputError::field(
+            "n",
+            format!("a mesh of {dofs} unknowns"),
+            format!(
+                "a mesh that fits in memory: it needs about {:.1} GB, but {:.1} GB are \
+                 available",
+                need / 1e9,
+                have / 1e9
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Memory this process can still obtain, bytes: the least of the machine's

@@ -402,7 +402,7 @@ pub fn run(
     want_field: &dyn Fn(usize) -> bool,
     observe: &mut FieldObserver<'_>,
 ) -> Result<Run, RunError> {
-    crate::scheme::check_steps(opt)?;
+    crate::scheme::check_steps(Some(scn), opt)?;
     crate::scheme::check_memory(opt.n, crate::mesh::rows(opt.n, &scn.geometry))?;
     solver.validate()?;
     let mut timings = Timings::default();

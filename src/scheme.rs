@@ -200,7 +200,7 @@ pub enum RunError {
     },
 }
 
-pub use crate::memory::{available_memory, check_memory, memory_estimate};
+pub use crate::memory::{available_memory, check_memory, check_memory_dofs, memory_estimate};
 
 /// $\lambda_{\min}(S + k\,\mathrm{diag}(w)\,c_{\min})$: the smallest curvature a step can
 /// have, every node on the steepest softening branch ($\lambda_{\min}(S)$ when no slope
@@ -491,7 +491,7 @@ fn check_batch(
     opt: &Settings,
     solvers: &[&mut dyn StepSolver],
 ) -> Result<(), RunError> {
-    check_steps(opt)?;
+    check_steps(scns.first(), opt)?;
     for s in solvers {
         s.validate()?;
     }
@@ -521,10 +521,24 @@ fn check_batch(
     Ok(())
 }
 
-/// Refuses a step count out of range.
-pub(crate) fn check_steps(opt: &Settings) -> Result<(), RunError> {
+/// Refuses a step count out of range, and more than one step of a steady problem.
+pub(crate) fn check_steps(scn: Option<&Scenario>, opt: &Settings) -> Result<(), RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
+    }
+    if let Some(scn) = scn
+        && scn.problem == crate::scenario::Problem::Steady
+        && opt.steps != 1
+    {
+        return Err(InputError::field(
+            "steps",
+            opt.steps,
+            format!(
+                "1 for scenario `{}`: problem = \"steady\" is one solve at t = T",
+                scn.name
+            ),
+        )
+        .into());
     }
     Ok(())
 }

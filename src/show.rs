@@ -79,19 +79,40 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         let _ = writeln!(s, "warning: {msg}");
     };
     let _ = writeln!(s, "scenario `{}`: {}", scn.name, scn.description);
+    // A preset scene unchanged keeps the one-line form; any other is spelled out.
+    let geo = &scn.geometry;
+    let preset = match geo.preset {
+        Some("paper") if *geo == crate::geometry::Geometry::paper() => Some("Paper"),
+        Some("rollers") if *geo == crate::geometry::Geometry::rollers() => Some("Rollers"),
+        _ => None,
+    };
     let _ = writeln!(
         s,
-        "  T = {}, g = {}, problem: {}",
+        "  T = {}, g = {}, supports: {}",
         scn.t_end,
         if scn.g.is_finite() {
             scn.g.to_string()
         } else {
-            "none (no unilateral limit)".to_string()
+            "none (no unilateral limit: pure normal compliance)".to_string()
         },
-        scn.problem.name()
+        preset.unwrap_or("as below")
     );
-    for line in scn.geometry.describe() {
-        let _ = writeln!(s, "{line}");
+    if preset.is_none() {
+        for line in geo.describe() {
+            let _ = writeln!(s, "{line}");
+        }
+    }
+    if !scn.problem.viscous() {
+        let _ = writeln!(
+            s,
+            "  problem: {} (no viscosity: {})",
+            scn.problem.name(),
+            if scn.problem == crate::scenario::Problem::Steady {
+                "one solve of the static problem with the loads at t = T"
+            } else {
+                "each time step the static problem with the loads at t_n"
+            }
+        );
     }
     for t in &scn.tractions {
         let _ = writeln!(
@@ -121,6 +142,13 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         c_t.coercivity()
     );
     match scn.relaxation_time() {
+        Some(_) if !scn.problem.viscous() => {
+            let _ = writeln!(
+                s,
+                "  C = 0: no viscosity; A = 0, so the reduced time loop applies with c = 0 (each \
+                 step is the static contact problem alone)"
+            );
+        }
         Some(tau) => {
             let _ = writeln!(
                 s,

@@ -18,12 +18,29 @@ pub struct SolveArgs {
     /// of a scenario TOML file (see data/scenarios/).
     #[arg(long, default_value = "figure")]
     pub scenario: String,
-    /// Contact segments n = 1/h on Γ3 (a multiple of 4; the paper's Fig. 3 uses 128).
+    /// Segments n on the bottom (n = 1/h on the paper's 2 x 1 rectangle; a multiple of
+    /// 4, and every end of a support, traction or Γ3 segment must fall on a node; the
+    /// paper's Fig. 3 uses 128). With `--mesh graded`, the level: the grading starts
+    /// from the cell diagonal of the uniform mesh with this n.
     #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub n: usize,
-    /// Time steps N, k = T/N (the paper uses N = n).
-    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
-    pub steps: usize,
+    /// Time steps N, k = T/N (the paper uses N = n). Default 64; a scenario with
+    /// problem = "steady" is one solve at t = T (1 step, the only value accepted).
+    #[arg(long, allow_hyphen_values = true)]
+    pub steps: Option<usize>,
+    /// The mesh: `uniform` (the structured grid with n segments on the bottom, each
+    /// cell cut by one diagonal, as in the paper) or `graded` (newest-vertex bisection
+    /// refined towards the scene's singular points, which `evhi show` lists: where a
+    /// clamp or roller ends on the side, clamped corners beside a free side). A graded
+    /// mesh is factorised with the AMD ordering on one thread; the outputs are the same.
+    #[arg(long, default_value = "uniform", value_parser = ["uniform", "graded"])]
+    pub mesh: String,
+    /// The grading exponent mu of `--mesh graded` (in [0.05, 0.95]; default 0.4, below
+    /// the clamp end's exponent 1/2): near a singular point at distance r the longest
+    /// edge is at most d (r / L)^(1 - mu), d the uniform mesh's cell diagonal and L the
+    /// rectangle's shorter side.
+    #[arg(long, value_name = "MU", allow_hyphen_values = true)]
+    pub grading: Option<f64>,
     /// Step solver, one of the registry `step::SOLVERS` (each described below; an
     /// uncertified one is judged by its own convergence).
     #[arg(long, default_value = crate::step::DEFAULT_SOLVER, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
@@ -57,9 +74,10 @@ pub struct SolveArgs {
     #[arg(long, default_value_t = crate::scheme::CERTIFICATE_TOL)]
     pub certificate_tol: f64,
     /// Fill-reducing ordering of A + kB: `nd` (nested dissection of the grid, whose
-    /// two halves two threads solve at once) or `amd` (approximate minimum degree).
-    #[arg(long, default_value = "nd", value_parser = ["nd", "amd"])]
-    pub ordering: String,
+    /// two halves two threads solve at once; the default on a uniform mesh) or `amd`
+    /// (approximate minimum degree; the default, and the only one, on a graded mesh).
+    #[arg(long, value_parser = ["nd", "amd"])]
+    pub ordering: Option<String>,
     /// Threads for the triangular sweeps: 1 or 2 (default: 2 with `--ordering nd`,
     /// 1 with `amd`, whose elimination tree has no two halves; `--threads 2 --ordering
     /// amd` is refused). Small meshes, where a second thread does not pay, use one
@@ -126,9 +144,36 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         )
         .into());
     }
+    let steps = match (args.steps, scn.problem) {
+        (None, crate::scenario::Problem::Steady) => 1,
+        (None, _) => 64,
+        (Some(s), _) => s,
+    };
+    let graded = args.mesh == "graded";
+    if args.grading.is_some() && !graded {
+        return Err(crate::error::InputError::field(
+            "grading",
+            args.grading.unwrap_or_default(),
+            "nothing without --mesh graded (the exponent of the graded mesh)",
+        )
+        .into());
+    }
+    let ordering = match (args.ordering.as_deref(), graded) {
+        (Some("nd"), true) => {
+            return Err(crate::error::InputError::field(
+                "ordering",
+                "nd",
+                "amd with --mesh graded (nested dissection cuts the uniform grid's lines)",
+            )
+            .into());
+        }
+        (Some(o), _) => o.to_string(),
+        (None, true) => "amd".to_string(),
+        (None, false) => "nd".to_string(),
+    };
     let entry = crate::step::solver(&args.solver)?;
     let mut solver: Box<dyn StepSolver> = entry.build();
-    let mut opt = Settings::new(args.n, args.steps);
+    let mut opt = Settings::new(args.n, steps);
     opt.certificate_tol = if entry.certified {
         args.certificate_tol
     } else {
@@ -139,7 +184,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         );
         f64::INFINITY
     };
-    opt.ordering = match args.ordering.as_str() {
+    opt.ordering = match ordering.as_str() {
         "amd" => OrderingKind::Amd,
         _ => OrderingKind::NestedDissection,
     };
@@ -156,17 +201,27 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         (Some(t), _) => t == 2,
         (None, kind) => kind == OrderingKind::NestedDissection,
     };
+    // The mesh first: a scene whose segments miss the mesh lines is refused by name.
+    crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
+    let mesh = std::sync::Arc::new(if graded {
+        crate::bisection::graded_mesh(&scn.geometry, args.n, args.grading.unwrap_or(0.4))?
+    } else {
+        scn.mesh(args.n)?
+    });
+    if graded {
+        opt.mesh = Some(mesh.clone());
+        crate::scheme::check_memory_dofs(2 * mesh.nodes.len())?;
+    }
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
     if let Some(every) = args.vtk_every {
-        let ny = crate::mesh::rows(args.n, &scn.geometry);
-        check_vtk_volume(&args.out, args.n, ny, args.steps, every)?;
+        check_vtk_volume(&args.out, mesh.nodes.len(), steps, every)?;
     }
     let mut bar: Option<ProgressBar> = None;
     let started = Instant::now();
-    let steps = args.steps as u64;
-    let mut recorder = Recorder::new(&scn, args.n, args.steps, args.vtk_every)?;
-    let field_steps: Vec<bool> = (0..=args.steps).map(|s| recorder.wants_field(s)).collect();
+    let mut recorder = Recorder::new(&scn, mesh.clone(), steps, args.vtk_every)?;
+    let field_steps: Vec<bool> = (0..=steps).map(|s| recorder.wants_field(s)).collect();
+    let steps = steps as u64;
     let mut observe =
         |n: usize, t: f64, u: Option<&[f64]>, contact: &[crate::certificate::ContactState]| {
             recorder.observe(&out, n, t, u, contact);
@@ -258,7 +313,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let prov = Provenance {
         command: crate::output::run::quote_args(std::env::args().skip(1)),
         solver: solver.name().to_string(),
-        ordering: args.ordering.clone(),
+        ordering: ordering.clone(),
         path: (if reduced { "reduced" } else { "general" }).to_string(),
     };
     crate::output::run::write(
@@ -293,7 +348,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             run.dofs,
             run.contact.len(),
             run.nnz_l,
-            args.ordering,
+            ordering,
             run.sweep_threads
         );
         eprintln!(
@@ -314,12 +369,11 @@ pub const VTK_CAP_BYTES: f64 = 20e9;
 /// [`VTK_CAP_BYTES`] and the free space where the run is written.
 fn check_vtk_volume(
     out: &std::path::Path,
-    n: usize,
-    ny: usize,
+    nodes: usize,
     steps: usize,
     every: u64,
 ) -> Result<(), crate::error::InputError> {
-    let nodes = ((n + 1) * (ny + 1)) as f64;
+    let nodes = nodes as f64;
     let files = (steps as u64).div_ceil(every) as f64 + 1.0;
     let bytes = 120.0 * nodes * files;
     let free = free_bytes(

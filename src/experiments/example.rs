@@ -70,7 +70,7 @@ fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<()
         path: scratch.display().to_string(),
         message: e.to_string(),
     })?;
-    let mut rec = Recorder::new(&scn, n, n, None)?;
+    let mut rec = Recorder::new(&scn, std::sync::Arc::new(scn.mesh(n)?), n, None)?;
     let res = crate::scheme::run_with_states(
         &scn,
         &Settings::new(n, n),

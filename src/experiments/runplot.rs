@@ -107,7 +107,12 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         g,
         n / stride,
         format!(
-            "{scenario} at t = T (true scale), forces on Γ3; h = 1/{n}, {steps} steps, g = {g}{}",
+            "{scenario} at t = T (true scale), forces on Γ3; h = 1/{n}, {steps} steps, {}{}",
+            if g.is_finite() {
+                format!("g = {g}")
+            } else {
+                "no limit".to_string()
+            },
             if stride > 1 {
                 format!(" (mesh drawn every {stride} cells)")
             } else {
@@ -212,7 +217,9 @@ impl Figure for Evolution {
             let ys: Vec<f64> = self.nodes.iter().flat_map(pick).map(|p| p.1).collect();
             let mut lo = ys.iter().copied().fold(0.0, f64::min);
             let mut hi = ys.iter().copied().fold(0.0, f64::max);
-            if which == 1 {
+            // The limit is drawn where there is one (g = "none" has none).
+            let limit = which == 1 && self.g.is_finite();
+            if limit {
                 hi = hi.max(self.g);
             }
             let pad = 0.08 * (hi - lo).max(1e-300);
@@ -232,7 +239,7 @@ impl Figure for Evolution {
                 .axis_desc_style(("sans-serif", 18))
                 .draw()
                 .map_err(e2s)?;
-            if which == 1 {
+            if limit {
                 let grey = RGBColor(120, 120, 120);
                 chart
                     .draw_series(DashedLineSeries::new(

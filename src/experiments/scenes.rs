@@ -94,12 +94,26 @@ pub fn draw_run(
     cells: usize,
     title: String,
 ) -> Result<(), ExpError> {
-    let panels = vec![Panel::from_csv(
-        &dir.join("contact.csv"),
-        &dir.join("nodes.csv"),
-        g,
-        cells,
-    )?];
+    let mut panel = Panel::from_csv(&dir.join("contact.csv"), &dir.join("nodes.csv"), g, cells)?;
+    let tri = dir.join("triangles.csv");
+    if tri.exists() {
+        let t = read_csv(&tri)?;
+        let (a, b, c) = (col_f64(&t, "a")?, col_f64(&t, "b")?, col_f64(&t, "c")?);
+        let nodes = panel.x.len();
+        let mut list = Vec::with_capacity(a.len());
+        for i in 0..a.len() {
+            let v = [a[i], b[i], c[i]].map(|x| x as usize);
+            if v.iter().any(|&k| k >= nodes) {
+                return Err(ExpError::Table {
+                    path: tri.display().to_string(),
+                    message: format!("row {i} names a node beyond the {nodes} of nodes.csv"),
+                });
+            }
+            list.push(v);
+        }
+        panel.triangles = Some(list);
+    }
+    let panels = vec![panel];
     both(
         dir,
         "deformed",
@@ -233,6 +247,8 @@ struct Panel {
     s2: Vec<f64>,
     regime: Vec<String>,
     u_nu: Vec<f64>,
+    /// A mesh that is no lattice (graded): its triangles, node indices into `x`.
+    triangles: Option<Vec<[usize; 3]>>,
 }
 
 impl Panel {
@@ -275,6 +291,7 @@ impl Panel {
             s2: pick(col_f64(&c, "sigma_nu2")?, &cg),
             u_nu: pick(col_f64(&c, "u_nu")?, &cg),
             regime,
+            triangles: None,
         })
     }
 }
@@ -335,8 +352,12 @@ fn draw_mesh<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
 ) -> Result<(), String> {
     let caption = format!(
-        "g = {}: deformed mesh (true scale); contact nodes: {}",
-        p.g,
+        "{}: deformed mesh (true scale); contact nodes: {}",
+        if p.g.is_finite() {
+            format!("g = {}", p.g)
+        } else {
+            "no limit".to_string()
+        },
         regime_order(&p.regime)
             .iter()
             .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
@@ -388,7 +409,13 @@ fn draw_mesh<DB: DrawingBackend>(
     };
     let style = RGBColor(40, 40, 90).stroke_width(1);
     let mut segs = vec![];
-    for j in 0..=ny {
+    let moved = |v: usize| (p.x[v] + p.ux[v], p.y[v] + p.uy[v]);
+    for t in p.triangles.iter().flatten() {
+        for e in 0..3 {
+            segs.push([moved(t[e]), moved(t[(e + 1) % 3])]);
+        }
+    }
+    for j in (0..=ny).filter(|_| p.triangles.is_none()) {
         for i in 0..=nx {
             if i < nx {
                 segs.push([at(i, j), at(i + 1, j)]);

@@ -100,37 +100,42 @@ pub fn peak_rss_mb() -> f64 {
 pub struct Recorder {
     law: crate::law::Law,
     g: f64,
-    n: usize,
     steps: usize,
+    /// The watched contact nodes (indices into the contact nodes) and their x.
     watch: Vec<usize>,
-    evolution: Vec<(usize, f64, usize, ContactState, String)>,
+    watch_x: Vec<f64>,
+    evolution: Vec<(usize, f64, f64, ContactState, String)>,
     counts: Vec<(usize, f64, BTreeMap<String, u64>)>,
-    vtk: Option<(u64, Mesh, Dofs)>,
+    vtk: Option<(u64, std::sync::Arc<Mesh>, Dofs)>,
     series: Vec<(f64, String)>,
     error: Option<OutError>,
 }
 
 impl Recorder {
+    /// The recorder of a run of `scn` on `mesh`: it watches five contact nodes, the
+    /// ends and quarters of the contact nodes' list.
     pub fn new(
         scn: &Scenario,
-        n: usize,
+        mesh: std::sync::Arc<Mesh>,
         steps: usize,
         vtk_every: Option<u64>,
     ) -> Result<Recorder, crate::error::InputError> {
-        let vtk = match vtk_every {
-            Some(k) => {
-                let mesh = scn.mesh(n)?;
-                let dofs = Dofs::new(&mesh, true);
-                Some((k, mesh, dofs))
-            }
-            None => None,
-        };
+        let m = mesh.contact.len();
+        let watch: Vec<usize> = (0..5).map(|q| q * (m.max(1) - 1) / 4).collect();
+        let watch_x = watch
+            .iter()
+            .map(|&i| mesh.nodes[mesh.contact[i]][0])
+            .collect();
+        let vtk = vtk_every.map(|k| {
+            let dofs = Dofs::new(&mesh, true);
+            (k, mesh, dofs)
+        });
         Ok(Recorder {
             law: scn.law.clone(),
             g: scn.g,
-            n,
             steps,
-            watch: (0..5).map(|q| q * n / 4).collect(),
+            watch,
+            watch_x,
             evolution: vec![],
             counts: vec![],
             vtk,
@@ -161,10 +166,10 @@ impl Recorder {
             *counts.entry(c.regime(&self.law, self.g)).or_insert(0) += 1;
         }
         self.counts.push((step, t, counts));
-        for &i in &self.watch {
+        for (&i, &x) in self.watch.iter().zip(&self.watch_x) {
             if let Some(c) = contact.get(i) {
                 self.evolution
-                    .push((step, t, i, *c, c.regime(&self.law, self.g)));
+                    .push((step, t, x, *c, c.regime(&self.law, self.g)));
             }
         }
         if let Some((_, mesh, dofs)) = &self.vtk
@@ -299,20 +304,43 @@ pub fn write(
         "solution.vtu",
         vtu::vtu(mesh, &disp, &run.contact, &codes).as_bytes(),
     )?;
-    out.write_table(
-        "nodes.csv",
-        &nodes_table(mesh, &disp, (run.n / 32).max(1)),
-        &header,
-    )?;
+    if mesh.pattern == crate::mesh::Pattern::Bisected {
+        // No lattice: every node, and the triangles the figure draws.
+        let col = |c: usize| mesh.nodes.iter().map(|p| p[c]).collect();
+        let dcol = |c: usize| disp.iter().map(|d| d[c]).collect();
+        out.write_table(
+            "nodes.csv",
+            &Table::new()
+                .f64("x", col(0))
+                .f64("y", col(1))
+                .f64("ux", dcol(0))
+                .f64("uy", dcol(1)),
+            &header,
+        )?;
+        let corner = |c: usize| mesh.triangles.iter().map(|t| t[c] as u64).collect();
+        out.write_table(
+            "triangles.csv",
+            &Table::new()
+                .u64("a", corner(0))
+                .u64("b", corner(1))
+                .u64("c", corner(2)),
+            &header,
+        )?;
+    } else {
+        out.write_table(
+            "nodes.csv",
+            &nodes_table(mesh, &disp, (run.n / 32).max(1)),
+            &header,
+        )?;
+    }
     // The evolution at five contact nodes, and the regime counts.
-    let h = 2.0 / rec.n as f64;
     let ev = &rec.evolution;
     out.write_table(
         "evolution.csv",
         &Table::new()
             .u64("step", ev.iter().map(|e| e.0 as u64).collect())
             .f64("t", ev.iter().map(|e| e.1).collect())
-            .f64("x", ev.iter().map(|e| e.2 as f64 * h).collect())
+            .f64("x", ev.iter().map(|e| e.2).collect())
             .f64("u_nu", ev.iter().map(|e| e.3.u_nu).collect())
             .f64("sigma_nu1", ev.iter().map(|e| e.3.sigma_nu1).collect())
             .f64("sigma_nu2", ev.iter().map(|e| e.3.sigma_nu2).collect())
