@@ -1134,3 +1134,126 @@ fn two_threads_with_amd_are_refused_and_amd_alone_runs_on_one() {
     let summary = std::fs::read_to_string(dir.join("run/summary.csv")).unwrap();
     assert!(summary.contains("amd"));
 }
+
+/// Issue 25's scene from the command line: the cantilever example on a uniform and on a
+/// graded mesh, viscoelastic and steady. The VTK file and the figures follow the
+/// rectangle (2 x 0.5, every node inside it, the clamped corner no contact node), the
+/// graded run writes its triangles, and the options that do not fit are refused by name.
+#[test]
+fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
+    let dir = scratch("scene");
+    let file = "data/scenarios/examples/cantilever.toml";
+    let steady = dir.join("steady.toml");
+    let text = std::fs::read_to_string(file).unwrap();
+    let text: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+        .collect();
+    std::fs::write(
+        &steady,
+        text.join("\n")
+            .replace("problem = \"viscoelastic\"", "problem = \"steady\""),
+    )
+    .unwrap();
+    for (name, scenario, extra) in [
+        (
+            "uniform",
+            std::path::PathBuf::from(file),
+            vec!["--steps", "16"],
+        ),
+        (
+            "graded",
+            std::path::PathBuf::from(file),
+            vec!["--steps", "16", "--mesh", "graded"],
+        ),
+        ("steady", steady.clone(), vec![]),
+        (
+            "steady-graded",
+            steady.clone(),
+            vec!["--mesh", "graded", "--grading", "0.3"],
+        ),
+    ] {
+        let out = dir.join(name);
+        succeed(
+            evhi()
+                .args(["solve", "--scenario"])
+                .arg(&scenario)
+                .args(["--n", "16", "--out"])
+                .arg(&out)
+                .args(&extra),
+        );
+        for f in [
+            "deformed.png",
+            "deformed.svg",
+            "evolution.png",
+            "solution.vtu",
+        ] {
+            assert!(out.join(f).exists(), "{name}: no {f}");
+        }
+        assert_eq!(out.join("triangles.csv").exists(), name.contains("graded"));
+        let vtu = std::fs::read_to_string(out.join("solution.vtu")).unwrap();
+        let points: usize = vtu
+            .split("NumberOfPoints=\"")
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
+        let rows: Vec<Vec<f64>> = nodes
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .skip(1)
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect();
+        let xmax = rows.iter().map(|r| r[0]).fold(0.0, f64::max);
+        let ymax = rows.iter().map(|r| r[1]).fold(0.0, f64::max);
+        assert_eq!(
+            (xmax, ymax),
+            (2.0, 0.5),
+            "{name}: the lattice spans the rectangle"
+        );
+        if name.contains("graded") {
+            assert_eq!(
+                points,
+                rows.len(),
+                "{name}: VTK and nodes.csv hold every node"
+            );
+        } else {
+            assert_eq!(points, 17 * 5, "{name}: 17 x 5 grid nodes");
+        }
+        // The clamped corner (0, 0) is no contact node.
+        let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+        let first_x: f64 = contact
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(first_x > 0.0, "{name}: the clamped corner in contact.csv");
+    }
+    // The options that do not fit, each named.
+    for (args, field) in [
+        (vec!["--steps", "4"], "steps"),
+        (vec!["--grading", "0.3"], "grading"),
+        (vec!["--mesh", "graded", "--ordering", "nd"], "ordering"),
+        (vec!["--mesh", "graded", "--grading", "1.5"], "grading"),
+        (vec!["--n", "10"], "n"),
+    ] {
+        let o = evhi()
+            .args(["solve", "--scenario"])
+            .arg(&steady)
+            .args(["--out"])
+            .arg(dir.join("refused"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} accepted");
+        assert!(err.contains(&format!("`{field}`")), "{args:?}: {err}");
+    }
+}

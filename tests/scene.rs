@@ -1,0 +1,443 @@
+//! The scene's keys (issue 25): the rectangle, supports per side segment, Γ3 as a
+//! segment, tractions per segment, no limit, elastic and steady problems, graded
+//! meshes. Every valid value solves certified; every bad one is refused naming its
+//! field; the nested dissection ordering, the reduced loop, the certificate, VTK output
+//! and the run figures follow the geometry.
+
+use evhi::bisection::graded_mesh;
+use evhi::geometry::Geometry;
+use evhi::mesh::Mesh;
+use evhi::scenario::Scenario;
+use evhi::scheme::{OrderingKind, Run, Settings, run};
+use std::sync::Arc;
+
+/// A scene with the given `[geometry]` lines and extra `[loads]` lines, the paper's
+/// material and law, the given `g` and problem.
+fn scene(geometry: &str, loads: &str, g: &str, problem: &str) -> String {
+    let viscosity = if problem == "viscoelastic" {
+        "alpha = 100.0\nbeta = 50.0\n"
+    } else {
+        ""
+    };
+    format!(
+        "name = \"scene\"\nT = 1.0\ng = {g}\nproblem = \"{problem}\"\n{geometry}\n\
+         [material]\nE = 1000.0\nkappa = 0.4\n{viscosity}\n\
+         [loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, 0.0]\nhistory = {{ ramp = 0.5 }}\n{loads}\n\
+         [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n"
+    )
+}
+
+fn parse(text: &str) -> Result<Scenario, evhi::error::InputError> {
+    Scenario::from_toml(text, "test")
+}
+
+/// The cantilever example, with the problem it names replaced.
+fn cantilever(problem: &str) -> Scenario {
+    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
+    let text = if problem == "viscoelastic" {
+        text
+    } else {
+        text.replace(
+            "problem = \"viscoelastic\"",
+            &format!("problem = \"{problem}\""),
+        )
+        .lines()
+        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+        .collect::<Vec<_>>()
+        .join("\n")
+    };
+    parse(&text).unwrap()
+}
+
+/// Solves `scn` on `n` segments, `steps` steps (on `mesh` if given), general or
+/// reduced loop, with Newton; every step must be certified.
+fn solve(scn: &Scenario, n: usize, steps: usize, mesh: Option<Arc<Mesh>>, reduced: bool) -> Run {
+    let mut solver = evhi::step::solver("newton").unwrap().build();
+    let mut opt = Settings::new(n, steps);
+    opt.mesh = mesh;
+    let r = if reduced {
+        evhi::reduced::run(scn, &opt, solver.as_mut(), &|_| true, &mut |_, _, _, _| {})
+    } else {
+        run(scn, &opt, solver.as_mut(), &mut |_, _, _| {})
+    }
+    .unwrap_or_else(|e| panic!("{}: {e}", scn.name));
+    let worst = r
+        .records
+        .iter()
+        .map(|s| s.certificate.max())
+        .fold(0.0, f64::max);
+    assert!(worst <= 1e-10, "{}: certificate {worst:e}", scn.name);
+    r
+}
+
+fn sup_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+fn sup(a: &[f64]) -> f64 {
+    a.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// Every new key with a valid value: the scene parses and solves certified at
+/// h = 1/16 on both time loops where they apply.
+#[test]
+fn every_new_key_solves_certified() {
+    let cases = [
+        // width and height, the paper's preset scaled to the rectangle
+        ("[geometry]\nwidth = 3.0\nheight = 1.5", "", "0.1"),
+        // supports per side, by name and as segments of each kind
+        (
+            "[geometry.supports]\nleft = \"clamped\"\nright = [{ from = 0.0, to = 0.25, kind = \"free\" }, { from = 0.25, to = 1.0, kind = \"rollers\" }]\ntop = [{ from = 1.5, to = 2.0, kind = \"clamped\" }]",
+            "",
+            "0.1",
+        ),
+        // rollers on the bottom beside a contact segment
+        (
+            "[geometry]\ncontact = [0.5, 2.0]\n[geometry.supports]\nleft = \"rollers\"\nbottom = [{ from = 0.0, to = 0.5, kind = \"rollers\" }]",
+            "",
+            "0.1",
+        ),
+        // tractions on free segments (rollers take the tangential component)
+        (
+            "[geometry.supports]\nleft = \"clamped\"\ntop = [{ from = 0.0, to = 0.5, kind = \"rollers\" }]",
+            "[[loads.traction]]\nside = \"top\"\nfrom = 0.0\nto = 0.5\nf = [3.0, 0.0]\n[[loads.traction]]\nside = \"right\"\nf = [-10.0, -2.0]\n[[loads.traction]]\nside = \"top\"\nfrom = 1.0\nf = [0.0, -40.0]",
+            "0.1",
+        ),
+        // no limit
+        ("", "", "\"none\""),
+    ];
+    for (geometry, loads, g) in cases {
+        for problem in ["viscoelastic", "elastic", "steady"] {
+            let scn = parse(&scene(geometry, loads, g, problem))
+                .unwrap_or_else(|e| panic!("{geometry} {loads}: {e}"));
+            let steps = if problem == "steady" { 1 } else { 16 };
+            let general = solve(&scn, 16, steps, None, false);
+            assert!(sup(&general.u) > 0.0, "{geometry}: the loads must act");
+            if scn.relaxation_time().is_some() {
+                let reduced = solve(&scn, 16, steps, None, true);
+                let gap = sup_diff(&general.u, &reduced.u);
+                assert!(
+                    gap <= 1e-10 * sup(&general.u),
+                    "{geometry} ({problem}): the loops differ by {gap:e}"
+                );
+            }
+        }
+    }
+}
+
+/// Each bad value is refused naming its field.
+#[test]
+fn bad_scene_values_are_refused_by_name() {
+    let cases: [(&str, &str, &str, &str, &str); 22] = [
+        (
+            "[geometry]\nwidth = -2.0",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.width",
+        ),
+        (
+            "[geometry]\nheight = 200.0",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.height",
+        ),
+        (
+            "[geometry]\nsupports = \"walls\"",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports",
+        ),
+        (
+            "[geometry.supports]\nfront = \"clamped\"",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports.front",
+        ),
+        (
+            "[geometry.supports]\nleft = \"glued\"",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports.left",
+        ),
+        (
+            "[geometry.supports]\nleft = [{ from = 0.5, to = 0.2, kind = \"clamped\" }]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports.left[0]",
+        ),
+        (
+            "[geometry.supports]\nleft = [{ from = 0.0, to = 1.5, kind = \"clamped\" }]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports.left[0]",
+        ),
+        (
+            "[geometry.supports]\nleft = [{ from = 0.0, to = 0.6, kind = \"clamped\" }, { from = 0.5, to = 1.0, kind = \"rollers\" }]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports.left[1]",
+        ),
+        (
+            "[geometry.supports]\nleft = [{ from = 0.0, to = 0.6, kind = \"clamped\", glue = 1 }]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports.left[0].glue",
+        ),
+        (
+            "[geometry]\ncontact = [1.5, 0.5]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.contact",
+        ),
+        (
+            "[geometry]\ncontact = [0.0, 2.5]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.contact",
+        ),
+        (
+            "[geometry.supports]\nleft = \"clamped\"\nbottom = [{ from = 0.0, to = 1.0, kind = \"rollers\" }]",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.contact",
+        ),
+        // nothing holds y: the body could float off
+        (
+            "[geometry.supports]\nleft = \"rollers\"",
+            "",
+            "0.1",
+            "viscoelastic",
+            "geometry.supports",
+        ),
+        // a traction on a clamped part, a normal one on rollers, on Γ3, on no side
+        (
+            "[geometry.supports]\nleft = \"clamped\"",
+            "[[loads.traction]]\nside = \"left\"\nfrom = 0.5\nf = [1.0, 0.0]",
+            "0.1",
+            "viscoelastic",
+            "loads.traction[0]",
+        ),
+        (
+            "[geometry.supports]\nleft = \"clamped\"\nright = \"rollers\"",
+            "[[loads.traction]]\nside = \"right\"\nf = [1.0, 0.0]",
+            "0.1",
+            "viscoelastic",
+            "loads.traction[0]",
+        ),
+        (
+            "",
+            "[[loads.traction]]\nside = \"bottom\"\nf = [0.0, 1.0]",
+            "0.1",
+            "viscoelastic",
+            "loads.traction[0]",
+        ),
+        (
+            "",
+            "[[loads.traction]]\nside = \"inside\"\nf = [0.0, 1.0]",
+            "0.1",
+            "viscoelastic",
+            "loads.traction[0].side",
+        ),
+        (
+            "",
+            "[[loads.traction]]\nside = \"top\"\nf = [0.0]",
+            "0.1",
+            "viscoelastic",
+            "loads.traction[0].f",
+        ),
+        ("", "", "\"infinite\"", "viscoelastic", "g"),
+        ("", "", "0.1", "plastic", "problem"),
+        // the viscosity of a problem without one, and its absence where it is needed
+        ("", "", "0.1", "elastic-with-viscosity", "material.alpha"),
+        (
+            "",
+            "",
+            "0.1",
+            "viscoelastic-without-viscosity",
+            "material.alpha",
+        ),
+    ];
+    for (geometry, loads, g, problem, field) in cases {
+        let text = match problem {
+            "elastic-with-viscosity" => scene(geometry, loads, g, "viscoelastic")
+                .replace("problem = \"viscoelastic\"", "problem = \"elastic\""),
+            "viscoelastic-without-viscosity" => scene(geometry, loads, g, "elastic")
+                .replace("problem = \"elastic\"", "problem = \"viscoelastic\""),
+            p => scene(geometry, loads, g, p),
+        };
+        let err = parse(&text).expect_err(&format!("{geometry} {loads} {g} {problem} accepted"));
+        assert_eq!(
+            err.field_name(),
+            Some(field),
+            "{geometry} {loads}: refused as {err}"
+        );
+    }
+    // Ends that are no mesh line are refused when the mesh is made, naming the end.
+    let scn = parse(&scene(
+        "[geometry.supports]\nleft = [{ from = 0.3, to = 1.0, kind = \"clamped\" }]",
+        "",
+        "0.1",
+        "viscoelastic",
+    ))
+    .unwrap();
+    let err = scn.mesh(8).unwrap_err();
+    assert_eq!(err.field_name(), Some("geometry.supports.left[0].from"));
+    let scn = parse(&scene(
+        "",
+        "[[loads.traction]]\nside = \"top\"\nfrom = 0.3\nf = [0.0, -1.0]",
+        "0.1",
+        "viscoelastic",
+    ))
+    .unwrap();
+    assert_eq!(
+        scn.mesh(8).unwrap_err().field_name(),
+        Some("loads.traction[0].from")
+    );
+    // A steady problem is one step.
+    let steady = parse(&scene("", "", "0.1", "steady")).unwrap();
+    let mut solver = evhi::step::solver("newton").unwrap().build();
+    let err = run(
+        &steady,
+        &Settings::new(16, 4),
+        solver.as_mut(),
+        &mut |_, _, _| {},
+    )
+    .err()
+    .expect("4 steps of a steady problem accepted");
+    assert!(err.to_string().contains("`steps`"), "{err}");
+}
+
+/// The presets: the paper's and the rollers supports spelled out segment by segment
+/// give the same mesh and the same run, bit for bit.
+#[test]
+fn presets_equal_their_segments() {
+    let spelled = [
+        (
+            "[geometry.supports]\nleft = [{ from = 0.5, to = 1.0, kind = \"clamped\" }]\nright = [{ from = 0.5, to = 1.0, kind = \"clamped\" }]",
+            "[geometry]\nsupports = \"paper\"",
+        ),
+        (
+            "[geometry.supports]\nleft = \"rollers\"\nright = \"rollers\"\ntop = \"clamped\"",
+            "[geometry]\nsupports = \"rollers\"",
+        ),
+    ];
+    for (segments, preset) in spelled {
+        let a = parse(&scene(segments, "", "0.1", "viscoelastic")).unwrap();
+        let b = parse(&scene(preset, "", "0.1", "viscoelastic")).unwrap();
+        assert_eq!(a.mesh(16).unwrap().fixed, b.mesh(16).unwrap().fixed);
+        assert_eq!(
+            solve(&a, 16, 8, None, false).u,
+            solve(&b, 16, 8, None, false).u
+        );
+    }
+}
+
+/// The singular points follow the supports: the paper's clamp ends and top corners,
+/// none for the rollers scene, the clamped side's two corners for the cantilever.
+#[test]
+fn singular_points_follow_the_supports() {
+    let mut paper = Geometry::paper().singular_points();
+    paper.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let mut expected = evhi::experiments::graded::SINGULAR.to_vec();
+    expected.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(paper, expected);
+    assert!(Geometry::rollers().singular_points().is_empty());
+    let mut c = cantilever("viscoelastic").geometry.singular_points();
+    c.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(c, vec![[0.0, 0.0], [0.0, 0.5]]);
+}
+
+/// Issue 25's scene: the left side clamped, the right side and the top free, no limit,
+/// a law with a downward jump; solved viscoelastic, elastic and steady, on a uniform
+/// and on a graded mesh, every step certified, and some contact node beyond the jump.
+#[test]
+fn cantilever_static_quasistatic_and_graded() {
+    let n = 16;
+    let beyond = |r: &Run| r.contact.iter().filter(|c| c.u_nu > 0.02).count();
+    let visco = solve(&cantilever("viscoelastic"), n, 32, None, false);
+    let elastic = solve(&cantilever("elastic"), n, 32, None, true);
+    let steady_scn = cantilever("steady");
+    let steady = solve(&steady_scn, n, 1, None, true);
+    for r in [&visco, &elastic, &steady] {
+        assert!(beyond(r) > 0, "no contact node passed the jump at 0.02");
+        assert!(
+            r.contact.iter().all(|c| c.sigma_nu2 == 0.0),
+            "no limit, no unilateral force"
+        );
+    }
+    // The clamped corner is no contact node: n contact nodes, not n + 1.
+    assert_eq!(steady.contact.len(), n);
+    // The elastic sequence's last step is the steady solve (the same static problem,
+    // here reached from the previous step).
+    let gap = sup_diff(&elastic.u, &steady.u);
+    assert!(
+        gap <= 1e-9 * sup(&steady.u),
+        "elastic at T vs steady: {gap:e}"
+    );
+    // The viscous run has relaxed to the same state by T (the loads are constant after
+    // t = 0.5): within 1e-3.
+    let gap = sup_diff(&visco.u, &steady.u);
+    assert!(
+        gap <= 1e-3 * sup(&steady.u),
+        "viscoelastic at T vs steady: {gap:e}"
+    );
+    // On the graded mesh, in all three problems.
+    let mesh = Arc::new(graded_mesh(&steady_scn.geometry, n, 0.4).unwrap());
+    assert!(
+        mesh.nodes.len()
+            > Mesh::build(n, &steady_scn.geometry, Default::default())
+                .unwrap()
+                .nodes
+                .len()
+    );
+    for (problem, steps) in [("viscoelastic", 32), ("elastic", 32), ("steady", 1)] {
+        let r = solve(&cantilever(problem), n, steps, Some(mesh.clone()), false);
+        assert!(beyond(&r) > 0, "graded {problem}: no node beyond the jump");
+    }
+}
+
+/// The nested dissection ordering cuts the scene's own grid: on a 3 x 0.75 rectangle it
+/// gives the run AMD gives (to rounding), and the reduced loop's proportionality test
+/// sees the same A = cB there.
+#[test]
+fn ordering_and_reduced_loop_follow_the_geometry() {
+    let scn = parse(&scene(
+        "[geometry]\nwidth = 3.0\nheight = 0.75\n[geometry.supports]\nleft = \"clamped\"\nright = [{ from = 0.375, to = 0.75, kind = \"rollers\" }]",
+        "[[loads.traction]]\nside = \"top\"\nfrom = 1.5\nf = [0.0, -60.0]",
+        "0.1",
+        "viscoelastic",
+    ))
+    .unwrap();
+    let n = 32;
+    let mut solver = evhi::step::solver("newton").unwrap().build();
+    let mut opt = Settings::new(n, 16);
+    let nd = run(&scn, &opt, solver.as_mut(), &mut |_, _, _| {}).unwrap();
+    opt.ordering = OrderingKind::Amd;
+    let amd = run(&scn, &opt, solver.as_mut(), &mut |_, _, _| {}).unwrap();
+    assert!(sup_diff(&nd.u, &amd.u) <= 1e-12 * sup(&nd.u));
+    let disc = evhi::scheme::Discretisation::new(&scn, n).unwrap();
+    assert_eq!(
+        disc.mesh.ny, 8,
+        "3 x 0.75 with n = 32: 8 rows of square cells"
+    );
+    // The paper's viscosity is 0.07 times its elasticity (kappa = 0.4).
+    let c = evhi::reduced::proportional(&scn, &disc).expect("proportional damping");
+    assert!((c - 0.07).abs() < 1e-12, "c = {c}");
+    let reduced = solve(&scn, n, 16, None, true);
+    assert!(sup_diff(&nd.u, &reduced.u) <= 1e-10 * sup(&nd.u));
+}
