@@ -166,3 +166,108 @@ fn own_softening_run() {
     let cert = column("example_softening_iterations.csv", &[], "certificate");
     assert!(cert.iter().all(|&c| c < 1e-14));
 }
+
+/// The cantilever example with its problem replaced (`alpha` and `beta` removed for a
+/// problem without viscosity).
+fn cantilever(problem: &str) -> evhi::scenario::Scenario {
+    let text =
+        std::fs::read_to_string(super::root().join("data/scenarios/examples/cantilever.toml"))
+            .unwrap();
+    let text = if problem == "viscoelastic" {
+        text
+    } else {
+        text.replace(
+            "problem = \"viscoelastic\"",
+            &format!("problem = \"{problem}\""),
+        )
+        .lines()
+        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+        .collect::<Vec<_>>()
+        .join("\n")
+    };
+    evhi::scenario::Scenario::from_toml(&text, "cantilever").unwrap()
+}
+
+/// A certified run of `scn` (Newton, general loop) on `n` segments and `steps` steps.
+fn certified(
+    scn: &evhi::scenario::Scenario,
+    n: usize,
+    steps: usize,
+    mesh: Option<std::sync::Arc<evhi::mesh::Mesh>>,
+) -> evhi::scheme::Run {
+    let mut solver = evhi::step::solver("newton").unwrap().build();
+    let mut opt = evhi::scheme::Settings::new(n, steps);
+    opt.mesh = mesh;
+    let r = evhi::scheme::run(scn, &opt, solver.as_mut(), &mut |_, _, _| {}).unwrap();
+    assert!(r.records.iter().all(|s| s.certificate.max() <= 1e-10));
+    r
+}
+
+fn rel_gap(a: &[f64], b: &[f64]) -> f64 {
+    let d = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    d / b.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+#[test]
+fn own_scene_singular_points() {
+    let (text, _) = evhi::show::report(&cantilever("viscoelastic"), 64, 64);
+    let line = text
+        .lines()
+        .find(|l| l.contains("singular points"))
+        .expect("a singular points line");
+    assert!(line.ends_with("(0, 0), (0, 0.5)"), "{line}");
+}
+
+#[test]
+fn own_scene_hj_warning() {
+    let (text, warnings) = evhi::show::report(&cantilever("viscoelastic"), 64, 64);
+    assert!(warnings >= 1);
+    assert!(
+        text.lines()
+            .any(|l| l.starts_with("warning: H(j) fails: p jumps down by 4 at s = 0.02")),
+        "{text}"
+    );
+}
+
+#[test]
+fn own_scene_run() {
+    let r = certified(&cantilever("viscoelastic"), 32, 64, None);
+    assert_eq!(r.contact.len(), 32);
+    assert_eq!(r.mesh.gamma3.len(), 33);
+    let beyond = r.contact.iter().filter(|c| c.u_nu > 0.02).count();
+    assert!(
+        2 * beyond > r.contact.len(),
+        "{beyond} of {}",
+        r.contact.len()
+    );
+}
+
+#[test]
+fn own_scene_static() {
+    let steady = certified(&cantilever("steady"), 32, 1, None);
+    let elastic = certified(&cantilever("elastic"), 32, 64, None);
+    let visco = certified(&cantilever("viscoelastic"), 32, 64, None);
+    let (e, v) = (rel_gap(&elastic.u, &steady.u), rel_gap(&visco.u, &steady.u));
+    assert!(e <= 1e-12, "elastic at T vs steady: {e:e}");
+    assert!(v <= 3e-4 && v > 1e-5, "viscoelastic at T vs steady: {v:e}");
+}
+
+#[test]
+fn own_scene_graded() {
+    let scn = cantilever("viscoelastic");
+    let mesh = evhi::bisection::graded_mesh(&scn.geometry, 16, 0.4).unwrap();
+    let uniform = scn.mesh(16).unwrap();
+    assert_eq!(uniform.nodes.len(), 17 * 5);
+    assert!(mesh.nodes.len() > uniform.nodes.len());
+    // finer at the clamped corners than anywhere else: the shortest bottom segment is
+    // at the left end
+    let x: Vec<f64> = mesh.gamma3.iter().map(|&v| mesh.nodes[v][0]).collect();
+    let first = x[1] - x[0];
+    assert!(x.windows(2).all(|w| w[1] - w[0] >= first), "{x:?}");
+    let r = certified(&scn, 16, 64, Some(std::sync::Arc::new(mesh)));
+    assert!(r.contact.iter().any(|c| c.u_nu > 0.02));
+}
