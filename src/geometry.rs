@@ -574,7 +574,7 @@ fn side_segments(side: Side, v: &toml::Value) -> Result<Vec<Segment>, InputError
                 let (from, to) = (num("from")?, num("to")?);
                 if kind != Hold::Free {
                     out.push(segment(side, from, to, kind, &f));
-                } else if !(from < to) {
+                } else if from.partial_cmp(&to) != Some(std::cmp::Ordering::Less) {
                     return Err(InputError::field(
                         &f,
                         format!("from = {from}, to = {to}"),
