@@ -402,7 +402,7 @@ pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError
         }
     };
     let unit = geo.width.min(geo.height);
-    let d = uniform.dx().hypot(uniform.dy()) / unit;
+    let d = cell_diagonal(geo, uniform.n) / unit;
     let points: Vec<[f64; 2]> = geo
         .singular_points()
         .iter()
@@ -420,4 +420,16 @@ pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError
         f.diameter(t) / unit > slack * bound
     });
     Ok(forest.mesh(&leaves, n))
+}
+
+/// The diagonal of a cell of the structured mesh of level `n` on `geo`: $2\sqrt2/n$ on
+/// the paper's scene.
+pub fn cell_diagonal(geo: &Geometry, n: usize) -> f64 {
+    let dx = geo.width / n as f64;
+    let ny = crate::mesh::rows(n, geo);
+    if ny as f64 * dx == geo.height {
+        std::f64::consts::SQRT_2 * dx
+    } else {
+        dx.hypot(geo.height / ny as f64)
+    }
 }

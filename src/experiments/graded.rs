@@ -85,23 +85,34 @@ pub fn graded_size(n: usize, x: [f64; 2], points: &[[f64; 2]]) -> f64 {
     crate::bisection::graded_size(diagonal(n), x, points, MU)
 }
 
-/// Refines `from` to the mesh of level `n` graded towards `points` (uniform if none).
-fn level(forest: &mut Forest, from: &Leaves, n: usize, points: &[[f64; 2]]) -> Leaves {
+/// Refines `from` to the mesh of level `n` on `geo` graded towards `points` (uniform
+/// if none), lengths in units of the shorter side (1 on the paper's scene).
+fn level(
+    forest: &mut Forest,
+    geo: &Geometry,
+    from: &Leaves,
+    n: usize,
+    points: &[[f64; 2]],
+) -> Leaves {
     // A hair of slack so that a triangle exactly at the bound is not cut.
     let slack = 1.0 + 1e-12;
+    let unit = geo.width.min(geo.height);
+    let d = crate::bisection::cell_diagonal(geo, n) / unit;
     if !points.is_empty() {
+        let pts: Vec<[f64; 2]> = points.iter().map(|p| [p[0] / unit, p[1] / unit]).collect();
         forest.refine(from, |f, t| {
-            f.diameter(t) > slack * graded_size(n, centroid(f, t), points)
+            let c = centroid(f, t);
+            f.diameter(t) / unit
+                > slack * crate::bisection::graded_size(d, [c[0] / unit, c[1] / unit], &pts, MU)
         })
     } else {
-        let d = diagonal(n);
-        forest.refine(from, |f, t| f.diameter(t) > slack * d)
+        forest.refine(from, |f, t| f.diameter(t) / unit > slack * d)
     }
 }
 
 /// One level's result.
 struct Row {
-    family: &'static str,
+    family: String,
     load: String,
     n: usize,
     dofs: usize,
@@ -156,12 +167,13 @@ fn increments(
     coarse: &Level,
     fine: &Level,
     g: &crate::material::Isotropic,
+    t_end: f64,
 ) -> Vec<(f64, f64, f64)> {
     let interp = forest.interpolation(&coarse.leaves, &fine.mesh);
     let geo = crate::norms::NormGeometry::new(&fine.mesh);
     let ratio = fine.n / coarse.n;
     (0..fine.fields.len())
-        .map(|i| increments_of(&interp, &geo, coarse, fine, ratio, i, g))
+        .map(|i| increments_of(&interp, &geo, coarse, fine, ratio, i, g, t_end))
         .collect()
 }
 
@@ -173,6 +185,7 @@ fn increments_of(
     ratio: usize,
     i: usize,
     g: &crate::material::Isotropic,
+    t_end: f64,
 ) -> (f64, f64, f64) {
     let (mut at_t, mut max, mut t_max) = (f64::NAN, 0.0, f64::NAN);
     for j in 1..=coarse.n {
@@ -187,43 +200,54 @@ fn increments_of(
             / geo.norms(&fine.mesh, g, &uf).energy_sq)
             .sqrt();
         if rel > max {
-            (max, t_max) = (rel, j as f64 / coarse.n as f64);
+            (max, t_max) = (rel, j as f64 * t_end / coarse.n as f64);
         }
         at_t = rel;
     }
     (at_t, max, t_max)
 }
 
-pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
-    let plan = plan(ctx.quick);
-    let scns = LOADS
-        .iter()
-        .map(|s| Scenario::load(s))
-        .collect::<Result<Vec<_>, _>>()?;
+/// The units of progress of [`compute`]: one per level and one for the reference.
+pub fn units(plan: &Plan, families: usize) -> usize {
+    plan.uniform.len() + (families.saturating_sub(1)) * plan.graded.len() + 1
+}
+
+/// The convergence study of the scenarios `scns` (one batch: they share the geometry
+/// and the step matrix) on nested families of bisection meshes of their scene: the
+/// first family uniform on `plan.uniform`, each other graded towards its points on
+/// `plan.graded`, the reference the first graded family's finest level refined on to
+/// `plan.n_ref` towards `ref_points`; $k = T/n$ on every level. Returns the table of
+/// `graded_convergence.csv` and the reference's unknowns. `log` reports each level
+/// (one unit of progress each, [`units`]).
+pub fn compute(
+    scns: &[Scenario],
+    families_in: &[(String, Vec<[f64; 2]>)],
+    plan: &Plan,
+    ref_points: &[[f64; 2]],
+    log: &dyn Fn(&str),
+) -> Result<(Table, usize), ExpError> {
+    let geo = &scns[0].geometry;
+    let t_end = scns[0].t_end;
     let levels_of = |f: usize| if f == 0 { &plan.uniform } else { &plan.graded };
-    ctx.add_units(
-        (0..FAMILIES.len())
-            .map(|f| levels_of(f).len())
-            .sum::<usize>()
-            + 1,
-    );
-    let (mut forest, root) = Forest::new(4, &Geometry::paper())?;
+    let (mut forest, root) = Forest::new(plan.uniform[0], geo)?;
     // Meshes first (the forest grows), then the runs.
-    let mut families: Vec<(&'static str, Vec<(usize, Leaves)>)> = vec![];
-    for (f, (family, points)) in FAMILIES.iter().enumerate() {
+    let mut families: Vec<(String, Vec<(usize, Leaves)>)> = vec![];
+    for (f, (family, points)) in families_in.iter().enumerate() {
         let mut prev = root.clone();
         let mut list = vec![];
         for &n in levels_of(f) {
-            prev = level(&mut forest, &prev, n, points);
+            prev = level(&mut forest, geo, &prev, n, points);
             list.push((n, prev.clone()));
         }
-        families.push((family, list));
+        families.push((family.clone(), list));
     }
-    let mut prev = families[1].1.last().expect("levels").1.clone();
-    let mut n = *plan.graded.last().expect("levels");
+    // The reference continues the first graded family (the uniform one if none).
+    let ri = 1.min(families.len() - 1);
+    let mut prev = families[ri].1.last().expect("levels").1.clone();
+    let mut n = *levels_of(ri).last().expect("levels");
     while n < plan.n_ref {
         n *= 2;
-        prev = level(&mut forest, &prev, n, &SINGULAR);
+        prev = level(&mut forest, geo, &prev, n, ref_points);
     }
     let ref_leaves = prev;
     let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
@@ -233,7 +257,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         .map(|mut steps| steps.pop().expect("the last step"))
         .collect();
     let ref_dofs = Dofs::new(&ref_mesh, true);
-    ctx.log(&format!(
+    log(&format!(
         "graded reference: {} dofs, k = 1/{} ({:.1} s)",
         ref_dofs.count,
         plan.n_ref,
@@ -261,7 +285,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 dofs,
                 fields,
             });
-            ctx.log(&format!(
+            log(&format!(
                 "{family} level {n}: {} dofs ({:.1} s)",
                 solved.last().expect("pushed").dofs.count,
                 clock.elapsed().as_secs_f64()
@@ -277,7 +301,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 .fold(f64::INFINITY, f64::min);
             let inc = solved
                 .get(l + 1)
-                .map(|next| increments(&forest, lev, next, &g));
+                .map(|next| increments(&forest, lev, next, &g, t_end));
             for i in 0..scns.len() {
                 let pu = interp.apply(&lev.dofs.expand(&lev.fields[i][lev.n]));
                 let diff: Vec<[f64; 2]> = ref_fields[i]
@@ -290,7 +314,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                     .as_ref()
                     .map_or((f64::NAN, f64::NAN, f64::NAN), |v| v[i]);
                 rows.push(Row {
-                    family,
+                    family: family.clone(),
                     load: scns[i].name.clone(),
                     n: lev.n,
                     dofs: lev.dofs.count,
@@ -304,7 +328,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             }
         }
     }
-    rows.sort_by(|a, b| (a.load.as_str(), a.family, a.n).cmp(&(b.load.as_str(), b.family, b.n)));
+    rows.sort_by(|a, b| {
+        (a.load.as_str(), a.family.as_str(), a.n).cmp(&(b.load.as_str(), b.family.as_str(), b.n))
+    });
     let order_of = |v: &dyn Fn(&Row) -> f64| -> Vec<f64> {
         rows.iter()
             .enumerate()
@@ -321,10 +347,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let order_inc_max = order_of(&|r| r.inc_max);
     let t = Table::new()
         .str("load", rows.iter().map(|r| r.load.clone()).collect())
-        .str(
-            "family",
-            rows.iter().map(|r| r.family.to_string()).collect(),
-        )
+        .str("family", rows.iter().map(|r| r.family.clone()).collect())
         .u64("n", rows.iter().map(|r| r.n as u64).collect())
         .u64("dofs", rows.iter().map(|r| r.dofs as u64).collect())
         .u64(
@@ -354,9 +377,24 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "t_of_increment_max",
             rows.iter().map(|r| r.t_inc_max).collect(),
         );
+    Ok((t, ref_dofs.count))
+}
+
+pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+    let plan = plan(ctx.quick);
+    let scns = LOADS
+        .iter()
+        .map(|s| Scenario::load(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let families: Vec<(String, Vec<[f64; 2]>)> = FAMILIES
+        .iter()
+        .map(|(f, p)| (f.to_string(), p.to_vec()))
+        .collect();
+    ctx.add_units(units(&plan, families.len()));
+    let (t, ref_dofs) = compute(&scns, &families, &plan, &SINGULAR, &|m| ctx.log(m))?;
     let params = format!(
         "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= D min(1, max(r, D^(1/mu))^(1-mu)) with D = 2 sqrt2 / n, mu = {MU}, r = distance of the triangle's centroid to the nearest clamp end or top corner (family graded), clamp end only (clamp ends), top corner only (top corners); min_longest_edge = the shortest longest edge of the mesh; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh); increment = ||u_n - u_2n||_E / ||u_2n||_E against the next level of the same family (no reference), at T and its maximum over t_j = j/n, with the t where it occurs; order_increment_dofs and order_increment_max_dofs from increment_T and increment_max",
-        plan.n_ref, ref_dofs.count, plan.n_ref
+        plan.n_ref, ref_dofs, plan.n_ref
     );
     let path = ctx.write("graded_convergence.csv", &t, "graded", &params)?;
     draw(ctx, &path)
