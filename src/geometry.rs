@@ -117,6 +117,15 @@ pub struct Traction {
     pub field: String,
 }
 
+/// A point where the solution is expected to be singular: the holds that meet there,
+/// at a corner (opening $\pi/2$) or inside a side (opening $\pi$).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Singularity {
+    pub point: [f64; 2],
+    pub holds: [Hold; 2],
+    pub corner: bool,
+}
+
 /// The rectangle, its supports and its contact segment.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Geometry {
@@ -244,13 +253,19 @@ impl Geometry {
         self.contact == [0.0, self.width]
     }
 
+    /// The points where the solution is expected to be singular (see
+    /// [`Geometry::singularities`]).
+    pub fn singular_points(&self) -> Vec<[f64; 2]> {
+        self.singularities().into_iter().map(|s| s.point).collect()
+    }
+
     /// The points where the solution is expected to be singular, each once: on a
     /// side, where the hold changes (a clamp or roller ending on a free part, a clamp
     /// meeting rollers); at a corner, where a clamped side meets a free one (clamped
     /// meeting clamped, and any corner with rollers, reflects to a straight boundary
     /// or a regular corner). $\Gamma_3$ counts as free here: its compliance is not a
     /// support. Used by graded meshes.
-    pub fn singular_points(&self) -> Vec<[f64; 2]> {
+    pub fn singularities(&self) -> Vec<Singularity> {
         let (w, h) = (self.width, self.height);
         let point = |side: Side, a: f64| match side {
             Side::Left => [0.0, a],
@@ -258,7 +273,7 @@ impl Geometry {
             Side::Bottom => [a, 0.0],
             Side::Top => [a, h],
         };
-        let mut out: Vec<[f64; 2]> = vec![];
+        let mut out = vec![];
         let tol = self.tol();
         for side in Side::ALL {
             let len = self.length(side);
@@ -273,8 +288,13 @@ impl Geometry {
             ends.dedup_by(|a, b| (*a - *b).abs() <= tol);
             for a in ends {
                 let d = 1e-6 * len;
-                if self.hold_at(side, a - d) != self.hold_at(side, a + d) {
-                    out.push(point(side, a));
+                let holds = [self.hold_at(side, a - d), self.hold_at(side, a + d)];
+                if holds[0] != holds[1] {
+                    out.push(Singularity {
+                        point: point(side, a),
+                        holds,
+                        corner: false,
+                    });
                 }
             }
         }
@@ -291,9 +311,13 @@ impl Geometry {
                 let d = 1e-6 * len;
                 self.hold_at(side, if frac == 0.0 { d } else { len - d })
             };
-            let pair = [near(s1, f1), near(s2, f2)];
-            if pair.contains(&Hold::Clamped) && pair.contains(&Hold::Free) {
-                out.push(point(s1, f1 * self.length(s1)));
+            let holds = [near(s1, f1), near(s2, f2)];
+            if holds.contains(&Hold::Clamped) && holds.contains(&Hold::Free) {
+                out.push(Singularity {
+                    point: point(s1, f1 * self.length(s1)),
+                    holds,
+                    corner: true,
+                });
             }
         }
         out

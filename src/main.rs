@@ -13,10 +13,12 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 /// Quasistatic viscoelastic contact with a nonmonotone normal compliance law and a
 /// unilateral limit: the reference implementation of Barboteu, Bartosz & Han (2017).
 ///
-/// The body Ω = (0,2)×(0,1) is clamped on {0,2}×[0.5,1], loaded on the top, and in
-/// frictionless contact on the bottom Γ3 with a deformable layer of thickness g on a
-/// rigid base. P1 triangles in space (n = 1/h contact segments), backward Euler in
-/// time (k = T/steps). Every step is checked by an independent certificate.
+/// The paper's body Ω = (0,2)×(0,1) is clamped on {0,2}×[0.5,1], loaded on the top, and
+/// in frictionless contact on the bottom Γ3 with a deformable layer of thickness g on a
+/// rigid base; a scenario file may set another rectangle, supports per side segment,
+/// Γ3, tractions, no limit, or a static problem (`evhi show FILE` describes it). P1
+/// triangles in space (n = 1/h contact segments), backward Euler in time
+/// (k = T/steps). Every step is checked by an independent certificate.
 #[derive(Parser)]
 #[command(name = "evhi", version, about, long_about)]
 struct Cli {
@@ -45,6 +47,11 @@ enum Command {
     /// --repeat runs), compare the step solvers, and write data/bench.csv,
     /// data/bench_solvers.csv and the work-precision chart figures/work_precision.png.
     Bench(cli::bench::BenchArgs),
+    /// Run one of the book's studies on any scenario (built-in name or TOML file) and
+    /// write a self-describing directory: `convergence` (uniform against graded meshes,
+    /// increments, orders and the corner exponents the supports predict).
+    #[command(subcommand)]
+    Study(cli::study::Study),
     /// List the built-in scenarios with their descriptions.
     Scenarios,
     /// Redraw a run directory's figures (deformed.png/svg, evolution.png/svg) from its CSVs.
@@ -76,6 +83,7 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Show(args) => cli::show::run(args),
+        Command::Study(study) => cli::study::run(study),
         Command::Plot { run_dir } => evhi::output::rundir::lock_run_dir(&run_dir)
             .map_err(|e| e.to_string())
             .and_then(|_lock| evhi::experiments::runplot::draw(&run_dir).map_err(|e| e.to_string()))

@@ -1257,3 +1257,74 @@ fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
         assert!(err.contains(&format!("`{field}`")), "{args:?}: {err}");
     }
 }
+
+/// `evhi study convergence --quick` on user scenario files (the five-branch example on
+/// the paper's scene, the cantilever on its own): each writes its directory, the
+/// orders are finite, the figures exist, and the singular points are the scene's.
+#[test]
+fn the_convergence_study_runs_on_user_scenarios() {
+    let dir = scratch("study");
+    for (name, file, singular) in [
+        ("five", "data/scenarios/examples/five_branch.toml", 4),
+        ("cantilever", "data/scenarios/examples/cantilever.toml", 2),
+    ] {
+        let out = dir.join(name);
+        succeed(
+            evhi()
+                .args([
+                    "study",
+                    "convergence",
+                    "--quick",
+                    "--scenario",
+                    file,
+                    "--out",
+                ])
+                .arg(&out),
+        );
+        for f in [
+            "convergence.csv",
+            "convergence.md",
+            "convergence.png",
+            "convergence.svg",
+            "singular.csv",
+            "scenario.toml",
+        ] {
+            assert!(out.join(f).exists(), "{name}: no {f}");
+        }
+        let text = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
+        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let col = |c: &str| header.iter().position(|h| *h == c).unwrap();
+        let rows: Vec<Vec<String>> = lines
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect();
+        assert_eq!(rows.len(), 8, "{name}: two families of four levels");
+        for r in &rows {
+            let n: usize = r[col("n")].parse().unwrap();
+            let err: f64 = r[col("rel_err_T_percent")].parse().unwrap();
+            assert!(err.is_finite() && err > 0.0, "{name}: {r:?}");
+            let order: f64 = r[col("order_dofs")].parse().unwrap();
+            assert_eq!(order.is_finite(), n > 4, "{name}: order at n = {n}: {r:?}");
+            let inc: f64 = r[col("increment_T_percent")].parse().unwrap();
+            assert_eq!(inc.is_finite(), n < 32, "{name}: increment at n = {n}");
+        }
+        let sing = std::fs::read_to_string(out.join("singular.csv")).unwrap();
+        assert_eq!(
+            sing.lines().filter(|l| !l.starts_with('#')).count(),
+            1 + singular,
+            "{name}: {sing}"
+        );
+    }
+    // `evhi --help` lists the studies, and the study explains its options.
+    let help = evhi().arg("--help").output().unwrap();
+    assert!(String::from_utf8_lossy(&help.stdout).contains("study"));
+    let help = evhi()
+        .args(["study", "convergence", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8_lossy(&help.stdout);
+    assert!(
+        help.contains("--quick") && help.contains("singular"),
+        "{help}"
+    );
+}

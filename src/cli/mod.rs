@@ -5,3 +5,4 @@ pub mod bench;
 pub mod reproduce;
 pub mod show;
 pub mod solve;
+pub mod study;

@@ -397,7 +397,14 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         plan.n_ref, ref_dofs, plan.n_ref
     );
     let path = ctx.write("graded_convergence.csv", &t, "graded", &params)?;
-    draw(ctx, &path)
+    let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    draw(
+        &ctx.figures,
+        "graded_convergence",
+        &path,
+        &names(&LOADS),
+        &names(&FAMILIES.map(|f| f.0)),
+    )
 }
 
 /// A series: label, (unknowns, value) points, colour, and its family's index.
@@ -409,7 +416,15 @@ struct GradedFig {
     panels: [(String, String, Vec<Series>); 2],
 }
 
-fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
+/// Draws the table at `path` (of [`compute`]) into `dir` as `stem`.png and .svg: a
+/// colour per load (in the order of `loads`), a marker per family.
+pub fn draw(
+    dir: &std::path::Path,
+    stem: &str,
+    path: &std::path::Path,
+    loads: &[String],
+    families: &[String],
+) -> Result<(), ExpError> {
     let df = read_csv(path)?;
     let (load, family) = (col_str(&df, "load")?, col_str(&df, "family")?);
     let dofs = col_f64(&df, "dofs")?;
@@ -419,8 +434,8 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
     let panel = |col: &str| -> Result<Vec<Series>, ExpError> {
         let v = col_f64(&df, col)?;
         let mut series = vec![];
-        for (li, l) in LOADS.iter().enumerate() {
-            for (fi, (f, _)) in FAMILIES.iter().enumerate() {
+        for (li, l) in loads.iter().enumerate() {
+            for (fi, f) in families.iter().enumerate() {
                 let pts: Vec<(f64, f64)> = (0..load.len())
                     .filter(|&i| load[i] == *l && family[i] == *f && v[i].is_finite())
                     .map(|i| (dofs[i], v[i]))
@@ -444,7 +459,7 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             ),
         ],
     };
-    both(&ctx.figures, "graded_convergence", (1500, 700), &fig)
+    both(dir, stem, (1500, 700), &fig)
 }
 
 /// The outline of family `f`'s marker: square (uniform), octagon (graded towards all
