@@ -271,3 +271,34 @@ fn own_scene_graded() {
     let r = certified(&scn, 16, 64, Some(std::sync::Arc::new(mesh)));
     assert!(r.contact.iter().any(|c| c.u_nu > 0.02));
 }
+
+#[test]
+fn own_study_cantilever() {
+    let out = std::env::temp_dir().join(format!("evhi-claim-study-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let args = evhi::cli::study::ConvergenceArgs {
+        scenario: super::root()
+            .join("data/scenarios/examples/cantilever.toml")
+            .display()
+            .to_string(),
+        quick: true,
+        out: out.clone(),
+    };
+    evhi::cli::study::run(evhi::cli::study::Study::Convergence(args)).unwrap();
+    let text = std::fs::read_to_string(out.join("singular.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = text
+        .lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 2, "{text}");
+    let lambda: Vec<f64> = rows.iter().map(|r| r[3].parse().unwrap()).collect();
+    for r in &rows {
+        assert_eq!(r[0], "0.0", "{text}");
+        assert_eq!(r[2], "corner clamped-free", "{text}");
+    }
+    assert_eq!(lambda[0], lambda[1]);
+    assert!(lambda[0] > 0.5 && lambda[0] < 1.0, "{lambda:?}");
+    let _ = std::fs::remove_dir_all(&out);
+}
