@@ -171,9 +171,8 @@ fn increments(
 ) -> Vec<(f64, f64, f64)> {
     let interp = forest.interpolation(&coarse.leaves, &fine.mesh);
     let geo = crate::norms::NormGeometry::new(&fine.mesh);
-    let ratio = fine.n / coarse.n;
     (0..fine.fields.len())
-        .map(|i| increments_of(&interp, &geo, coarse, fine, ratio, i, g, t_end))
+        .map(|i| increments_of(&interp, &geo, coarse, fine, i, g, t_end))
         .collect()
 }
 
@@ -182,11 +181,11 @@ fn increments_of(
     geo: &crate::norms::NormGeometry,
     coarse: &Level,
     fine: &Level,
-    ratio: usize,
     i: usize,
     g: &crate::material::Isotropic,
     t_end: f64,
 ) -> (f64, f64, f64) {
+    let ratio = fine.n / coarse.n;
     let (mut at_t, mut max, mut t_max) = (f64::NAN, 0.0, f64::NAN);
     for j in 1..=coarse.n {
         let uf = fine.dofs.expand(&fine.fields[i][ratio * j]);
@@ -252,7 +251,7 @@ pub fn compute(
     let ref_leaves = prev;
     let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
     let clock = std::time::Instant::now();
-    let reference: Vec<Vec<f64>> = solve_steps(&scns, &ref_mesh, plan.n_ref, |s| s == plan.n_ref)?
+    let reference: Vec<Vec<f64>> = solve_steps(scns, &ref_mesh, plan.n_ref, |s| s == plan.n_ref)?
         .into_iter()
         .map(|mut steps| steps.pop().expect("the last step"))
         .collect();
@@ -277,7 +276,7 @@ pub fn compute(
             let clock = std::time::Instant::now();
             let mesh = Arc::new(forest.mesh(leaves, *n));
             let dofs = Dofs::new(&mesh, true);
-            let fields = solve_steps(&scns, &mesh, *n, |_| true)?;
+            let fields = solve_steps(scns, &mesh, *n, |_| true)?;
             solved.push(Level {
                 n: *n,
                 leaves: leaves.clone(),
