@@ -1328,3 +1328,102 @@ fn the_convergence_study_runs_on_user_scenarios() {
         "{help}"
     );
 }
+
+/// `evhi study time` and `evhi study stability --quick` on user scenario files: each
+/// writes its directory with finite errors and orders, the map's outcomes, and the
+/// hypotheses per level; a steady scenario has no time study.
+#[test]
+fn the_time_and_stability_studies_run_on_user_scenarios() {
+    let dir = scratch("studies");
+    let read = |path: std::path::PathBuf| -> (Vec<String>, Vec<Vec<String>>) {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+        let header = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        let rows = lines
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect();
+        (header, rows)
+    };
+    for (name, file) in [
+        ("five", "data/scenarios/examples/five_branch.toml"),
+        ("cantilever", "data/scenarios/examples/cantilever.toml"),
+    ] {
+        let out = dir.join(format!("time-{name}"));
+        succeed(
+            evhi()
+                .args(["study", "time", "--quick", "--scenario", file, "--out"])
+                .arg(&out),
+        );
+        for f in [
+            "time_study.csv",
+            "time_study.md",
+            "time_study.png",
+            "time_study.svg",
+            "scenario.toml",
+        ] {
+            assert!(out.join(f).exists(), "{name}: no {f}");
+        }
+        let (h, rows) = read(out.join("time_study.csv"));
+        let c = |n: &str| h.iter().position(|x| x == n).unwrap();
+        assert_eq!(rows.len(), 7, "{name}: N = 4 … 256");
+        for (i, r) in rows.iter().enumerate() {
+            let e: f64 = r[c("rel_err_max_percent")].parse().unwrap();
+            assert!(e.is_finite() && e > 0.0, "{name}: {r:?}");
+            let o: f64 = r[c("order_T")].parse().unwrap();
+            assert_eq!(o.is_finite(), i > 0, "{name}: {r:?}");
+        }
+        let out = dir.join(format!("stab-{name}"));
+        succeed(
+            evhi()
+                .args(["study", "stability", "--quick", "--scenario", file, "--out"])
+                .arg(&out),
+        );
+        for f in [
+            "stability.csv",
+            "hypotheses.csv",
+            "stability.md",
+            "stability.png",
+            "scenario.toml",
+        ] {
+            assert!(out.join(f).exists(), "{name}: no {f}");
+        }
+        let (h, rows) = read(out.join("stability.csv"));
+        let outcome = h.iter().position(|x| x == "outcome").unwrap();
+        let solver = h.iter().position(|x| x == "solver").unwrap();
+        assert!(!rows.is_empty());
+        // Newton, the default, is certified on both examples at every cell.
+        for r in rows.iter().filter(|r| r[solver] == "newton") {
+            assert_eq!(r[outcome], "certified", "{name}: {r:?}");
+        }
+        let (h, rows) = read(out.join("hypotheses.csv"));
+        assert_eq!(rows.len(), 4, "{name}: two levels, two step counts");
+        let hs = h.iter().position(|x| x == "H_s").unwrap();
+        assert!(rows.iter().all(|r| r[hs] == "holds" || r[hs] == "fails"));
+    }
+    let steady = dir.join("steady.toml");
+    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
+    let text: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+        .collect();
+    std::fs::write(
+        &steady,
+        text.join("\n")
+            .replace("problem = \"viscoelastic\"", "problem = \"steady\""),
+    )
+    .unwrap();
+    let o = evhi()
+        .args(["study", "time", "--quick", "--scenario"])
+        .arg(&steady)
+        .arg("--out")
+        .arg(dir.join("refused"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`scenario`"));
+}

@@ -13,6 +13,7 @@ fn ctx(name: &str) -> Ctx {
         verbose: false,
         progress: None,
         reference: None,
+        command: None,
     }
 }
 

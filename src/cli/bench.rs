@@ -127,6 +127,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         verbose: true,
         progress: None,
         reference: None,
+        command: None,
     };
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;

@@ -49,6 +49,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         verbose: true,
         progress: None,
         reference: args.reference,
+        command: None,
     };
     // One writer of an output set at a time; then the temporaries a killed run left.
     let _lock = lock_outputs(&ctx.data)?;

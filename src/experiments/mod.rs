@@ -45,6 +45,9 @@ pub struct Ctx {
     /// Table 1's reference level $n$ (`h = k = 1/n`) instead of the paper's 512;
     /// its tables are then written beside the paper's, with the level in their name.
     pub reference: Option<usize>,
+    /// The command named in the provenance lines, when it is not `evhi reproduce`
+    /// (a study on a user's scenario).
+    pub command: Option<String>,
 }
 
 /// An experiment's failure.
@@ -135,6 +138,11 @@ impl Ctx {
     pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
         vec![
             match experiment {
+                _ if self.command.is_some() => format!(
+                    "produced by evhi {} `evhi {}`",
+                    env!("CARGO_PKG_VERSION"),
+                    self.command.as_deref().unwrap_or_default()
+                ),
                 "bench" | "bench --sweeps" | "bench --scipy" => format!(
                     "produced by evhi {} `evhi {experiment}`",
                     env!("CARGO_PKG_VERSION")

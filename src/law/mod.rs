@@ -291,8 +291,12 @@ impl Law {
     }
 
     /// The law with a penalty branch of stiffness `stiffness` beyond `g`, or `None`
-    /// when the family has no penalised form.
+    /// when the family has no penalised form. Without a limit ($g = +\infty$) there is
+    /// nothing to penalise: the law itself.
     pub fn penalised(&self, g: f64, stiffness: f64) -> Option<Law> {
+        if !g.is_finite() {
+            return Some(self.clone());
+        }
         match self {
             Law::Affine(l) => Some(Law::Affine(l.penalised(g, stiffness))),
             Law::Softening(_) => None,

@@ -28,27 +28,21 @@ fn law_with_softening(c2: f64) -> Result<Law, ExpError> {
     )?)
 }
 
-pub(super) struct Cell {
-    pub(super) solver: &'static str,
-    pub(super) steps: usize,
-    pub(super) c2: f64,
-    pub(super) outcome: String,
-    pub(super) failed_step: u64,
-    pub(super) mean_iterations: f64,
-    pub(super) certificate: f64,
-    pub(super) hessian_min: f64,
-    pub(super) spread: f64,
+pub struct Cell {
+    pub solver: &'static str,
+    pub steps: usize,
+    pub c2: f64,
+    pub outcome: String,
+    pub failed_step: u64,
+    pub mean_iterations: f64,
+    pub certificate: f64,
+    pub hessian_min: f64,
+    pub spread: f64,
 }
 
 /// One cell: `scn` (whose softening slope is `c2`, recorded with the cell) run with
 /// `solver` at h = 1/n and `steps` steps.
-pub(super) fn map_cell(
-    scn: &Scenario,
-    c2: f64,
-    n: usize,
-    steps: usize,
-    solver: &'static str,
-) -> Cell {
+pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'static str) -> Cell {
     let mut opt = Settings::new(n, steps);
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
     if !entry.certified {
@@ -76,8 +70,10 @@ pub(super) fn map_cell(
             c2,
             outcome: if spread > 1e-6 {
                 "several solutions".into()
-            } else if !entry.certified {
+            } else if !entry.certified && scn.g.is_finite() {
                 "converged (overshoots g)".into()
+            } else if !entry.certified {
+                "converged (no limit)".into()
             } else {
                 "certified".into()
             },
@@ -206,8 +202,13 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     draw_map(ctx, &path)
 }
 
-struct MapFigure {
-    cells: Vec<(String, f64, f64, String, f64, f64)>,
+/// A map: per cell (solver, k, row value, outcome, mean iterations, hessian_min); the
+/// rows are the distinct row values ascending, labelled by `row_label`.
+pub struct MapFigure {
+    pub cells: Vec<(String, f64, f64, String, f64, f64)>,
+    pub title: String,
+    pub row_desc: String,
+    pub row_label: fn(f64) -> String,
 }
 
 fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
@@ -225,7 +226,7 @@ fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             (
                 solver[i].clone(),
                 k[i],
-                c2[i],
+                -c2[i],
                 outcome[i].clone(),
                 iters[i],
                 hmin[i],
@@ -236,7 +237,12 @@ fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
         &ctx.figures,
         "stability_map",
         (1100, 1150),
-        &MapFigure { cells },
+        &MapFigure {
+            cells,
+            title: "Where step solvers fail, by time step k and softening slope c2 (numbers: mean iterations per step)".into(),
+            row_desc: "softening slope c2".into(),
+            row_label: |c| format!("-{c:.0e}"),
+        },
     )
 }
 
@@ -245,21 +251,21 @@ impl Figure for MapFigure {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let root = root
-            .titled(
-                "Where step solvers fail, by time step k and softening slope c2 (numbers: mean iterations per step)",
-                ("sans-serif", 19),
-            )
-            .map_err(e2s)?;
+        let root = root.titled(&self.title, ("sans-serif", 19)).map_err(e2s)?;
         let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
         ks.sort_by(f64::total_cmp);
         ks.dedup();
-        let mut cs: Vec<f64> = self.cells.iter().map(|c| -c.2).collect();
+        let mut cs: Vec<f64> = self.cells.iter().map(|c| c.2).collect();
         cs.sort_by(f64::total_cmp);
         cs.dedup();
         let band = 70;
         let (top, _legend_band) = root.split_vertically(root.dim_in_pixel().1 - band);
-        let solvers = solvers();
+        let mut solvers: Vec<&str> = vec![];
+        for c in &self.cells {
+            if !solvers.contains(&c.0.as_str()) {
+                solvers.push(&c.0);
+            }
+        }
         let panels = top.split_evenly((solvers.len().div_ceil(2), 2));
         for (solver, area) in solvers.iter().zip(panels.iter()) {
             let mut chart = ChartBuilder::on(area)
@@ -269,7 +275,7 @@ impl Figure for MapFigure {
                 .y_label_area_size(70)
                 .build_cartesian_2d(-0.5..ks.len() as f64 - 0.5, -0.5..cs.len() as f64 - 0.5)
                 .map_err(e2s)?;
-            let (kl, cl) = (ks.clone(), cs.clone());
+            let (kl, cl, rl) = (ks.clone(), cs.clone(), self.row_label);
             chart
                 .configure_mesh()
                 .disable_mesh()
@@ -288,18 +294,17 @@ impl Figure for MapFigure {
                     if (y - i).abs() > 1e-9 || i < 0.0 {
                         return String::new();
                     }
-                    cl.get(i as usize)
-                        .map_or(String::new(), |c| format!("-{c:.0e}"))
+                    cl.get(i as usize).map_or(String::new(), |c| rl(*c))
                 })
                 .x_desc("time step k")
-                .y_desc("softening slope c2")
+                .y_desc(&self.row_desc)
                 .label_style(("sans-serif", 16))
                 .axis_desc_style(("sans-serif", 16))
                 .draw()
                 .map_err(e2s)?;
             for c in self.cells.iter().filter(|c| c.0 == *solver) {
                 let x = ks.iter().position(|&k| k == c.1).unwrap_or(0) as f64;
-                let y = cs.iter().position(|&v| v == -c.2).unwrap_or(0) as f64;
+                let y = cs.iter().position(|&v| v == c.2).unwrap_or(0) as f64;
                 let colour = if c.3.starts_with("failed") || c.3.starts_with("error") {
                     FAILED
                 } else if c.3 == "several solutions" {

@@ -25,7 +25,8 @@ mod figure;
 mod table;
 use figure::{draw, draw_controls};
 pub use table::sig3;
-use table::{write_markdown, write_rows};
+use table::write_markdown;
+pub use table::write_rows;
 
 /// The load scenarios of the study.
 pub const SCENARIOS: [&str; 2] = ["figure", "literal"];
@@ -107,9 +108,10 @@ pub struct Row {
     pub t_first_limit: f64,
     /// The level's time $t_n$ where the error is largest.
     pub t_err_max: f64,
-    /// The relaxation time $\tau$ and the limit $g$ of the run.
+    /// The relaxation time $\tau$ and the limit $g$ of the run, and its final time.
     pub tau: f64,
     pub g: f64,
+    pub t_end: f64,
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -222,7 +224,10 @@ pub fn study_of(
             refs[i].push(u.to_vec());
         }
         let g = batch[i].g;
-        if first_limit[i].is_nan() && disc.contact_dofs.iter().any(|&d| g - (-u[d]) <= 1e-8 * g) {
+        if g.is_finite()
+            && first_limit[i].is_nan()
+            && disc.contact_dofs.iter().any(|&d| g - (-u[d]) <= 1e-8 * g)
+        {
             first_limit[i] = t;
         }
     })?;
@@ -268,6 +273,7 @@ pub fn study_of(
                 t_err_max: t_max[i],
                 tau: s.relaxation_time().unwrap_or(f64::NAN),
                 g: s.g,
+                t_end: s.t_end,
             });
         }
     }

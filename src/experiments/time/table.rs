@@ -4,7 +4,7 @@
 use super::*;
 
 /// Writes the rows of a study as `file`; `label` names the column of the row's label.
-pub(super) fn write_rows(
+pub fn write_rows(
     ctx: &Ctx,
     plan: &Plan,
     rows: &[Row],
@@ -47,10 +47,12 @@ pub(super) fn write_rows(
         .f64("tau", rows.iter().map(|r| r.tau).collect())
         .f64("g", rows.iter().map(|r| r.g).collect())
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
-        .f64("k", rows.iter().map(|r| 1.0 / r.steps as f64).collect())
+        .f64("k", rows.iter().map(|r| r.t_end / r.steps as f64).collect())
         .f64(
             "k_over_tau",
-            rows.iter().map(|r| 1.0 / r.steps as f64 / r.tau).collect(),
+            rows.iter()
+                .map(|r| r.t_end / r.steps as f64 / r.tau)
+                .collect(),
         )
         .f64(
             "rel_err_max_percent",
