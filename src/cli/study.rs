@@ -477,8 +477,11 @@ fn time(args: TimeArgs) -> Result<(), Box<dyn std::error::Error>> {
 
 /// The time study's figure: the error (max over t and at T) against N, with the
 /// scalar model dashed where there is one.
+/// A curve: label, (N, error %) points, colour, dashed (the model).
+type Curve = (String, Vec<(f64, f64)>, plotters::style::RGBColor, bool);
+
 struct TimeFig {
-    series: Vec<(String, Vec<(f64, f64)>, plotters::style::RGBColor, bool)>,
+    series: Vec<Curve>,
     title: String,
 }
 
