@@ -302,3 +302,115 @@ fn own_study_cantilever() {
     assert!(lambda[0] > 0.5 && lambda[0] < 1.0, "{lambda:?}");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// Runs `evhi study time --quick` on the example `file` and returns its CSV rows by
+/// column name.
+fn time_study(file: &str) -> Vec<std::collections::HashMap<String, String>> {
+    let out = std::env::temp_dir().join(format!(
+        "evhi-claim-time-{}-{}",
+        file.replace('/', "_"),
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&out);
+    let args = evhi::cli::study::TimeArgs {
+        scenario: super::root().join(file).display().to_string(),
+        quick: true,
+        n: None,
+        out: out.clone(),
+    };
+    evhi::cli::study::run(evhi::cli::study::Study::Time(args)).unwrap();
+    let text = std::fs::read_to_string(out.join("time_study.csv")).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(str::to_string))
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn own_study_time_model() {
+    let rows = time_study("data/scenarios/examples/five_branch.toml");
+    let f =
+        |r: &std::collections::HashMap<String, String>, c: &str| -> f64 { r[c].parse().unwrap() };
+    for r in rows.iter().filter(|r| f(r, "steps") >= 16.0) {
+        let ratio = f(r, "rel_err_max_percent") / f(r, "model_max_percent");
+        assert!((ratio - 1.0).abs() <= 0.06, "{r:?}: {ratio}");
+    }
+    // and not below N = 16 (the sentence's "from N = 16 on" is where it starts)
+    let r4 = &rows[0];
+    assert!((f(r4, "rel_err_max_percent") / f(r4, "model_max_percent") - 1.0).abs() > 0.06);
+}
+
+#[test]
+fn own_study_time_cantilever() {
+    let rows = time_study("data/scenarios/examples/cantilever.toml");
+    let f =
+        |r: &std::collections::HashMap<String, String>, c: &str| -> f64 { r[c].parse().unwrap() };
+    assert!(rows.iter().all(|r| f(r, "model_max_percent").is_nan()));
+    for r in rows.iter().filter(|r| f(r, "steps") >= 8.0) {
+        assert!((f(r, "order_T") - 1.0).abs() <= 0.1, "{r:?}");
+    }
+    // the maximum over time: some level's error grows again
+    assert!(
+        rows.iter().skip(1).any(|r| f(r, "order_max") < 0.0),
+        "{rows:?}"
+    );
+}
+
+#[test]
+fn own_study_stability_cantilever() {
+    let out = std::env::temp_dir().join(format!("evhi-claim-stab-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let args = evhi::cli::study::StabilityArgs {
+        scenario: super::root()
+            .join("data/scenarios/examples/cantilever.toml")
+            .display()
+            .to_string(),
+        quick: true,
+        out: out.clone(),
+    };
+    evhi::cli::study::run(evhi::cli::study::Study::Stability(args)).unwrap();
+    let text = std::fs::read_to_string(out.join("stability.csv")).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let (s, o) = (
+        header.iter().position(|h| *h == "solver").unwrap(),
+        header.iter().position(|h| *h == "outcome").unwrap(),
+    );
+    // Split on commas outside quotes (a solver's label may hold one).
+    let split = |l: &str| -> Vec<String> {
+        let (mut out, mut cur, mut quoted) = (vec![], String::new(), false);
+        for ch in l.chars() {
+            match ch {
+                '"' => quoted = !quoted,
+                ',' if !quoted => out.push(std::mem::take(&mut cur)),
+                c => cur.push(c),
+            }
+        }
+        out.push(cur);
+        out
+    };
+    let rows: Vec<Vec<String>> = lines.map(split).collect();
+    assert_eq!(rows.len(), 16, "four solvers, two levels, two step counts");
+    for r in &rows {
+        let expected = if r[s] == "penalty" {
+            "converged (no limit)"
+        } else {
+            "certified"
+        };
+        assert_eq!(r[o], expected, "{r:?}");
+    }
+}
