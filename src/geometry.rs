@@ -131,7 +131,8 @@ pub struct Singularity {
 pub struct Geometry {
     pub width: f64,
     pub height: f64,
-    /// The held segments (clamped or rollers); the rest of the boundary is free.
+    /// The segments a scenario names (clamped, rollers, or free); the rest of the
+    /// boundary is free.
     pub supports: Vec<Segment>,
     /// $\Gamma_3 = [x_0, x_1] \times \{0\}$.
     pub contact: [f64; 2],
@@ -261,10 +262,11 @@ impl Geometry {
 
     /// The points where the solution is expected to be singular, each once: on a
     /// side, where the hold changes (a clamp or roller ending on a free part, a clamp
-    /// meeting rollers); at a corner, where a clamped side meets a free one (clamped
-    /// meeting clamped, and any corner with rollers, reflects to a straight boundary
-    /// or a regular corner). $\Gamma_3$ counts as free here: its compliance is not a
-    /// support. Used by graded meshes.
+    /// meeting rollers); at a corner, where a clamped side meets a free one. A corner
+    /// with rollers reflects across the roller side to a straight edge or a regular
+    /// corner; two clamped sides meet with a leading exponent above 1, so the solution
+    /// is in $H^2$ there and P1 keeps its order. $\Gamma_3$ counts as free here: its
+    /// compliance is not a support. Used by graded meshes.
     pub fn singularities(&self) -> Vec<Singularity> {
         let (w, h) = (self.width, self.height);
         let point = |side: Side, a: f64| match side {
@@ -501,7 +503,11 @@ impl Geometry {
                 }
             }
         }
-        if let Some(s) = geo.holds_on(Side::Bottom, a, b).first() {
+        if let Some(s) = geo
+            .holds_on(Side::Bottom, a, b)
+            .into_iter()
+            .find(|s| s.hold != Hold::Free)
+        {
             return Err(InputError::field(
                 "geometry.contact",
                 format!("[{a}, {b}]"),
@@ -596,15 +602,9 @@ fn side_segments(side: Side, v: &toml::Value) -> Result<Vec<Segment>, InputError
                     }
                 };
                 let (from, to) = (num("from")?, num("to")?);
-                if kind != Hold::Free {
-                    out.push(segment(side, from, to, kind, &f));
-                } else if from.partial_cmp(&to) != Some(std::cmp::Ordering::Less) {
-                    return Err(InputError::field(
-                        &f,
-                        format!("from = {from}, to = {to}"),
-                        "from < to",
-                    ));
-                }
+                // Free segments are kept: they hold nothing, but may not overlap
+                // another segment of the side (checked with the others).
+                out.push(segment(side, from, to, kind, &f));
             }
             Ok(out)
         }

@@ -33,15 +33,8 @@ enum Command {
     /// Example: evhi solve --scenario figure --n 64 --steps 64 --out runs/fig64
     Solve(cli::solve::SolveArgs),
     /// Recompute the paper's figures and tables (Figs. 2-5, Table 1) and the studies
-    /// beyond it: CSV into data/, PNG and SVG into figures/.
-    ///
-    /// Experiments: hypotheses (the constants of H(A)...H(s)), fig2 (the law), loads (search of the `figure` loads), fig3
-    /// (deformed body, g = 0.1), fig4 (several g), table1 (Table 1, Fig. 5, error
-    /// split), forensics (which reading of the paper gives its Table 1; the increments
-    /// of the uniform family and the reference's own error), graded (uniform against
-    /// graded meshes, with contact and time), time (the time error and
-    /// load histories), static (the static control: corner exponents), example (the
-    /// five-branch scenario), stability (Proposition 3.1). With no name, all run.
+    /// beyond it: CSV into data/, PNG and SVG into figures/. With no name, all run
+    /// (the experiments are listed under NAMES).
     Reproduce(cli::reproduce::ReproduceArgs),
     /// Time every phase at several levels (each run in a fresh process, medians of
     /// --repeat runs), compare the step solvers, and write data/bench.csv,

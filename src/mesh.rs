@@ -70,7 +70,8 @@ pub fn check_n(n: usize) -> Result<(), InputError> {
         return Err(InputError::field(
             "n",
             n,
-            "a positive multiple of 4 (so that y = 0.5 is a mesh line)",
+            "a positive multiple of 4 (on the paper's scene y = 0.5 is then a mesh line; on \
+             any scene the levels n, 2n, ... nest)",
         ));
     }
     Ok(())

@@ -887,6 +887,22 @@ impl Scenario {
         Ok(mesh)
     }
 
+    /// The mesh of level $n$ graded towards the scene's singular points with exponent
+    /// `mu` ([`crate::bisection::graded_mesh`]). Its boundary nodes include the
+    /// uniform level-$n$ mesh's, so the ends of supports and tractions are checked on
+    /// that mesh first; the graded mesh cuts the cells by the paper's diagonal only.
+    pub fn graded_mesh(&self, n: usize, mu: f64) -> Result<Mesh, InputError> {
+        if self.pattern != Pattern::Diagonal {
+            return Err(InputError::field(
+                "geometry.pattern",
+                self.pattern.name(),
+                "\"diagonal\" with a graded mesh (bisection starts from the paper's diagonal cut)",
+            ));
+        }
+        self.mesh(n)?;
+        crate::bisection::graded_mesh(&self.geometry, n, mu)
+    }
+
     /// Every traction: the paper's $f_2$ on the whole top, then the file's others.
     pub fn tractions(&self) -> Vec<Traction> {
         let mut out = vec![Traction {

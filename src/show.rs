@@ -184,7 +184,14 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         "loads: f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}, history: {}",
         scn.f0[0], scn.f0[1], scn.f2[0], scn.f2[1], scn.f0_modulation, scn.history
     );
+    let jumps_down = !law.down_jumps().is_empty();
     match Smallness::of(scn, n) {
+        Ok(_) if jumps_down => {
+            let _ = writeln!(
+                s,
+                "H(s): does not apply: H(j) fails (a downward jump), so no finite m exists for it"
+            );
+        }
         Ok(h) => {
             let holds = h.holds();
             let _ = writeln!(

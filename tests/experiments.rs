@@ -1,7 +1,8 @@
 //! Every experiment in quick mode, its CSV output rounded to 6 significant digits
 //! and pinned by an insta snapshot: a change in the numbers fails here.
 
-use evhi::experiments::{Ctx, NAMES, rounded_csv_floor, run};
+use evhi::experiments::registry::names;
+use evhi::experiments::{Ctx, rounded_csv_floor, run};
 use std::path::PathBuf;
 
 fn ctx(name: &str) -> Ctx {
@@ -14,6 +15,7 @@ fn ctx(name: &str) -> Ctx {
         progress: None,
         reference: None,
         command: None,
+        experiment: "",
     }
 }
 
@@ -362,7 +364,7 @@ fn exact_orders_and_regimes_quick() {
 fn every_experiment_is_tested_here() {
     // whitespace removed, so formatting cannot hide a call
     let src: String = include_str!("experiments.rs").split_whitespace().collect();
-    for name in NAMES {
+    for name in names() {
         assert!(
             src.contains(&format!("snapshot_outputs(\"{name}\""))
                 || src.contains(&format!("snapshot_outputs_floor(\"{name}\"")),

@@ -183,3 +183,47 @@ fn no_solver_is_picked_by_index() {
     }
     assert!(found.is_empty(), "solvers picked by index: {found:#?}");
 }
+
+/// The registry of experiments is the one place an experiment's name is spelled: the
+/// CLI's values, `reproduce paper`, the scheduling, the dispatcher and every table's
+/// provenance read it. A literal equal to a name elsewhere must be another word that
+/// happens to be spelled alike, listed here with what it means.
+#[test]
+fn experiment_names_are_spelled_in_the_registry_only() {
+    let other_meaning: [(&str, &str); 6] = [
+        ("src/cli/solve.rs", "graded"),          // the mesh kind of --mesh
+        ("src/cli/study.rs", "graded"),          // a mesh family's label
+        ("src/experiments/graded.rs", "graded"), // a mesh family's label
+        ("src/cli/study.rs", "stability"),       // the study's figure stem
+        ("src/experiments/forensics/table.rs", "time"), // a column: the reading's time norm
+        ("src/manufactured/run.rs", "exact"),    // a quadrature rule's name
+    ];
+    let mut files = vec![];
+    rust_files(&src(), &mut files);
+    let mut found = vec![];
+    for name in evhi::experiments::registry::names() {
+        let literal = format!("\"{name}\"");
+        for f in &files {
+            let rel = f
+                .strip_prefix(src().parent().unwrap())
+                .unwrap()
+                .display()
+                .to_string();
+            if rel.ends_with("experiments/registry.rs")
+                || other_meaning.contains(&(rel.as_str(), name))
+            {
+                continue;
+            }
+            let text = std::fs::read_to_string(f).unwrap();
+            for (i, line) in text.lines().enumerate() {
+                if !line.trim_start().starts_with("//") && line.contains(&literal) {
+                    found.push(format!("{rel}:{}: {}", i + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "experiment names spelled outside the registry: {found:#?}"
+    );
+}

@@ -465,3 +465,45 @@ fn every_solver_runs_without_a_limit() {
         }
     }
 }
+
+/// A graded mesh checks the scene's ends on the uniform mesh of its level (its
+/// boundary nodes include that mesh's), and cuts cells by the paper's diagonal only:
+/// a traction end off the level's nodes and another pattern are refused by name. A
+/// free segment overlapping a clamp is refused like any overlap.
+#[test]
+fn graded_meshes_and_free_segments_are_checked() {
+    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
+    let off = parse(&text.replace("from = 1.0", "from = 1.1")).unwrap();
+    let err = off.graded_mesh(8, 0.4).unwrap_err();
+    assert_eq!(err.field_name(), Some("loads.traction[0].from"));
+    let cross =
+        parse(&text.replace("height = 0.5", "height = 0.5\npattern = \"crisscross\"")).unwrap();
+    let err = cross.graded_mesh(8, 0.4).unwrap_err();
+    assert_eq!(err.field_name(), Some("geometry.pattern"));
+    // the graded mesh's top nodes include the uniform level's
+    let scn = cantilever("viscoelastic");
+    let graded = scn.graded_mesh(16, 0.4).unwrap();
+    let uniform = scn.mesh(16).unwrap();
+    let top = |m: &Mesh| -> Vec<f64> {
+        let mut x: Vec<f64> = m
+            .nodes
+            .iter()
+            .filter(|p| p[1] == 0.5)
+            .map(|p| p[0])
+            .collect();
+        x.sort_by(f64::total_cmp);
+        x
+    };
+    let g = top(&graded);
+    assert!(top(&uniform).iter().all(|x| g.contains(x)));
+    let overlap = scene(
+        "[geometry.supports]\nleft = [{ from = 0.0, to = 0.75, kind = \"clamped\" }, { from = 0.5, to = 1.0, kind = \"free\" }]",
+        "",
+        "0.1",
+        "viscoelastic",
+    );
+    assert_eq!(
+        parse(&overlap).unwrap_err().field_name(),
+        Some("geometry.supports.left[1]")
+    );
+}

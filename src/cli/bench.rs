@@ -128,6 +128,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         progress: None,
         reference: None,
         command: None,
+        experiment: "bench",
     };
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;
@@ -193,7 +194,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         "machine: {machine}; scenario figure, solver newton, h = k = 1/n; path: the general time loop or the reduced one; medians of {} runs, each in a fresh process; wall_s is the solve without writing its files",
         args.repeat
     );
-    ctx.write("bench.csv", &t, "bench", &params)?;
+    ctx.write_as("bench.csv", &t, "bench", &params)?;
     crate::experiments::workprec::paper_comparison(&ctx)?;
     // Step solvers compared on the same runs.
     let mut rows = vec![];
@@ -229,7 +230,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         .f64("inner_iterations_total", rows.iter().map(|r| r.5).collect())
         .f64("max_certificate", rows.iter().map(|r| r.6).collect())
         .f64("energy_norm_T", rows.iter().map(|r| r.7).collect());
-    ctx.write(
+    ctx.write_as(
         "bench_solvers.csv",
         &ts,
         "bench",
@@ -269,7 +270,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         .f64("wall_s", wp.iter().map(|r| r.3).collect())
         .f64("rel_err_T_percent", wp.iter().map(|r| r.4).collect())
         .f64("rel_err_max_percent", wp.iter().map(|r| r.5).collect());
-    let path = ctx.write("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
+    let path = ctx.write_as("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
     crate::experiments::workprec::draw(&ctx, &path)?;
     crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
     Ok(())
@@ -375,7 +376,7 @@ fn scipy(
         )
         .f64("scipy_gap_u_nu", rows.iter().map(|r| r.6).collect())
         .f64("scipy_gap_energy", rows.iter().map(|r| r.7.abs()).collect());
-    ctx.write(
+    ctx.write_as(
         "bench_scipy.csv",
         &t,
         "bench --scipy",

@@ -6,9 +6,9 @@ use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct ReproduceArgs {
-    /// Experiments to run (default: all). `paper` stands for the paper's own set:
-    /// hypotheses fig2 loads fig3 fig4 table1.
-    #[arg(value_parser = crate::experiments::NAMES.iter().chain(&["paper"]).copied().collect::<Vec<_>>())]
+    /// Experiments to run (default: all; each listed below). `paper` stands for the
+    /// paper's own set, its hypotheses, Figs. 2-4 and Table 1.
+    #[arg(value_parser = clap::builder::PossibleValuesParser::new(crate::experiments::registry::values()))]
     pub names: Vec<String>,
     /// Coarse levels only (seconds; what the tests snapshot).
     #[arg(long)]
@@ -39,7 +39,8 @@ pub struct ReproduceArgs {
 
 /// Runs the named experiments (all by default).
 pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::experiments::{Ctx, NAMES, run};
+    use crate::experiments::{Ctx, registry, run};
+    let all = registry::names();
     let ctx = Ctx {
         quick: args.quick,
         data: args.data.unwrap_or_else(|| quick_or(args.quick, "data")),
@@ -50,6 +51,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         progress: None,
         reference: args.reference,
         command: None,
+        experiment: "",
     };
     // One writer of an output set at a time; then the temporaries a killed run left.
     let _lock = lock_outputs(&ctx.data)?;
@@ -57,12 +59,12 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         remove_stale_temporaries(dir);
     }
     let names: Vec<String> = if args.names.is_empty() {
-        NAMES.iter().map(|s| s.to_string()).collect()
+        all.iter().map(|s| s.to_string()).collect()
     } else {
         let mut names: Vec<String> = vec![];
         for name in args.names {
             let group: Vec<String> = match name.as_str() {
-                "paper" => PAPER_SET.iter().map(|s| s.to_string()).collect(),
+                "paper" => paper_set().iter().map(|s| s.to_string()).collect(),
                 _ => vec![name],
             };
             for n in group {
@@ -73,9 +75,9 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         }
         names
     };
-    let set = if names.len() == NAMES.len() {
+    let set = if names.len() == all.len() {
         "all".to_string()
-    } else if names.iter().eq(PAPER_SET.iter()) {
+    } else if names.iter().eq(paper_set().iter()) {
         "paper".to_string()
     } else {
         names.join("+")
@@ -106,9 +108,9 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     // data/reproduce_times.csv: forensics 129 s and exact 36 s beside the rest; paths
     // 55, graded 28, static 17, time 16, stability 12, table1 7 s; the rest under 2 s
     // each).
-    let (heavy, light): (Vec<String>, Vec<String>) = names.into_iter().partition(|n| {
-        ["table1", "paths", "graded", "time", "static", "stability"].contains(&n.as_str())
-    });
+    let (heavy, light): (Vec<String>, Vec<String>) = names
+        .into_iter()
+        .partition(|n| registry::experiment(n).is_ok_and(|e| e.second_thread));
     let results: Vec<(String, f64, Result<(), String>)> = std::thread::scope(|s| {
         let work = |list: Vec<String>| {
             let ctx = ctx.clone();
@@ -225,8 +227,15 @@ fn quick_or(quick: bool, dir: &str) -> PathBuf {
     }
 }
 
-/// The paper's own experiments: its hypotheses, Figs. 2-4 and Table 1.
-pub const PAPER_SET: [&str; 6] = ["hypotheses", "fig2", "loads", "fig3", "fig4", "table1"];
+/// The paper's own experiments: its hypotheses, Figs. 2-4 and Table 1 (the registry's
+/// `paper` entries).
+pub fn paper_set() -> Vec<&'static str> {
+    crate::experiments::registry::EXPERIMENTS
+        .iter()
+        .filter(|e| e.paper)
+        .map(|e| e.name)
+        .collect()
+}
 
 /// The committed table of wall times the book quotes; only `--record-times` writes it.
 pub const RECORDED_TIMES: &str = "reproduce_times.csv";
@@ -282,13 +291,13 @@ fn record_times(
     if file == RECORDED_TIMES {
         command = format!("{command} --record-times").trim().to_string();
     }
-    ctx.write(
+    ctx.write_as(
         file,
         &t,
         &command,
         &format!(
             "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); the rows of a set were measured by `evhi reproduce [SET] {}` (SET left out for all); machine: {}; two threads, each experiment timed while the others of its set run beside it",
-            PAPER_SET.join(" "),
+            paper_set().join(" "),
             if file == RECORDED_TIMES { "--record-times" } else { "" },
             crate::timing::machine()
         ),

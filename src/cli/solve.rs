@@ -32,7 +32,10 @@ pub struct SolveArgs {
     /// cell cut by one diagonal, as in the paper) or `graded` (newest-vertex bisection
     /// refined towards the scene's singular points, which `evhi show` lists: where a
     /// clamp or roller ends on the side, clamped corners beside a free side). A graded
-    /// mesh is factorised with the AMD ordering on one thread; the outputs are the same.
+    /// mesh is factorised with the AMD ordering on one thread, cuts cells by the
+    /// paper's diagonal only, and writes every node to nodes.csv with triangles.csv
+    /// beside it (a uniform run's nodes.csv is a lattice every n/32 cells);
+    /// summary.csv's `mesh` column says which mesh ran.
     #[arg(long, default_value = "uniform", value_parser = ["uniform", "graded"])]
     pub mesh: String,
     /// The grading exponent mu of `--mesh graded` (in [0.05, 0.95]; default 0.4, below
@@ -45,7 +48,8 @@ pub struct SolveArgs {
     /// uncertified one is judged by its own convergence).
     #[arg(long, default_value = crate::step::DEFAULT_SOLVER, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
     pub solver: String,
-    /// Override the unilateral limit g (> 0, metres).
+    /// Override the unilateral limit g (metres, in [1e-12, 1e6]; a scenario file may
+    /// also say g = "none", no limit).
     #[arg(long, allow_hyphen_values = true)]
     pub g: Option<f64>,
     /// Override the volume force f0 as FX,FY (N/m²).
@@ -54,7 +58,8 @@ pub struct SolveArgs {
     /// Override the top traction f2 as FX,FY (N/m).
     #[arg(long, value_parser = parse_pair, allow_hyphen_values = true)]
     pub f2: Option<[f64; 2]>,
-    /// Override the load history with a ramp: both loads grow as min(t/T_R, 1), so the
+    /// Override the load history with a ramp: all loads (f0 and every traction) grow as
+    /// min(t/T_R, 1), so the
     /// data start at zero as the paper's H(f) and H(0) ask (T_R > 0, seconds). Without
     /// it the scenario's `loads.history` holds (default: constant, full load at t = 0).
     #[arg(long, value_name = "T_R", allow_hyphen_values = true)]
@@ -204,7 +209,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     // The mesh first: a scene whose segments miss the mesh lines is refused by name.
     crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
     let mesh = std::sync::Arc::new(if graded {
-        crate::bisection::graded_mesh(&scn.geometry, args.n, args.grading.unwrap_or(0.4))?
+        scn.graded_mesh(args.n, args.grading.unwrap_or(0.4))?
     } else {
         scn.mesh(args.n)?
     });
@@ -315,6 +320,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         solver: solver.name().to_string(),
         ordering: ordering.clone(),
         path: (if reduced { "reduced" } else { "general" }).to_string(),
+        mesh: if graded {
+            format!("graded mu = {}", args.grading.unwrap_or(0.4))
+        } else {
+            "uniform".to_string()
+        },
     };
     crate::output::run::write(
         &out,

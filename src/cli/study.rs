@@ -383,6 +383,7 @@ fn study_ctx(out: &RunDir, quick: bool, progress: &ProgressBar) -> crate::experi
         command: Some(crate::output::run::one_line(
             &crate::output::run::quote_args(std::env::args().skip(1)),
         )),
+        experiment: "",
     }
 }
 

@@ -85,6 +85,7 @@ fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<()
         solver: crate::step::DEFAULT_SOLVER.into(),
         ordering: "nd".into(),
         path: "general".into(),
+        mesh: "uniform".into(),
     };
     let h_s = crate::show::Smallness::of(&scn, n)
         .unwrap_or_else(|_| crate::show::Smallness::unknown(&scn, n));
@@ -100,7 +101,6 @@ fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<()
     ctx.write(
         &format!("example_{name}_iterations.csv"),
         &t,
-        "example",
         &format!("scenario {name}, h = k = 1/{n}, solver newton; the iterations of each step and its certificate (steps.csv without its timings)"),
     )?;
     // Tables into data/ (timing columns are not kept: they change from run to run).
@@ -205,7 +205,6 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
     ctx.write(
         "example_five_branch_steps.csv",
         &t,
-        "example",
         &format!(
             "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2)",
             4 * n,

@@ -15,7 +15,6 @@ const VERMILLION: RGBColor = RGBColor(213, 94, 0);
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
     let labels = Labels {
-        experiment: "fig2",
         headroom: 1.08,
         title: "Fig. 2: contact law, -σν against uν".into(),
         law: "normal compliance -σν¹ = p(uν), (5.1)".into(),
@@ -31,8 +30,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
 /// What a drawing of a law says: its title, the law's and the points' legend
 /// entries, and the provenance line of its tables.
 struct Labels {
-    /// The experiment that writes the tables (their provenance).
-    experiment: &'static str,
     /// Room above the curve for the legend, as a factor on its largest value.
     headroom: f64,
     title: String,
@@ -45,7 +42,6 @@ struct Labels {
 /// curve and the wall) and `STEM_kinks.csv`, figure `STEM`.
 pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
     let labels = Labels {
-        experiment: "example",
         headroom: 1.5,
         title: format!("The law of scenario {}, -σν against uν", scn.name),
         law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law.kind()),
@@ -84,19 +80,9 @@ fn draw_in(
         .f64("u_nu", u)
         .f64("minus_sigma_nu", sig)
         .str("part", part);
-    let path = ctx.write(
-        &format!("{stem}.csv"),
-        &table,
-        labels.experiment,
-        &labels.params,
-    )?;
+    let path = ctx.write(&format!("{stem}.csv"), &table, &labels.params)?;
     let bp = Table::new().f64("u_nu", bp_u).f64("minus_sigma_nu", bp_s);
-    let bp_path = ctx.write(
-        &format!("{points}.csv"),
-        &bp,
-        labels.experiment,
-        &labels.params,
-    )?;
+    let bp_path = ctx.write(&format!("{points}.csv"), &bp, &labels.params)?;
     // Draw from the CSVs.
     let df = read_csv(&path)?;
     let bdf = read_csv(&bp_path)?;

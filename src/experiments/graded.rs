@@ -395,7 +395,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= D min(1, max(r, D^(1/mu))^(1-mu)) with D = 2 sqrt2 / n, mu = {MU}, r = distance of the triangle's centroid to the nearest clamp end or top corner (family graded), clamp end only (clamp ends), top corner only (top corners); min_longest_edge = the shortest longest edge of the mesh; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh); increment = ||u_n - u_2n||_E / ||u_2n||_E against the next level of the same family (no reference), at T and its maximum over t_j = j/n, with the t where it occurs; order_increment_dofs and order_increment_max_dofs from increment_T and increment_max",
         plan.n_ref, ref_dofs, plan.n_ref
     );
-    let path = ctx.write("graded_convergence.csv", &t, "graded", &params)?;
+    let path = ctx.write("graded_convergence.csv", &t, &params)?;
     let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
     draw(
         &ctx.figures,

@@ -29,7 +29,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut rows = vec![];
     for &n in &levels {
         let trace_sq = crate::norms::trace_norm_sq(&scn, n).map_err(|message| ExpError::Table {
-            path: "hypotheses".into(),
+            path: format!("{} (trace constant at n = {n})", ctx.experiment),
             message,
         })?;
         rows.push((n, trace_sq.sqrt(), m * trace_sq));
@@ -49,7 +49,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "hypotheses.csv",
         &t,
-        "hypotheses",
         "material and law of the paper (E = 1000, kappa = 0.4, alpha = 100, beta = 50, c2 = -100); ||v||_V^2 = (eps(v), eps(v)); alpha_A, beta_B: coercivity of C and G; m = max(0, -min slope of p); paper's supports",
     )?;
     compatibility(ctx)
@@ -90,7 +89,6 @@ pub fn compatibility(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "hypotheses_compat.csv",
         &t,
-        "hypotheses",
         "H(f) at t = 0: f2(0) = 0 and f0(0) in V (f0(0) vanishes on every prescribed displacement component); \
          H(0) at u0 = 0: additionally 0 in the Clarke subdifferential of j at 0; f(t) = phi(t) (f0, f2)",
     )?;

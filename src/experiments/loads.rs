@@ -87,7 +87,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         "scenario figure with f0 = (0,-q0), f2 = (0,-q2); g = {}, h = k = 1/{n}, t = T; chosen = qualifies (q0 > 0, centre at the limit, every branch populated) with the largest least_share",
         base.g
     );
-    ctx.write("loads_search.csv", &t, "loads", &params)?;
+    ctx.write("loads_search.csv", &t, &params)?;
     if let Some(i) = best {
         ctx.add_units(1);
         ctx.log(&format!(

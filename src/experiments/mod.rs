@@ -16,6 +16,7 @@ pub mod hypotheses;
 pub mod loads;
 pub mod paths;
 pub mod plot;
+pub mod registry;
 pub mod runplot;
 pub mod scenes;
 pub mod singular;
@@ -48,6 +49,9 @@ pub struct Ctx {
     /// The command named in the provenance lines, when it is not `evhi reproduce`
     /// (a study on a user's scenario).
     pub command: Option<String>,
+    /// The experiment running (set by [`run`] from the registry): its tables'
+    /// provenance names it.
+    pub experiment: &'static str,
 }
 
 /// An experiment's failure.
@@ -67,24 +71,6 @@ pub enum ExpError {
     #[error("figure {path}: {message}")]
     Plot { path: String, message: String },
 }
-
-/// The experiments, in the order `evhi reproduce` runs them.
-pub const NAMES: [&str; 14] = [
-    "hypotheses",
-    "fig2",
-    "loads",
-    "fig3",
-    "fig4",
-    "table1",
-    "paths",
-    "forensics",
-    "graded",
-    "time",
-    "static",
-    "example",
-    "stability",
-    "exact",
-];
 
 /// The CSV tables the book shows, as Markdown renderings beside them: file, key
 /// columns repeated in every part, and the most columns of one part (so a part
@@ -107,30 +93,15 @@ pub const BOOK_TABLES: [(&str, usize, usize); 15] = [
     ("stability_prop31.csv", 3, 6),
 ];
 
-/// Runs one experiment by name.
+/// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'
+/// provenance names it.
 pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
-    match name {
-        "hypotheses" => hypotheses::run(ctx),
-        "fig2" => fig2::run(ctx),
-        "loads" => loads::run(ctx),
-        "fig3" => scenes::run_fig3(ctx),
-        "fig4" => scenes::run_fig4(ctx),
-        "table1" => convergence::run(ctx),
-        "paths" => paths::run(ctx),
-        "forensics" => forensics::run(ctx),
-        "graded" => graded::run(ctx),
-        "time" => time::run(ctx),
-        "static" => singular::run(ctx),
-        "example" => example::run(ctx),
-        "stability" => stability::run(ctx),
-        "exact" => exact::run_study(ctx),
-        other => Err(crate::error::InputError::field(
-            "experiment",
-            other,
-            format!("one of {}", NAMES.join(", ")),
-        )
-        .into()),
-    }
+    let e = registry::experiment(name)?;
+    let ctx = Ctx {
+        experiment: e.name,
+        ..ctx.clone()
+    };
+    (e.run)(&ctx)
 }
 
 impl Ctx {
@@ -166,9 +137,15 @@ impl Ctx {
         self.figures.join(format!("{stem}.{ext}"))
     }
 
-    /// Writes a table with its provenance (and, for a table the book shows, its
-    /// Markdown rendering, see [`BOOK_TABLES`]).
-    pub fn write(
+    /// Writes a table with its provenance, naming the running experiment (and, for a
+    /// table the book shows, its Markdown rendering, see [`BOOK_TABLES`]).
+    pub fn write(&self, file: &str, table: &Table, params: &str) -> Result<PathBuf, ExpError> {
+        self.write_as(file, table, self.experiment, params)
+    }
+
+    /// [`Ctx::write`] with the provenance naming `experiment` (a command's variant,
+    /// such as `table1 --reference 1024`, or `bench`).
+    pub fn write_as(
         &self,
         file: &str,
         table: &Table,

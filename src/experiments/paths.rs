@@ -109,7 +109,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "paths.csv",
         &t,
-        "paths",
         "h = k = 1/n; gaps between the general and the reduced time loop, each max |general - reduced| / max |general| over all steps (contact unknowns u_nu, energy norms) or over the dofs at T (field); certificates: the largest of each loop (the reduced loop's are on the condensed problem where no field is formed); solver newton",
     )?;
     Ok(())

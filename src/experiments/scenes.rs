@@ -157,18 +157,8 @@ pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.log(&format!("fig3: figure scenario, h = k = 1/{n}, g = {g}"));
     let sc = solve_scene(n, g)?;
     let params = format!("scenario figure, h = k = 1/{n}, g = {g}, solver newton, t = T = 1");
-    let cp = ctx.write(
-        "fig3_contact.csv",
-        &contact_table(&[(g, &sc)]),
-        "fig3",
-        &params,
-    )?;
-    let np = ctx.write(
-        "fig3_nodes.csv",
-        &nodes_table(&[(g, &sc)], 1),
-        "fig3",
-        &params,
-    )?;
+    let cp = ctx.write("fig3_contact.csv", &contact_table(&[(g, &sc)]), &params)?;
+    let np = ctx.write("fig3_nodes.csv", &nodes_table(&[(g, &sc)], 1), &params)?;
     let panels = vec![Panel::from_csv(&cp, &np, g, n)?];
     both(
         &ctx.figures,
@@ -201,12 +191,11 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     let scenes: Vec<(f64, Scene)> = gs.iter().copied().zip(solve_all(&scns, n)?).collect();
     let refs: Vec<(f64, &Scene)> = scenes.iter().map(|(g, s)| (*g, s)).collect();
     let params = format!("scenario figure, h = k = 1/{n}, g in {gs:?}, solver newton, t = T = 1");
-    let cp = ctx.write("fig4_contact.csv", &contact_table(&refs), "fig4", &params)?;
+    let cp = ctx.write("fig4_contact.csv", &contact_table(&refs), &params)?;
     let stride = (n / 32).max(1);
     let np = ctx.write(
         "fig4_nodes.csv",
         &nodes_table(&refs, stride),
-        "fig4",
         &format!("{params}; nodes every {stride} cells"),
     )?;
     let mut t = Table::new().f64("g", gs.to_vec());
@@ -216,7 +205,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
             scenes.iter().map(|(_, s)| counts(&s.regimes)[k]).collect(),
         );
     }
-    ctx.write("fig4_counts.csv", &t, "fig4", &params)?;
+    ctx.write("fig4_counts.csv", &t, &params)?;
     let mut panels = vec![];
     for &g in &gs {
         panels.push(Panel::from_csv(&cp, &np, g, n / stride)?);

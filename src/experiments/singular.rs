@@ -220,7 +220,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
          extrapolation of the last three levels; rel_err_vs_n512 = ||u_512 - u_h||_E / ||u_512||_E, Table 1's measure; exponents (plane strain, kappa_M = 3 - 4 kappa = {kappa_m}): clamp end on a straight \
          edge lambda = {re_end} + {im_end:.5} i; clamped top corner (pi/2, clamped-free) lambda = {lambda_top:.5}"
     );
-    let path = ctx.write("static_control.csv", &t, "static", &params)?;
+    let path = ctx.write("static_control.csv", &t, &params)?;
     write_markdown(ctx, &path)?;
     draw(ctx, &path, re_end, lambda_top)
 }
@@ -235,7 +235,10 @@ fn write_markdown(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
         col_f64(&df, "order_diff")?,
         col_f64(&df, "rel_err_vs_n512")?,
     );
-    let mut md = format!("<!-- {} -->\n\n", ctx.provenance("static", "").join(" "));
+    let mut md = format!(
+        "<!-- {} -->\n\n",
+        ctx.provenance(ctx.experiment, "").join(" ")
+    );
     md += "Relative energy norm of the difference to the next level, \
            ‖u<sub>2n</sub> − u<sub>n</sub>‖<sub>E</sub> / ‖u‖<sub>E</sub> in percent (observed order; \
            from the energies, exact for `literal` and `figure`, up to O(h²) for `smooth`), \

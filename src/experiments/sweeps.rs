@@ -214,7 +214,7 @@ pub fn run(ctx: &Ctx, n: usize, machine: &str) -> Result<(), ExpError> {
                 .map(|r| 2.0 * 8.0 * r.nnz_l / (1e-3 * total(r)) / 1e9)
                 .collect(),
         );
-    ctx.write(
+    ctx.write_as(
         "bench_sweeps.csv",
         &t,
         "bench --sweeps",

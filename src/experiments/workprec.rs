@@ -223,7 +223,7 @@ pub fn paper_comparison(ctx: &Ctx) -> Result<(), ExpError> {
         .u64("our_dofs", rows.iter().map(|r| r.3 as u64).collect())
         .f64("our_wall_s", rows.iter().map(|r| r.4).collect())
         .f64("paper_over_ours", rows.iter().map(|r| r.2 / r.4).collect());
-    ctx.write(
+    ctx.write_as(
         "bench_vs_paper.csv",
         &t,
         "bench",

@@ -21,6 +21,8 @@ pub struct Provenance {
     pub ordering: String,
     /// The time loop that ran: `general` or `reduced`.
     pub path: String,
+    /// The mesh: `uniform`, or `graded mu = …` (its exponent).
+    pub mesh: String,
 }
 
 /// `text` on one line: control characters (a line feed or carriage return in a path)
@@ -288,6 +290,7 @@ pub fn write(
         .f64("peak_rss_mb", vec![peak_rss_mb()])
         .str("ordering", vec![prov.ordering.clone()])
         .str("path", vec![prov.path.clone()])
+        .str("mesh", vec![prov.mesh.clone()])
         .u64("sweep_threads", vec![run.sweep_threads as u64])
         .str(
             "version",

@@ -268,6 +268,17 @@ fn own_scene_graded() {
     let x: Vec<f64> = mesh.gamma3.iter().map(|&v| mesh.nodes[v][0]).collect();
     let first = x[1] - x[0];
     assert!(x.windows(2).all(|w| w[1] - w[0] >= first), "{x:?}");
+    // and at the other clamped corner, (0, 0.5): the left side's nodes just below it
+    // are closer than a uniform cell's height
+    let mut y: Vec<f64> = mesh
+        .nodes
+        .iter()
+        .filter(|p| p[0] == 0.0)
+        .map(|p| p[1])
+        .collect();
+    y.sort_by(f64::total_cmp);
+    let top_gap = y[y.len() - 1] - y[y.len() - 2];
+    assert!(top_gap < uniform.dy() / 2.0, "{y:?}");
     let r = certified(&scn, 16, 64, Some(std::sync::Arc::new(mesh)));
     assert!(r.contact.iter().any(|c| c.u_nu > 0.02));
 }

@@ -685,11 +685,11 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             all.iter().map(|(_, e)| e.regions[2] / total(e)).collect(),
         );
     if !suffix.is_empty() {
-        let command = format!("table1 --reference {}", plan.n_ref);
-        let path = ctx.write(&format!("table1{suffix}.csv"), &t, &command, &params)?;
+        let command = format!("{} --reference {}", ctx.experiment, plan.n_ref);
+        let path = ctx.write_as(&format!("table1{suffix}.csv"), &t, &command, &params)?;
         return write_shift(ctx, &path, &suffix);
     }
-    let path = ctx.write("table1.csv", &t, "table1", &params)?;
+    let path = ctx.write("table1.csv", &t, &params)?;
     write_markdown(ctx, &path, &params)?;
     draw(ctx, &path)
 }

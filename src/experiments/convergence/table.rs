@@ -53,8 +53,12 @@ pub(super) fn write_shift(ctx: &Ctx, path: &std::path::Path, suffix: &str) -> Re
         .f64("rel_err_max_percent_ref512", m0.clone())
         .f64(&format!("rel_err_max_percent{suffix}"), m1.clone())
         .f64("ratio_max", ratio(&m0, &m1));
-    let command = format!("table1 --reference {}", suffix.trim_start_matches("_ref"));
-    ctx.write(
+    let command = format!(
+        "{} --reference {}",
+        ctx.experiment,
+        suffix.trim_start_matches("_ref")
+    );
+    ctx.write_as(
         &format!("table1_reference_shift{suffix}.csv"),
         &t,
         &command,
@@ -88,7 +92,7 @@ pub(super) fn write_markdown(
     };
     let mut md = format!(
         "<!-- {} -->\n<!-- {} -->\n\n",
-        ctx.provenance("table1", "").join(" "),
+        ctx.provenance(ctx.experiment, "").join(" "),
         params
     );
     let rows: Vec<usize> = (0..sc.len())

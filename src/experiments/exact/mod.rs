@@ -169,7 +169,7 @@ fn write_convergence(
         "{}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column",
         params()
     );
-    ctx.write("exact_convergence.csv", &t.table(), "exact", &params)
+    ctx.write("exact_convergence.csv", &t.table(), &params)
 }
 
 fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf, ExpError> {
@@ -210,7 +210,7 @@ fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf
         "{}; the right side of (4.16) with v_n = Pi^h u_n (nodal interpolant), h = k = 1/n: interp_max = max_n ||u_n - Pi u_n||_V^2, dinterp_sum = k sum ||delta(u_n - Pi u_n)||_V^2, gamma_sum = k sum ||u_n,nu - Pi u_n,nu||_L2(Gamma3), r_sum = k sum |R_n(Pi u_n)|, delta_sum = k sum ||delta u_n - u'(t_n)||_V^2; predicted orders (4.20)-(4.23): 2 each (h^2 or k^2); lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, predicted 2; lhs_over_terms = lhs / (the sum of the five terms), the observed constant of (4.16); lhs_over_h2_plus_k2 that of (4.24)",
         params()
     );
-    ctx.write("exact_cea.csv", &t.table(), "exact", &params)
+    ctx.write("exact_cea.csv", &t.table(), &params)
 }
 
 fn write_crime(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<(), ExpError> {
@@ -236,7 +236,7 @@ fn write_crime(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<(), ExpError> {
         "{}; solution (b) on h = k = 1/n, the same loads solved with the scheme's nodal (trapezoidal) compliance rule and with the exact integral of j(u_h) on Gamma_3 (crate::manufactured::exact_rule, projected Newton, KKT residual max_kkt_exact); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E; crime = max_n ||u_n(nodal) - u_n(exact)||_E / max_n ||u(t_n)||_E; crime_share = crime / rel_err_nodal",
         params()
     );
-    ctx.write("exact_crime.csv", &t.table(), "exact", &params)?;
+    ctx.write("exact_crime.csv", &t.table(), &params)?;
     Ok(())
 }
 
@@ -264,7 +264,7 @@ fn write_regimes(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::Pat
         "{}; solutions (a), (b) and (d) on h = k = 1/n: the number of contact nodes (n + 1) in each regime of the discrete solution after every step, and Newton's iterations",
         params()
     );
-    ctx.write("exact_regimes.csv", &t.table(), "exact", &params)
+    ctx.write("exact_regimes.csv", &t.table(), &params)
 }
 
 /// The quadrature's own error: the load vector of every solution at three times
@@ -307,7 +307,7 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         "{}; every solution at t = 0.3, 0.55, 0.9 (the static one at its only time): load_rel_diff = ||F - F_fine||_inf / ||F_fine||_inf between the load vector by the study's rules and by the same rules on each triangle's 16 children (two midpoint refinements) and each contact segment's 4 quarters",
         params()
     );
-    ctx.write("exact_quadrature.csv", &t.table(), "exact", &params)?;
+    ctx.write("exact_quadrature.csv", &t.table(), &params)?;
     Ok(())
 }
 

@@ -70,7 +70,7 @@ pub(super) fn write_candidates(ctx: &Ctx, plan: &Plan, rows: &[Row]) -> Result<(
          distance = max over levels of |ln(err/paper)| with the paper's Table 1 (24.099 ... 0.741); solver newton",
         plan.n_ref
     );
-    let path = ctx.write("table1_forensics.csv", &t, "forensics", &params)?;
+    let path = ctx.write("table1_forensics.csv", &t, &params)?;
     write_markdown(ctx, plan, rows, &path)
 }
 
@@ -211,7 +211,7 @@ pub(super) fn write_reference_free(
         "increment d_n = ||u_n - u_2n||_E / ||u_2n||_E at t = T, h = k = 1/n, the last with u_2n the reference h = k = 1/{}; order = log2(d_n/2 / d_n)",
         plan.n_ref
     );
-    ctx.write("table1_increments.csv", &t, "forensics", &params)?;
+    ctx.write("table1_increments.csv", &t, &params)?;
     // Estimates from the last three increments.
     let mut load = vec![];
     let (mut p_fit, mut last, mut orth, mut aligned) = (vec![], vec![], vec![], vec![]);
@@ -242,7 +242,7 @@ pub(super) fn write_reference_free(
         "exponent p: least-squares slope of ln d_n against ln(1/n) over the last three increments; estimated own error of the reference h = k = 1/{}: d_last r / sqrt(1 - r^2) (orthogonal increments) and d_last r / (1 - r) (aligned), r = 2^-p",
         plan.n_ref
     );
-    ctx.write("table1_reference_error.csv", &t, "forensics", &params)?;
+    ctx.write("table1_reference_error.csv", &t, &params)?;
     Ok(())
 }
 

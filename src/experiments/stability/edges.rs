@@ -92,7 +92,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "stability_sweeps.csv",
         &t,
-        "stability",
         &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e}", crate::step::penalty::RELATIVE_STIFFNESS),
     )?;
     Ok(())

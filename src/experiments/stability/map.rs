@@ -196,7 +196,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let path = ctx.write(
         "stability_map.csv",
         &t,
-        "stability",
         &format!("scenario figure with softening slope c2, h = 1/{n}, T = 1; hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e} (judged by convergence only); multistart spread: newton from 0, g and r0 besides the warm start", crate::step::penalty::RELATIVE_STIFFNESS),
     )?;
     draw_map(ctx, &path)

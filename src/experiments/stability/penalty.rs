@@ -58,7 +58,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "stability_penalty.csv",
         &t,
-        "stability",
         &format!("scenario figure, h = k = 1/{n}, t = T; penalty p += stiffness (u_nu - g)^+ replaces u_nu <= g; compared with the exact bound (newton)"),
     )?;
     Ok(())

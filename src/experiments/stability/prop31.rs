@@ -53,7 +53,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "stability_prop31.csv",
         &t,
-        "stability",
         &format!(
             "h = 1/{n}, solver newton; du_n = (u_n - u_(n-1))/k, ||v||_V^2 = (eps(v), eps(v))"
         ),

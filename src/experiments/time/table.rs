@@ -77,7 +77,7 @@ pub fn write_rows(
             "t_first_limit",
             rows.iter().map(|r| r.t_first_limit).collect(),
         );
-    ctx.write(file, &t, "time", &params)
+    ctx.write(file, &t, &params)
 }
 
 /// `x` to three significant digits, plain where that reads well.
@@ -129,8 +129,11 @@ pub(super) fn write_markdown(
     let hist = histories();
     let mut md = format!(
         "<!-- {} -->\n\n",
-        ctx.provenance("time", &format!("n = {}, N_ref = {}", plan.n, plan.n_ref))
-            .join(" ")
+        ctx.provenance(
+            ctx.experiment,
+            &format!("n = {}, N_ref = {}", plan.n, plan.n_ref)
+        )
+        .join(" ")
     );
     for s in SCENARIOS {
         md += &format!(
