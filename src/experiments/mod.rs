@@ -7,6 +7,7 @@
 //! snapshot; the full mode is what `evhi reproduce` runs.
 
 pub mod convergence;
+pub mod ctx;
 pub mod exact;
 pub mod example;
 pub mod fig2;
@@ -25,34 +26,9 @@ pub mod sweeps;
 pub mod time;
 pub mod workprec;
 
-use crate::output::csv::Table;
+pub use ctx::Ctx;
 use polars::prelude::*;
-use std::path::{Path, PathBuf};
-
-/// Where and how an experiment runs.
-#[derive(Debug, Clone)]
-pub struct Ctx {
-    /// Coarse levels for tests.
-    pub quick: bool,
-    /// Directory of the CSV tables.
-    pub data: PathBuf,
-    /// Directory of the figures.
-    pub figures: PathBuf,
-    /// Print progress lines on stderr (when there is no progress bar).
-    pub verbose: bool,
-    /// The experiment's progress bar: [`Ctx::add_units`] announces work, each
-    /// [`Ctx::log`] completes one unit.
-    pub progress: Option<indicatif::ProgressBar>,
-    /// Table 1's reference level $n$ (`h = k = 1/n`) instead of the paper's 512;
-    /// its tables are then written beside the paper's, with the level in their name.
-    pub reference: Option<usize>,
-    /// The command named in the provenance lines, when it is not `evhi reproduce`
-    /// (a study on a user's scenario).
-    pub command: Option<String>,
-    /// The experiment running (set by [`run`] from the registry): its tables'
-    /// provenance names it.
-    pub experiment: &'static str,
-}
+use std::path::Path;
 
 /// An experiment's failure.
 #[derive(Debug, thiserror::Error)]
@@ -102,109 +78,6 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
         ..ctx.clone()
     };
     (e.run)(&ctx)
-}
-
-impl Ctx {
-    /// The provenance lines of a CSV: crate version, experiment, mode and the parameters.
-    pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
-        vec![
-            match experiment {
-                _ if self.command.is_some() => format!(
-                    "produced by evhi {} `evhi {}`",
-                    env!("CARGO_PKG_VERSION"),
-                    self.command.as_deref().unwrap_or_default()
-                ),
-                "bench" | "bench --sweeps" | "bench --scipy" => format!(
-                    "produced by evhi {} `evhi {experiment}`",
-                    env!("CARGO_PKG_VERSION")
-                ),
-                _ => format!(
-                    "produced by evhi {} `evhi reproduce{}{experiment}{}`",
-                    env!("CARGO_PKG_VERSION"),
-                    if experiment.is_empty() { "" } else { " " },
-                    if self.quick { " --quick" } else { "" }
-                ),
-            },
-            params.to_string(),
-        ]
-    }
-
-    pub fn data_path(&self, file: &str) -> PathBuf {
-        self.data.join(file)
-    }
-
-    pub fn figure_path(&self, stem: &str, ext: &str) -> PathBuf {
-        self.figures.join(format!("{stem}.{ext}"))
-    }
-
-    /// Writes a table with its provenance, naming the running experiment (and, for a
-    /// table the book shows, its Markdown rendering, see [`BOOK_TABLES`]).
-    pub fn write(&self, file: &str, table: &Table, params: &str) -> Result<PathBuf, ExpError> {
-        self.write_as(file, table, self.experiment, params)
-    }
-
-    /// [`Ctx::write`] with the provenance naming `experiment` (a command's variant,
-    /// such as `table1 --reference 1024`, or `bench`).
-    pub fn write_as(
-        &self,
-        file: &str,
-        table: &Table,
-        experiment: &str,
-        params: &str,
-    ) -> Result<PathBuf, ExpError> {
-        let path = self.data_path(file);
-        table
-            .write(&path, &self.provenance(experiment, params))
-            .map_err(|e| ExpError::Io {
-                path: path.display().to_string(),
-                source: e,
-            })?;
-        self.render_book_table(file)?;
-        Ok(path)
-    }
-
-    /// Writes `data/<stem>.md`, the Markdown rendering of `data/<file>`, if the
-    /// book shows that table ([`BOOK_TABLES`]).
-    pub fn render_book_table(&self, file: &str) -> Result<(), ExpError> {
-        let Some(&(_, keys, cols)) = BOOK_TABLES.iter().find(|t| t.0 == file) else {
-            return Ok(());
-        };
-        let path = self.data_path(file);
-        let text = std::fs::read_to_string(&path).map_err(|e| ExpError::Io {
-            path: path.display().to_string(),
-            source: e,
-        })?;
-        let md = crate::output::markdown::table(&text, keys, cols);
-        self.write_file(&path.with_extension("md"), md.as_bytes())
-    }
-
-    /// Writes `bytes` to `path` atomically (a Markdown fragment, a report, a copied
-    /// figure); the error names the path.
-    pub fn write_file(&self, path: &Path, bytes: &[u8]) -> Result<(), ExpError> {
-        crate::output::write_atomic(path, bytes).map_err(|e| ExpError::Io {
-            path: path.display().to_string(),
-            source: e,
-        })
-    }
-
-    /// Reports one finished unit of work (a run, a level, a cell).
-    pub fn log(&self, msg: &str) {
-        match &self.progress {
-            Some(bar) => {
-                bar.set_message(msg.to_string());
-                bar.inc(1);
-            }
-            None if self.verbose => eprintln!("  {msg}"),
-            None => {}
-        }
-    }
-
-    /// Announces `n` more units of work (calls of [`Ctx::log`]) to the progress bar.
-    pub fn add_units(&self, n: usize) {
-        if let Some(bar) = &self.progress {
-            bar.inc_length(n as u64);
-        }
-    }
 }
 
 /// Runs the scheme with the Newton step solver and no observer: the plain solve
