@@ -1,0 +1,167 @@
+//! `evhi study`: the book's studies on any scenario, each written as a self-describing
+//! directory like a run (the scenario, provenance lines, CSV, Markdown, figures).
+//!
+//! `convergence` is the graded study of chapter "Beyond the paper" on the scenario's
+//! own scene: nested uniform and graded families of bisection meshes, $k = T/n$,
+//! reference-free increments to the next level with their fitted exponents, errors
+//! against a finer graded reference, and the corner exponents the supports predict.
+
+use crate::output::rundir::RunDir;
+use crate::scenario::Scenario;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+
+mod convergence;
+mod stability;
+mod time;
+
+#[derive(clap::Subcommand)]
+pub enum Study {
+    /// Convergence in space and time on the scenario's own scene: a uniform and a
+    /// graded family of nested meshes (newest-vertex bisection of the coarsest grid
+    /// that resolves the scene; the graded one refined towards the singular points
+    /// `evhi show` lists, exponent 0.4), h and k = T/n refined together. Writes
+    /// convergence.csv (per level: unknowns, error at T against a finer graded
+    /// reference, increments ||u_n - u_2n||_E / ||u_2n||_E at T and their maximum over
+    /// time, observed orders in N_dof^(-1/2)), convergence.md (the table, the fitted
+    /// exponents, the reference's own error estimate), singular.csv (each singular
+    /// point, its kind and the corner exponent it predicts) and convergence.png/svg.
+    ///
+    /// Example: evhi study convergence --scenario data/scenarios/examples/cantilever.toml --quick --out runs/conv
+    Convergence(ConvergenceArgs),
+    /// The time error at a fixed mesh: backward Euler at k = T/N for N = 4, 8, …
+    /// against the same mesh with a far finer step, the maximum over time and at T,
+    /// orders, where the error peaks, and, where the damping is proportional
+    /// (C = tau G), the scalar model of the relaxation layer beside it. Writes
+    /// time_study.csv, time_study.md and time_study.png/svg.
+    ///
+    /// Example: evhi study time --scenario data/scenarios/examples/five_branch.toml --quick --out runs/time
+    Time(TimeArgs),
+    /// Which step solver fails where on the scenario's own law: every registered
+    /// solver of the stability map at each mesh level n and time step k (certified,
+    /// several solutions from Newton's other starts, failed, with its mean iterations),
+    /// and per (n, k) the paper's smallness condition H(s) and the step convexity.
+    /// Writes stability.csv, hypotheses.csv, stability.md and stability.png/svg.
+    ///
+    /// Example: evhi study stability --scenario data/scenarios/examples/cantilever.toml --quick --out runs/stab
+    Stability(StabilityArgs),
+}
+
+#[derive(clap::Args)]
+pub struct TimeArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    #[arg(long)]
+    pub scenario: String,
+    /// Mesh n = 16, N up to 256 and a reference with 16384 steps (seconds); without
+    /// it n = 32, N up to 1024 and 32768 reference steps.
+    #[arg(long)]
+    pub quick: bool,
+    /// Override the mesh level n (a multiple of 4 on which the scene resolves).
+    #[arg(long)]
+    pub n: Option<usize>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+#[derive(clap::Args)]
+pub struct StabilityArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    #[arg(long)]
+    pub scenario: String,
+    /// Levels n = 8, 16 and steps 1, 8 (seconds); without it n = 8, 16, 32 and steps
+    /// 1, 2, 4, …, 64 (a steady problem always takes one step).
+    #[arg(long)]
+    pub quick: bool,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+#[derive(clap::Args)]
+pub struct ConvergenceArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    #[arg(long)]
+    pub scenario: String,
+    /// Four levels per family and a reference at 32 times the coarsest n (seconds);
+    /// without it six uniform and five graded levels and a reference at 64 times (a
+    /// few minutes on the paper's scene).
+    #[arg(long)]
+    pub quick: bool,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+pub fn run(study: Study) -> Result<(), Box<dyn std::error::Error>> {
+    match study {
+        Study::Convergence(args) => convergence::run(args),
+        Study::Time(args) => time::run(args),
+        Study::Stability(args) => stability::run(args),
+    }
+}
+
+/// The coarsest n (4, 8, 16, …) whose grid resolves the scene.
+pub(super) fn coarsest(scn: &Scenario) -> Result<usize, crate::error::InputError> {
+    let mut n = 4;
+    loop {
+        match scn.mesh(n) {
+            Ok(_) => return Ok(n),
+            Err(e) if n >= 256 => return Err(e),
+            Err(_) => n *= 2,
+        }
+    }
+}
+
+/// The scenario file's text (a built-in's compiled-in text).
+pub(super) fn scenario_text(name: &str) -> Result<String, std::io::Error> {
+    match crate::scenario::BUILTIN.iter().find(|b| b.0 == name) {
+        Some((_, text)) => Ok(text.to_string()),
+        None => std::fs::read_to_string(name),
+    }
+}
+
+/// A progress bar of `len` units.
+pub(super) fn bar(len: u64) -> ProgressBar {
+    ProgressBar::new(len).with_style(
+        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} {elapsed}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    )
+}
+
+/// The experiments' context writing into the study's staged directory, its
+/// provenance naming the study's command line.
+pub(super) fn study_ctx(
+    out: &RunDir,
+    quick: bool,
+    progress: &ProgressBar,
+) -> crate::experiments::Ctx {
+    crate::experiments::Ctx {
+        quick,
+        data: out.path(""),
+        figures: out.path(""),
+        verbose: false,
+        progress: Some(progress.clone()),
+        reference: None,
+        command: Some(crate::output::run::one_line(
+            &crate::output::run::quote_args(std::env::args().skip(1)),
+        )),
+        experiment: "",
+    }
+}
+
+/// Writes the scenario as read into the study's directory.
+pub(super) fn write_scenario(out: &RunDir, name: &str) -> Result<(), Box<dyn std::error::Error>> {
+    let command = crate::output::run::quote_args(std::env::args().skip(1));
+    out.write(
+        "scenario.toml",
+        format!(
+            "# The scenario of this study, as read.\n# evhi {}\n{}",
+            crate::output::run::one_line(&command),
+            scenario_text(name)?
+        )
+        .as_bytes(),
+    )?;
+    Ok(())
+}

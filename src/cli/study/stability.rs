@@ -1,0 +1,165 @@
+//! `evhi study stability`: where step solvers fail on the scenario's own law.
+
+use super::{bar, coarsest, write_scenario};
+use crate::output::csv::Table;
+use crate::output::rundir::RunDir;
+use crate::scenario::Scenario;
+use std::fmt::Write as _;
+
+pub(super) fn run(args: super::StabilityArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::experiments::stability::map::{MapFigure, map_cell, solvers};
+    let scn = Scenario::load(&args.scenario)?;
+    let steady = scn.problem == crate::scenario::Problem::Steady;
+    let n0 = coarsest(&scn)?.max(8);
+    let levels: Vec<usize> = if args.quick {
+        vec![n0, 2 * n0]
+    } else {
+        vec![n0, 2 * n0, 4 * n0]
+    };
+    let steps: Vec<usize> = if steady {
+        vec![1]
+    } else if args.quick {
+        vec![1, 8]
+    } else {
+        vec![1, 2, 4, 8, 16, 32, 64]
+    };
+    let solvers = solvers();
+    let out = RunDir::open(&args.out)?;
+    let progress = bar((levels.len() * steps.len() * (solvers.len() + 1)) as u64);
+    let mut cells = vec![];
+    let mut hyp = vec![];
+    for &n in &levels {
+        for &st in &steps {
+            let h_s = crate::show::Smallness::of(&scn, n)?;
+            let curvature = crate::scheme::step_curvature(&scn, n, st)?;
+            hyp.push((n, st, h_s, curvature));
+            progress.inc(1);
+            for &solver in &solvers {
+                progress.set_message(format!("n = {n}, steps = {st}, {solver}"));
+                cells.push((n, map_cell(&scn, f64::NAN, n, st, solver)));
+                progress.inc(1);
+            }
+        }
+    }
+    progress.finish_and_clear();
+    let command =
+        crate::output::run::one_line(&crate::output::run::quote_args(std::env::args().skip(1)));
+    let lines = vec![
+        format!(
+            "produced by evhi {} `evhi {command}`",
+            env!("CARGO_PKG_VERSION")
+        ),
+        format!(
+            "scenario {}; levels n = {levels:?}, steps {steps:?}, T = {}; outcome: certified (every step), several solutions (newton from other starts differs by > 1e-6), converged (overshoots g) for the uncertified penalty, failed (with the step); hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex)",
+            scn.name, scn.t_end
+        ),
+    ];
+    let t = Table::new()
+        .u64("n", cells.iter().map(|c| c.0 as u64).collect())
+        .str(
+            "solver",
+            cells.iter().map(|c| c.1.solver.to_string()).collect(),
+        )
+        .u64("steps", cells.iter().map(|c| c.1.steps as u64).collect())
+        .f64(
+            "k",
+            cells.iter().map(|c| scn.t_end / c.1.steps as f64).collect(),
+        )
+        .str(
+            "outcome",
+            cells.iter().map(|c| c.1.outcome.clone()).collect(),
+        )
+        .u64(
+            "failed_step",
+            cells.iter().map(|c| c.1.failed_step).collect(),
+        )
+        .f64(
+            "mean_iterations",
+            cells.iter().map(|c| c.1.mean_iterations).collect(),
+        )
+        .f64(
+            "max_certificate_or_residual",
+            cells.iter().map(|c| c.1.certificate).collect(),
+        )
+        .f64(
+            "multistart_spread",
+            cells.iter().map(|c| c.1.spread).collect(),
+        );
+    out.write_table("stability.csv", &t, &lines)?;
+    let h = Table::new()
+        .u64("n", hyp.iter().map(|r| r.0 as u64).collect())
+        .u64("steps", hyp.iter().map(|r| r.1 as u64).collect())
+        .f64("beta_B", hyp.iter().map(|r| r.2.beta_b).collect())
+        .f64("m_trace_norm_sq", hyp.iter().map(|r| r.2.rhs()).collect())
+        .str(
+            "H_s",
+            hyp.iter()
+                .map(|r| (if r.2.holds() { "holds" } else { "fails" }).to_string())
+                .collect(),
+        )
+        .f64("step_curvature_min", hyp.iter().map(|r| r.3).collect())
+        .str(
+            "steps_convex",
+            hyp.iter()
+                .map(|r| (if r.3 > 0.0 { "yes" } else { "no" }).to_string())
+                .collect(),
+        );
+    out.write_table("hypotheses.csv", &h, &lines)?;
+    let mut md = format!(
+        "# Step solvers on `{}` ({})\n\n| n | steps | H(s) | smallest step curvature | {} |\n|---|---|---|---|{}\n",
+        scn.name,
+        if args.quick { "quick" } else { "full" },
+        solvers.join(" | "),
+        "---|".repeat(solvers.len())
+    );
+    for (n, st, h_s, curv) in &hyp {
+        let outcomes: Vec<String> = solvers
+            .iter()
+            .map(|s| {
+                cells
+                    .iter()
+                    .find(|c| c.0 == *n && c.1.steps == *st && c.1.solver == *s)
+                    .map_or(String::new(), |c| c.1.outcome.clone())
+            })
+            .collect();
+        let _ = writeln!(
+            md,
+            "| {n} | {st} | {} | {curv:.4e} | {} |",
+            if h_s.holds() { "holds" } else { "fails" },
+            outcomes.join(" | ")
+        );
+    }
+    for (at, jump) in scn.law.down_jumps() {
+        let _ = writeln!(md, "\nH(j) fails: p jumps down by {} at s = {at}.", -jump);
+    }
+    out.write("stability.md", md.as_bytes())?;
+    // The map: one panel per solver, k across, n down.
+    let fig = MapFigure {
+        cells: cells
+            .iter()
+            .map(|(n, c)| {
+                (
+                    c.solver.to_string(),
+                    scn.t_end / c.steps as f64,
+                    *n as f64,
+                    c.outcome.clone(),
+                    c.mean_iterations,
+                    hyp.iter()
+                        .find(|r| r.0 == *n && r.1 == c.steps)
+                        .map_or(f64::NAN, |r| r.3),
+                )
+            })
+            .collect(),
+        title: format!(
+            "Where step solvers fail on {}, by time step k and mesh n (numbers: mean iterations per step)",
+            scn.name
+        ),
+        row_desc: "mesh: segments n".into(),
+        row_label: |n| format!("{n:.0}"),
+    };
+    crate::experiments::plot::both(&out.path(""), "stability", (1100, 1150), &fig)?;
+    write_scenario(&out, &args.scenario)?;
+    out.publish()?;
+    eprint!("{md}");
+    Ok(())
+}

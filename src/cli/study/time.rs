@@ -1,0 +1,197 @@
+//! `evhi study time`: the time error at a fixed mesh on the scenario's own history.
+
+use super::{bar, study_ctx, write_scenario};
+use crate::output::rundir::RunDir;
+use crate::scenario::Scenario;
+use std::fmt::Write as _;
+
+pub(super) fn run(args: super::TimeArgs) -> Result<(), Box<dyn std::error::Error>> {
+    use crate::experiments::time;
+    let scn = Scenario::load(&args.scenario)?;
+    if scn.problem == crate::scenario::Problem::Steady {
+        return Err(crate::error::InputError::field(
+            "scenario",
+            &scn.name,
+            "a scenario with a time evolution (problem = \"steady\" is one solve: no time error)",
+        )
+        .into());
+    }
+    let mut plan = time::plan(args.quick);
+    if let Some(n) = args.n {
+        plan.n = n;
+    }
+    scn.mesh(plan.n)?;
+    let out = RunDir::open(&args.out)?;
+    let progress = bar(0);
+    let ctx = study_ctx(&out, args.quick, &progress);
+    let rows = time::study_of(
+        &plan,
+        &ctx,
+        &[(scn.name.clone(), scn.history.to_string(), scn.clone())],
+    )?;
+    progress.finish_and_clear();
+    time::write_rows(&ctx, &plan, &rows, "time_study.csv", "history")?;
+    let mut md = format!(
+        "# Time error of `{}` at n = {} ({})\n\nReference: {} steps on the same mesh. Errors relative, energy norm.\n\n\
+         | N | k | max over t, % | order | at T, % | order | model max, % | model T, % | t of max |\n|---|---|---|---|---|---|---|---|---|\n",
+        scn.name,
+        plan.n,
+        if args.quick { "quick" } else { "full" },
+        plan.n_ref
+    );
+    for (i, r) in rows.iter().enumerate() {
+        let order = |a: f64, b: f64| if i == 0 { f64::NAN } else { (b / a).log2() };
+        let _ = writeln!(
+            md,
+            "| {} | {:.4e} | {:.4} | {:.3} | {:.4} | {:.3} | {:.4} | {:.4} | {:.4} |",
+            r.steps,
+            r.t_end / r.steps as f64,
+            100.0 * r.err_max,
+            order(
+                r.err_max,
+                if i > 0 { rows[i - 1].err_max } else { f64::NAN }
+            ),
+            100.0 * r.err_t,
+            order(r.err_t, if i > 0 { rows[i - 1].err_t } else { f64::NAN }),
+            100.0 * r.model_max,
+            100.0 * r.model_t,
+            r.t_err_max
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n{}",
+        match scn.relaxation_time() {
+            Some(0.0) => "No viscosity: the model columns are the load history alone.".to_string(),
+            Some(tau) => format!(
+                "Proportional damping, tau = {tau:.6}: the model is the scalar layer tau y' + y = phi(t) by backward Euler; \
+                 backward Euler resolves the layer only once k is well below tau."
+            ),
+            None => "The damping is not proportional (several relaxation times): no scalar model."
+                .to_string(),
+        }
+    );
+    out.write("time_study.md", md.as_bytes())?;
+    draw_time(&out.path(""), &rows, plan.n)?;
+    write_scenario(&out, &args.scenario)?;
+    out.publish()?;
+    eprint!("{md}");
+    Ok(())
+}
+
+/// The time study's figure: the error (max over t and at T) against N, with the
+/// scalar model dashed where there is one.
+/// A curve: label, (N, error %) points, colour, dashed (the model).
+type Curve = (String, Vec<(f64, f64)>, plotters::style::RGBColor, bool);
+
+struct TimeFig {
+    series: Vec<Curve>,
+    title: String,
+}
+
+impl crate::experiments::plot::Figure for TimeFig {
+    fn draw<DB: plotters::prelude::DrawingBackend>(
+        &self,
+        root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        use crate::experiments::plot::{e2s, legend};
+        use plotters::prelude::*;
+        let pts: Vec<(f64, f64)> = self.series.iter().flat_map(|s| s.1.clone()).collect();
+        let (x0, x1) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        let (y0, y1) = pts
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        if pts.is_empty() {
+            return Err("no positive error to draw".into());
+        }
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(80)
+            .build_cartesian_2d(
+                (x0 / 1.5..x1 * 1.5).log_scale(),
+                (y0 / 3.0..y1 * 3.0).log_scale(),
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("time steps N")
+            .y_desc("relative energy error, %")
+            .label_style(("sans-serif", 17))
+            .draw()
+            .map_err(e2s)?;
+        for (label, p, c, dashed) in &self.series {
+            let c = *c;
+            if *dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(p.clone(), 6, 4, c.stroke_width(2)))
+                    .map_err(e2s)?
+                    .label(label.clone())
+                    .legend(move |(x, y)| {
+                        // a dashed key: two short strokes
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (9, 0)], c.stroke_width(2))
+                            + PathElement::new(vec![(15, 0), (24, 0)], c.stroke_width(2))
+                    });
+            } else {
+                chart
+                    .draw_series(LineSeries::new(p.clone(), c.stroke_width(3)))
+                    .map_err(e2s)?
+                    .label(label.clone())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
+                    });
+                chart
+                    .draw_series(p.iter().map(|&q| Circle::new(q, 4, c.filled())))
+                    .map_err(e2s)?;
+            }
+        }
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)?;
+        Ok(())
+    }
+}
+
+fn draw_time(
+    dir: &std::path::Path,
+    rows: &[crate::experiments::time::Row],
+    n: usize,
+) -> Result<(), crate::experiments::ExpError> {
+    use plotters::style::RGBColor;
+    let pick = |f: &dyn Fn(&crate::experiments::time::Row) -> f64| -> Vec<(f64, f64)> {
+        rows.iter()
+            .map(|r| (r.steps as f64, 100.0 * f(r)))
+            .filter(|p| p.1.is_finite() && p.1 > 0.0)
+            .collect()
+    };
+    let (blue, red) = (RGBColor(0, 114, 178), RGBColor(213, 94, 0));
+    let mut series = vec![
+        ("max over t".to_string(), pick(&|r| r.err_max), blue, false),
+        ("at T".to_string(), pick(&|r| r.err_t), red, false),
+    ];
+    for (label, f, c) in [
+        (
+            "model, max over t",
+            (|r: &crate::experiments::time::Row| r.model_max) as fn(&_) -> f64,
+            blue,
+        ),
+        (
+            "model, at T",
+            |r: &crate::experiments::time::Row| r.model_t,
+            red,
+        ),
+    ] {
+        let p = pick(&f);
+        if !p.is_empty() {
+            series.push((label.to_string(), p, c, true));
+        }
+    }
+    series.retain(|s| !s.1.is_empty());
+    let title = format!(
+        "time error of {} at n = {n} against N",
+        rows.first().map_or("", |r| r.scenario.as_str())
+    );
+    crate::experiments::plot::both(dir, "time_study", (900, 650), &TimeFig { series, title })
+}
