@@ -55,7 +55,20 @@ fn every_include_and_anchor_resolves() {
                     path.display()
                 )
             });
-            if let Some(a) = anchor {
+            // A line range (`N:`, `N:M`) must lie inside the file.
+            let range = anchor.filter(|a| {
+                a.split(':')
+                    .all(|p| p.is_empty() || p.chars().all(|c| c.is_ascii_digit()))
+            });
+            if let Some(r) = range {
+                let first: usize = r.split(':').next().unwrap().parse().unwrap_or(1);
+                assert!(
+                    body.lines().count() >= first,
+                    "{}: {} has fewer than {first} lines",
+                    c.display(),
+                    path.display()
+                );
+            } else if let Some(a) = anchor {
                 assert!(
                     body.contains(&format!("ANCHOR: {a}\n"))
                         && body.contains(&format!("ANCHOR_END: {a}\n")),

@@ -5,4 +5,6 @@ pub mod bench;
 pub mod reproduce;
 pub mod show;
 pub mod solve;
-pub mod study;
+/// `evhi study`: its room is [`crate::experiments::study`] (the studies are the
+/// experiments' computations on any scenario).
+pub use crate::experiments::study;

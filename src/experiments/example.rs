@@ -43,10 +43,76 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         one(ctx, name, toml, &scn, n)?;
         if name == "five_branch" {
             step_control(ctx, &scn, n)?;
+            studies(ctx, path)?;
         } else {
             super::fig2::draw_law(ctx, &scn, &format!("example_{name}_law"))?;
         }
     }
+    Ok(())
+}
+
+/// The three studies of `evhi study` on the worked example, in quick mode, run as the
+/// command line would run them: their Markdown summaries into
+/// `data/example_study_*.md`, their figures into `figures/example_study_*`.
+fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
+    use super::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
+    let scratch = std::env::temp_dir().join(format!("evhi-example-studies-{}", std::process::id()));
+    let fail = |e: Box<dyn std::error::Error>| ExpError::Table {
+        path: scratch.display().to_string(),
+        message: e.to_string(),
+    };
+    ctx.add_units(3);
+    let runs: [(&str, &str, Study); 3] = [
+        (
+            "convergence",
+            "convergence",
+            Study::Convergence(ConvergenceArgs {
+                scenario: path.to_string(),
+                quick: true,
+                out: scratch.join("convergence"),
+            }),
+        ),
+        (
+            "time",
+            "time_study",
+            Study::Time(TimeArgs {
+                scenario: path.to_string(),
+                quick: true,
+                n: None,
+                out: scratch.join("time"),
+            }),
+        ),
+        (
+            "stability",
+            "stability",
+            Study::Stability(StabilityArgs {
+                scenario: path.to_string(),
+                quick: true,
+                out: scratch.join("stability"),
+            }),
+        ),
+    ];
+    for (study, stem, args) in runs {
+        let command = format!("study {study} --scenario {path} --quick --out DIR");
+        let md = run_as(args, &command).map_err(fail)?;
+        ctx.write_file(
+            &ctx.data_path(&format!("example_study_{study}.md")),
+            md.as_bytes(),
+        )?;
+        for ext in ["png", "svg"] {
+            let from = scratch.join(study).join(format!("{stem}.{ext}"));
+            let bytes = std::fs::read(&from).map_err(|e| ExpError::Io {
+                path: from.display().to_string(),
+                source: e,
+            })?;
+            ctx.write_file(
+                &ctx.figure_path(&format!("example_study_{study}"), ext),
+                &bytes,
+            )?;
+        }
+        ctx.log(&format!("example: study {study}"));
+    }
+    let _ = std::fs::remove_dir_all(&scratch);
     Ok(())
 }
 

@@ -22,6 +22,7 @@ pub mod runplot;
 pub mod scenes;
 pub mod singular;
 pub mod stability;
+pub mod study;
 pub mod sweeps;
 pub mod time;
 pub mod workprec;

@@ -51,7 +51,10 @@ fn fitted(dofs: &[f64], v: &[f64]) -> f64 {
     -2.0 * num / den
 }
 
-pub(super) fn run(args: super::ConvergenceArgs) -> Result<(), Box<dyn std::error::Error>> {
+pub(super) fn run(
+    args: super::ConvergenceArgs,
+    command: &str,
+) -> Result<String, Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     let n0 = coarsest(&scn)?;
     let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
@@ -87,7 +90,7 @@ pub(super) fn run(args: super::ConvergenceArgs) -> Result<(), Box<dyn std::error
     let (table, ref_dofs) =
         graded::compute(std::slice::from_ref(&scn), &families, &plan, &points, &log)?;
     bar.finish_and_clear();
-    let command = crate::output::run::quote_args(std::env::args().skip(1));
+    let command = command.to_string();
     let header = format!(
         "produced by evhi {} `evhi {}`\n# scenario {}; families: {}; levels uniform {:?}, graded {:?}; k = T/n; reference: the graded family refined to n = {} ({} unknowns), k = T/{}; grading exponent {}; errors and increments relative, energy norm; orders in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh)",
         env!("CARGO_PKG_VERSION"),
@@ -222,21 +225,7 @@ pub(super) fn run(args: super::ConvergenceArgs) -> Result<(), Box<dyn std::error
         );
     }
     out.write("convergence.md", md.as_bytes())?;
-    let toml = match crate::scenario::BUILTIN
-        .iter()
-        .find(|b| b.0 == args.scenario)
-    {
-        Some((_, text)) => text.to_string(),
-        None => std::fs::read_to_string(&args.scenario)?,
-    };
-    out.write(
-        "scenario.toml",
-        format!(
-            "# The scenario of this study, as read.\n# evhi {}\n{toml}",
-            crate::output::run::one_line(&command)
-        )
-        .as_bytes(),
-    )?;
+    super::write_scenario(&out, &args.scenario, &command)?;
     graded::draw(
         &out.path(""),
         "convergence",
@@ -245,6 +234,5 @@ pub(super) fn run(args: super::ConvergenceArgs) -> Result<(), Box<dyn std::error
         &families.iter().map(|f| f.0.clone()).collect::<Vec<_>>(),
     )?;
     out.publish()?;
-    eprint!("{md}");
-    Ok(())
+    Ok(md)
 }

@@ -5,7 +5,10 @@ use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use std::fmt::Write as _;
 
-pub(super) fn run(args: super::TimeArgs) -> Result<(), Box<dyn std::error::Error>> {
+pub(super) fn run(
+    args: super::TimeArgs,
+    command: &str,
+) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::time;
     let scn = Scenario::load(&args.scenario)?;
     if scn.problem == crate::scenario::Problem::Steady {
@@ -23,7 +26,7 @@ pub(super) fn run(args: super::TimeArgs) -> Result<(), Box<dyn std::error::Error
     scn.mesh(plan.n)?;
     let out = RunDir::open(&args.out)?;
     let progress = bar(0);
-    let ctx = study_ctx(&out, args.quick, &progress);
+    let ctx = study_ctx(&out, args.quick, &progress, command);
     let rows = time::study_of(
         &plan,
         &ctx,
@@ -32,11 +35,12 @@ pub(super) fn run(args: super::TimeArgs) -> Result<(), Box<dyn std::error::Error
     progress.finish_and_clear();
     time::write_rows(&ctx, &plan, &rows, "time_study.csv", "history")?;
     let mut md = format!(
-        "# Time error of `{}` at n = {} ({})\n\nReference: {} steps on the same mesh. Errors relative, energy norm.\n\n\
+        "# Time error of `{}` at n = {} ({})\n\nproduced by evhi {} `evhi {command}`\n\nReference: {} steps on the same mesh. Errors relative, energy norm.\n\n\
          | N | k | max over t, % | order | at T, % | order | model max, % | model T, % | t of max |\n|---|---|---|---|---|---|---|---|---|\n",
         scn.name,
         plan.n,
         if args.quick { "quick" } else { "full" },
+        env!("CARGO_PKG_VERSION"),
         plan.n_ref
     );
     for (i, r) in rows.iter().enumerate() {
@@ -73,10 +77,9 @@ pub(super) fn run(args: super::TimeArgs) -> Result<(), Box<dyn std::error::Error
     );
     out.write("time_study.md", md.as_bytes())?;
     draw_time(&out.path(""), &rows, plan.n)?;
-    write_scenario(&out, &args.scenario)?;
+    write_scenario(&out, &args.scenario, command)?;
     out.publish()?;
-    eprint!("{md}");
-    Ok(())
+    Ok(md)
 }
 
 /// The time study's figure: the error (max over t and at T) against N, with the

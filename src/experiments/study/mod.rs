@@ -94,10 +94,20 @@ pub struct ConvergenceArgs {
 }
 
 pub fn run(study: Study) -> Result<(), Box<dyn std::error::Error>> {
+    let command =
+        crate::output::run::one_line(&crate::output::run::quote_args(std::env::args().skip(1)));
+    eprint!("{}", run_as(study, &command)?);
+    Ok(())
+}
+
+/// [`run`] with the command line its provenance lines name (`evhi reproduce example`
+/// runs the studies on the worked example under a fixed one); returns the summary
+/// `run` prints.
+pub fn run_as(study: Study, command: &str) -> Result<String, Box<dyn std::error::Error>> {
     match study {
-        Study::Convergence(args) => convergence::run(args),
-        Study::Time(args) => time::run(args),
-        Study::Stability(args) => stability::run(args),
+        Study::Convergence(args) => convergence::run(args, command),
+        Study::Time(args) => time::run(args, command),
+        Study::Stability(args) => stability::run(args, command),
     }
 }
 
@@ -136,6 +146,7 @@ pub(super) fn study_ctx(
     out: &RunDir,
     quick: bool,
     progress: &ProgressBar,
+    command: &str,
 ) -> crate::experiments::Ctx {
     crate::experiments::Ctx {
         quick,
@@ -144,21 +155,22 @@ pub(super) fn study_ctx(
         verbose: false,
         progress: Some(progress.clone()),
         reference: None,
-        command: Some(crate::output::run::one_line(
-            &crate::output::run::quote_args(std::env::args().skip(1)),
-        )),
+        command: Some(command.to_string()),
         experiment: "",
     }
 }
 
 /// Writes the scenario as read into the study's directory.
-pub(super) fn write_scenario(out: &RunDir, name: &str) -> Result<(), Box<dyn std::error::Error>> {
-    let command = crate::output::run::quote_args(std::env::args().skip(1));
+pub(super) fn write_scenario(
+    out: &RunDir,
+    name: &str,
+    command: &str,
+) -> Result<(), Box<dyn std::error::Error>> {
     out.write(
         "scenario.toml",
         format!(
             "# The scenario of this study, as read.\n# evhi {}\n{}",
-            crate::output::run::one_line(&command),
+            command,
             scenario_text(name)?
         )
         .as_bytes(),

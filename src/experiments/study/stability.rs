@@ -6,7 +6,10 @@ use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use std::fmt::Write as _;
 
-pub(super) fn run(args: super::StabilityArgs) -> Result<(), Box<dyn std::error::Error>> {
+pub(super) fn run(
+    args: super::StabilityArgs,
+    command: &str,
+) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::stability::map::{MapFigure, map_cell, solvers};
     let scn = Scenario::load(&args.scenario)?;
     let steady = scn.problem == crate::scenario::Problem::Steady;
@@ -42,8 +45,6 @@ pub(super) fn run(args: super::StabilityArgs) -> Result<(), Box<dyn std::error::
         }
     }
     progress.finish_and_clear();
-    let command =
-        crate::output::run::one_line(&crate::output::run::quote_args(std::env::args().skip(1)));
     let lines = vec![
         format!(
             "produced by evhi {} `evhi {command}`",
@@ -106,9 +107,10 @@ pub(super) fn run(args: super::StabilityArgs) -> Result<(), Box<dyn std::error::
         );
     out.write_table("hypotheses.csv", &h, &lines)?;
     let mut md = format!(
-        "# Step solvers on `{}` ({})\n\n| n | steps | H(s) | smallest step curvature | {} |\n|---|---|---|---|{}\n",
+        "# Step solvers on `{}` ({})\n\n{}\n\n| n | steps | H(s) | smallest step curvature | {} |\n|---|---|---|---|{}\n",
         scn.name,
         if args.quick { "quick" } else { "full" },
+        lines[0],
         solvers.join(" | "),
         "---|".repeat(solvers.len())
     );
@@ -158,8 +160,7 @@ pub(super) fn run(args: super::StabilityArgs) -> Result<(), Box<dyn std::error::
         row_label: |n| format!("{n:.0}"),
     };
     crate::experiments::plot::both(&out.path(""), "stability", (1100, 1150), &fig)?;
-    write_scenario(&out, &args.scenario)?;
+    write_scenario(&out, &args.scenario, command)?;
     out.publish()?;
-    eprint!("{md}");
-    Ok(())
+    Ok(md)
 }
