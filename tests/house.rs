@@ -191,12 +191,12 @@ fn no_solver_is_picked_by_index() {
 #[test]
 fn experiment_names_are_spelled_in_the_registry_only() {
     let other_meaning: [(&str, &str); 6] = [
-        ("src/cli/solve.rs", "graded"),          // the mesh kind of --mesh
-        ("src/cli/study.rs", "graded"),          // a mesh family's label
+        ("src/cli/solve.rs", "graded"), // the mesh kind of --mesh
+        ("src/experiments/study/convergence.rs", "graded"), // a mesh family's label
         ("src/experiments/graded.rs", "graded"), // a mesh family's label
-        ("src/cli/study.rs", "stability"),       // the study's figure stem
+        ("src/experiments/study/stability.rs", "stability"), // the study's figure stem
         ("src/experiments/forensics/table.rs", "time"), // a column: the reading's time norm
-        ("src/manufactured/run.rs", "exact"),    // a quadrature rule's name
+        ("src/manufactured/run.rs", "exact"), // a quadrature rule's name
     ];
     let mut files = vec![];
     rust_files(&src(), &mut files);

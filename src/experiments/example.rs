@@ -62,33 +62,34 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
         message: e.to_string(),
     };
     ctx.add_units(3);
+    let [convergence, time, stability] = super::registry::STUDIES;
     let runs: [(&str, &str, Study); 3] = [
         (
-            "convergence",
+            convergence,
             "convergence",
             Study::Convergence(ConvergenceArgs {
                 scenario: path.to_string(),
                 quick: true,
-                out: scratch.join("convergence"),
+                out: scratch.join(convergence),
             }),
         ),
         (
-            "time",
+            time,
             "time_study",
             Study::Time(TimeArgs {
                 scenario: path.to_string(),
                 quick: true,
                 n: None,
-                out: scratch.join("time"),
+                out: scratch.join(time),
             }),
         ),
         (
-            "stability",
-            "stability",
+            stability,
+            stability,
             Study::Stability(StabilityArgs {
                 scenario: path.to_string(),
                 quick: true,
-                out: scratch.join("stability"),
+                out: scratch.join(stability),
             }),
         ),
     ];
