@@ -83,6 +83,31 @@ pub fn rows(n: usize, geo: &Geometry) -> usize {
     ((n as f64 * geo.height / geo.width).round() as usize).max(1)
 }
 
+/// Refuses a segment of `side` (a support's or a traction's, `field`) whose ends
+/// `[from, to]` miss the nodes, spaced `d` along the side on the mesh with `n`.
+pub(crate) fn check_ends(
+    field: &str,
+    side: Side,
+    ends: [f64; 2],
+    d: f64,
+    n: usize,
+) -> Result<(), InputError> {
+    for (end, v) in [("from", ends[0]), ("to", ends[1])] {
+        if !on_line(v, d) {
+            return Err(InputError::field(
+                format!("{field}.{end}"),
+                v,
+                format!(
+                    "a mesh line of the mesh with n = {n}, where the {} side has a node \
+                     every {d}: choose n so that every segment's ends are nodes",
+                    side.name()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Whether `v` lies on a mesh line of spacing `d` (within rounding).
 pub(crate) fn on_line(v: f64, d: f64) -> bool {
     let q = v / d;
@@ -137,19 +162,7 @@ impl Mesh {
         }
         for s in &geo.supports {
             let d = if s.side.normal() == 0 { dy } else { side };
-            for (end, v) in [("from", s.from), ("to", s.to)] {
-                if !on_line(v, d) {
-                    return Err(InputError::field(
-                        format!("{}.{end}", s.field),
-                        v,
-                        format!(
-                            "a mesh line of the mesh with n = {n}, where the {} side has a node \
-                             every {d}: choose n so that every segment's ends are nodes",
-                            s.side.name()
-                        ),
-                    ));
-                }
-            }
+            check_ends(&s.field, s.side, [s.from, s.to], d, n)?;
         }
         for v in geo.contact {
             if !on_line(v, side) {

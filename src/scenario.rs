@@ -755,6 +755,28 @@ impl Scenario {
         })
     }
 
+    /// The same scenario as another problem: an elastic or steady one drops the
+    /// viscosity (the data of a viscoelastic problem otherwise unchanged); a
+    /// viscoelastic one needs a viscosity, so it is refused from a problem without.
+    pub fn with_problem(mut self, problem: Problem) -> Result<Self, InputError> {
+        if problem.viscous() && !self.problem.viscous() {
+            return Err(InputError::field(
+                "problem",
+                problem.name(),
+                format!(
+                    "\"elastic\" or \"steady\" for scenario `{}`, which has no viscosity \
+                     (give alpha and beta in its file for a viscoelastic problem)",
+                    self.name
+                ),
+            ));
+        }
+        if !problem.viscous() {
+            (self.alpha, self.beta) = (0.0, 0.0);
+        }
+        self.problem = problem;
+        Ok(self)
+    }
+
     /// Overrides $g$ (validated).
     pub fn with_g(mut self, g: f64) -> Result<Self, InputError> {
         self.g = limit("g", g)?;
@@ -870,19 +892,7 @@ impl Scenario {
             } else {
                 mesh.dx()
             };
-            for (end, v) in [("from", t.from), ("to", t.to)] {
-                if !crate::mesh::on_line(v, d) {
-                    return Err(InputError::field(
-                        format!("{}.{end}", t.field),
-                        v,
-                        format!(
-                            "a mesh line of the mesh with n = {n}, where the {} side has a node \
-                             every {d}: choose n so that every traction's ends are nodes",
-                            t.side.name()
-                        ),
-                    ));
-                }
-            }
+            crate::mesh::check_ends(&t.field, t.side, [t.from, t.to], d, n)?;
         }
         Ok(mesh)
     }

@@ -7,7 +7,7 @@
 use evhi::bisection::graded_mesh;
 use evhi::geometry::Geometry;
 use evhi::mesh::Mesh;
-use evhi::scenario::Scenario;
+use evhi::scenario::{Problem, Scenario};
 use evhi::scheme::{OrderingKind, Run, Settings, run};
 use std::sync::Arc;
 
@@ -31,22 +31,17 @@ fn parse(text: &str) -> Result<Scenario, evhi::error::InputError> {
     Scenario::from_toml(text, "test")
 }
 
-/// The cantilever example, with the problem it names replaced.
+/// The cantilever example as the given problem ([`Scenario::with_problem`]).
 fn cantilever(problem: &str) -> Scenario {
-    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
-    let text = if problem == "viscoelastic" {
-        text
-    } else {
-        text.replace(
-            "problem = \"viscoelastic\"",
-            &format!("problem = \"{problem}\""),
-        )
-        .lines()
-        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
-        .collect::<Vec<_>>()
-        .join("\n")
+    let p = match problem {
+        "viscoelastic" => Problem::Viscoelastic,
+        "elastic" => Problem::Elastic,
+        _ => Problem::Steady,
     };
-    parse(&text).unwrap()
+    Scenario::load("data/scenarios/examples/cantilever.toml")
+        .unwrap()
+        .with_problem(p)
+        .unwrap()
 }
 
 /// Solves `scn` on `n` segments, `steps` steps (on `mesh` if given), general or
@@ -506,4 +501,25 @@ fn graded_meshes_and_free_segments_are_checked() {
         parse(&overlap).unwrap_err().field_name(),
         Some("geometry.supports.left[1]")
     );
+}
+
+/// `with_problem` drops the viscosity for a static problem, giving the same scenario
+/// the file would with `problem = "elastic"` and no `alpha`, `beta`; back to
+/// viscoelastic is refused by name (there is no viscosity to restore).
+#[test]
+fn with_problem_equals_the_file() {
+    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
+    let file = parse(
+        &text
+            .replace("problem = \"viscoelastic\"", "problem = \"elastic\"")
+            .lines()
+            .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+            .collect::<Vec<_>>()
+            .join("\n"),
+    )
+    .unwrap();
+    let elastic = cantilever("elastic");
+    assert_eq!(elastic, file);
+    let err = elastic.with_problem(Problem::Viscoelastic).unwrap_err();
+    assert_eq!(err.field_name(), Some("problem"));
 }

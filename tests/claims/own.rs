@@ -167,25 +167,19 @@ fn own_softening_run() {
     assert!(cert.iter().all(|&c| c < 1e-14));
 }
 
-/// The cantilever example with its problem replaced (`alpha` and `beta` removed for a
-/// problem without viscosity).
+/// The cantilever example as the given problem (`Scenario::with_problem`).
 fn cantilever(problem: &str) -> evhi::scenario::Scenario {
-    let text =
-        std::fs::read_to_string(super::root().join("data/scenarios/examples/cantilever.toml"))
-            .unwrap();
-    let text = if problem == "viscoelastic" {
-        text
-    } else {
-        text.replace(
-            "problem = \"viscoelastic\"",
-            &format!("problem = \"{problem}\""),
-        )
-        .lines()
-        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
-        .collect::<Vec<_>>()
-        .join("\n")
+    use evhi::scenario::Problem;
+    let p = match problem {
+        "viscoelastic" => Problem::Viscoelastic,
+        "elastic" => Problem::Elastic,
+        _ => Problem::Steady,
     };
-    evhi::scenario::Scenario::from_toml(&text, "cantilever").unwrap()
+    let path = super::root().join("data/scenarios/examples/cantilever.toml");
+    evhi::scenario::Scenario::load(&path.display().to_string())
+        .unwrap()
+        .with_problem(p)
+        .unwrap()
 }
 
 /// A certified run of `scn` (Newton, general loop) on `n` segments and `steps` steps.
