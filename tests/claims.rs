@@ -27,6 +27,11 @@ fn root() -> &'static Path {
 fn rows(file: &str) -> Vec<HashMap<String, String>> {
     let path = root().join("data").join(file);
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    parse_rows(&text)
+}
+
+/// The rows of a table's text as maps from column to text (provenance lines skipped).
+fn parse_rows(text: &str) -> Vec<HashMap<String, String>> {
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<String> = lines
         .next()

@@ -326,22 +326,7 @@ fn time_study(file: &str) -> Vec<std::collections::HashMap<String, String>> {
     evhi::cli::study::run(evhi::cli::study::Study::Time(args)).unwrap();
     let text = std::fs::read_to_string(out.join("time_study.csv")).unwrap();
     let _ = std::fs::remove_dir_all(&out);
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<String> = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    lines
-        .map(|l| {
-            header
-                .iter()
-                .cloned()
-                .zip(l.split(',').map(str::to_string))
-                .collect()
-        })
-        .collect()
+    super::parse_rows(&text)
 }
 
 #[test]
