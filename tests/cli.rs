@@ -1314,10 +1314,80 @@ fn the_convergence_study_runs_on_user_scenarios() {
             1 + singular,
             "{name}: {sing}"
         );
+        // The h and k parts where the damping is proportional (the five-branch
+        // example), else a sentence saying why not (the cantilever's is not).
+        let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+        if name == "five" {
+            let text = std::fs::read_to_string(out.join("split.csv")).unwrap();
+            let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+            let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+            let col = |c: &str| header.iter().position(|h| *h == c).unwrap();
+            let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+            assert_eq!(rows.len(), 9, "three families of three levels");
+            for r in &rows {
+                let e: f64 = r[col("rel_err_T_percent")].parse().unwrap();
+                let m: f64 = r[col("rel_err_max_percent")].parse().unwrap();
+                assert!(e > 0.0 && m >= e * (1.0 - 1e-12), "{r:?}");
+                let o: f64 = r[col("order_T")].parse().unwrap();
+                // An order from the second level of each family on (the k family
+                // varies the steps).
+                let first = if r[col("family")] == "k" {
+                    r[col("steps")] == "4"
+                } else {
+                    r[col("n")] == "4"
+                };
+                assert_eq!(o.is_finite(), !first, "{r:?}");
+            }
+            assert!(out.join("split.png").exists() && md.contains("## The h and k parts"));
+        } else {
+            assert!(!out.join("split.csv").exists());
+            assert!(
+                md.contains("No h and k parts: the damping is not proportional"),
+                "{md}"
+            );
+        }
     }
-    // `evhi --help` lists the studies, and the study explains its options.
-    let help = evhi().arg("--help").output().unwrap();
-    assert!(String::from_utf8_lossy(&help.stdout).contains("study"));
+    // A steady and an elastic copy of the cantilever: the h = k families only, the
+    // steady one in one step per level.
+    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
+    for problem in ["steady", "elastic"] {
+        let file = dir.join(format!("{problem}.toml"));
+        let kept: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+            .collect();
+        std::fs::write(
+            &file,
+            kept.join("\n").replace(
+                "problem = \"viscoelastic\"",
+                &format!("problem = \"{problem}\""),
+            ),
+        )
+        .unwrap();
+        let out = dir.join(problem);
+        succeed(
+            evhi()
+                .args(["study", "convergence", "--quick", "--scenario"])
+                .arg(&file)
+                .arg("--out")
+                .arg(&out),
+        );
+        let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+        assert!(
+            md.contains(&format!("No h and k parts: the problem is {problem}")),
+            "{md}"
+        );
+        assert_eq!(md.contains("one step (steady)"), problem == "steady");
+    }
+    // `evhi --help` and `evhi study --help` list the studies, and each study
+    // explains its options.
+    for args in [vec!["--help"], vec!["study", "--help"]] {
+        let help = evhi().args(&args).output().unwrap();
+        let help = String::from_utf8_lossy(&help.stdout);
+        for study in ["convergence", "time", "stability"] {
+            assert!(help.contains(study), "{args:?} lacks {study}: {help}");
+        }
+    }
     let help = evhi()
         .args(["study", "convergence", "--help"])
         .output()
@@ -1403,7 +1473,20 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
         let (h, rows) = read(out.join("hypotheses.csv"));
         assert_eq!(rows.len(), 4, "{name}: two levels, two step counts");
         let hs = h.iter().position(|x| x == "H_s").unwrap();
-        assert!(rows.iter().all(|r| r[hs] == "holds" || r[hs] == "fails"));
+        let convex = h.iter().position(|x| x == "steps_convex").unwrap();
+        // The cantilever's law jumps down: H(j) fails, so H(s) does not apply and
+        // the steps are not convex whatever the curvature between the jumps.
+        for r in &rows {
+            if name == "cantilever" {
+                assert_eq!(
+                    (r[hs].as_str(), r[convex].as_str()),
+                    ("n/a (H(j) fails)", "no (downward jump)")
+                );
+            } else {
+                assert!(r[hs] == "holds" || r[hs] == "fails", "{r:?}");
+                assert!(r[convex] == "yes" || r[convex] == "no", "{r:?}");
+            }
+        }
     }
     let steady = dir.join("steady.toml");
     let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
@@ -1426,4 +1509,92 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("`scenario`"));
+    // An elastic scenario has no time error either: refused by name.
+    let elastic = dir.join("elastic.toml");
+    std::fs::write(
+        &elastic,
+        std::fs::read_to_string(&steady)
+            .unwrap()
+            .replace("problem = \"steady\"", "problem = \"elastic\""),
+    )
+    .unwrap();
+    let o = evhi()
+        .args(["study", "time", "--quick", "--scenario"])
+        .arg(&elastic)
+        .arg("--out")
+        .arg(dir.join("refused-elastic"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("`scenario`") && err.contains("elastic") && err.contains("no time error"),
+        "{err}"
+    );
+}
+
+/// Table 1 is the convergence study's h, k and h = k split applied to the built-ins:
+/// `study convergence --quick` on the `figure` scenario gives the same errors, row by
+/// row, as `reproduce table1 --quick` (which runs `figure` in one batch with
+/// `literal`), because both call `experiments::convergence::compute` on the same plan.
+#[test]
+fn table1_is_the_convergence_study_on_the_builtins() {
+    let dir = scratch("table1-study");
+    succeed(
+        evhi()
+            .args(["reproduce", "table1", "--quick", "-q", "--data"])
+            .arg(dir.join("data"))
+            .arg("--figures")
+            .arg(dir.join("figures")),
+    );
+    succeed(
+        evhi()
+            .args([
+                "study",
+                "convergence",
+                "--quick",
+                "--scenario",
+                "figure",
+                "--out",
+            ])
+            .arg(dir.join("study")),
+    );
+    let read = |path: std::path::PathBuf| -> Vec<std::collections::HashMap<String, String>> {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+        let header: Vec<String> = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect();
+        lines
+            .map(|l| {
+                header
+                    .iter()
+                    .cloned()
+                    .zip(l.split(',').map(str::to_string))
+                    .collect()
+            })
+            .collect()
+    };
+    let table: Vec<_> = read(dir.join("data/table1.csv"))
+        .into_iter()
+        .filter(|r| r["scenario"] == "figure")
+        .collect();
+    let split = read(dir.join("study/split.csv"));
+    assert_eq!(table.len(), 9, "three families of three levels");
+    assert_eq!(split.len(), table.len());
+    for (a, b) in table.iter().zip(&split) {
+        for key in ["family", "n", "steps"] {
+            assert_eq!(a[key], b[key]);
+        }
+        for key in ["rel_err_T_percent", "rel_err_max_percent"] {
+            let (x, y): (f64, f64) = (a[key].parse().unwrap(), b[key].parse().unwrap());
+            assert!(
+                (x - y).abs() <= 1e-12 * x.abs(),
+                "{key}: {a:?} against {b:?}"
+            );
+        }
+    }
 }

@@ -54,6 +54,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
 /// The three studies of `evhi study` on the worked example, in quick mode, run as the
 /// command line would run them: their Markdown summaries into
 /// `data/example_study_*.md`, their figures into `figures/example_study_*`.
+/// A figure's stem in a study's directory and the suffix it gets here.
+type Stem = (&'static str, &'static str);
+
 fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
     use super::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
     let scratch = std::env::temp_dir().join(format!("evhi-example-studies-{}", std::process::id()));
@@ -63,10 +66,11 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
     };
     ctx.add_units(3);
     let [convergence, time, stability] = super::registry::STUDIES;
-    let runs: [(&str, &str, Study); 3] = [
+    // Each study's figures (stems in its directory) and the names they get here.
+    let runs: [(&str, &[Stem], Study); 3] = [
         (
             convergence,
-            "convergence",
+            &[("convergence", ""), ("split", "_split")],
             Study::Convergence(ConvergenceArgs {
                 scenario: path.to_string(),
                 quick: true,
@@ -75,7 +79,7 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
         ),
         (
             time,
-            "time_study",
+            &[("time_study", "")],
             Study::Time(TimeArgs {
                 scenario: path.to_string(),
                 quick: true,
@@ -85,7 +89,7 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
         ),
         (
             stability,
-            stability,
+            &[("stability", "")],
             Study::Stability(StabilityArgs {
                 scenario: path.to_string(),
                 quick: true,
@@ -93,21 +97,21 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
             }),
         ),
     ];
-    for (study, stem, args) in runs {
+    for (study, stems, args) in runs {
         let command = format!("study {study} --scenario {path} --quick --out DIR");
         let md = run_as(args, &command).map_err(fail)?;
         ctx.write_file(
             &ctx.data_path(&format!("example_study_{study}.md")),
             md.as_bytes(),
         )?;
-        for ext in ["png", "svg"] {
+        for (ext, (stem, suffix)) in stems.iter().flat_map(|s| ["png", "svg"].map(|e| (e, *s))) {
             let from = scratch.join(study).join(format!("{stem}.{ext}"));
             let bytes = std::fs::read(&from).map_err(|e| ExpError::Io {
                 path: from.display().to_string(),
                 source: e,
             })?;
             ctx.write_file(
-                &ctx.figure_path(&format!("example_study_{study}"), ext),
+                &ctx.figure_path(&format!("example_study_{study}{suffix}"), ext),
                 &bytes,
             )?;
         }

@@ -129,18 +129,28 @@ struct Row {
 /// The loads of the study (one batched run per mesh).
 pub const LOADS: [&str; 2] = ["literal", "figure"];
 
+/// The steps of level `n`: $k = T/n$, or one step for a steady problem.
+fn steps_of(scns: &[Scenario], n: usize) -> usize {
+    if scns[0].problem == crate::scenario::Problem::Steady {
+        1
+    } else {
+        n
+    }
+}
+
 /// The fields (`[load][step]`, step 0 included; empty where `keep(step)` is false)
-/// on `mesh` with k = 1/n.
+/// on `mesh` (level `n`) with `steps` steps.
 fn solve_steps(
     scns: &[Scenario],
     mesh: &Arc<Mesh>,
     n: usize,
+    steps: usize,
     keep: impl Fn(usize) -> bool,
 ) -> Result<Vec<Vec<Vec<f64>>>, ExpError> {
-    let mut fields = vec![vec![vec![]; n + 1]; scns.len()];
+    let mut fields = vec![vec![vec![]; steps + 1]; scns.len()];
     let opt = Settings {
         mesh: Some(mesh.clone()),
-        ..Settings::new(n, n)
+        ..Settings::new(n, steps)
     };
     super::run_newton_batch_with(scns, &opt, &mut |i, step, _, u| {
         if keep(step) {
@@ -153,6 +163,7 @@ fn solve_steps(
 /// One level of a family, solved.
 struct Level {
     n: usize,
+    steps: usize,
     leaves: Leaves,
     mesh: Arc<Mesh>,
     dofs: Dofs,
@@ -185,9 +196,9 @@ fn increments_of(
     g: &crate::material::Isotropic,
     t_end: f64,
 ) -> (f64, f64, f64) {
-    let ratio = fine.n / coarse.n;
+    let ratio = fine.steps / coarse.steps;
     let (mut at_t, mut max, mut t_max) = (f64::NAN, 0.0, f64::NAN);
-    for j in 1..=coarse.n {
+    for j in 1..=coarse.steps {
         let uf = fine.dofs.expand(&fine.fields[i][ratio * j]);
         let uc = interp.apply(&coarse.dofs.expand(&coarse.fields[i][j]));
         let diff: Vec<[f64; 2]> = uf
@@ -199,7 +210,7 @@ fn increments_of(
             / geo.norms(&fine.mesh, g, &uf).energy_sq)
             .sqrt();
         if rel > max {
-            (max, t_max) = (rel, j as f64 * t_end / coarse.n as f64);
+            (max, t_max) = (rel, j as f64 * t_end / coarse.steps as f64);
         }
         at_t = rel;
     }
@@ -251,10 +262,12 @@ pub fn compute(
     let ref_leaves = prev;
     let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
     let clock = std::time::Instant::now();
-    let reference: Vec<Vec<f64>> = solve_steps(scns, &ref_mesh, plan.n_ref, |s| s == plan.n_ref)?
-        .into_iter()
-        .map(|mut steps| steps.pop().expect("the last step"))
-        .collect();
+    let ref_steps = steps_of(scns, plan.n_ref);
+    let reference: Vec<Vec<f64>> =
+        solve_steps(scns, &ref_mesh, plan.n_ref, ref_steps, |s| s == ref_steps)?
+            .into_iter()
+            .map(|mut steps| steps.pop().expect("the last step"))
+            .collect();
     let ref_dofs = Dofs::new(&ref_mesh, true);
     log(&format!(
         "graded reference: {} dofs, k = 1/{} ({:.1} s)",
@@ -276,9 +289,11 @@ pub fn compute(
             let clock = std::time::Instant::now();
             let mesh = Arc::new(forest.mesh(leaves, *n));
             let dofs = Dofs::new(&mesh, true);
-            let fields = solve_steps(scns, &mesh, *n, |_| true)?;
+            let steps = steps_of(scns, *n);
+            let fields = solve_steps(scns, &mesh, *n, steps, |_| true)?;
             solved.push(Level {
                 n: *n,
+                steps,
                 leaves: leaves.clone(),
                 mesh,
                 dofs,
@@ -302,7 +317,7 @@ pub fn compute(
                 .get(l + 1)
                 .map(|next| increments(&forest, lev, next, &g, t_end));
             for i in 0..scns.len() {
-                let pu = interp.apply(&lev.dofs.expand(&lev.fields[i][lev.n]));
+                let pu = interp.apply(&lev.dofs.expand(&lev.fields[i][lev.steps]));
                 let diff: Vec<[f64; 2]> = ref_fields[i]
                     .iter()
                     .zip(&pu)

@@ -78,13 +78,46 @@ pub(super) fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             series: main,
         },
     )?;
+    let names = SCENARIOS.map(str::to_string);
+    draw_split(
+        &ctx.figures,
+        "fig5_split",
+        path,
+        &names,
+        "h (h part, k as the reference's) or k (k part, h as the reference's)",
+    )
+}
+
+/// The error split of the table at `path` (of [`compute`]) for `scenarios`, into
+/// `dir` as `stem`.png and .svg: the h part ($x = 1/n$) and the k part ($x = 1/N$), at
+/// T and over time.
+pub fn draw_split(
+    dir: &std::path::Path,
+    stem: &str,
+    path: &std::path::Path,
+    scenarios: &[String],
+    x_desc: &str,
+) -> Result<(), ExpError> {
+    let df = read_csv(path)?;
+    let (sc, fam) = (col_str(&df, "scenario")?, col_str(&df, "family")?);
+    let (n, steps) = (col_f64(&df, "n")?, col_f64(&df, "steps")?);
+    let (et, em) = (
+        col_f64(&df, "rel_err_T_percent")?,
+        col_f64(&df, "rel_err_max_percent")?,
+    );
+    let pick = |s: &str, f: &str, v: &[f64]| -> Vec<(f64, f64)> {
+        (0..sc.len())
+            .filter(|&i| sc[i] == s && fam[i] == f && v[i].is_finite())
+            .map(|i| (if f == "k" { 1.0 / steps[i] } else { 1.0 / n[i] }, v[i]))
+            .collect()
+    };
     let panel = |title: &str, v: &[f64]| Fig5 {
         title: title.into(),
-        x_desc: "h (h part, k as the reference's) or k (k part, h as the reference's)".into(),
-        series: SCENARIOS
+        x_desc: x_desc.into(),
+        series: scenarios
             .iter()
-            .zip(COLOURS)
-            .flat_map(|(name, colour)| {
+            .zip(COLOURS.iter().cycle())
+            .flat_map(|(name, &colour)| {
                 [
                     (format!("{name}, h part"), pick(name, "h", v), colour, false),
                     (format!("{name}, k part"), pick(name, "k", v), colour, true),
@@ -93,8 +126,8 @@ pub(super) fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             .collect(),
     };
     both(
-        &ctx.figures,
-        "fig5_split",
+        dir,
+        stem,
         (1000, 1300),
         &Fig5Split {
             panels: [panel("at t = T", &et), panel("maximum over t", &em)],

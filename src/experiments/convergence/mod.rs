@@ -27,6 +27,7 @@ use std::collections::BTreeMap;
 mod figure;
 mod table;
 use figure::draw;
+pub use figure::draw_split;
 use table::{write_markdown, write_shift};
 
 /// The paper's Table 1 (percent), keyed by $n$ with $h = k = 1/n$ ($h + k = 2/n$).
@@ -68,6 +69,7 @@ struct Reference {
     grid: usize,
     runs: Vec<RefRun>,
     tensor: crate::material::Isotropic,
+    regions: Regions,
 }
 
 /// One scenario's reference.
@@ -92,16 +94,37 @@ pub struct LevelError {
     pub regions: [f64; 3],
 }
 
-/// Region of a point: 0 within 1/8 of the ends of $\Gamma_1$ at $(0, 1/2)$, $(2, 1/2)$;
-/// 1 within 1/8 of $\Gamma_3$; 2 elsewhere.
-pub fn region(x: f64, y: f64) -> usize {
-    let d = ((x).hypot(y - 0.5)).min((x - 2.0).hypot(y - 0.5));
-    if d < 0.125 {
-        0
-    } else if y < 0.125 {
-        1
-    } else {
-        2
+/// Where the error is measured apart: near singular points, near the contact side
+/// $y = 0$, and the rest.
+#[derive(Debug, Clone)]
+pub struct Regions {
+    pub points: Vec<[f64; 2]>,
+    pub radius: f64,
+}
+
+impl Regions {
+    /// Table 1's: within 1/8 of the ends of $\Gamma_1$ at $(0, 1/2)$, $(2, 1/2)$, then
+    /// within 1/8 of $\Gamma_3$.
+    pub fn paper() -> Regions {
+        Regions {
+            points: vec![[0.0, 0.5], [2.0, 0.5]],
+            radius: 0.125,
+        }
+    }
+
+    /// Region of a point: 0 within `radius` of a point, 1 within `radius` of
+    /// $y = 0$, 2 elsewhere.
+    pub fn of(&self, x: f64, y: f64) -> usize {
+        let d = (self.points.iter())
+            .map(|p| (x - p[0]).hypot(y - p[1]))
+            .fold(f64::INFINITY, f64::min);
+        if d < self.radius {
+            0
+        } else if y < self.radius {
+            1
+        } else {
+            2
+        }
     }
 }
 
@@ -235,6 +258,7 @@ impl Reference {
         plan: &Plan,
         grid: usize,
         ctx: &Ctx,
+        regions: &Regions,
     ) -> Result<(Reference, Vec<Vec<LevelError>>), ExpError> {
         let n_ref = plan.n_ref;
         let clock = std::time::Instant::now();
@@ -270,6 +294,7 @@ impl Reference {
             grid,
             runs: vec![],
             tensor,
+            regions: regions.clone(),
         };
         // The k family: h = 1/n_ref, k = 1/n, on the same factorisation.
         let clock = std::time::Instant::now();
@@ -390,7 +415,7 @@ impl Reference {
             let dens = 0.5 * (eps.transpose() * d * eps)[(0, 0)] * area;
             let cx = (p[0][0] + p[1][0] + p[2][0]) / 3.0;
             let cy = (p[0][1] + p[1][1] + p[2][1]) / 3.0;
-            out[region(cx, cy)] += dens;
+            out[self.regions.of(cx, cy)] += dens;
         }
         out
     }
@@ -436,13 +461,15 @@ struct Queue {
 /// cores), by the reduced loop: one factorisation of $B$ per mesh serves every
 /// $k$. References go first (each with its $k$ family); then the coarse meshes,
 /// finest first, each as soon as its reference is there.
-fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)>, ExpError> {
-    let scenarios = SCENARIOS
-        .iter()
-        .map(|name| Scenario::load(name))
-        .collect::<Result<Vec<_>, _>>()?;
+fn study(
+    scenarios: &[Scenario],
+    plan: &Plan,
+    grid: usize,
+    ctx: &Ctx,
+    regions: &Regions,
+) -> Result<Vec<(String, LevelError)>, ExpError> {
     let mut groups: Vec<Vec<Scenario>> = vec![];
-    for scn in &scenarios {
+    for scn in scenarios {
         match groups.iter_mut().find(|g| g[0].same_operator(scn)) {
             Some(g) => g.push(scn.clone()),
             None => groups.push(vec![scn.clone()]),
@@ -508,8 +535,8 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
             }
         };
         let outcome = match (task, reference) {
-            (Task::Reference(g), _) => {
-                Reference::compute(&groups[g], plan, grid, ctx).map(|(r, k_family)| {
+            (Task::Reference(g), _) => Reference::compute(&groups[g], plan, grid, ctx, regions)
+                .map(|(r, k_family)| {
                     let rows: Vec<(usize, LevelError)> = (groups[g].iter().zip(k_family))
                         .flat_map(|(s, errs)| {
                             (errs.into_iter().enumerate())
@@ -518,8 +545,7 @@ fn study(plan: &Plan, grid: usize, ctx: &Ctx) -> Result<Vec<(String, LevelError)
                         })
                         .collect();
                     (Some((g, std::sync::Arc::new(r))), rows)
-                })
-            }
+                }),
             (Task::Level { group, level }, Some(reference)) => {
                 let n = plan.levels[level];
                 let clock = std::time::Instant::now();
@@ -608,7 +634,35 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         }
         _ => String::new(),
     };
-    let all = study(&plan, grid, ctx)?;
+    let scenarios = SCENARIOS
+        .iter()
+        .map(|name| Scenario::load(name))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (t, params) = compute(&scenarios, &plan, ctx, &Regions::paper(), true)?;
+    if !suffix.is_empty() {
+        let command = format!("{} --reference {}", ctx.experiment, plan.n_ref);
+        let path = ctx.write_as(&format!("table1{suffix}.csv"), &t, &command, &params)?;
+        return write_shift(ctx, &path, &suffix);
+    }
+    let path = ctx.write("table1.csv", &t, &params)?;
+    write_markdown(ctx, &path, &params)?;
+    draw(ctx, &path)
+}
+
+/// The three families ($h = k$, $h$, $k$) of each scenario on the uniform meshes of
+/// `plan` against a uniform reference, with the error's shares by `regions` (and,
+/// with `paper`, the paper's Table 1 beside the $h = k$ rows): the table of
+/// `table1.csv` and its parameter line. The scenarios' meshes must be nested from
+/// level to level (the structured meshes of [`Scenario::mesh`] are).
+pub fn compute(
+    scenarios: &[Scenario],
+    plan: &Plan,
+    ctx: &Ctx,
+    regions: &Regions,
+    paper: bool,
+) -> Result<(Table, String), ExpError> {
+    let grid = *plan.levels.last().expect("levels");
+    let all = study(scenarios, plan, grid, ctx, regions)?;
     let params = format!(
         "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over the level's own time steps (all on the grid t = j/{grid}); solver newton",
         plan.n_ref, plan.n_ref, plan.n_ref
@@ -637,7 +691,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let order_t = order(&|e| e.rel_t);
     let order_max = order(&|e| e.rel_max);
     let total = |e: &LevelError| e.regions.iter().sum::<f64>();
-    let paper: Vec<f64> = all
+    let paper_col: Vec<f64> = all
         .iter()
         .map(|(_, e)| {
             if e.family == "h=k" {
@@ -670,8 +724,13 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "rel_err_max_percent",
             all.iter().map(|(_, e)| 100.0 * e.rel_max).collect(),
         )
-        .f64("order_max", order_max)
-        .f64("paper_percent", paper)
+        .f64("order_max", order_max);
+    let t = if paper {
+        t.f64("paper_percent", paper_col)
+    } else {
+        t
+    };
+    let t = t
         .f64(
             "share_clamp_ends",
             all.iter().map(|(_, e)| e.regions[0] / total(e)).collect(),
@@ -684,12 +743,5 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "share_rest",
             all.iter().map(|(_, e)| e.regions[2] / total(e)).collect(),
         );
-    if !suffix.is_empty() {
-        let command = format!("{} --reference {}", ctx.experiment, plan.n_ref);
-        let path = ctx.write_as(&format!("table1{suffix}.csv"), &t, &command, &params)?;
-        return write_shift(ctx, &path, &suffix);
-    }
-    let path = ctx.write("table1.csv", &t, &params)?;
-    write_markdown(ctx, &path, &params)?;
-    draw(ctx, &path)
+    Ok((t, params))
 }

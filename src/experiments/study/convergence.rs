@@ -1,13 +1,12 @@
 //! `evhi study convergence`: the graded study on the scenario's own scene.
 
-use super::coarsest;
+use super::{coarsest, study_ctx};
 use crate::experiments::graded;
 use crate::experiments::singular::{Edge, clamp_end_exponent, wedge_exponents};
 use crate::geometry::Hold;
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 
 /// The exponent a singular point predicts (the smallest real part in $(0, 1)$), or
@@ -51,10 +50,63 @@ fn fitted(dofs: &[f64], v: &[f64]) -> f64 {
     -2.0 * num / den
 }
 
+/// The holds' names at a singular point, a free hold on $\Gamma_3$ called `contact`
+/// (its exponent is computed as for a free edge).
+fn holds_named(s: &crate::geometry::Singularity, geo: &crate::geometry::Geometry) -> [String; 2] {
+    let on_contact = s.point[1] == 0.0 && (geo.contact[0]..=geo.contact[1]).contains(&s.point[0]);
+    s.holds.map(|h| match h {
+        Hold::Free if on_contact => "contact (as free)".to_string(),
+        h => h.name().to_string(),
+    })
+}
+
+/// The reference's own error, from a family's increments $v_l = \|u_{n_l} - u_{2 n_l}\|$:
+/// the Galerkin errors of nested spaces are orthogonal in the energy norm, so the
+/// increments beyond the reference add in quadrature,
+/// $\|u - u_{ref}\|^2 = \sum_{m \ge 0} v(n_{ref} 2^m)^2 = v(n_{ref})^2 / (1 - r^2)$, with
+/// $r$ the ratio of one increment to the previous one. The exponent is fitted on the
+/// family's three finest increments (two if there are only two); `None` where it is
+/// not positive (no decay to carry on).
+fn reference_error(n: &[f64], dofs: &[f64], inc: &[f64], n_ref: f64) -> Option<(f64, f64, f64)> {
+    let pts: Vec<usize> = (0..inc.len())
+        .filter(|&i| inc[i].is_finite() && inc[i] > 0.0)
+        .collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let fine = &pts[pts.len().saturating_sub(3)..];
+    let pick = |v: &[f64]| fine.iter().map(|&i| v[i]).collect::<Vec<_>>();
+    let p = fitted(&pick(dofs), &pick(inc));
+    if p.is_nan() || p <= 0.0 {
+        return None;
+    }
+    let (a, b) = (fine[fine.len() - 2], fine[fine.len() - 1]);
+    // One level's ratio of unknowns (about 4), hence of increments.
+    let r = (dofs[b] / dofs[a]).powf(-p / 2.0);
+    let levels_on = (n_ref / n[b]).log2();
+    let at_ref = inc[b] * r.powf(levels_on);
+    Some((p, inc[b], at_ref / (1.0 - r * r).sqrt()))
+}
+
+/// Below this multiple of the reference's own error a measured error is not
+/// resolved: $\sqrt{1 + 1/2.2^2} = 1.10$.
+const RESOLVED: f64 = 2.2;
+
+/// The plan of the h, k and h = k split on uniform meshes: on the paper's scene
+/// (coarsest n 4) it is Table 1's ([`crate::experiments::convergence::plan`]).
+fn split_plan(n0: usize, quick: bool) -> crate::experiments::convergence::Plan {
+    let levels = if quick { 3 } else { 6 };
+    crate::experiments::convergence::Plan {
+        levels: (0..levels).map(|j| n0 << j).collect(),
+        n_ref: n0 << (levels + if quick { 0 } else { 1 }),
+    }
+}
+
 pub(super) fn run(
     args: super::ConvergenceArgs,
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
+    use crate::experiments::convergence as split;
     let scn = Scenario::load(&args.scenario)?;
     let n0 = coarsest(&scn)?;
     let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
@@ -71,6 +123,32 @@ pub(super) fn run(
             n_ref: n0 * 64,
         }
     };
+    // The h and k parts apart only where there is a time error to part, and on the
+    // reduced loop, which needs proportional damping (C = c G).
+    let no_split = match scn.relaxation_time() {
+        _ if scn.problem == crate::scenario::Problem::Steady => Some(
+            "the problem is steady (one solve at T), so there is no time error to part".to_string(),
+        ),
+        _ if scn.problem == crate::scenario::Problem::Elastic => Some(
+            "the problem is elastic (each step is the static problem with f(t_n)), so there is no time \
+             error to part"
+                .to_string(),
+        ),
+        Some(_) => None,
+        None => Some(
+            "the damping is not proportional (C is not a multiple of G), and the split runs on the reduced \
+             time loop, which needs it; the h = k families above carry both parts"
+                .to_string(),
+        ),
+    };
+    let viscous = no_split.is_none();
+    let split_plan = split_plan(n0, args.quick);
+    if viscous {
+        crate::scheme::check_memory(
+            split_plan.n_ref,
+            crate::mesh::rows(split_plan.n_ref, &scn.geometry),
+        )?;
+    }
     let sing = scn.geometry.singularities();
     let points = scn.geometry.singular_points();
     let mut families = vec![("uniform".to_string(), vec![])];
@@ -78,24 +156,47 @@ pub(super) fn run(
         families.push(("graded".to_string(), points.clone()));
     }
     let out = RunDir::open(&args.out)?;
-    let bar = ProgressBar::new(graded::units(&plan, families.len()) as u64).with_style(
-        ProgressStyle::with_template("{spinner} {msg} [{bar:30}] {pos}/{len} {elapsed}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    let log = |m: &str| {
-        bar.set_message(m.to_string());
-        bar.inc(1);
+    let bar = super::bar(graded::units(&plan, families.len()) as u64);
+    let ctx = study_ctx(&out, args.quick, &bar, command);
+    let (table, ref_dofs) = graded::compute(
+        std::slice::from_ref(&scn),
+        &families,
+        &plan,
+        &points,
+        &|m| ctx.log(m),
+    )?;
+    let unit = scn.geometry.width.min(scn.geometry.height);
+    let split_table = if viscous {
+        let regions = split::Regions {
+            points: points.clone(),
+            radius: unit / 8.0,
+        };
+        Some(
+            split::compute(
+                std::slice::from_ref(&scn),
+                &split_plan,
+                &ctx,
+                &regions,
+                false,
+            )?
+            .0,
+        )
+    } else {
+        None
     };
-    let (table, ref_dofs) =
-        graded::compute(std::slice::from_ref(&scn), &families, &plan, &points, &log)?;
     bar.finish_and_clear();
     let command = command.to_string();
+    let steps_word = if scn.problem == crate::scenario::Problem::Steady {
+        "one step (steady)".to_string()
+    } else {
+        "k = T/n".to_string()
+    };
     let header = format!(
-        "produced by evhi {} `evhi {}`\n# scenario {}; families: {}; levels uniform {:?}, graded {:?}; k = T/n; reference: the graded family refined to n = {} ({} unknowns), k = T/{}; grading exponent {}; errors and increments relative, energy norm; orders in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh)",
+        "produced by evhi {} `evhi {}`\n# scenario {} ({}); families: {}; levels uniform {:?}, graded {:?}; {steps_word}; reference: the graded family refined to n = {} ({} unknowns), {}; grading exponent {}; errors and increments relative, energy norm; orders: observed between a level and the previous one of its family, in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh)",
         env!("CARGO_PKG_VERSION"),
         crate::output::run::one_line(&command),
         scn.name,
+        scn.problem.name(),
         families
             .iter()
             .map(|f| f.0.as_str())
@@ -105,7 +206,11 @@ pub(super) fn run(
         plan.graded,
         plan.n_ref,
         ref_dofs,
-        plan.n_ref,
+        if scn.problem == crate::scenario::Problem::Steady {
+            "one step".to_string()
+        } else {
+            format!("k = T/{}", plan.n_ref)
+        },
         graded::MU
     );
     let lines: Vec<String> = header.split("\n# ").map(str::to_string).collect();
@@ -118,12 +223,8 @@ pub(super) fn run(
             "kind",
             sing.iter()
                 .map(|s| {
-                    format!(
-                        "{} {}-{}",
-                        if s.corner { "corner" } else { "side" },
-                        s.holds[0].name(),
-                        s.holds[1].name()
-                    )
+                    let [a, b] = holds_named(s, &scn.geometry);
+                    format!("{} {a}-{b}", if s.corner { "corner" } else { "side" })
                 })
                 .collect(),
         )
@@ -136,17 +237,31 @@ pub(super) fn run(
     let df = crate::experiments::read_csv(&out.path("convergence.csv"))?;
     let fam = crate::experiments::col_str(&df, "family")?;
     let col = |c: &str| crate::experiments::col_f64(&df, c);
-    let (n, dofs, err, inc, inc_max) = (
+    let (n, dofs, err, order, inc, order_inc, inc_max) = (
         col("n")?,
         col("dofs")?,
         col("rel_err_T_percent")?,
+        col("order_dofs")?,
         col("increment_T_percent")?,
+        col("order_increment_dofs")?,
         col("increment_max_percent")?,
     );
+    // The reference's own error, from the last family's increments.
+    let last_family = &families.last().expect("a family").0;
+    let rows: Vec<usize> = (0..fam.len()).filter(|&i| fam[i] == *last_family).collect();
+    let pick = |v: &[f64]| rows.iter().map(|&i| v[i]).collect::<Vec<_>>();
+    let estimate = reference_error(&pick(&n), &pick(&dofs), &pick(&inc), plan.n_ref as f64);
+    // The measured error and the reference's own add in quadrature: below RESOLVED
+    // times the latter, the reference moves the measured error by more than 10 %.
+    let resolved = |e: f64| match estimate {
+        Some((_, _, r)) if e < RESOLVED * r => "no",
+        Some(_) => "yes",
+        None => "unknown",
+    };
     let mut md = String::new();
     let _ = writeln!(
         md,
-        "# Convergence of `{}` ({})\n\n{}\n\n| family | n | unknowns | error at T, % | increment at T, % | max increment over t, % |\n|---|---|---|---|---|---|",
+        "# Convergence of `{}` ({})\n\n{}\n\n| family | n | unknowns | error at T, % | order | resolved | increment at T, % | order | max increment over t, % |\n|---|---|---|---|---|---|---|---|---|",
         scn.name,
         if args.quick { "quick" } else { "full" },
         lines.join(". ")
@@ -154,8 +269,16 @@ pub(super) fn run(
     for i in 0..fam.len() {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {:.4} | {:.4} | {:.4} |",
-            fam[i], n[i], dofs[i], err[i], inc[i], inc_max[i]
+            "| {} | {} | {} | {:.4} | {:.3} | {} | {:.4} | {:.3} | {:.4} |",
+            fam[i],
+            n[i],
+            dofs[i],
+            err[i],
+            order[i],
+            resolved(err[i]),
+            inc[i],
+            order_inc[i],
+            inc_max[i]
         );
     }
     let _ = writeln!(
@@ -174,32 +297,63 @@ pub(super) fn run(
             fitted(&d, &pick(&inc_max))
         );
     }
-    // The reference's own error, from the last family's increments.
-    let last_family = &families.last().expect("a family").0;
-    let rows: Vec<usize> = (0..fam.len()).filter(|&i| fam[i] == *last_family).collect();
-    let d: Vec<f64> = rows.iter().map(|&i| dofs[i]).collect();
-    let incs: Vec<f64> = rows.iter().map(|&i| inc[i]).collect();
-    let p = fitted(&d, &incs);
-    // The increment at level n is ||u_n - u_2n||: from it, one factor 2^-p per level
-    // up to the reference, then the geometric sum of the increments beyond it.
-    let (n_last, last_inc) = rows
+    match estimate {
+        Some((p, last, e)) => {
+            let _ = writeln!(
+                md,
+                "\nThe reference's own error at T: about {e:.4} %, from the {last_family} family's last increment \
+                 ({last:.4} %) carried on to n = {} at the exponent {p:.3} fitted on its finest increments, the \
+                 increments beyond adding in quadrature (Galerkin orthogonality of nested spaces in the energy \
+                 norm, exact for the linear problem, perturbed by the contact terms). An error below {RESOLVED} times \
+                 this is marked not resolved: the reference's own error then changes it by more than 10 %.",
+                plan.n_ref
+            );
+        }
+        None => {
+            let _ = writeln!(
+                md,
+                "\nThe reference's own error at T is not estimable: the {last_family} family's increments do not \
+                 decrease (fitted exponent not positive), so every error above is a bound on nothing finer."
+            );
+        }
+    }
+    let lambda = sing
         .iter()
-        .rev()
-        .map(|&i| (n[i], inc[i]))
-        .find(|x| x.1.is_finite())
-        .unwrap_or((f64::NAN, f64::NAN));
-    let levels_on = (plan.n_ref as f64 / n_last).log2();
-    let ref_estimate = last_inc * 2f64.powf(-p * levels_on) / (1.0 - 2f64.powf(-p)).max(1e-3);
+        .map(|s| predicted(s, kappa))
+        .filter(|x| x.is_finite())
+        .fold(f64::INFINITY, f64::min);
+    let uniform_rows: Vec<usize> = (0..fam.len()).filter(|&i| fam[i] == "uniform").collect();
+    let expected = lambda.min(1.0);
+    let above: Vec<String> = uniform_rows
+        .iter()
+        .filter(|&&i| order[i].is_finite() && order[i] > expected + 0.1)
+        .map(|&i| format!("{:.3} at n = {}", order[i], n[i]))
+        .collect();
     let _ = writeln!(
         md,
-        "\nThe reference's own error at T, estimated from the {last_family} family's last increment ({last_inc:.4} %) \
-         carried on at the fitted rate {p:.3} to n = {}: about {ref_estimate:.4} % (a geometric tail; \
-         errors of that size or below are not resolved).\n",
-        plan.n_ref
+        "\nAsymptotics: on uniform meshes the order in N_dof^(-1/2) tends to min(1, lambda), lambda the smallest exponent below{}.{}",
+        if lambda.is_finite() {
+            format!(" ({expected:.3} here)")
+        } else {
+            " (1 here: no singular point with a computed exponent)".to_string()
+        },
+        if above.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " The uniform orders {} exceed it: those levels are not yet in the asymptotic range ({}).",
+                above.join(", "),
+                if args.quick {
+                    "the full run, without --quick, goes two levels finer"
+                } else {
+                    "finer levels would show the order falling towards it"
+                }
+            )
+        }
     );
     let _ = writeln!(
         md,
-        "Singular points of the scene and the exponent each predicts (plane strain, Poisson ratio {kappa}; \
+        "\nSingular points of the scene and the exponent each predicts (plane strain, Poisson ratio {kappa}; \
          NaN where rollers meet, which the wedge analysis here does not cover):\n"
     );
     if sing.is_empty() {
@@ -209,9 +363,10 @@ pub(super) fn run(
         );
     }
     for s in &sing {
+        let [a, b] = holds_named(s, &scn.geometry);
         let _ = writeln!(
             md,
-            "- ({}, {}): {} {} meeting {}: exponent {:.4}",
+            "- ({}, {}): {} {a} meeting {b}: exponent {:.4}",
             s.point[0],
             s.point[1],
             if s.corner {
@@ -219,9 +374,46 @@ pub(super) fn run(
             } else {
                 "inside a side,"
             },
-            s.holds[0].name(),
-            s.holds[1].name(),
             predicted(s, kappa)
+        );
+    }
+    if let Some(t) = &split_table {
+        out.write_table("split.csv", t, &split_lines(&command, &scn, &split_plan))?;
+        let df = crate::experiments::read_csv(&out.path("split.csv"))?;
+        let f = crate::experiments::col_str(&df, "family")?;
+        let col = |c: &str| crate::experiments::col_f64(&df, c);
+        let (sn, st, et, ot, em, om) = (
+            col("n")?,
+            col("steps")?,
+            col("rel_err_T_percent")?,
+            col("order_T")?,
+            col("rel_err_max_percent")?,
+            col("order_max")?,
+        );
+        let _ = writeln!(
+            md,
+            "\n## The h and k parts (uniform structured meshes)\n\n{}\n\n| family | n | steps | error at T, % | order | max over t, % | order |\n|---|---|---|---|---|---|---|",
+            split_lines(&command, &scn, &split_plan)[1]
+        );
+        for i in 0..f.len() {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {:.4} | {:.3} | {:.4} | {:.3} |",
+                f[i], sn[i], st[i], et[i], ot[i], em[i], om[i]
+            );
+        }
+        split::draw_split(
+            &out.path(""),
+            "split",
+            &out.path("split.csv"),
+            std::slice::from_ref(&scn.name),
+            "1/n (h part: h = W/(2n), k of the reference) or 1/N (k part: k = T/N, h of the reference)",
+        )?;
+    } else {
+        let _ = writeln!(
+            md,
+            "\nNo h and k parts: {}.",
+            no_split.as_deref().unwrap_or("")
         );
     }
     out.write("convergence.md", md.as_bytes())?;
@@ -235,4 +427,28 @@ pub(super) fn run(
     )?;
     out.publish()?;
     Ok(md)
+}
+
+/// The provenance lines of `split.csv`.
+fn split_lines(
+    command: &str,
+    scn: &Scenario,
+    plan: &crate::experiments::convergence::Plan,
+) -> Vec<String> {
+    vec![
+        format!(
+            "produced by evhi {} `evhi {}`",
+            env!("CARGO_PKG_VERSION"),
+            crate::output::run::one_line(command)
+        ),
+        format!(
+            "scenario {}; uniform structured meshes n = {:?} against a reference at n = {} with N = {} steps; families: h=k (N = n steps), h (N = {} steps, the reference's k), k (the reference's mesh, N = n steps); rel_err_T at t = T, rel_err_max = max_j ||e_j||_E / max_j ||u_ref,j||_E over the level's steps; order_T and order_max are observed orders in 1/n (h=k, h) or in k (k); shares: the squared error within {} of a singular point, within it of y = 0, and the rest",
+            scn.name,
+            plan.levels,
+            plan.n_ref,
+            plan.n_ref,
+            plan.n_ref,
+            scn.geometry.width.min(scn.geometry.height) / 8.0
+        ),
+    ]
 }

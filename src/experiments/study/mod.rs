@@ -69,8 +69,10 @@ pub struct StabilityArgs {
     /// A built-in scenario or the path of a scenario TOML file.
     #[arg(long)]
     pub scenario: String,
-    /// Levels n = 8, 16 and steps 1, 8 (seconds); without it n = 8, 16, 32 and steps
-    /// 1, 2, 4, …, 64 (a steady problem always takes one step).
+    /// Levels n0, 2 n0 and steps 1, 8 (seconds); without it n0, 2 n0, 4 n0 and steps
+    /// 1, 2, 4, …, 64 (a steady problem always takes one step). n0 is the coarsest
+    /// n (4, 8, 16, …) that resolves the scene, but at least 8: 8 on the paper's
+    /// scene.
     #[arg(long)]
     pub quick: bool,
     /// Output directory (created if missing).

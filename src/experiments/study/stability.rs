@@ -6,6 +6,13 @@ use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use std::fmt::Write as _;
 
+/// What each outcome of a cell means (the CSV's legend and the summary's).
+const OUTCOMES: &str = "certified (every step certified), several solutions (Newton from other starts \
+     ends more than 1e-6 away), converged (overshoots g) (a solver without a certificate, the penalty, which may pass the \
+     limit g), converged (no limit) (the same where g is infinite: the penalty is then the law \
+     itself), failed: <status> or failed: certificate over tolerance (at the step in failed_step), \
+     error: <message> (the run did not start)";
+
 pub(super) fn run(
     args: super::StabilityArgs,
     command: &str,
@@ -27,6 +34,28 @@ pub(super) fn run(
         vec![1, 2, 4, 8, 16, 32, 64]
     };
     let solvers = solvers();
+    // A downward jump breaks both hypotheses at once: H(j) fails, so H(s) has no
+    // finite m to test, and the step energy is not convex whatever its curvature
+    // bound between the jumps says.
+    let jumps_down = !scn.law.down_jumps().is_empty();
+    let h_s_word = |h: &crate::show::Smallness| {
+        if jumps_down {
+            "n/a (H(j) fails)"
+        } else if h.holds() {
+            "holds"
+        } else {
+            "fails"
+        }
+    };
+    let convex_word = |curv: f64| {
+        if jumps_down {
+            "no (downward jump)"
+        } else if curv > 0.0 {
+            "yes"
+        } else {
+            "no"
+        }
+    };
     let out = RunDir::open(&args.out)?;
     let progress = bar((levels.len() * steps.len() * (solvers.len() + 1)) as u64);
     let mut cells = vec![];
@@ -51,7 +80,7 @@ pub(super) fn run(
             env!("CARGO_PKG_VERSION")
         ),
         format!(
-            "scenario {}; levels n = {levels:?}, steps {steps:?}, T = {}; outcome: certified (every step), several solutions (newton from other starts differs by > 1e-6), converged (overshoots g) for the uncertified penalty, failed (with the step); hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex)",
+            "scenario {}; levels n = {levels:?}, steps {steps:?}, T = {}; outcome: {OUTCOMES}; step_curvature_min = lambda_min(S + k diag(w) c_min), the step Hessian's worst case between the law's jumps (> 0 and no downward jump: every step strictly convex); H_s is n/a and steps_convex no where the law jumps down (H(j) fails)",
             scn.name, scn.t_end
         ),
     ];
@@ -94,20 +123,16 @@ pub(super) fn run(
         .f64("m_trace_norm_sq", hyp.iter().map(|r| r.2.rhs()).collect())
         .str(
             "H_s",
-            hyp.iter()
-                .map(|r| (if r.2.holds() { "holds" } else { "fails" }).to_string())
-                .collect(),
+            hyp.iter().map(|r| h_s_word(&r.2).to_string()).collect(),
         )
         .f64("step_curvature_min", hyp.iter().map(|r| r.3).collect())
         .str(
             "steps_convex",
-            hyp.iter()
-                .map(|r| (if r.3 > 0.0 { "yes" } else { "no" }).to_string())
-                .collect(),
+            hyp.iter().map(|r| convex_word(r.3).to_string()).collect(),
         );
     out.write_table("hypotheses.csv", &h, &lines)?;
     let mut md = format!(
-        "# Step solvers on `{}` ({})\n\n{}\n\n| n | steps | H(s) | smallest step curvature | {} |\n|---|---|---|---|{}\n",
+        "# Step solvers on `{}` ({})\n\n{}\n\nOutcomes: {OUTCOMES}.\n\n| n | steps | H(s) | smallest step curvature | steps convex | {} |\n|---|---|---|---|---|{}\n",
         scn.name,
         if args.quick { "quick" } else { "full" },
         lines[0],
@@ -126,8 +151,9 @@ pub(super) fn run(
             .collect();
         let _ = writeln!(
             md,
-            "| {n} | {st} | {} | {curv:.4e} | {} |",
-            if h_s.holds() { "holds" } else { "fails" },
+            "| {n} | {st} | {} | {curv:.4e} | {} | {} |",
+            h_s_word(h_s),
+            convex_word(*curv),
             outcomes.join(" | ")
         );
     }

@@ -11,11 +11,15 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::time;
     let scn = Scenario::load(&args.scenario)?;
-    if scn.problem == crate::scenario::Problem::Steady {
+    if scn.problem != crate::scenario::Problem::Viscoelastic {
         return Err(crate::error::InputError::field(
             "scenario",
             &scn.name,
-            "a scenario with a time evolution (problem = \"steady\" is one solve: no time error)",
+            format!(
+                "a viscoelastic scenario: this one is {} (each step solves the static problem \
+                 with f(t_n), so backward Euler has no time error to study)",
+                scn.problem.name()
+            ),
         )
         .into());
     }
@@ -35,8 +39,10 @@ pub(super) fn run(
     progress.finish_and_clear();
     time::write_rows(&ctx, &plan, &rows, "time_study.csv", "history")?;
     let mut md = format!(
-        "# Time error of `{}` at n = {} ({})\n\nproduced by evhi {} `evhi {command}`\n\nReference: {} steps on the same mesh. Errors relative, energy norm.\n\n\
-         | N | k | max over t, % | order | at T, % | order | model max, % | model T, % | t of max |\n|---|---|---|---|---|---|---|---|---|\n",
+        "# Time error of `{}` at n = {} ({})\n\nproduced by evhi {} `evhi {command}`\n\nReference: {} steps on the same mesh. Errors relative, energy norm: \
+         \"max over t\" is max_n ||e_n|| / max_n ||u_ref,n|| over the level's steps, \"at T\" is ||e(T)|| / ||u_ref(T)||; \
+         orders are orders in k (log2 of the ratio to the previous row, k halved); \"t of max\" is where ||e_n|| peaks.\n\n\
+         | N | k | max over t, % | order in k | at T, % | order in k | model max, % | model T, % | t of max |\n|---|---|---|---|---|---|---|---|---|\n",
         scn.name,
         plan.n,
         if args.quick { "quick" } else { "full" },
