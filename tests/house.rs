@@ -227,3 +227,24 @@ fn experiment_names_are_spelled_in_the_registry_only() {
         "experiment names spelled outside the registry: {found:#?}"
     );
 }
+
+/// The tables the book shows are listed in the registry, beside the experiment (or the
+/// bench) that writes them: each is named once, and each has its CSV and its Markdown
+/// rendering in `data/`.
+#[test]
+fn book_tables_are_listed_with_their_writers() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut seen = BTreeSet::new();
+    for t in evhi::experiments::registry::book_tables() {
+        assert!(seen.insert(t.file), "{} listed twice", t.file);
+        assert!(t.keys >= 1 && t.cols > t.keys, "{}", t.file);
+        let csv = root.join("data").join(t.file);
+        assert!(csv.exists(), "{} is not in data/", t.file);
+        assert!(
+            csv.with_extension("md").exists(),
+            "{} has no Markdown rendering",
+            t.file
+        );
+    }
+    assert_eq!(seen.len(), 15);
+}

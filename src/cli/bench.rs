@@ -133,8 +133,8 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;
         crate::experiments::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
-        for (file, _, _) in crate::experiments::BOOK_TABLES {
-            ctx.render_book_table(file)?;
+        for t in crate::experiments::registry::book_tables() {
+            ctx.render_book_table(t.file)?;
         }
         return Ok(());
     }

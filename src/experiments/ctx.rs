@@ -3,7 +3,7 @@
 //! book shows it). The dispatcher that runs an experiment by name is
 //! [`super::run`], reading [`super::registry`].
 
-use super::{BOOK_TABLES, ExpError};
+use super::ExpError;
 use crate::output::csv::Table;
 use std::path::{Path, PathBuf};
 
@@ -66,7 +66,7 @@ impl Ctx {
     }
 
     /// Writes a table with its provenance, naming the running experiment (and, for a
-    /// table the book shows, its Markdown rendering, see [`BOOK_TABLES`]).
+    /// table the book shows, its Markdown rendering, see [`super::registry::BookTable`]).
     pub fn write(&self, file: &str, table: &Table, params: &str) -> Result<PathBuf, ExpError> {
         self.write_as(file, table, self.experiment, params)
     }
@@ -92,11 +92,12 @@ impl Ctx {
     }
 
     /// Writes `data/<stem>.md`, the Markdown rendering of `data/<file>`, if the
-    /// book shows that table ([`BOOK_TABLES`]).
+    /// book shows that table ([`super::registry::book_tables`]).
     pub fn render_book_table(&self, file: &str) -> Result<(), ExpError> {
-        let Some(&(_, keys, cols)) = BOOK_TABLES.iter().find(|t| t.0 == file) else {
+        let Some(t) = super::registry::book_tables().find(|t| t.file == file) else {
             return Ok(());
         };
+        let (keys, cols) = (t.keys, t.cols);
         let path = self.data_path(file);
         let text = std::fs::read_to_string(&path).map_err(|e| ExpError::Io {
             path: path.display().to_string(),

@@ -89,7 +89,7 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
         ),
         (
             stability,
-            &[("stability", "")],
+            &[(stability, "")],
             Study::Stability(StabilityArgs {
                 scenario: path.to_string(),
                 quick: true,

@@ -49,27 +49,6 @@ pub enum ExpError {
     Plot { path: String, message: String },
 }
 
-/// The CSV tables the book shows, as Markdown renderings beside them: file, key
-/// columns repeated in every part, and the most columns of one part (so a part
-/// fits the page).
-pub const BOOK_TABLES: [(&str, usize, usize); 15] = [
-    ("exact_convergence.csv", 4, 8),
-    ("exact_cea.csv", 3, 8),
-    ("exact_crime.csv", 2, 8),
-    ("bench_scipy.csv", 1, 5),
-    ("paths.csv", 2, 4),
-    ("hypotheses.csv", 1, 5),
-    ("bench.csv", 3, 6),
-    ("bench_sweeps.csv", 1, 5),
-    ("bench_vs_paper.csv", 1, 6),
-    ("bench_solvers.csv", 2, 6),
-    ("stability_sweeps.csv", 4, 7),
-    ("stability_penalty.csv", 1, 5),
-    ("loads_search.csv", 2, 7),
-    ("fig4_counts.csv", 1, 6),
-    ("stability_prop31.csv", 3, 6),
-];
-
 /// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'
 /// provenance names it.
 pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {

@@ -18,6 +18,39 @@ pub struct Experiment {
     /// groups take about equal wall time (`data/reproduce_times.csv`).
     pub second_thread: bool,
     pub run: fn(&Ctx) -> Result<(), ExpError>,
+    /// The tables it writes that the book shows (each rendered beside its CSV as
+    /// Markdown).
+    pub tables: &'static [BookTable],
+}
+
+/// A table the book shows, as a Markdown rendering beside its CSV: the file, the key
+/// columns repeated in every part, and the most columns of one part (so a part fits
+/// the page).
+pub struct BookTable {
+    pub file: &'static str,
+    pub keys: usize,
+    pub cols: usize,
+}
+
+const fn table(file: &'static str, keys: usize, cols: usize) -> BookTable {
+    BookTable { file, keys, cols }
+}
+
+/// The tables of `evhi bench` the book shows.
+pub const BENCH_TABLES: [BookTable; 5] = [
+    table("bench_scipy.csv", 1, 5),
+    table("bench.csv", 3, 6),
+    table("bench_sweeps.csv", 1, 5),
+    table("bench_vs_paper.csv", 1, 6),
+    table("bench_solvers.csv", 2, 6),
+];
+
+/// Every table the book shows: the experiments' and the bench's.
+pub fn book_tables() -> impl Iterator<Item = &'static BookTable> {
+    EXPERIMENTS
+        .iter()
+        .flat_map(|e| e.tables.iter())
+        .chain(BENCH_TABLES.iter())
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
@@ -28,6 +61,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: true,
         second_thread: false,
         run: super::hypotheses::run,
+        tables: &[table("hypotheses.csv", 1, 5)],
     },
     Experiment {
         name: "fig2",
@@ -35,6 +69,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: true,
         second_thread: false,
         run: super::fig2::run,
+        tables: &[],
     },
     Experiment {
         name: "loads",
@@ -42,6 +77,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: true,
         second_thread: false,
         run: super::loads::run,
+        tables: &[table("loads_search.csv", 2, 7)],
     },
     Experiment {
         name: "fig3",
@@ -49,6 +85,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: true,
         second_thread: false,
         run: super::scenes::run_fig3,
+        tables: &[],
     },
     Experiment {
         name: "fig4",
@@ -56,6 +93,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: true,
         second_thread: false,
         run: super::scenes::run_fig4,
+        tables: &[table("fig4_counts.csv", 1, 6)],
     },
     Experiment {
         name: "table1",
@@ -63,6 +101,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: true,
         second_thread: true,
         run: super::convergence::run,
+        tables: &[],
     },
     Experiment {
         name: "paths",
@@ -70,6 +109,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: true,
         run: super::paths::run,
+        tables: &[table("paths.csv", 2, 4)],
     },
     Experiment {
         name: "forensics",
@@ -77,6 +117,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: false,
         run: super::forensics::run,
+        tables: &[],
     },
     Experiment {
         name: "graded",
@@ -84,6 +125,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: true,
         run: super::graded::run,
+        tables: &[],
     },
     Experiment {
         name: "time",
@@ -91,6 +133,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: true,
         run: super::time::run,
+        tables: &[],
     },
     Experiment {
         name: "static",
@@ -98,6 +141,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: true,
         run: super::singular::run,
+        tables: &[],
     },
     Experiment {
         name: "example",
@@ -105,6 +149,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: false,
         run: super::example::run,
+        tables: &[],
     },
     Experiment {
         name: "stability",
@@ -112,6 +157,11 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: true,
         run: super::stability::run,
+        tables: &[
+            table("stability_sweeps.csv", 4, 7),
+            table("stability_penalty.csv", 1, 5),
+            table("stability_prop31.csv", 3, 6),
+        ],
     },
     Experiment {
         name: "exact",
@@ -119,6 +169,11 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         paper: false,
         second_thread: false,
         run: super::exact::run_study,
+        tables: &[
+            table("exact_convergence.csv", 4, 8),
+            table("exact_cea.csv", 3, 8),
+            table("exact_crime.csv", 2, 8),
+        ],
     },
 ];
 
