@@ -30,23 +30,25 @@ fn rows(file: &str) -> Vec<HashMap<String, String>> {
     parse_rows(&text)
 }
 
-/// The rows of a table's text as maps from column to text (provenance lines skipped).
+/// The rows of a table's text as maps from column to text (provenance lines skipped;
+/// a quoted field may hold a comma, as a solver's label does).
 fn parse_rows(text: &str) -> Vec<HashMap<String, String>> {
+    let split = |l: &str| -> Vec<String> {
+        let (mut out, mut cur, mut quoted) = (vec![], String::new(), false);
+        for ch in l.chars() {
+            match ch {
+                '"' => quoted = !quoted,
+                ',' if !quoted => out.push(std::mem::take(&mut cur)),
+                c => cur.push(c),
+            }
+        }
+        out.push(cur);
+        out
+    };
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<String> = lines
-        .next()
-        .expect("a header")
-        .split(',')
-        .map(String::from)
-        .collect();
+    let header = split(lines.next().expect("a header"));
     lines
-        .map(|l| {
-            header
-                .iter()
-                .cloned()
-                .zip(l.split(',').map(String::from))
-                .collect()
-        })
+        .map(|l| header.iter().cloned().zip(split(l)).collect())
         .collect()
 }
 

@@ -277,56 +277,75 @@ fn own_scene_graded() {
     assert!(r.contact.iter().any(|c| c.u_nu > 0.02));
 }
 
+/// Runs `evhi study <study> --quick` on the example `file` (or built-in) into a scratch directory
+/// and returns the rows of its table `table` by column name.
+fn study_rows(
+    file: &str,
+    table: &str,
+    study: impl Fn(String, std::path::PathBuf) -> evhi::cli::study::Study,
+) -> Vec<std::collections::HashMap<String, String>> {
+    let out = std::env::temp_dir().join(format!(
+        "evhi-claim-{}-{}-{}",
+        table,
+        file.replace('/', "_"),
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&out);
+    // A file of the repository, or a built-in scenario's name.
+    let path = super::root().join(file);
+    let scenario = if path.exists() {
+        path.display().to_string()
+    } else {
+        file.to_string()
+    };
+    evhi::cli::study::run(study(scenario, out.clone())).unwrap();
+    let text = std::fs::read_to_string(out.join(table)).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    super::parse_rows(&text)
+}
+
+const CANTILEVER: &str = "data/scenarios/examples/cantilever.toml";
+
 #[test]
 fn own_study_cantilever() {
-    let out = std::env::temp_dir().join(format!("evhi-claim-study-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    let args = evhi::cli::study::ConvergenceArgs {
-        scenario: super::root()
-            .join("data/scenarios/examples/cantilever.toml")
-            .display()
-            .to_string(),
-        quick: true,
-        out: out.clone(),
-    };
-    evhi::cli::study::run(evhi::cli::study::Study::Convergence(args)).unwrap();
-    let text = std::fs::read_to_string(out.join("singular.csv")).unwrap();
-    let rows: Vec<Vec<&str>> = text
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .map(|l| l.split(',').collect())
+    use evhi::cli::study::{ConvergenceArgs, Study};
+    let rows = study_rows(CANTILEVER, "singular.csv", |scenario, out| {
+        Study::Convergence(ConvergenceArgs {
+            scenario,
+            quick: true,
+            out,
+        })
+    });
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    let lambda: Vec<f64> = rows
+        .iter()
+        .map(|r| super::num(r, "predicted_exponent"))
         .collect();
-    assert_eq!(rows.len(), 2, "{text}");
-    let lambda: Vec<f64> = rows.iter().map(|r| r[3].parse().unwrap()).collect();
+    let kinds: Vec<&str> = rows.iter().map(|r| r["kind"].as_str()).collect();
     for r in &rows {
-        assert_eq!(r[0], "0.0", "{text}");
-        assert_eq!(r[2], "corner clamped-free", "{text}");
+        assert_eq!(r["x"], "0.0", "{rows:?}");
     }
+    // The corner on Γ3 is named for the contact (its exponent is a free edge's).
+    assert_eq!(
+        kinds,
+        ["corner clamped-contact (as free)", "corner clamped-free"]
+    );
     assert_eq!(lambda[0], lambda[1]);
     assert!(lambda[0] > 0.5 && lambda[0] < 1.0, "{lambda:?}");
-    let _ = std::fs::remove_dir_all(&out);
 }
 
 /// Runs `evhi study time --quick` on the example `file` and returns its CSV rows by
 /// column name.
 fn time_study(file: &str) -> Vec<std::collections::HashMap<String, String>> {
-    let out = std::env::temp_dir().join(format!(
-        "evhi-claim-time-{}-{}",
-        file.replace('/', "_"),
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&out);
-    let args = evhi::cli::study::TimeArgs {
-        scenario: super::root().join(file).display().to_string(),
-        quick: true,
-        n: None,
-        out: out.clone(),
-    };
-    evhi::cli::study::run(evhi::cli::study::Study::Time(args)).unwrap();
-    let text = std::fs::read_to_string(out.join("time_study.csv")).unwrap();
-    let _ = std::fs::remove_dir_all(&out);
-    super::parse_rows(&text)
+    use evhi::cli::study::{Study, TimeArgs};
+    study_rows(file, "time_study.csv", |scenario, out| {
+        Study::Time(TimeArgs {
+            scenario,
+            quick: true,
+            n: None,
+            out,
+        })
+    })
 }
 
 #[test]
@@ -345,7 +364,7 @@ fn own_study_time_model() {
 
 #[test]
 fn own_study_time_cantilever() {
-    let rows = time_study("data/scenarios/examples/cantilever.toml");
+    let rows = time_study(CANTILEVER);
     let f =
         |r: &std::collections::HashMap<String, String>, c: &str| -> f64 { r[c].parse().unwrap() };
     assert!(rows.iter().all(|r| f(r, "model_max_percent").is_nan()));
@@ -357,50 +376,92 @@ fn own_study_time_cantilever() {
         rows.iter().skip(1).any(|r| f(r, "order_max") < 0.0),
         "{rows:?}"
     );
+    // and the time where it peaks moves with N
+    let mut peaks: Vec<f64> = rows.iter().map(|r| f(r, "t_of_err_max")).collect();
+    peaks.dedup();
+    assert!(peaks.len() >= 3, "{peaks:?}");
 }
 
 #[test]
 fn own_study_stability_cantilever() {
-    let out = std::env::temp_dir().join(format!("evhi-claim-stab-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
-    let args = evhi::cli::study::StabilityArgs {
-        scenario: super::root()
-            .join("data/scenarios/examples/cantilever.toml")
-            .display()
-            .to_string(),
-        quick: true,
-        out: out.clone(),
-    };
-    evhi::cli::study::run(evhi::cli::study::Study::Stability(args)).unwrap();
-    let text = std::fs::read_to_string(out.join("stability.csv")).unwrap();
-    let _ = std::fs::remove_dir_all(&out);
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let (s, o) = (
-        header.iter().position(|h| *h == "solver").unwrap(),
-        header.iter().position(|h| *h == "outcome").unwrap(),
-    );
-    // Split on commas outside quotes (a solver's label may hold one).
-    let split = |l: &str| -> Vec<String> {
-        let (mut out, mut cur, mut quoted) = (vec![], String::new(), false);
-        for ch in l.chars() {
-            match ch {
-                '"' => quoted = !quoted,
-                ',' if !quoted => out.push(std::mem::take(&mut cur)),
-                c => cur.push(c),
-            }
-        }
-        out.push(cur);
-        out
-    };
-    let rows: Vec<Vec<String>> = lines.map(split).collect();
+    use evhi::cli::study::{StabilityArgs, Study};
+    let rows = study_rows(CANTILEVER, "stability.csv", |scenario, out| {
+        Study::Stability(StabilityArgs {
+            scenario,
+            quick: true,
+            out,
+        })
+    });
     assert_eq!(rows.len(), 16, "four solvers, two levels, two step counts");
     for r in &rows {
-        let expected = if r[s] == "penalty" {
+        let expected = if r["solver"] == "penalty" {
             "converged (no limit)"
         } else {
             "certified"
         };
-        assert_eq!(r[o], expected, "{r:?}");
+        assert_eq!(r["outcome"], expected, "{r:?}");
+    }
+    // Without a limit the penalty solves the law itself by Newton's method: the same
+    // iterations as Newton in every cell.
+    let iterations = |solver: &str| -> Vec<(String, String, f64)> {
+        rows.iter()
+            .filter(|r| r["solver"] == solver)
+            .map(|r| {
+                (
+                    r["n"].clone(),
+                    r["steps"].clone(),
+                    super::num(r, "mean_iterations"),
+                )
+            })
+            .collect()
+    };
+    assert_eq!(iterations("penalty"), iterations("newton"));
+}
+
+/// Table 1 is the convergence study's h, k and h = k split applied to the built-ins:
+/// the study in quick mode on `figure` gives the same errors, row by row, as the
+/// `table1` experiment in quick mode (which runs `figure` in one batch with
+/// `literal`): both call `experiments::convergence::compute` on the same plan.
+#[test]
+fn own_study_is_table1() {
+    use evhi::cli::study::{ConvergenceArgs, Study};
+    let root = std::env::temp_dir().join(format!("evhi-claim-table1-{}", std::process::id()));
+    let ctx = evhi::experiments::Ctx {
+        quick: true,
+        data: root.join("data"),
+        figures: root.join("figures"),
+        verbose: false,
+        progress: None,
+        reference: None,
+        command: None,
+        experiment: "",
+    };
+    evhi::experiments::run("table1", &ctx).unwrap();
+    let text = std::fs::read_to_string(root.join("data/table1.csv")).unwrap();
+    let _ = std::fs::remove_dir_all(&root);
+    let table: Vec<_> = super::parse_rows(&text)
+        .into_iter()
+        .filter(|r| r["scenario"] == "figure")
+        .collect();
+    let split = study_rows("figure", "split.csv", |scenario, out| {
+        Study::Convergence(ConvergenceArgs {
+            scenario,
+            quick: true,
+            out,
+        })
+    });
+    assert_eq!(table.len(), 9, "three families of three levels");
+    assert_eq!(split.len(), table.len());
+    for (a, b) in table.iter().zip(&split) {
+        for key in ["family", "n", "steps"] {
+            assert_eq!(a[key], b[key]);
+        }
+        for key in ["rel_err_T_percent", "rel_err_max_percent"] {
+            let (x, y) = (num(a, key), num(b, key));
+            assert!(
+                (x - y).abs() <= 1e-12 * x.abs(),
+                "{key}: {a:?} against {b:?}"
+            );
+        }
     }
 }
