@@ -10,7 +10,7 @@
 use super::{Ctx, ExpError};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{Run, Settings, run_with_states};
+use crate::scheme::{Run, Settings};
 use crate::step::newton::Newton;
 
 /// $\max|a - b| / \max|a|$.
@@ -26,15 +26,17 @@ fn gap(a: &[f64], b: &[f64]) -> f64 {
 /// One run of a loop: the contact unknowns of every step, the run.
 type Traced = (Vec<f64>, Run);
 
-fn general(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
-    let mut r = vec![];
-    let run = run_with_states(
-        scn,
-        &Settings::new(n, n),
-        &mut Newton::default(),
-        &mut |_, _, _, c| r.extend(c.iter().map(|c| c.u_nu)),
-    )?;
-    Ok((r, run))
+/// The general loop on scenarios that share the step matrix, in one batch: one
+/// factorisation of $A + kB$ serves them all, and each sweep over it several
+/// columns, each column's arithmetic as in a run alone (`tests/linalg.rs`).
+fn general(scns: &[&Scenario], n: usize) -> Result<Vec<Traced>, ExpError> {
+    let owned: Vec<Scenario> = scns.iter().map(|s| (*s).clone()).collect();
+    let mut r = vec![vec![]; scns.len()];
+    let runs =
+        super::run_newton_batch_states(&owned, &Settings::new(n, n), &mut |i, _, _, _, c| {
+            r[i].extend(c.iter().map(|c| c.u_nu))
+        })?;
+    Ok(r.into_iter().zip(runs).collect())
 }
 
 fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
@@ -69,10 +71,22 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         jobs.push((1, finest));
     }
     ctx.add_units(jobs.len());
+    // The general runs of each level, batched by step matrix.
+    let mut generals: std::collections::BTreeMap<(usize, usize), Traced> = Default::default();
     let mut rows = vec![];
     for (s, n) in jobs {
         let (name, scn) = &scenes[s];
-        let ((rg, g), (rr, r)) = (general(scn, n)?, reduced(scn, n)?);
+        if !generals.contains_key(&(s, n)) {
+            let group: Vec<usize> = (0..scenes.len())
+                .filter(|&o| scenes[o].1.same_operator(scn) && (o == s || levels.contains(&n)))
+                .collect();
+            let batch = general(&group.iter().map(|&o| &scenes[o].1).collect::<Vec<_>>(), n)?;
+            for (o, traced) in group.into_iter().zip(batch) {
+                generals.insert((o, n), traced);
+            }
+        }
+        let (rg, g) = generals.remove(&(s, n)).expect("run above");
+        let (rr, r) = reduced(scn, n)?;
         let energy =
             |run: &Run| -> Vec<f64> { run.records.iter().map(|s| s.energy_norm).collect() };
         let cert = |run: &Run| {
