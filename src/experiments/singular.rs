@@ -111,29 +111,50 @@ pub fn clamp_end_exponent(kappa_m: f64) -> (f64, f64) {
 }
 // ANCHOR_END: wedge
 
-/// Per scenario and level: $\|u_h\|_E^2$.
-fn energies(scn: &Scenario, levels: &[usize], ctx: &Ctx) -> Result<Vec<f64>, ExpError> {
-    ctx.add_units(levels.len());
-    let mut out = vec![];
+/// Per scenario and level: $\|u_h\|_E^2$. Scenarios on the same mesh with the same
+/// elasticity share each level's factorisation of $B$ (one factor, a solve per
+/// load), which is all the work at the finest levels.
+fn energies(scns: &[Scenario], levels: &[usize], ctx: &Ctx) -> Result<Vec<Vec<f64>>, ExpError> {
+    ctx.add_units(levels.len() * scns.len());
+    // Groups of scenarios with one mesh and one elasticity; one factor alive at a time.
+    let mut groups: Vec<Vec<usize>> = vec![];
+    for (i, scn) in scns.iter().enumerate() {
+        let same = |j: &usize| {
+            let o = &scns[*j];
+            o.geometry == scn.geometry
+                && o.pattern == scn.pattern
+                && (o.e, o.kappa) == (scn.e, scn.kappa)
+        };
+        match groups.iter_mut().find(|g| same(&g[0])) {
+            Some(g) => g.push(i),
+            None => groups.push(vec![i]),
+        }
+    }
+    let mut out = vec![vec![]; scns.len()];
     for &n in levels {
-        ctx.log(&format!("static control: {} n = {n}", scn.name));
         crate::scheme::check_memory(n, n / 2)?;
-        let mesh = scn.mesh(n)?;
-        let dofs = Dofs::new(&mesh, true);
-        let b = stiffness(&mesh, &dofs, &scn.elasticity());
-        let f = scn.load_vector(&mesh, &dofs);
-        let cdofs: Vec<usize> = mesh
-            .contact
-            .iter()
-            .map(|&c| dofs.of(c, 1).expect("contact nodes are free"))
-            .collect();
-        let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
-        let chol = Cholesky::factor(&b, &order).map_err(|e| ExpError::Table {
-            path: "static_control".into(),
-            message: e.to_string(),
-        })?;
-        let u = chol.solve(&f);
-        out.push(0.5 * f.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>());
+        for group in &groups {
+            let first = &scns[group[0]];
+            let mesh = first.mesh(n)?;
+            let dofs = Dofs::new(&mesh, true);
+            let b = stiffness(&mesh, &dofs, &first.elasticity());
+            let cdofs: Vec<usize> = mesh
+                .contact
+                .iter()
+                .map(|&c| dofs.of(c, 1).expect("contact nodes are free"))
+                .collect();
+            let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
+            let chol = Cholesky::factor(&b, &order).map_err(|e| ExpError::Table {
+                path: "static_control".into(),
+                message: e.to_string(),
+            })?;
+            for &i in group {
+                ctx.log(&format!("static control: {} n = {n}", scns[i].name));
+                let f = scns[i].load_vector(&mesh, &dofs);
+                let u = chol.solve(&f);
+                out[i].push(0.5 * f.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>());
+            }
+        }
     }
     Ok(out)
 }
@@ -169,9 +190,12 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         vec![],
         vec![],
     );
-    for name in SCENARIOS {
-        let scn = Scenario::load(name)?;
-        let e = energies(&scn, &levels, ctx)?;
+    let scns = SCENARIOS
+        .iter()
+        .map(|name| Scenario::load(name))
+        .collect::<Result<Vec<_>, _>>()?;
+    let all = energies(&scns, &levels, ctx)?;
+    for (name, e) in SCENARIOS.iter().zip(all) {
         let l = e.len();
         // Differences to the next finer level: ||u_{h/2} - u_h||_E^2.
         let d: Vec<f64> = (0..l)
