@@ -1532,3 +1532,47 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
         "{err}"
     );
 }
+
+/// `reproduce --jobs N` gives the same files whatever N: one worker, and more workers
+/// than experiments, write byte-identical tables and figures (quick mode, a set
+/// whose experiments run threads of their own, table1 among them); `--jobs 0` is
+/// refused by name.
+#[test]
+fn reproduce_writes_the_same_files_whatever_the_jobs() {
+    let dir = scratch("jobs");
+    let names = ["hypotheses", "fig2", "fig3", "table1", "graded", "time"];
+    for jobs in ["1", "8"] {
+        succeed(
+            evhi()
+                .args(["reproduce", "--quick", "-q", "--jobs", jobs])
+                .args(names)
+                .arg("--data")
+                .arg(dir.join(jobs).join("data"))
+                .arg("--figures")
+                .arg(dir.join(jobs).join("figures")),
+        );
+    }
+    let mut compared = 0;
+    for sub in ["data", "figures"] {
+        let mut files: Vec<_> = std::fs::read_dir(dir.join("1").join(sub))
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        files.sort();
+        for f in files {
+            let a = std::fs::read(dir.join("1").join(sub).join(&f)).unwrap();
+            let b = std::fs::read(dir.join("8").join(sub).join(&f))
+                .unwrap_or_else(|e| panic!("{f:?} with --jobs 8: {e}"));
+            assert!(a == b, "{sub}/{f:?} differs between --jobs 1 and --jobs 8");
+            compared += 1;
+        }
+    }
+    assert!(compared > 20, "only {compared} files compared");
+    let o = evhi()
+        .args(["reproduce", "fig2", "--quick", "--jobs", "0", "--data"])
+        .arg(dir.join("zero"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`jobs`"));
+}

@@ -1,4 +1,5 @@
-//! `evhi reproduce`: the experiments on two cores, one progress bar each.
+//! `evhi reproduce`: the experiments on a pool of workers (one per core by default),
+//! the costliest first, one progress bar each.
 
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -28,6 +29,11 @@ pub struct ReproduceArgs {
     /// which git ignores: the main job then changes no committed file.
     #[arg(long)]
     pub record_times: bool,
+    /// Experiments run at once (default: the machine's cores). Each experiment's
+    /// numbers are the same whatever the number: the experiments share no state, and
+    /// their own threads do not depend on it.
+    #[arg(long, short, value_name = "N")]
+    pub jobs: Option<usize>,
     /// Directory of the CSV tables [default: data, or data/local/quick with --quick,
     /// so that coarse levels never overwrite the committed tables].
     #[arg(long)]
@@ -104,44 +110,52 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
             (n.clone(), bar)
         })
         .collect();
-    // Two lists of about equal wall time, one per core (the full run of
-    // data/reproduce_times.csv: forensics 129 s and exact 36 s beside the rest; paths
-    // 55, graded 28, static 17, time 16, stability 12, table1 7 s; the rest under 2 s
-    // each).
-    let (heavy, light): (Vec<String>, Vec<String>) = names
-        .into_iter()
-        .partition(|n| registry::experiment(n).is_ok_and(|e| e.second_thread));
-    let results: Vec<(String, f64, Result<(), String>)> = std::thread::scope(|s| {
-        let work = |list: Vec<String>| {
-            let ctx = ctx.clone();
-            let bars = &bars;
-            move || {
-                list.into_iter()
-                    .map(|name| {
-                        let t = Instant::now();
-                        let bar = bars[&name].clone();
-                        bar.reset();
-                        let ctx = Ctx {
-                            progress: Some(bar.clone()),
-                            ..ctx.clone()
-                        };
-                        let r = run(&name, &ctx).map_err(|e| e.to_string());
-                        let secs = t.elapsed().as_secs_f64();
-                        match &r {
-                            Ok(()) => bar.finish_with_message(format!("done in {secs:.1} s")),
-                            Err(_) => bar.abandon_with_message(format!("FAILED after {secs:.1} s")),
-                        }
-                        (name, secs, r)
-                    })
-                    .collect::<Vec<_>>()
+    // The queue, costliest first (registry order among equals): a worker takes the
+    // next one as it finishes its last, so that no long experiment starts last.
+    let jobs = match args.jobs {
+        Some(0) => {
+            return Err(crate::error::InputError::field("jobs", 0, "at least 1").into());
+        }
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(2, |n| n.get()),
+    };
+    let cost = |n: &String| registry::experiment(n).map_or(0.0, |e| e.cost);
+    let mut queue = names.clone();
+    queue.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
+    let queue = std::sync::Mutex::new(std::collections::VecDeque::from(queue));
+    let mut results: Vec<(String, f64, Result<(), String>)> = std::thread::scope(|s| {
+        let worker = || {
+            let mut done = vec![];
+            loop {
+                let Some(name) = queue.lock().expect("reproduce queue").pop_front() else {
+                    return done;
+                };
+                let t = Instant::now();
+                let bar = bars[&name].clone();
+                bar.reset();
+                let ctx = Ctx {
+                    progress: Some(bar.clone()),
+                    ..ctx.clone()
+                };
+                let r = run(&name, &ctx).map_err(|e| e.to_string());
+                let secs = t.elapsed().as_secs_f64();
+                match &r {
+                    Ok(()) => bar.finish_with_message(format!("done in {secs:.1} s")),
+                    Err(_) => bar.abandon_with_message(format!("FAILED after {secs:.1} s")),
+                }
+                done.push((name, secs, r));
             }
         };
-        let a = s.spawn(work(heavy));
-        let b = s.spawn(work(light));
-        let mut out = a.join().expect("experiment thread");
-        out.extend(b.join().expect("experiment thread"));
-        out
+        let handles: Vec<_> = (0..jobs.min(names.len()).max(1))
+            .map(|_| s.spawn(worker))
+            .collect();
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().expect("experiment thread"))
+            .collect()
     });
+    // In the order asked, whatever the order they finished in.
+    results.sort_by_key(|r| names.iter().position(|n| *n == r.0));
     let mut failed = vec![];
     for (name, secs, r) in &results {
         match r {
@@ -166,7 +180,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         } else {
             LOCAL_TIMES
         };
-        record_times(&ctx, file, &set, &results, wall)?;
+        record_times(&ctx, file, &set, &results, wall, jobs)?;
     }
     if failed.is_empty() {
         Ok(())
@@ -246,14 +260,15 @@ pub const LOCAL_TIMES: &str = "local/reproduce_times.csv";
 
 /// Keeps the wall times of this invocation in `file` (under the data directory),
 /// beside those of other sets of experiments (a set's earlier rows are replaced):
-/// the set, each experiment's time with the others of its set running beside it on
-/// the second core, and the set's total.
+/// the set, each experiment's time with the others of its set running beside it
+/// (`jobs` at once), and the set's total.
 fn record_times(
     ctx: &crate::experiments::Ctx,
     file: &str,
     set: &str,
     results: &[(String, f64, Result<(), String>)],
     wall: f64,
+    jobs: usize,
 ) -> Result<(), Box<dyn std::error::Error>> {
     use crate::experiments::{col_f64, col_str, read_csv};
     let path = ctx.data_path(file);
@@ -296,10 +311,11 @@ fn record_times(
         &t,
         &command,
         &format!(
-            "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); the rows of a set were measured by `evhi reproduce [SET] {}` (SET left out for all); machine: {}; two threads, each experiment timed while the others of its set run beside it",
+            "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); the rows of a set were measured by `evhi reproduce [SET] {}` (SET left out for all); machine: {}; {} worker(s), costliest first, each experiment timed while the others of its set run beside it",
             paper_set().join(" "),
             if file == RECORDED_TIMES { "--record-times" } else { "" },
-            crate::timing::machine()
+            crate::timing::machine(),
+            jobs
         ),
     )?;
     Ok(())

@@ -1,7 +1,7 @@
 //! The experiments of `evhi reproduce`, in one list: each one's name (the only place
 //! it is spelled: `tests/house.rs` checks), what it computes, whether it belongs to
-//! the paper's own set, which of the two thread groups runs it, and the function that
-//! runs it. The CLI's value list, `reproduce paper`, the scheduling, the dispatcher
+//! the paper's own set, what it costs (the scheduling starts the costliest first),
+//! and the function that runs it. The CLI's value list, `reproduce paper`, the scheduling, the dispatcher
 //! and the provenance lines of every table all read it.
 
 use super::{Ctx, ExpError};
@@ -14,9 +14,10 @@ pub struct Experiment {
     /// Part of the paper's own set (`evhi reproduce paper`): its hypotheses, Figs. 2-4
     /// and Table 1.
     pub paper: bool,
-    /// Run on the second thread, beside the longest ones (forensics, exact): the two
-    /// groups take about equal wall time (`data/reproduce_times.csv`).
-    pub second_thread: bool,
+    /// Its wall seconds run alone on the 2-core machine of `data/reproduce_times.csv`
+    /// (full mode): `reproduce` starts the costliest first, so that no long one
+    /// starts last.
+    pub cost: f64,
     pub run: fn(&Ctx) -> Result<(), ExpError>,
     /// The tables it writes that the book shows (each rendered beside its CSV as
     /// Markdown).
@@ -59,7 +60,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "hypotheses",
         about: "the constants of H(A)...H(s) and H(f)/H(0) for the shipped scenarios",
         paper: true,
-        second_thread: false,
+        cost: 0.7,
         run: super::hypotheses::run,
         tables: &[table("hypotheses.csv", 1, 5)],
     },
@@ -67,7 +68,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "fig2",
         about: "Fig. 2: the normal compliance law",
         paper: true,
-        second_thread: false,
+        cost: 0.02,
         run: super::fig2::run,
         tables: &[],
     },
@@ -75,7 +76,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "loads",
         about: "the search for the `figure` loads",
         paper: true,
-        second_thread: false,
+        cost: 0.9,
         run: super::loads::run,
         tables: &[table("loads_search.csv", 2, 7)],
     },
@@ -83,7 +84,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "fig3",
         about: "Fig. 3: the deformed body and the interface forces, g = 0.1",
         paper: true,
-        second_thread: false,
+        cost: 1.3,
         run: super::scenes::run_fig3,
         tables: &[],
     },
@@ -91,7 +92,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "fig4",
         about: "Fig. 4: several g",
         paper: true,
-        second_thread: false,
+        cost: 2.0,
         run: super::scenes::run_fig4,
         tables: &[table("fig4_counts.csv", 1, 6)],
     },
@@ -99,7 +100,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "table1",
         about: "Table 1, Fig. 5 and the error split",
         paper: true,
-        second_thread: true,
+        cost: 7.0,
         run: super::convergence::run,
         tables: &[],
     },
@@ -107,7 +108,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "paths",
         about: "the general against the reduced time loop",
         paper: false,
-        second_thread: true,
+        cost: 23.0,
         run: super::paths::run,
         tables: &[table("paths.csv", 2, 4)],
     },
@@ -115,7 +116,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "forensics",
         about: "which reading of the paper gives its Table 1; the uniform family's increments and the reference's own error",
         paper: false,
-        second_thread: false,
+        cost: 46.0,
         run: super::forensics::run,
         tables: &[],
     },
@@ -123,7 +124,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "graded",
         about: "uniform against graded meshes, with contact and time",
         paper: false,
-        second_thread: true,
+        cost: 6.0,
         run: super::graded::run,
         tables: &[],
     },
@@ -131,7 +132,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "time",
         about: "the time error, the load histories and the relaxation layer",
         paper: false,
-        second_thread: true,
+        cost: 5.0,
         run: super::time::run,
         tables: &[],
     },
@@ -139,7 +140,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "static",
         about: "the static control: the corner exponents",
         paper: false,
-        second_thread: true,
+        cost: 11.0,
         run: super::singular::run,
         tables: &[],
     },
@@ -147,7 +148,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "example",
         about: "the worked examples of chapter \"Your own scenario\"",
         paper: false,
-        second_thread: false,
+        cost: 3.0,
         run: super::example::run,
         tables: &[],
     },
@@ -155,7 +156,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "stability",
         about: "Proposition 3.1 and where step solvers fail",
         paper: false,
-        second_thread: true,
+        cost: 8.6,
         run: super::stability::run,
         tables: &[
             table("stability_sweeps.csv", 4, 7),
@@ -167,7 +168,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "exact",
         about: "manufactured solutions: Corollary 4.1 against the truth",
         paper: false,
-        second_thread: false,
+        cost: 38.0,
         run: super::exact::run_study,
         tables: &[
             table("exact_convergence.csv", 4, 8),
