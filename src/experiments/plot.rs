@@ -103,14 +103,19 @@ pub fn e2s<E: std::fmt::Display>(e: E) -> String {
 }
 
 /// Draws `fig` into both `stem.png` and `stem.svg` (each written to a temporary
-/// file, then renamed).
-pub fn both<F: Figure>(dir: &Path, stem: &str, size: (u32, u32), fig: &F) -> Result<(), ExpError> {
+/// file, then renamed), the two at once on two threads.
+pub fn both<F: Figure + Sync>(
+    dir: &Path,
+    stem: &str,
+    size: (u32, u32),
+    fig: &F,
+) -> Result<(), ExpError> {
     init_font();
     std::fs::create_dir_all(dir).map_err(|e| ExpError::Io {
         path: dir.display().to_string(),
         source: e,
     })?;
-    for ext in ["png", "svg"] {
+    let one = |ext: &str| -> Result<(), ExpError> {
         let final_path = dir.join(format!("{stem}.{ext}"));
         let tmp = dir.join(format!(".{stem}.tmp-{}.{ext}", std::process::id()));
         let res = if ext == "png" {
@@ -136,9 +141,14 @@ pub fn both<F: Figure>(dir: &Path, stem: &str, size: (u32, u32), fig: &F) -> Res
         std::fs::rename(&tmp, &final_path).map_err(|e| ExpError::Io {
             path: final_path.display().to_string(),
             source: e,
-        })?;
-    }
-    Ok(())
+        })
+    };
+    let (png, svg) = std::thread::scope(|s| {
+        let png = s.spawn(|| one("png"));
+        let svg = one("svg");
+        (png.join().expect("the PNG thread"), svg)
+    });
+    png.and(svg)
 }
 
 /// A legend entry for a line with a filled circle marker: the line `2 * half` px long

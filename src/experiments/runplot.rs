@@ -102,24 +102,44 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         .cloned()
         .unwrap_or_default();
     let stride = (n / 32).max(1);
-    super::scenes::draw_run(
-        dir,
-        g,
-        n / stride,
-        format!(
-            "{scenario} at t = T (true scale), forces on Γ3; h = 1/{n}, {steps} steps, {}{}",
-            if g.is_finite() {
-                format!("g = {g}")
-            } else {
-                "no limit".to_string()
-            },
-            if stride > 1 {
-                format!(" (mesh drawn every {stride} cells)")
-            } else {
-                String::new()
-            }
-        ),
-    )?;
+    let deformed = || {
+        super::scenes::draw_run(
+            dir,
+            g,
+            n / stride,
+            format!(
+                "{scenario} at t = T (true scale), forces on Γ3; h = 1/{n}, {steps} steps, {}{}",
+                if g.is_finite() {
+                    format!("g = {g}")
+                } else {
+                    "no limit".to_string()
+                },
+                if stride > 1 {
+                    format!(" (mesh drawn every {stride} cells)")
+                } else {
+                    String::new()
+                }
+            ),
+        )
+    };
+    // The two figures at once (each writes its PNG and SVG on two threads).
+    std::thread::scope(|s| {
+        let deformed = s.spawn(deformed);
+        let evolution = draw_evolution(dir, &scenario, (n, steps, g));
+        deformed
+            .join()
+            .expect("the deformed figure's thread")
+            .and(evolution)
+    })
+}
+
+/// The evolution figure of a run directory: the watched nodes over time and the
+/// regime counts.
+fn draw_evolution(
+    dir: &Path,
+    scenario: &str,
+    (n, steps, g): (usize, usize, f64),
+) -> Result<(), ExpError> {
     let ev = read_csv(&dir.join("evolution.csv"))?;
     let (t, x, u, s1, s2) = (
         col_f64(&ev, "t")?,
