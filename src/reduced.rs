@@ -247,6 +247,29 @@ impl<'d> Reduced<'d> {
         certify(&ku, ku_abs, &b, u, &d.contact_dofs, &at.kw, &scn.law, scn.g)
     }
 
+    /// [`Reduced::march`] with Newton's method at the certificate tolerance of every
+    /// run, [`crate::scheme::CERTIFICATE_TOL`] (what the experiments use).
+    pub fn march_newton(
+        &self,
+        scn: &Scenario,
+        load: &Load,
+        steps: usize,
+        want_field: &dyn Fn(usize) -> bool,
+        timings: &mut Timings,
+        observe: &mut dyn FnMut(Stepped<'_>),
+    ) -> Result<March, RunError> {
+        self.march(
+            scn,
+            load,
+            steps,
+            &mut crate::step::newton::Newton::default(),
+            crate::scheme::CERTIFICATE_TOL,
+            want_field,
+            timings,
+            observe,
+        )
+    }
+
     /// Runs `steps` steps of length $T/\text{steps}$ for `scn` under `load`. The
     /// field is formed (one solve, and a full certificate) at the steps for which
     /// `want_field` is true; every step gets the condensed certificate and fails

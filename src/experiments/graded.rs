@@ -194,12 +194,10 @@ fn reference_at_t(
     for scn in scns {
         let load = op.load_of(scn);
         let mut at_t = vec![];
-        op.march(
+        op.march_newton(
             scn,
             &load,
             steps,
-            &mut crate::step::newton::Newton::default(),
-            crate::scheme::CERTIFICATE_TOL,
             &|s| s == steps,
             &mut timings,
             &mut |s| {

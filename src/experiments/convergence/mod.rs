@@ -20,7 +20,6 @@ use crate::output::csv::Table;
 use crate::reduced::{Reduced, State};
 use crate::scenario::Scenario;
 use crate::scheme::{Discretisation, OrderingKind, Timings};
-use crate::step::newton::Newton;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 
@@ -228,12 +227,10 @@ fn march_on_grid(
     mut at_level: impl FnMut(usize, &State),
 ) -> Result<Vec<f64>, ExpError> {
     let mut field_t = vec![];
-    op.march(
+    op.march_newton(
         scn,
         load,
         steps,
-        &mut Newton::default(),
-        TOL,
         &|step| step == steps,
         timings,
         &mut |s| {
@@ -441,9 +438,6 @@ enum Task {
 /// The three families: $(n, N)$ from the level's $n$ and the reference's $n$ are
 /// $(n, n)$, $(n, n_{ref})$ and $(n_{ref}, n)$.
 const FAMILIES: [&str; 3] = ["h=k", "h", "k"];
-
-/// The step solver's certificate tolerance of every run of the study.
-const TOL: f64 = crate::scheme::CERTIFICATE_TOL;
 
 /// What the workers share: the tasks not yet started, the references done so far,
 /// and the first error.

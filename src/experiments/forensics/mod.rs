@@ -260,12 +260,10 @@ fn run_level(
                     );
                 }
             };
-            op.march(
+            op.march_newton(
                 scn,
                 &load,
                 steps,
-                &mut crate::step::newton::Newton::default(),
-                crate::scheme::CERTIFICATE_TOL,
                 &|step| step == steps,
                 &mut timings,
                 &mut |s| {

@@ -337,16 +337,7 @@ fn reduced_measures(
                  timings: &mut crate::scheme::Timings,
                  observe: &mut dyn FnMut(crate::reduced::Stepped)|
      -> Result<(), ExpError> {
-        op.march(
-            scn,
-            load,
-            steps,
-            &mut crate::step::newton::Newton::default(),
-            crate::scheme::CERTIFICATE_TOL,
-            &|_| false,
-            timings,
-            observe,
-        )?;
+        op.march_newton(scn, load, steps, &|_| false, timings, observe)?;
         Ok(())
     };
     let mut first_limit = vec![f64::NAN; batch.len()];
