@@ -7,16 +7,7 @@ use std::path::PathBuf;
 
 fn ctx(name: &str) -> Ctx {
     let root = std::env::temp_dir().join(format!("evhi-exp-{name}-{}", std::process::id()));
-    Ctx {
-        quick: true,
-        data: root.join("data"),
-        figures: root.join("figures"),
-        verbose: false,
-        progress: None,
-        reference: None,
-        command: None,
-        experiment: "",
-    }
+    Ctx::under(&root, true)
 }
 
 fn snapshot_outputs(name: &str, files: &[&str], figures: &[&str]) {

@@ -33,6 +33,21 @@ pub struct Ctx {
 }
 
 impl Ctx {
+    /// A quiet context writing tables into `root/data` and figures into
+    /// `root/figures` (quick or full levels), with no progress bar.
+    pub fn under(root: &std::path::Path, quick: bool) -> Ctx {
+        Ctx {
+            quick,
+            data: root.join("data"),
+            figures: root.join("figures"),
+            verbose: false,
+            progress: None,
+            reference: None,
+            command: None,
+            experiment: "",
+        }
+    }
+
     /// The provenance lines of a CSV: crate version, experiment, mode and the parameters.
     pub fn provenance(&self, experiment: &str, params: &str) -> Vec<String> {
         vec![

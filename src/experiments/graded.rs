@@ -194,18 +194,11 @@ fn reference_at_t(
     for scn in scns {
         let load = op.load_of(scn);
         let mut at_t = vec![];
-        op.march_newton(
-            scn,
-            &load,
-            steps,
-            &|s| s == steps,
-            &mut timings,
-            &mut |s| {
-                if let Some(u) = s.field {
-                    at_t = u.to_vec();
-                }
-            },
-        )?;
+        op.march_newton(scn, &load, steps, &|s| s == steps, &mut timings, &mut |s| {
+            if let Some(u) = s.field {
+                at_t = u.to_vec();
+            }
+        })?;
         out.push(at_t);
     }
     Ok(out)

@@ -426,16 +426,7 @@ fn own_study_stability_cantilever() {
 fn own_study_is_table1() {
     use evhi::cli::study::{ConvergenceArgs, Study};
     let root = std::env::temp_dir().join(format!("evhi-claim-table1-{}", std::process::id()));
-    let ctx = evhi::experiments::Ctx {
-        quick: true,
-        data: root.join("data"),
-        figures: root.join("figures"),
-        verbose: false,
-        progress: None,
-        reference: None,
-        command: None,
-        experiment: "",
-    };
+    let ctx = evhi::experiments::Ctx::under(&root, true);
     evhi::experiments::run("table1", &ctx).unwrap();
     let text = std::fs::read_to_string(root.join("data/table1.csv")).unwrap();
     let _ = std::fs::remove_dir_all(&root);

@@ -227,21 +227,14 @@ fn march_on_grid(
     mut at_level: impl FnMut(usize, &State),
 ) -> Result<Vec<f64>, ExpError> {
     let mut field_t = vec![];
-    op.march_newton(
-        scn,
-        load,
-        steps,
-        &|step| step == steps,
-        timings,
-        &mut |s| {
-            if let Some(j) = grid_level(s.step, steps, grid) {
-                at_level(j, s.state);
-            }
-            if let Some(u) = s.field {
-                field_t = u.to_vec();
-            }
-        },
-    )?;
+    op.march_newton(scn, load, steps, &|step| step == steps, timings, &mut |s| {
+        if let Some(j) = grid_level(s.step, steps, grid) {
+            at_level(j, s.state);
+        }
+        if let Some(u) = s.field {
+            field_t = u.to_vec();
+        }
+    })?;
     Ok(field_t)
 }
 
