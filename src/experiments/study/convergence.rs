@@ -1,6 +1,6 @@
 //! `evhi study convergence`: the graded study on the scenario's own scene.
 
-use super::{coarsest, study_ctx};
+use super::{coarsest, pct, study_ctx};
 use crate::experiments::graded;
 use crate::experiments::singular::{Edge, clamp_end_exponent, wedge_exponents};
 use crate::geometry::Hold;
@@ -269,16 +269,16 @@ pub(super) fn run(
     for i in 0..fam.len() {
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {:.4} | {:.3} | {} | {:.4} | {:.3} | {:.4} |",
+            "| {} | {} | {} | {} | {:.3} | {} | {} | {:.3} | {} |",
             fam[i],
             n[i],
             dofs[i],
-            err[i],
+            pct(err[i]),
             order[i],
             resolved(err[i]),
-            inc[i],
+            pct(inc[i]),
             order_inc[i],
-            inc_max[i]
+            pct(inc_max[i])
         );
     }
     let _ = writeln!(
@@ -398,8 +398,14 @@ pub(super) fn run(
         for i in 0..f.len() {
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | {:.4} | {:.3} | {:.4} | {:.3} |",
-                f[i], sn[i], st[i], et[i], ot[i], em[i], om[i]
+                "| {} | {} | {} | {} | {:.3} | {} | {:.3} |",
+                f[i],
+                sn[i],
+                st[i],
+                pct(et[i]),
+                ot[i],
+                pct(em[i]),
+                om[i]
             );
         }
         split::draw_split(

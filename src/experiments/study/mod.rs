@@ -4,7 +4,11 @@
 //! `convergence` is the graded study of chapter "Beyond the paper" on the scenario's
 //! own scene: nested uniform and graded families of bisection meshes, $k = T/n$,
 //! reference-free increments to the next level with their fitted exponents, errors
-//! against a finer graded reference, and the corner exponents the supports predict.
+//! against a finer graded reference, and the corner exponents the supports predict;
+//! beside them Table 1's $h = k$, $h$ and $k$ families on uniform meshes
+//! ([`crate::experiments::convergence::compute`]). `time` and `stability` are the
+//! time study and the stability map of the same chapters on the scenario's history
+//! and law.
 
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
@@ -25,7 +29,10 @@ pub enum Study {
     /// reference, increments ||u_n - u_2n||_E / ||u_2n||_E at T and their maximum over
     /// time, observed orders in N_dof^(-1/2)), convergence.md (the table, the fitted
     /// exponents, the reference's own error estimate), singular.csv (each singular
-    /// point, its kind and the corner exponent it predicts) and convergence.png/svg.
+    /// point, its kind and the corner exponent it predicts) and convergence.png/svg;
+    /// for a viscoelastic scenario with proportional damping also split.csv and
+    /// split.png/svg, Table 1's h = k, h-only and k-only families on uniform meshes
+    /// (the summary says why they are absent otherwise).
     ///
     /// Example: evhi study convergence --scenario data/scenarios/examples/cantilever.toml --quick --out runs/conv
     Convergence(ConvergenceArgs),
@@ -85,9 +92,11 @@ pub struct ConvergenceArgs {
     /// A built-in scenario or the path of a scenario TOML file.
     #[arg(long)]
     pub scenario: String,
-    /// Four levels per family and a reference at 32 times the coarsest n (seconds);
-    /// without it six uniform and five graded levels and a reference at 64 times (a
-    /// few minutes on the paper's scene).
+    /// Four levels per family and a reference at 32 times the coarsest n, the split
+    /// on three levels against 8 times (seconds); without it six uniform and five
+    /// graded levels and a reference at 64 times, the split on six levels against 128
+    /// times, Table 1's plan on the paper's scene (7 s there
+    /// on two cores).
     #[arg(long)]
     pub quick: bool,
     /// Output directory (created if missing).
@@ -130,6 +139,16 @@ pub(super) fn scenario_text(name: &str) -> Result<String, std::io::Error> {
     match crate::scenario::BUILTIN.iter().find(|b| b.0 == name) {
         Some((_, text)) => Ok(text.to_string()),
         None => std::fs::read_to_string(name),
+    }
+}
+
+/// A percentage for the summaries: four decimals, or four significant digits in
+/// scientific notation below 0.01 (so that a small error does not print as 0.0000).
+pub(super) fn pct(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && x.abs() < 0.01 {
+        format!("{x:.3e}")
+    } else {
+        format!("{x:.4}")
     }
 }
 
