@@ -1470,6 +1470,27 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
         for r in rows.iter().filter(|r| r[solver] == "newton") {
             assert_eq!(r[outcome], "certified", "{name}: {r:?}");
         }
+        // A study's directory is a run directory: rerunning into it replaces its set,
+        // while a file of the user's in it is refused by name and kept.
+        let rerun = || {
+            evhi()
+                .args(["study", "stability", "--quick", "--scenario", file, "--out"])
+                .arg(&out)
+                .output()
+                .unwrap()
+        };
+        if name == "cantilever" {
+            let o = rerun();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            std::fs::write(out.join("my_notes.txt"), "mine").unwrap();
+            let o = rerun();
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert!(
+                !o.status.success() && err.contains("`my_notes.txt`"),
+                "{err}"
+            );
+            assert!(out.join("my_notes.txt").exists() && out.join("stability.csv").exists());
+        }
         let (h, rows) = read(out.join("hypotheses.csv"));
         assert_eq!(rows.len(), 4, "{name}: two levels, two step counts");
         let hs = h.iter().position(|x| x == "H_s").unwrap();
@@ -1507,8 +1528,12 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
         .arg(dir.join("refused"))
         .output()
         .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("`scenario`"));
+    assert!(
+        err.contains("`scenario`") && err.contains("one solve at T"),
+        "{err}"
+    );
     // An elastic scenario has no time error either: refused by name.
     let elastic = dir.join("elastic.toml");
     std::fs::write(
@@ -1528,7 +1553,10 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success());
     assert!(
-        err.contains("`scenario`") && err.contains("elastic") && err.contains("no time error"),
+        err.contains("`scenario`")
+            && err.contains("elastic")
+            && err.contains("no time error")
+            && err.contains("f(t_n)"),
         "{err}"
     );
 }

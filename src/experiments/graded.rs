@@ -553,7 +553,17 @@ impl Figure for GradedFig {
             let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
                 (a.min(p.1), b.max(p.1))
             });
-            let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 2.0, ymax * 2.0));
+            // Room below the data for the whole of each slope guide.
+            let guides_low = series
+                .get(1)
+                .and_then(|s| s.1.first())
+                .map_or(f64::INFINITY, |&start| {
+                    super::plot::slope_guides_low(&[0.5, 0.25], start, xmax, 0.45)
+                });
+            let (xr, yr) = (
+                (xmin / 1.5, xmax * 1.5),
+                ((ymin / 2.0).min(guides_low / 1.3), ymax * 2.0),
+            );
             let keys = keys_within(xr, (1..=7).map(|e| 10f64.powi(e)));
             let ykeys = keys_within(yr, [0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
             let mut chart = ChartBuilder::on(area)

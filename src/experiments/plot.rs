@@ -187,6 +187,19 @@ pub fn dashed_legend<DB: DrawingBackend>(
 /// Dashed slope guides $y \propto x^{-\text{slope}}$ from `x0` to `xmax`, the $i$-th starting at
 /// $y_0\,\text{step}^{i+1}$ (below the series it is compared with), each with its own dash
 /// pattern (long, medium, dots), shown in the legend as drawn.
+/// The lowest value [`slope_guides`] draws with the same arguments (so that a chart can
+/// make room for the whole of each guide).
+pub fn slope_guides_low(slopes: &[f64], (x0, y0): (f64, f64), xmax: f64, step: f64) -> f64 {
+    slopes
+        .iter()
+        .enumerate()
+        .map(|(i, slope)| {
+            let y0 = y0 * step.powi(i as i32 + 1);
+            y0.min(y0 * (xmax / x0).powf(-slope))
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 pub fn slope_guides<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
     guides: &[(f64, String)],

@@ -11,8 +11,9 @@
 //! run that takes the lock.
 //!
 //! The target must be absent, empty, or a directory this program wrote (it holds
-//! the marker `.evhi-run`): a directory holding other files is refused, so that a
-//! mistyped `--out` can never replace the user's files.
+//! the marker `.evhi-run`, which lists the files of its set): a directory holding
+//! other files is refused, so that a mistyped `--out` can never replace the user's
+//! files.
 
 use std::fs::File;
 use std::path::{Path, PathBuf};
@@ -120,10 +121,12 @@ impl RunDir {
                 )));
             }
             // An earlier run directory is replaced as a whole: refuse if the user has
-            // put anything else in it, rather than delete it with the old set.
+            // put anything else in it, rather than delete it with the old set. Ours
+            // are a run's files and those the marker lists (a study's own set).
+            let listed = listed_files(target);
             let mut others: Vec<String> = foreign
                 .iter()
-                .filter(|n| !is_run_file(n))
+                .filter(|n| !is_run_file(n) && !listed.contains(n))
                 .map(|n| {
                     if target.join(n).is_dir() {
                         format!("{n}/")
@@ -206,7 +209,20 @@ impl RunDir {
     /// Makes the staged set the target's content in one step and removes the old set.
     pub fn publish(self) -> Result<(), OutError> {
         let marker = self.staging.join(MARKER);
-        std::fs::write(&marker, b"written by evhi\n").map_err(io(&marker))?;
+        // The marker lists the set, so that the next writer knows these files as ours.
+        let mut names: Vec<String> = std::fs::read_dir(&self.staging)
+            .map_err(io(&self.staging))?
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n != MARKER)
+            .collect();
+        names.sort();
+        let mut text = String::from("written by evhi\n");
+        for n in &names {
+            text.push_str(n);
+            text.push('\n');
+        }
+        std::fs::write(&marker, text).map_err(io(&marker))?;
         // Flush every file and the directory before the swap makes them visible.
         for entry in std::fs::read_dir(&self.staging).map_err(io(&self.staging))? {
             let p = entry.map_err(io(&self.staging))?.path();
@@ -224,6 +240,14 @@ impl RunDir {
         }
         Ok(())
     }
+}
+
+/// The files the marker of the run directory `target` lists (none for a marker of a
+/// version that did not list them).
+fn listed_files(target: &Path) -> Vec<String> {
+    std::fs::read_to_string(target.join(MARKER))
+        .map(|t| t.lines().skip(1).map(str::to_string).collect())
+        .unwrap_or_default()
 }
 
 /// Takes the lock `.NAME.lock` beside the run directory `target` (in `parent`, the

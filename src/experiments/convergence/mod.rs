@@ -99,6 +99,8 @@ pub struct LevelError {
 pub struct Regions {
     pub points: Vec<[f64; 2]>,
     pub radius: f64,
+    /// What the points are, naming the first share's column `share_<near>`.
+    pub near: &'static str,
 }
 
 impl Regions {
@@ -108,6 +110,7 @@ impl Regions {
         Regions {
             points: vec![[0.0, 0.5], [2.0, 0.5]],
             radius: 0.125,
+            near: "clamp_ends",
         }
     }
 
@@ -719,7 +722,7 @@ pub fn compute(
     };
     let t = t
         .f64(
-            "share_clamp_ends",
+            &format!("share_{}", regions.near),
             all.iter().map(|(_, e)| e.regions[0] / total(e)).collect(),
         )
         .f64(

@@ -17,6 +17,7 @@ use std::path::PathBuf;
 
 mod convergence;
 mod stability;
+pub use convergence::split_plan;
 mod time;
 
 #[derive(clap::Subcommand)]
@@ -93,10 +94,10 @@ pub struct ConvergenceArgs {
     #[arg(long)]
     pub scenario: String,
     /// Four levels per family and a reference at 32 times the coarsest n, the split
-    /// on three levels against 8 times (seconds); without it six uniform and five
+    /// on three levels against 16 times (seconds); without it six uniform and five
     /// graded levels and a reference at 64 times, the split on six levels against 128
-    /// times, Table 1's plan on the paper's scene (7 s there
-    /// on two cores).
+    /// times, Table 1's plan on the paper's scene (about 8 s there on a two-core
+    /// AMD EPYC: median of three whole runs, 7.7 to 8.8 s).
     #[arg(long)]
     pub quick: bool,
     /// Output directory (created if missing).

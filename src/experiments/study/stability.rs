@@ -8,10 +8,17 @@ use std::fmt::Write as _;
 
 /// What each outcome of a cell means (the CSV's legend and the summary's).
 const OUTCOMES: &str = "certified (every step certified), several solutions (Newton from other starts \
-     ends more than 1e-6 away), converged (overshoots g) (a solver without a certificate, the penalty, which may pass the \
-     limit g), converged (no limit) (the same where g is infinite: the penalty is then the law \
-     itself), failed: <status> or failed: certificate over tolerance (at the step in failed_step), \
-     error: <message> (the run did not start)";
+     ends more than 1e-6 away), converged (overshoots g) (a solver without a certificate, the penalty, \
+     converged and some step's u_nu passed the limit g beyond rounding, measured), converged (within g) \
+     (the same, u_nu never past g), converged (no limit) (the same where g is infinite: the penalty is \
+     then the law itself), failed: <status> or failed: certificate over tolerance (at the step in \
+     failed_step), error: <message> (the run did not start)";
+
+/// What the hypotheses' columns mean (the summary's legend).
+const CURVATURE: &str = "smallest step curvature: lambda_min(S + k diag(w) c_min), the smallest \
+     eigenvalue of the step Hessian where the law's slope is at its steepest descent c_min, a lower \
+     bound between the law's jumps (positive and no downward jump: every step is strictly convex, \
+     so its minimiser is unique)";
 
 pub(super) fn run(
     args: super::StabilityArgs,
@@ -120,7 +127,13 @@ pub(super) fn run(
         .u64("n", hyp.iter().map(|r| r.0 as u64).collect())
         .u64("steps", hyp.iter().map(|r| r.1 as u64).collect())
         .f64("beta_B", hyp.iter().map(|r| r.2.beta_b).collect())
-        .f64("m_trace_norm_sq", hyp.iter().map(|r| r.2.rhs()).collect())
+        // No finite m_J where the law jumps down: NaN, not the 0 of a law without one.
+        .f64(
+            "m_trace_norm_sq",
+            hyp.iter()
+                .map(|r| if jumps_down { f64::NAN } else { r.2.rhs() })
+                .collect(),
+        )
         .str(
             "H_s",
             hyp.iter().map(|r| h_s_word(&r.2).to_string()).collect(),
@@ -132,7 +145,7 @@ pub(super) fn run(
         );
     out.write_table("hypotheses.csv", &h, &lines)?;
     let mut md = format!(
-        "# Step solvers on `{}` ({})\n\n{}\n\nOutcomes: {OUTCOMES}.\n\n| n | steps | H(s) | smallest step curvature | steps convex | {} |\n|---|---|---|---|---|{}\n",
+        "# Step solvers on `{}` ({})\n\n{}\n\nOutcomes: {OUTCOMES}.\n\nColumns: H(s) is the paper's smallness condition at the level's trace constant; {CURVATURE}.\n\n| n | steps | H(s) | smallest step curvature | steps convex | {} |\n|---|---|---|---|---|{}\n",
         scn.name,
         if args.quick { "quick" } else { "full" },
         lines[0],
@@ -172,9 +185,15 @@ pub(super) fn run(
                     *n as f64,
                     c.outcome.clone(),
                     c.mean_iterations,
-                    hyp.iter()
-                        .find(|r| r.0 == *n && r.1 == c.steps)
-                        .map_or(f64::NAN, |r| r.3),
+                    // The colour reads convexity from this value: no step is convex
+                    // where the law jumps down, whatever the bound between the jumps.
+                    if jumps_down {
+                        f64::NEG_INFINITY
+                    } else {
+                        hyp.iter()
+                            .find(|r| r.0 == *n && r.1 == c.steps)
+                            .map_or(f64::NAN, |r| r.3)
+                    },
                 )
             })
             .collect(),

@@ -1,6 +1,6 @@
 //! `evhi study time`: the time error at a fixed mesh on the scenario's own history.
 
-use super::{bar, study_ctx, write_scenario};
+use super::{bar, pct, study_ctx, write_scenario};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use std::fmt::Write as _;
@@ -16,9 +16,14 @@ pub(super) fn run(
             "scenario",
             &scn.name,
             format!(
-                "a viscoelastic scenario: this one is {} (each step solves the static problem \
-                 with f(t_n), so backward Euler has no time error to study)",
-                scn.problem.name()
+                "a viscoelastic scenario: this one is {} ({}, so backward Euler has no time \
+                 error to study)",
+                scn.problem.name(),
+                if scn.problem == crate::scenario::Problem::Steady {
+                    "one solve at T"
+                } else {
+                    "each step solves the static problem with f(t_n)"
+                }
             ),
         )
         .into());
@@ -53,18 +58,18 @@ pub(super) fn run(
         let order = |a: f64, b: f64| if i == 0 { f64::NAN } else { (b / a).log2() };
         let _ = writeln!(
             md,
-            "| {} | {:.4e} | {:.4} | {:.3} | {:.4} | {:.3} | {:.4} | {:.4} | {:.4} |",
+            "| {} | {:.4e} | {} | {:.3} | {} | {:.3} | {} | {} | {:.4} |",
             r.steps,
             r.t_end / r.steps as f64,
-            100.0 * r.err_max,
+            pct(100.0 * r.err_max),
             order(
                 r.err_max,
                 if i > 0 { rows[i - 1].err_max } else { f64::NAN }
             ),
-            100.0 * r.err_t,
+            pct(100.0 * r.err_t),
             order(r.err_t, if i > 0 { rows[i - 1].err_t } else { f64::NAN }),
-            100.0 * r.model_max,
-            100.0 * r.model_t,
+            pct(100.0 * r.model_max),
+            pct(100.0 * r.model_t),
             r.t_err_max
         );
     }
