@@ -15,8 +15,9 @@ pub struct Experiment {
     /// and Table 1.
     pub paper: bool,
     /// Its wall seconds run alone on the 2-core machine of `data/reproduce_times.csv`
-    /// (full mode): `reproduce` starts the costliest first, so that no long one
-    /// starts last.
+    /// (full mode; measured once, not stored: that file's times were taken with the
+    /// others running beside): `reproduce` starts the costliest first, so that no long
+    /// one starts last; only the order matters.
     pub cost: f64,
     pub run: fn(&Ctx) -> Result<(), ExpError>,
     /// The tables it writes that the book shows (each rendered beside its CSV as
