@@ -1338,7 +1338,7 @@ fn the_convergence_study_runs_on_user_scenarios() {
                 };
                 assert_eq!(o.is_finite(), !first, "{r:?}");
             }
-            assert!(out.join("split.png").exists() && md.contains("## The h and k parts"));
+            assert!(out.join("split.png").exists() && md.contains("**The h and k parts"));
         } else {
             assert!(!out.join("split.csv").exists());
             assert!(

@@ -322,9 +322,12 @@ fn own_study_cantilever() {
         .map(|r| super::num(r, "predicted_exponent"))
         .collect();
     let kinds: Vec<&str> = rows.iter().map(|r| r["kind"].as_str()).collect();
-    for r in &rows {
-        assert_eq!(r["x"], "0.0", "{rows:?}");
-    }
+    // The two ends of the clamped side x = 0: (0, 0) on Γ3 and (0, 0.5) by the free top.
+    let points: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (super::num(r, "x"), super::num(r, "y")))
+        .collect();
+    assert_eq!(points, [(0.0, 0.0), (0.0, 0.5)], "{rows:?}");
     // The corner on Γ3 is named for the contact (its exponent is a free edge's).
     assert_eq!(
         kinds,
@@ -353,10 +356,15 @@ fn own_study_time_model() {
     let rows = time_study("data/scenarios/examples/five_branch.toml");
     let f =
         |r: &std::collections::HashMap<String, String>, c: &str| -> f64 { r[c].parse().unwrap() };
-    for r in rows.iter().filter(|r| f(r, "steps") >= 16.0) {
-        let ratio = f(r, "rel_err_max_percent") / f(r, "model_max_percent");
-        assert!((ratio - 1.0).abs() <= 0.06, "{r:?}: {ratio}");
-    }
+    let gaps: Vec<f64> = rows
+        .iter()
+        .filter(|r| f(r, "steps") >= 16.0)
+        .map(|r| (f(r, "rel_err_max_percent") / f(r, "model_max_percent") - 1.0).abs())
+        .collect();
+    assert!(gaps.iter().all(|g| *g <= 0.06), "{gaps:?}");
+    // largest at the finest N
+    let last = *gaps.last().unwrap();
+    assert!(gaps.iter().all(|g| *g <= last), "{gaps:?}");
     // and not below N = 16 (the sentence's "from N = 16 on" is where it starts)
     let r4 = &rows[0];
     assert!((f(r4, "rel_err_max_percent") / f(r4, "model_max_percent") - 1.0).abs() > 0.06);

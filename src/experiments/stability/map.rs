@@ -12,6 +12,8 @@ const CONVEX: RGBColor = RGBColor(86, 180, 233);
 const NOT_CONVEX: RGBColor = RGBColor(190, 225, 245);
 const SEVERAL: RGBColor = RGBColor(230, 159, 0);
 const FAILED: RGBColor = RGBColor(213, 94, 0);
+/// The penalty converged but let u_nu pass g (Okabe–Ito bluish green).
+const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
 use crate::experiments::plot::{Figure, both, e2s};
 use crate::law::Law;
 use crate::step::Status;
@@ -260,7 +262,7 @@ impl Figure for MapFigure {
         let mut cs: Vec<f64> = self.cells.iter().map(|c| c.2).collect();
         cs.sort_by(f64::total_cmp);
         cs.dedup();
-        let band = 70;
+        let band = 100;
         let (top, _legend_band) = root.split_vertically(root.dim_in_pixel().1 - band);
         let mut solvers: Vec<&str> = vec![];
         for c in &self.cells {
@@ -311,6 +313,8 @@ impl Figure for MapFigure {
                     FAILED
                 } else if c.3 == "several solutions" {
                     SEVERAL
+                } else if c.3 == "converged (overshoots g)" {
+                    OVERSHOOT
                 } else if c.5 > 0.0 {
                     CONVEX
                 } else {
@@ -337,15 +341,16 @@ impl Figure for MapFigure {
             }
         }
         let legend = [
-            ("certified (penalty: converged), every step convex", CONVEX),
+            ("certified (penalty: within g), every step convex", CONVEX),
             (
-                "certified (penalty: converged), steps not convex",
+                "certified (penalty: within g), steps not convex",
                 NOT_CONVEX,
             ),
             ("several solutions (multistart)", SEVERAL),
             ("failed", FAILED),
+            ("penalty converged, u_nu past g (no certificate)", OVERSHOOT),
         ];
-        // Two legend rows of two entries under the panels.
+        // Legend rows of two entries under the panels.
         let y0 = root.dim_in_pixel().1 as i32 - band as i32 + 8;
         for (i, (text, colour)) in legend.iter().enumerate() {
             let (x, y) = (20 + 540 * (i % 2) as i32, y0 + 30 * (i / 2) as i32);

@@ -24,16 +24,20 @@ mod time;
 pub enum Study {
     /// Convergence in space and time on the scenario's own scene: a uniform and a
     /// graded family of nested meshes (newest-vertex bisection of the coarsest grid
-    /// that resolves the scene; the graded one refined towards the singular points
-    /// `evhi show` lists, exponent 0.4), h and k = T/n refined together. Writes
-    /// convergence.csv (per level: unknowns, error at T against a finer graded
-    /// reference, increments ||u_n - u_2n||_E / ||u_2n||_E at T and their maximum over
-    /// time, observed orders in N_dof^(-1/2)), convergence.md (the table, the fitted
-    /// exponents, the reference's own error estimate), singular.csv (each singular
-    /// point, its kind and the corner exponent it predicts) and convergence.png/svg;
-    /// for a viscoelastic scenario with proportional damping also split.csv and
-    /// split.png/svg, Table 1's h = k, h-only and k-only families on uniform meshes
-    /// (the summary says why they are absent otherwise).
+    /// that resolves the scene; the graded one refined, exponent 0.4, towards the
+    /// scene's singular points, where the supports change along the boundary, listed
+    /// in singular.csv), h and k = T/n refined together. Writes convergence.csv (per
+    /// level: unknowns, error at T against a finer graded reference, increments
+    /// ||u_n - u_2n||_E / ||u_2n||_E at T and their maximum over time, observed orders
+    /// in N_dof^(-1/2)), convergence.md (the table; the fitted exponents; a rough
+    /// estimate of the reference's own error and which rows it leaves unresolved; a
+    /// note where uniform orders exceed what the corners predict, with their trend),
+    /// singular.csv (each singular point, its kind and the corner exponent it predicts)
+    /// and convergence.png/svg; for a viscoelastic scenario with proportional damping
+    /// also split.csv and split.png/svg, Table 1's h = k, h-only and k-only families on
+    /// uniform meshes against a reference four times finer, with their own rough
+    /// reference-error estimate and resolved flags in the summary (which says why they
+    /// are absent otherwise).
     ///
     /// Example: evhi study convergence --scenario data/scenarios/examples/cantilever.toml --quick --out runs/conv
     Convergence(ConvergenceArgs),
@@ -41,14 +45,17 @@ pub enum Study {
     /// against the same mesh with a far finer step, the maximum over time and at T,
     /// orders, where the error peaks, and, where the damping is proportional
     /// (C = tau G), the scalar model of the relaxation layer beside it. Writes
-    /// time_study.csv, time_study.md and time_study.png/svg.
+    /// time_study.csv, time_study.md and time_study.png/svg. Viscoelastic scenarios
+    /// only: an elastic or steady one has no time error and is refused.
     ///
     /// Example: evhi study time --scenario data/scenarios/examples/five_branch.toml --quick --out runs/time
     Time(TimeArgs),
     /// Which step solver fails where on the scenario's own law: every registered
-    /// solver of the stability map at each mesh level n and time step k (certified,
-    /// several solutions from Newton's other starts, failed, with its mean iterations),
-    /// and per (n, k) the paper's smallness condition H(s) and the step convexity.
+    /// solver of the stability map at each mesh level n and time step k (certified;
+    /// several solutions from Newton's other starts; for the penalty, which has no
+    /// certificate, converged with u_nu past g, within g, or without a limit; failed
+    /// at which step; error where the run did not start; with mean iterations), and
+    /// per (n, k) the paper's smallness condition H(s) and the step convexity.
     /// Writes stability.csv, hypotheses.csv, stability.md and stability.png/svg.
     ///
     /// Example: evhi study stability --scenario data/scenarios/examples/cantilever.toml --quick --out runs/stab
