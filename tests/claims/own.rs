@@ -365,9 +365,10 @@ fn own_study_time_model() {
     // largest at the finest N
     let last = *gaps.last().unwrap();
     assert!(gaps.iter().all(|g| *g <= last), "{gaps:?}");
-    // and not below N = 16 (the sentence's "from N = 16 on" is where it starts)
-    let r4 = &rows[0];
-    assert!((f(r4, "rel_err_max_percent") / f(r4, "model_max_percent") - 1.0).abs() > 0.06);
+    // and not at N = 4 or 8 (the sentence's "from N = 16 on" is where it starts)
+    for r in &rows[..2] {
+        assert!((f(r, "rel_err_max_percent") / f(r, "model_max_percent") - 1.0).abs() > 0.06);
+    }
 }
 
 #[test]
@@ -379,13 +380,19 @@ fn own_study_time_cantilever() {
     for r in rows.iter().filter(|r| f(r, "steps") >= 8.0) {
         assert!((f(r, "order_T") - 1.0).abs() <= 0.1, "{r:?}");
     }
-    // the maximum over time: some level's error grows again
-    assert!(
-        rows.iter().skip(1).any(|r| f(r, "order_max") < 0.0),
-        "{rows:?}"
-    );
-    // and the time where it peaks moves with N
+    // the maximum over time: some level's error grows again, and the orders from N = 8
+    // on spread over more than 1 (no order to settle into)
+    let orders: Vec<f64> = rows.iter().skip(1).map(|r| f(r, "order_max")).collect();
+    assert!(orders.iter().any(|o| *o < 0.0), "{rows:?}");
+    let spread = orders.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - orders.iter().cloned().fold(f64::INFINITY, f64::min);
+    assert!(spread > 1.0, "{orders:?}");
+    // and the time where it peaks moves with N, not merely with the first step t = k
     let mut peaks: Vec<f64> = rows.iter().map(|r| f(r, "t_of_err_max")).collect();
+    for r in rows.iter().filter(|r| f(r, "steps") >= 8.0) {
+        let k = f(r, "k");
+        assert!(f(r, "t_of_err_max") > 1.5 * k, "{r:?}");
+    }
     peaks.dedup();
     assert!(peaks.len() >= 3, "{peaks:?}");
 }

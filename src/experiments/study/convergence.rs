@@ -95,11 +95,13 @@ fn reference_error(n: &[f64], dofs: &[f64], inc: &[f64], n_ref: f64) -> Option<(
 /// How the last observed uniform orders move against the limit the corners predict.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Trend {
-    /// Each below the one before (by more than rounding), the last still above the limit
+    /// Each below the one before by more than 0.005, the last still above the limit
     /// by more than 0.1.
     Falling,
-    /// The last within 0.1 of the limit.
+    /// The last within 0.1 of the limit, either side.
     Within,
+    /// The last below the limit by more than 0.1.
+    Below,
     /// The last two within 0.05 of each other, above the limit by more than 0.1.
     Level,
     /// None of these (or fewer than two orders).
@@ -108,7 +110,8 @@ enum Trend {
 
 fn uniform_trend(last: &[f64], limit: f64) -> Trend {
     match last {
-        [.., x] if *x <= limit + 0.1 => Trend::Within,
+        [.., x] if (x - limit).abs() <= 0.1 => Trend::Within,
+        [.., x] if *x < limit - 0.1 => Trend::Below,
         [_, _, ..] if last.windows(2).all(|w| w[1] < w[0] - 0.005) => Trend::Falling,
         [.., a, b] if (a - b).abs() <= 0.05 => Trend::Level,
         _ => Trend::Unclear,
@@ -443,7 +446,15 @@ pub(super) fn run(
             ),
             (false, Trend::Within) => format!(
                 " The uniform orders {} exceed it by more than 0.1; the last, {:.3}, is within 0.1 of it \
-                 (the last ones: {shown}): the coarse levels were not yet in the asymptotic range.",
+                 (the last ones: {shown}), consistent with the coarser levels not yet being in the \
+                 asymptotic range.",
+                above.join(", "),
+                last.last().copied().unwrap_or(f64::NAN)
+            ),
+            (false, Trend::Below) => format!(
+                " The uniform orders {} exceed it by more than 0.1, while the last, {:.3}, is below it by \
+                 more than 0.1 (the last ones: {shown}): the orders are not settled on these levels, and \
+                 an order below the limit may be the reference's own error showing{finer}.",
                 above.join(", "),
                 last.last().copied().unwrap_or(f64::NAN)
             ),
@@ -641,5 +652,6 @@ mod tests {
         assert_eq!(uniform_trend(&[1.3, 1.1, 0.95], 0.711), Trend::Falling);
         assert_eq!(uniform_trend(&[0.9, 1.2, 1.0], 0.711), Trend::Unclear);
         assert_eq!(uniform_trend(&[], 0.711), Trend::Unclear);
+        assert_eq!(uniform_trend(&[0.8, 0.3], 0.5), Trend::Below);
     }
 }

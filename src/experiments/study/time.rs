@@ -120,18 +120,23 @@ impl crate::experiments::plot::Figure for TimeFig {
         if pts.is_empty() {
             return Err("no positive error to draw".into());
         }
+        // A key at each N of the study, printed as the integer it is.
+        let mut ns: Vec<f64> = pts.iter().map(|p| p.0).collect();
+        ns.sort_by(f64::total_cmp);
+        ns.dedup();
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, ("sans-serif", 22))
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(80)
             .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5).log_scale(),
+                (x0 / 1.5..x1 * 1.5).log_scale().with_key_points(ns),
                 (y0 / 3.0..y1 * 3.0).log_scale(),
             )
             .map_err(e2s)?;
         chart
             .configure_mesh()
+            .x_label_formatter(&|x| format!("{x:.0}"))
             .x_desc("time steps N")
             .y_desc("relative energy error, %")
             .label_style(("sans-serif", 17))
