@@ -207,20 +207,22 @@ impl Solution {
     // ANCHOR: u
     /// The exact displacement $u(x, y, t)$.
     pub fn u<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
-        let ux = self.rho(t) * (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
+        // The load factor once: every component scales with it.
+        let rho = self.rho(t);
+        let ux = rho * (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
         let u_nu = match self {
             Solution::Branch1 => {
                 let s = x - 1.0;
-                self.rho(t) * (c::<D>(B0) - s * s * B2)
+                rho * (c::<D>(B0) - s * s * B2)
             }
             Solution::Regimes | Solution::Moving => {
                 let d = dist(x, self.half_width(t)) / L;
-                self.rho(t) * (c::<D>(G) - d * d * G0)
+                rho * (c::<D>(G) - d * d * G0)
             }
             Solution::Steady => return [c(0.0), -eta(y) * DELTA],
             Solution::P1 => {
                 let v = coarse_p1(x, y);
-                return [self.rho(t) * v[0], self.rho(t) * v[1]];
+                return [rho * v[0], rho * v[1]];
             }
         };
         [ux, -u_nu * eta(y)]
