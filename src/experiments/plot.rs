@@ -184,26 +184,30 @@ pub fn dashed_legend<DB: DrawingBackend>(
     EmptyElement::at((0, 0)) + seg(0) + seg(1) + seg(2) + seg(3)
 }
 
-/// Dashed slope guides $y \propto x^{-\text{slope}}$ from `x0` to `xmax`, the $i$-th starting at
-/// $y_0\,\text{step}^{i+1}$ (below the series it is compared with), each with its own dash
-/// pattern (long, medium, dots), shown in the legend as drawn.
+/// The ends of the `i`-th slope guide of [`slope_guides`].
+fn guide_ends(i: usize, slope: f64, (x0, y0): (f64, f64), xmax: f64, step: f64) -> [(f64, f64); 2] {
+    let y0 = y0 * step.powi(i as i32 + 1);
+    [(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))]
+}
+
 /// The lowest value [`slope_guides`] draws with the same arguments (so that a chart can
 /// make room for the whole of each guide).
-pub fn slope_guides_low(slopes: &[f64], (x0, y0): (f64, f64), xmax: f64, step: f64) -> f64 {
+pub fn slope_guides_low(slopes: &[f64], start: (f64, f64), xmax: f64, step: f64) -> f64 {
     slopes
         .iter()
         .enumerate()
-        .map(|(i, slope)| {
-            let y0 = y0 * step.powi(i as i32 + 1);
-            y0.min(y0 * (xmax / x0).powf(-slope))
-        })
+        .flat_map(|(i, &slope)| guide_ends(i, slope, start, xmax, step))
+        .map(|p| p.1)
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Dashed slope guides $y \propto x^{-\text{slope}}$ from `x0` to `xmax`, the $i$-th starting at
+/// $y_0\,\text{step}^{i+1}$ (below the series it is compared with), each with its own dash
+/// pattern (long, medium, dots), shown in the legend as drawn.
 pub fn slope_guides<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
     guides: &[(f64, String)],
-    (x0, y0): (f64, f64),
+    start: (f64, f64),
     xmax: f64,
     step: f64,
 ) -> Result<(), String>
@@ -213,8 +217,7 @@ where
 {
     const DASHES: [(i32, i32); 3] = [(14, 6), (6, 5), (2, 5)];
     for (i, (slope, label)) in guides.iter().enumerate() {
-        let y0 = y0 * step.powi(i as i32 + 1);
-        let pts = vec![(x0, y0), (xmax, y0 * (xmax / x0).powf(-slope))];
+        let pts = guide_ends(i, *slope, start, xmax, step).to_vec();
         let grey = RGBColor(50, 50, 50);
         let (dash, gap) = DASHES[i % DASHES.len()];
         chart

@@ -14,6 +14,8 @@ const SEVERAL: RGBColor = RGBColor(230, 159, 0);
 const FAILED: RGBColor = RGBColor(213, 94, 0);
 /// The penalty converged but let u_nu pass g (Okabe–Ito bluish green).
 const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
+/// The outcome of a cell whose uncertified solver let u_nu pass g (measured).
+const OVERSHOOTS_G: &str = "converged (overshoots g)";
 use crate::experiments::plot::{Figure, both, e2s};
 use crate::law::Law;
 use crate::step::Status;
@@ -74,7 +76,7 @@ pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'stati
                 "several solutions".into()
             } else if !entry.certified && crate::output::run::max_overshoot(&run.records) > 0.0 {
                 // Measured: some step's u_nu passed g beyond rounding.
-                "converged (overshoots g)".into()
+                OVERSHOOTS_G.into()
             } else if !entry.certified && scn.g.is_finite() {
                 "converged (within g)".into()
             } else if !entry.certified {
@@ -313,7 +315,7 @@ impl Figure for MapFigure {
                     FAILED
                 } else if c.3 == "several solutions" {
                     SEVERAL
-                } else if c.3 == "converged (overshoots g)" {
+                } else if c.3 == OVERSHOOTS_G {
                     OVERSHOOT
                 } else if c.5 > 0.0 {
                     CONVEX

@@ -136,6 +136,18 @@ const RESOLVED: f64 = 2.18;
 /// measured one by at most a tenth when it is a tenth of it.
 const RESOLVED_ANY: f64 = 10.0;
 
+/// Whether an error `e` is resolved against a reference whose own error is about `r`
+/// (NaN: not estimated), at the multiple `threshold` of it.
+fn resolved_word(e: f64, r: f64, threshold: f64) -> &'static str {
+    if !r.is_finite() {
+        "unknown"
+    } else if e < threshold * r {
+        "no"
+    } else {
+        "yes"
+    }
+}
+
 /// The plan of the h, k and h = k split on uniform meshes, the reference four times
 /// finer than the finest level in both modes: on the paper's scene (coarsest n 4)
 /// the full plan is Table 1's ([`crate::experiments::convergence::plan`]).
@@ -156,15 +168,12 @@ pub fn split_plan(n0: usize, quick: bool) -> crate::experiments::convergence::Pl
 fn split_reference_error(err: &[f64], order: &[f64], param: &[f64], param_ref: f64) -> f64 {
     let p = order
         .iter()
-        .filter(|o| o.is_finite() && **o > 0.0)
-        .fold(1.0f64, |a, &o| a.min(o));
-    let p = if order.iter().any(|o| o.is_finite() && *o > 0.0) {
-        p
-    } else {
-        f64::INFINITY
-    };
-    match (err.last(), param.last()) {
-        (Some(&e), Some(&x)) if p.is_finite() => e * (x / param_ref).powf(p),
+        .copied()
+        .filter(|o| o.is_finite() && *o > 0.0)
+        .reduce(f64::min)
+        .map(|p| p.min(1.0));
+    match (err.last(), param.last(), p) {
+        (Some(&e), Some(&x), Some(p)) => e * (x / param_ref).powf(p),
         _ => f64::NAN,
     }
 }
@@ -325,11 +334,8 @@ pub(super) fn run(
     let estimate = reference_error(&pick(&n), &pick(&dofs), &pick(&inc), plan.n_ref as f64);
     // The measured error and the reference's own add in quadrature: below RESOLVED
     // times the latter, the reference moves the measured error by more than 10 %.
-    let resolved = |e: f64| match estimate {
-        Some((_, _, r)) if e < RESOLVED * r => "no",
-        Some(_) => "yes",
-        None => "unknown",
-    };
+    let reference = estimate.map_or(f64::NAN, |(_, _, r)| r);
+    let resolved = |e: f64| resolved_word(e, reference, RESOLVED);
     let mut md = String::new();
     let _ = writeln!(
         md,
@@ -402,13 +408,9 @@ pub(super) fn run(
         .fold(f64::INFINITY, f64::min);
     let uniform_rows: Vec<usize> = (0..fam.len()).filter(|&i| fam[i] == "uniform").collect();
     let expected = lambda.min(1.0);
-    let above_rows: Vec<usize> = uniform_rows
+    let above: Vec<String> = uniform_rows
         .iter()
-        .copied()
-        .filter(|&i| order[i].is_finite() && order[i] > expected + 0.1)
-        .collect();
-    let above: Vec<String> = above_rows
-        .iter()
+        .filter(|&&i| order[i].is_finite() && order[i] > expected + 0.1)
         .map(|&i| format!("{:.3} at n = {}", order[i], n[i]))
         .collect();
     // The trend over the last three observed orders (two if there are only two).
@@ -424,6 +426,7 @@ pub(super) fn run(
         .collect::<Vec<_>>()
         .join(", ");
     let trend = uniform_trend(last, expected);
+    let latest = last.last().copied().unwrap_or(f64::NAN);
     let finer = if args.quick {
         " (the full run, without --quick, goes two levels finer)"
     } else {
@@ -449,14 +452,14 @@ pub(super) fn run(
                  (the last ones: {shown}), consistent with the coarser levels not yet being in the \
                  asymptotic range.",
                 above.join(", "),
-                last.last().copied().unwrap_or(f64::NAN)
+                latest
             ),
             (false, Trend::Below) => format!(
                 " The uniform orders {} exceed it by more than 0.1, while the last, {:.3}, is below it by \
                  more than 0.1 (the last ones: {shown}): the orders are not settled on these levels, and \
                  an order below the limit may be the reference's own error showing{finer}.",
                 above.join(", "),
-                last.last().copied().unwrap_or(f64::NAN)
+                latest
             ),
             (false, Trend::Level) => format!(
                 " The uniform orders {} exceed it by more than 0.1, and the last ones, {shown}, level off \
@@ -543,13 +546,7 @@ pub(super) fn run(
                 .iter()
                 .find(|x| x.0 == family)
                 .map_or(f64::NAN, |x| if which == 0 { x.1 } else { x.2 });
-            if !r.is_finite() {
-                "unknown"
-            } else if e < RESOLVED_ANY * r {
-                "no"
-            } else {
-                "yes"
-            }
+            resolved_word(e, r, RESOLVED_ANY)
         };
         let _ = writeln!(
             md,
