@@ -490,3 +490,35 @@ fn own_study_is_table1() {
         }
     }
 }
+
+/// On the worked example (quick), the split resolves no row of the h = k and h
+/// families, in either column, and its k family's errors at T are all more than a
+/// hundred times below the h families': read from the summary `evhi reproduce
+/// example` writes.
+#[test]
+fn own_study_split_resolution() {
+    let text =
+        std::fs::read_to_string(super::root().join("data/example_study_convergence.md")).unwrap();
+    let split = text
+        .split("**The h and k parts")
+        .nth(1)
+        .expect("the split's section");
+    // | family | n | steps | error at T, % | order | resolved | max over t, % | order | resolved |
+    let rows: Vec<Vec<&str>> = split
+        .lines()
+        .filter(|l| l.starts_with("| h") || l.starts_with("| k"))
+        .map(|l| l.trim_matches('|').split('|').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), 9, "{rows:?}");
+    let (mut h_min, mut k_max) = (f64::INFINITY, 0.0f64);
+    for r in &rows {
+        let e: f64 = r[3].parse().unwrap();
+        if r[0] == "k" {
+            k_max = k_max.max(e);
+        } else {
+            assert_eq!((r[5], r[8]), ("no", "no"), "{r:?}");
+            h_min = h_min.min(e);
+        }
+    }
+    assert!(100.0 * k_max < h_min, "k {k_max} against h {h_min}");
+}
