@@ -362,9 +362,10 @@ fn own_study_time_model() {
         .map(|r| (f(r, "rel_err_max_percent") / f(r, "model_max_percent") - 1.0).abs())
         .collect();
     assert!(gaps.iter().all(|g| *g <= 0.06), "{gaps:?}");
-    // largest at the finest N
+    // largest at the finest N, and not shrinking: an offset, not a convergence
     let last = *gaps.last().unwrap();
     assert!(gaps.iter().all(|g| *g <= last), "{gaps:?}");
+    assert!(last >= gaps[0], "{gaps:?}");
     // and not at N = 4 or 8 (the sentence's "from N = 16 on" is where it starts)
     for r in &rows[..2] {
         assert!((f(r, "rel_err_max_percent") / f(r, "model_max_percent") - 1.0).abs() > 0.06);
@@ -521,4 +522,41 @@ fn own_study_split_resolution() {
         }
     }
     assert!(100.0 * k_max < h_min, "k {k_max} against h {h_min}");
+}
+
+/// On the worked example (quick, T = 1), the graded family's largest increment over
+/// time sits at the first step t = 1/n at every level with an increment, and falls
+/// more slowly than its increment at T over those levels: read from the summary
+/// `evhi reproduce example` writes.
+#[test]
+fn own_study_max_increment_first_step() {
+    let text =
+        std::fs::read_to_string(super::root().join("data/example_study_convergence.md")).unwrap();
+    let main = text.split("**The h and k parts").next().unwrap();
+    // | family | n | unknowns | error at T, % | order | resolved | increment at T, % | order
+    // | max increment over t, % | at t |
+    let rows: Vec<Vec<&str>> = main
+        .lines()
+        .filter(|l| l.starts_with("| graded |"))
+        .map(|l| l.trim_matches('|').split('|').map(str::trim).collect())
+        .collect();
+    let with_increment: Vec<(f64, f64, f64, f64)> = rows
+        .iter()
+        .map(|r| {
+            let f = |i: usize| r[i].parse::<f64>().unwrap();
+            (f(1), f(6), f(8), f(9))
+        })
+        .filter(|r| r.1.is_finite())
+        .collect();
+    assert!(with_increment.len() >= 3, "{rows:?}");
+    for &(n, _, _, t) in &with_increment {
+        assert!((t - 1.0 / n).abs() < 1e-4, "n = {n}: at t = {t}");
+    }
+    let (first, last) = (with_increment[0], *with_increment.last().unwrap());
+    assert!(
+        first.2 / last.2 < first.1 / last.1,
+        "max over t falls by {} against {} at T",
+        first.2 / last.2,
+        first.1 / last.1
+    );
 }

@@ -382,7 +382,8 @@ pub(super) fn run(
                 md,
                 "\nThe reference's own error at T, roughly: about {} %, from the {last_family} family's last increment \
                  ({} %) carried on to n = {} at the exponent {p:.3}, the smaller of the observed orders of its last \
-                 two increment pairs (the slower decay, so that the estimate errs large), the increments beyond \
+                 two increment pairs (the slower decay, so that the estimate errs large unless the true order is \
+                 lower still), the increments beyond \
                  adding in quadrature (Galerkin orthogonality of nested spaces in the energy norm: exact for the \
                  linear static problem, perturbed here by the contact terms and by the time step, which changes \
                  with the level). An error below {RESOLVED} times this is marked not \
@@ -573,8 +574,8 @@ pub(super) fn run(
             "\nThe reference here is only four times finer than the finest level, so its own error is a \
              large part of the finest errors and inflates the finest orders. Its error, roughly, in each \
              family: the finest level's error carried on to n (or, for k, N) = {} at the family's smallest \
-             positive observed order, capped at 1, the scheme's order in h and in k (so that the estimate errs \
-             large where the orders fall towards 1): {}. The errors of the levels and of the reference are not \
+             positive observed order, capped at 1, the scheme's order in h and in k (the estimate errs large \
+             unless the true order is lower still, as where the orders still fall): {}. The errors of the levels and of the reference are not \
              assumed to add in quadrature (the time errors subtract): a row whose error is below {RESOLVED_ANY} \
              times this is marked not resolved, since the reference's error may then move it by more than 10 %, \
              and its order is not a rate. The graded study above measures the orders without a reference: its \
