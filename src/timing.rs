@@ -53,3 +53,13 @@ pub fn median_of(reps: usize, mut f: impl FnMut()) -> f64 {
             .collect(),
     )
 }
+
+/// Seconds since the first call in this process (the clock of `reproduce --log`,
+/// which calls it once at its start).
+pub fn since_start() -> f64 {
+    static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+    START
+        .get_or_init(std::time::Instant::now)
+        .elapsed()
+        .as_secs_f64()
+}

@@ -2,7 +2,10 @@
 //! consistent between the strong and the weak form of the load, and satisfying the
 //! paper's hypotheses on the data and the contact conditions.
 
-use evhi::manufactured::{Data, SOLUTIONS, Solution, load_vector, strains, strong_load_vector};
+use evhi::manufactured::{
+    Data, SOLUTIONS, Solution, load_vector, scaled_strains, shape_gradient, strains,
+    strains_evaluated, strong_load_vector,
+};
 use evhi::scenario::Scenario;
 
 fn paper() -> Scenario {
@@ -69,6 +72,43 @@ fn strains_match_finite_differences() {
             }
         }
     }
+}
+
+/// The exact study's shortcut for separable solutions, the shape's gradient stored
+/// once and scaled by $\rho(t)$ and $\dot\rho(t)$ at each step, gives the very bits of
+/// the hyper-dual evaluation: across the kinks too (points on a fine grid), at
+/// every time of a run, before and after the hold.
+#[test]
+fn separable_strains_are_the_evaluated_ones_bit_for_bit() {
+    let separable: Vec<Solution> = SOLUTIONS.into_iter().filter(|s| s.separable()).collect();
+    assert_eq!(
+        separable,
+        [Solution::Branch1, Solution::Regimes, Solution::P1]
+    );
+    assert!(!Solution::Moving.separable() && !Solution::Steady.separable());
+    let mut compared = 0;
+    for sol in separable {
+        for i in 0..=40 {
+            for j in 0..=20 {
+                let (x, y) = (2.0 * i as f64 / 40.0 + 1e-3 * j as f64, j as f64 / 20.0);
+                let g = shape_gradient(sol, x, y);
+                for step in 0..=64 {
+                    let t = step as f64 / 64.0;
+                    let fast = scaled_strains(&g, sol.load_factor(t));
+                    let slow = strains_evaluated(sol, x, y, t);
+                    assert_eq!(fast, slow, "{sol:?} at ({x}, {y}, {t})");
+                    assert_eq!(strains(sol, x, y, t), slow);
+                    // And u at the nodes: the shape times rho.
+                    let u = sol.u(x, y, t);
+                    let s = sol.shape(x, y, 0.0);
+                    let rho = sol.load_factor(t).0;
+                    assert_eq!(u, [s[0] * rho, s[1] * rho], "{sol:?} at ({x}, {y}, {t})");
+                    compared += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(compared, 3 * 41 * 21 * 65);
 }
 
 #[test]

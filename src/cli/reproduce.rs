@@ -17,6 +17,11 @@ pub struct ReproduceArgs {
     /// No progress bars and no summary; errors still go to stderr.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Progress as lines on stderr instead of bars: each finished unit of work
+    /// (a level, a run, a cell) with the seconds since the start and its experiment,
+    /// to see where the time goes or to keep a log of a run.
+    #[arg(long, conflicts_with = "quiet")]
+    pub log: bool,
     /// Table 1's reference level n (h = k = 1/n) in place of the paper's 512, e.g.
     /// 1024 (1.05 M unknowns, about 2 GB): writes table1_ref<n>.csv and
     /// table1_reference_shift_ref<n>.csv, how far each entry of table1.csv moves
@@ -89,9 +94,10 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         names.join("+")
     };
     let total = Instant::now();
+    crate::timing::since_start();
     // One progress bar per experiment (drawn only on a terminal), with its ETA.
     let multi = indicatif::MultiProgress::new();
-    if args.quiet {
+    if args.quiet || args.log {
         multi.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
     let style = ProgressStyle::with_template(
@@ -134,7 +140,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
                 let bar = bars[&name].clone();
                 bar.reset();
                 let ctx = Ctx {
-                    progress: Some(bar.clone()),
+                    progress: (!args.log).then(|| bar.clone()),
                     ..ctx.clone()
                 };
                 let r = run(&name, &ctx).map_err(|e| e.to_string());

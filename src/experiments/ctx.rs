@@ -138,7 +138,11 @@ impl Ctx {
                 bar.set_message(msg.to_string());
                 bar.inc(1);
             }
-            None if self.verbose => eprintln!("  {msg}"),
+            None if self.verbose => eprintln!(
+                "  [{:7.1} s] {}: {msg}",
+                crate::timing::since_start(),
+                self.experiment
+            ),
             None => {}
         }
     }

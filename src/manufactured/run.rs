@@ -132,9 +132,26 @@ struct Point {
     prev: [f64; 3],
 }
 
-/// Strains of a P1 field (nodal values `v`) on triangle `p` with vertices `tri`.
-fn p1_strain(p: [[f64; 2]; 3], vals: [[f64; 2]; 3]) -> [f64; 3] {
-    let (_, bm) = crate::element::strain_matrix(p);
+/// The strain matrix of each triangle of `mesh` ([`crate::element::strain_matrix`]),
+/// formed once per run: the measures read it at every step.
+fn strain_matrices(mesh: &crate::mesh::Mesh) -> Vec<StrainMatrix> {
+    (mesh.triangles.iter())
+        .map(|tri| crate::element::strain_matrix(tri.map(|v| mesh.nodes[v])).1)
+        .collect()
+}
+
+type StrainMatrix = nalgebra::SMatrix<f64, 3, 6>;
+
+/// Strains of a P1 field on each triangle of `mesh` (nodal values `v`), with the
+/// triangles' strain matrices `bms`.
+fn p1_strains(mesh: &crate::mesh::Mesh, bms: &[StrainMatrix], v: &[[f64; 2]]) -> Vec<[f64; 3]> {
+    (mesh.triangles.iter().zip(bms))
+        .map(|(tri, bm)| p1_strain(bm, tri.map(|k| v[k])))
+        .collect()
+}
+
+/// Strains of a P1 field with nodal values `vals` on a triangle with strain matrix `bm`.
+fn p1_strain(bm: &StrainMatrix, vals: [[f64; 2]; 3]) -> [f64; 3] {
     let mut e = [0.0; 3];
     for a in 0..3 {
         for c in 0..2 {
@@ -230,10 +247,14 @@ pub fn run_rules(
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
     let mut diffs = vec![];
-    let mut nodal_prev: Vec<[f64; 2]> = vec![[0.0; 2]; mesh.nodes.len()];
+    // The strains of the interpolant of u(t_{n-1}) (u(0) = 0) per triangle.
+    let bms = strain_matrices(&mesh);
+    let mut interp_prev = p1_strains(&mesh, &bms, &vec![[0.0; 2]; mesh.nodes.len()]);
     // The previous step's points and strains at its t_n: its t_{n-1} strains here
     // when the cuts, and so the points, are the same.
     let mut last: Option<(Vec<f64>, Vec<Point>)> = None;
+    // A separable solution's points and shapes once; each step then scales them.
+    let mut separable = sol.separable().then(|| Separable::new(sol, &mesh));
     for step in 1..=steps {
         let t = if sol.is_static() {
             0.0
@@ -241,14 +262,30 @@ pub fn run_rules(
             step as f64 * k
         };
         let t_prev = t - k;
-        let mut cuts = sol.cuts(t);
-        if !sol.is_static() {
-            cuts.extend(sol.cuts(t_prev));
-        }
-        let points = quadrature_points(sol, &mesh, &cuts, t, t_prev, last.take());
-        let f = load_from_points(&data, &mesh, &disc.dofs, &points, t);
-        let nodal: Vec<[f64; 2]> = mesh.nodes.iter().map(|p| sol.u(p[0], p[1], t)).collect();
-        let exact = measure_exact(&data, &mesh, &points, (t, k), [&nodal, &nodal_prev]);
+        let (points, nodal) = match separable.as_mut() {
+            Some(sep) => sep.at(sol, t, t_prev, step == 1),
+            None => {
+                let mut cuts = sol.cuts(t);
+                if !sol.is_static() {
+                    cuts.extend(sol.cuts(t_prev));
+                }
+                let points = quadrature_points(sol, &mesh, &cuts, t, t_prev, last.take());
+                let nodal = mesh.nodes.iter().map(|p| sol.u(p[0], p[1], t)).collect();
+                last = Some((cuts, points));
+                let points = &last.as_ref().expect("just set").1;
+                (points.as_slice(), nodal)
+            }
+        };
+        let f = load_from_points(&data, &mesh, &disc.dofs, points, t);
+        let interp = p1_strains(&mesh, &bms, &nodal);
+        let exact = measure_exact(
+            &data,
+            &mesh,
+            points,
+            (t, k),
+            &nodal,
+            [&interp, &interp_prev],
+        );
         let mut fields = vec![];
         for (i, rule) in rules.iter().enumerate() {
             let b: Vec<f64> = au[i].iter().zip(&f).map(|(a, f)| a + k * f).collect();
@@ -286,7 +323,8 @@ pub fn run_rules(
                     tol: CERTIFICATE_TOL,
                 });
             }
-            let (err_e, err_v_sq) = measure_error(&data, &mesh, &points, &disc.dofs.expand(&u[0]));
+            let (err_e, err_v_sq) =
+                measure_error(&data, &mesh, &bms, points, &disc.dofs.expand(&u[0]));
             let mut row = StepRow {
                 err_e,
                 err_v_sq,
@@ -308,8 +346,7 @@ pub fn run_rules(
                 .collect();
             diffs.push(crate::norms::energy_norm(&disc.b, &d));
         }
-        nodal_prev = nodal;
-        last = Some((cuts, points));
+        interp_prev = interp;
     }
     let wall_s = clock.elapsed().as_secs_f64();
     let runs = rows
@@ -351,20 +388,7 @@ fn quadrature_points(
     t_prev: f64,
     last: Option<(Vec<f64>, Vec<Point>)>,
 ) -> Vec<Point> {
-    let mut points = Vec::with_capacity(7 * mesh.triangles.len());
-    for (i, tri) in mesh.triangles.iter().enumerate() {
-        let p = tri.map(|v| mesh.nodes[v]);
-        for (x, w) in crate::quadrature::triangle_points(p, cuts) {
-            let now = Strains::default();
-            points.push(Point {
-                tri: i,
-                x,
-                w,
-                now,
-                prev: [0.0; 3],
-            });
-        }
-    }
+    let mut points = point_set(mesh, cuts);
     let reuse = last.filter(|(c, pts)| c.as_slice() == cuts && pts.len() == points.len());
     let half = points.len().div_ceil(2).max(1);
     std::thread::scope(|s| {
@@ -385,6 +409,83 @@ fn quadrature_points(
         }
     });
     points
+}
+
+/// The quadrature points of `mesh` cut at `cuts`, their strains not yet set.
+fn point_set(mesh: &crate::mesh::Mesh, cuts: &[f64]) -> Vec<Point> {
+    let mut points = Vec::with_capacity(7 * mesh.triangles.len());
+    for (i, tri) in mesh.triangles.iter().enumerate() {
+        let p = tri.map(|v| mesh.nodes[v]);
+        for (x, w) in crate::quadrature::triangle_points(p, cuts) {
+            points.push(Point {
+                tri: i,
+                x,
+                w,
+                now: Strains::default(),
+                prev: [0.0; 3],
+            });
+        }
+    }
+    points
+}
+
+/// A separable solution ([`Solution::separable`]) on a mesh: its quadrature points
+/// (whose cuts never move), the gradient of its shape at each and its shape at the
+/// nodes, evaluated once; [`Separable::at`] scales them by $\rho(t)$ and
+/// $\dot\rho(t)$, the bits of evaluating $u$ afresh (`tests/manufactured.rs`).
+struct Separable {
+    points: Vec<Point>,
+    grads: Vec<[[f64; 2]; 2]>,
+    shapes: Vec<[f64; 2]>,
+}
+
+impl Separable {
+    fn new(sol: Solution, mesh: &crate::mesh::Mesh) -> Separable {
+        // The cuts of t and of t_prev, as the general path lists them.
+        let cuts = [sol.cuts(0.0), sol.cuts(0.0)].concat();
+        let points = point_set(mesh, &cuts);
+        let mut grads = vec![[[0.0; 2]; 2]; points.len()];
+        let half = points.len().div_ceil(2).max(1);
+        std::thread::scope(|s| {
+            for (pts, gs) in points.chunks(half).zip(grads.chunks_mut(half)) {
+                s.spawn(move || {
+                    for (pt, g) in pts.iter().zip(gs) {
+                        *g = super::shape_gradient(sol, pt.x[0], pt.x[1]);
+                    }
+                });
+            }
+        });
+        let shapes = mesh
+            .nodes
+            .iter()
+            .map(|p| sol.shape(p[0], p[1], 0.0))
+            .collect();
+        Separable {
+            points,
+            grads,
+            shapes,
+        }
+    }
+
+    /// The points with their exact strains at $t$ (and at $t_{\rm prev}$, the last
+    /// call's $t$ unless `first`), and $u(t)$ at the nodes.
+    fn at(&mut self, sol: Solution, t: f64, t_prev: f64, first: bool) -> (&[Point], Vec<[f64; 2]>) {
+        let now = sol.load_factor(t);
+        let before = first.then(|| sol.load_factor(t_prev));
+        for (pt, g) in self.points.iter_mut().zip(&self.grads) {
+            pt.prev = match before {
+                Some(r) => super::scaled_strains(g, r).eps,
+                None => pt.now.eps,
+            };
+            pt.now = super::scaled_strains(g, now);
+        }
+        let nodal = self
+            .shapes
+            .iter()
+            .map(|s| [s[0] * now.0, s[1] * now.0])
+            .collect();
+        (&self.points, nodal)
+    }
 }
 
 /// $\langle f(t), \varphi_i\rangle$ as [`super::load_vector`] computes it, from the
@@ -411,27 +512,21 @@ fn load_from_points(
 
 /// The terms of one step that depend on the exact solution alone (see the module
 /// header): $\|u_n\|_E$ and the Céa terms, from the step's quadrature points; `nodal`
-/// holds $u(t_n)$ and $u(t_{n-1})$ at the nodes. The same for every contact rule.
+/// holds $u(t_n)$ at the nodes, `interp` and `interp_prev` the strains of $\Pi^h u_n$
+/// and $\Pi^h u_{n-1}$ per triangle. The same for every contact rule.
 fn measure_exact(
     data: &Data,
     mesh: &crate::mesh::Mesh,
     points: &[Point],
     (t, k): (f64, f64),
-    [nodal, nodal_prev]: [&[[f64; 2]]; 2],
+    nodal: &[[f64; 2]],
+    [interp, interp_prev]: [&[[f64; 3]]; 2],
 ) -> StepRow {
     let sol = data.sol;
     let mut row = StepRow::default();
     let mut exact_e_sq = 0.0;
-    let mut last = usize::MAX;
-    let (mut ei, mut ei_prev) = ([0.0; 3], [0.0; 3]);
     for pt in points {
-        if pt.tri != last {
-            last = pt.tri;
-            let tri = mesh.triangles[pt.tri];
-            let p = tri.map(|v| mesh.nodes[v]);
-            ei = p1_strain(p, tri.map(|v| nodal[v]));
-            ei_prev = p1_strain(p, tri.map(|v| nodal_prev[v]));
-        }
+        let (ei, ei_prev) = (interp[pt.tri], interp_prev[pt.tri]);
         exact_e_sq += pt.w * energy_density(&data.elast, pt.now.eps);
         row.interp_v_sq += pt.w * contract(sub(pt.now.eps, ei));
         if !sol.is_static() {
@@ -465,6 +560,7 @@ fn measure_exact(
 fn measure_error(
     data: &Data,
     mesh: &crate::mesh::Mesh,
+    bms: &[StrainMatrix],
     points: &[Point],
     nodal_h: &[[f64; 2]],
 ) -> (f64, f64) {
@@ -474,8 +570,7 @@ fn measure_error(
     for pt in points {
         if pt.tri != last {
             last = pt.tri;
-            let tri = mesh.triangles[pt.tri];
-            eh = p1_strain(tri.map(|v| mesh.nodes[v]), tri.map(|v| nodal_h[v]));
+            eh = p1_strain(&bms[pt.tri], mesh.triangles[pt.tri].map(|v| nodal_h[v]));
         }
         let e = sub(pt.now.eps, eh);
         err_e_sq += pt.w * energy_density(&data.elast, e);

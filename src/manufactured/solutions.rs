@@ -205,27 +205,49 @@ impl Solution {
     }
 
     // ANCHOR: u
-    /// The exact displacement $u(x, y, t)$.
+    /// The exact displacement $u(x, y, t)$: the shape [`Solution::shape`] times the
+    /// load factor $\rho(t)$ (the steady solution has none).
     pub fn u<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
-        // The load factor once: every component scales with it.
+        let s = self.shape(x, y, t);
+        if self.is_static() {
+            return s;
+        }
+        // The factor last: a separable solution's derivatives in space are then the
+        // shape's times rho, bit for bit (see `super::separable`).
         let rho = self.rho(t);
-        let ux = rho * (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
+        [s[0] * rho, s[1] * rho]
+    }
+
+    /// $u / \rho$: a function of $(x, y)$ alone except for (d), whose plateau grows
+    /// with $t$.
+    pub fn shape<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
+        let ux = (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
         let u_nu = match self {
             Solution::Branch1 => {
                 let s = x - 1.0;
-                rho * (c::<D>(B0) - s * s * B2)
+                c::<D>(B0) - s * s * B2
             }
             Solution::Regimes | Solution::Moving => {
                 let d = dist(x, self.half_width(t)) / L;
-                rho * (c::<D>(G) - d * d * G0)
+                c::<D>(G) - d * d * G0
             }
             Solution::Steady => return [c(0.0), -eta(y) * DELTA],
-            Solution::P1 => {
-                let v = coarse_p1(x, y);
-                return [rho * v[0], rho * v[1]];
-            }
+            Solution::P1 => return coarse_p1(x, y),
         };
         [ux, -u_nu * eta(y)]
+    }
+
+    /// Whether $u = \rho(t)\,U(x, y)$ with fixed quadrature cuts, so that the strains
+    /// at a point are its shape's times $\rho(t)$ and $\dot\rho(t)$.
+    pub fn separable(self) -> bool {
+        matches!(self, Solution::Branch1 | Solution::Regimes | Solution::P1)
+    }
+
+    /// $(\rho(t), \dot\rho(t))$, exact: the time part of the hyper-dual evaluation
+    /// in [`super::strains`], so the same bits.
+    pub fn load_factor(self, t: f64) -> (f64, f64) {
+        let r = self.rho(num_dual::HyperDual64::new(t, 0.0, 1.0, 0.0));
+        (r.re, r.eps2)
     }
     // ANCHOR_END: u
 
