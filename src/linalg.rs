@@ -56,6 +56,17 @@ pub struct Cholesky {
     nodes: Nodes,
     /// Whether the backward sweep prefetches in software (on by default).
     prefetch: bool,
+    /// The first supernode holding a contact column (the last $m$ columns).
+    contact_supernode: usize,
+}
+
+/// Which sweep over $L$.
+#[derive(Debug, Clone, Copy)]
+enum Sweep {
+    Forward,
+    /// Forward, for right-hand sides that vanish off the contact dofs.
+    ForwardContact,
+    Backward,
 }
 
 /// Right-hand sides per sweep over $L$.
@@ -332,8 +343,12 @@ impl Cholesky {
             split: None,
             nodes: Nodes::default(),
             prefetch: true,
+            contact_supernode: 0,
         };
         chol.nodes = chol.flat_nodes()?;
+        chol.contact_supernode = (chol.nodes.nodes.iter())
+            .position(|nd| nd.start + nd.size > n - m)
+            .unwrap_or(chol.nodes.nodes.len());
         chol.l_cc = chol.trailing_block(m)?;
         chol.split = ordering.halves.and_then(|h| chol.split_at(h));
         Ok(chol)
@@ -482,6 +497,25 @@ impl Cholesky {
     /// Forward solves of several right-hand sides: one sweep over $L$ per group of
     /// up to four (the sweep costs memory traffic, which the columns share).
     pub fn forward_many(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
+        self.forward_groups(bs, Sweep::Forward)
+    }
+
+    /// [`Cholesky::forward_many`] for right-hand sides that vanish off the contact
+    /// dofs (the last $m$ rows of the ordering), as a field's contact reactions do:
+    /// the sweep starts at the first supernode that holds a contact column. Every
+    /// supernode before it only divides and multiplies zeros (its values stay $+0$)
+    /// and subtracts $+0$ from the rows it updates, which leaves their bits as they
+    /// are: the result is [`Cholesky::forward_many`]'s, bit for bit, for the cost
+    /// of the separator's supernodes (`tests/linalg.rs`).
+    pub fn forward_many_contact(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
+        debug_assert!(bs.iter().all(|b| {
+            let first = self.dim() - self.l_cc.nrows();
+            (self.fwd[..first].iter()).all(|&old| b[old] == 0.0)
+        }));
+        self.forward_groups(bs, Sweep::ForwardContact)
+    }
+
+    fn forward_groups(&self, bs: &[&[f64]], how: Sweep) -> Vec<Vec<f64>> {
         let mut out = Vec::with_capacity(bs.len());
         for group in bs.chunks(MAX_BATCH) {
             // Permuted and interleaved: row i of the group is x[i*r..(i+1)*r].
@@ -492,7 +526,7 @@ impl Cholesky {
                     *v = b[old];
                 }
             }
-            self.sweep(&mut x, r, true);
+            self.sweep(&mut x, r, how);
             if r == 1 {
                 out.push(x);
             } else {
@@ -502,21 +536,24 @@ impl Cholesky {
         out
     }
 
-    /// One sweep (forward or backward) over the `r` interleaved columns of `x`.
-    fn sweep(&self, x: &mut [f64], r: usize, forward: bool) {
-        fn run<const R: usize>(c: &Cholesky, x: &mut [f64], forward: bool) {
+    /// One sweep over the `r` interleaved columns of `x`.
+    fn sweep(&self, x: &mut [f64], r: usize, how: Sweep) {
+        fn run<const R: usize>(c: &Cholesky, x: &mut [f64], how: Sweep) {
             let rows = x.as_chunks_mut::<R>().0;
-            if forward {
-                c.sweep_forward(rows)
-            } else {
-                c.sweep_backward(rows)
+            match how {
+                Sweep::Forward => c.sweep_forward(rows),
+                Sweep::ForwardContact => {
+                    let (n, all) = (c.dim(), c.contact_supernode..c.n_supernodes());
+                    lower_solve(&c.nodes, &c.values, all, rows, 0, &mut [], n)
+                }
+                Sweep::Backward => c.sweep_backward(rows),
             }
         }
         match r {
-            1 => run::<1>(self, x, forward),
-            2 => run::<2>(self, x, forward),
-            3 => run::<3>(self, x, forward),
-            _ => run::<4>(self, x, forward),
+            1 => run::<1>(self, x, how),
+            2 => run::<2>(self, x, how),
+            3 => run::<3>(self, x, how),
+            _ => run::<4>(self, x, how),
         }
     }
 
@@ -608,7 +645,7 @@ impl Cholesky {
                 }
                 x
             };
-            self.sweep(&mut x, r, false);
+            self.sweep(&mut x, r, Sweep::Backward);
             for j in 0..r {
                 let mut u = vec![0.0; n];
                 for (row, &old) in x.chunks_exact(r).zip(&self.fwd) {

@@ -154,7 +154,13 @@ impl<'d> Reduced<'d> {
 
     /// $u = B^{-1}(Y f + E_C^\top W)$: one solve.
     pub fn field(&self, load: &Load, st: &State) -> Vec<f64> {
-        self.with_load(load, st, self.chol.solve(&self.contact_rhs(st)))
+        let rhs = self.contact_rhs(st);
+        let y = self
+            .chol
+            .forward_many_contact(&[&rhs])
+            .pop()
+            .expect("one column");
+        self.with_load(load, st, self.chol.backward(y))
     }
 
     /// The fields of several states under one load, their solves batched (one
@@ -162,7 +168,9 @@ impl<'d> Reduced<'d> {
     pub fn fields(&self, load: &Load, states: &[&State]) -> Vec<Vec<f64>> {
         let rhs: Vec<Vec<f64>> = states.iter().map(|st| self.contact_rhs(st)).collect();
         let cols: Vec<&[f64]> = rhs.iter().map(Vec::as_slice).collect();
-        let v = self.chol.backward_many(self.chol.forward_many(&cols));
+        let v = self
+            .chol
+            .backward_many(self.chol.forward_many_contact(&cols));
         (v.into_iter().zip(states))
             .map(|(v, st)| self.with_load(load, st, v))
             .collect()

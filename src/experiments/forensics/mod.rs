@@ -509,11 +509,20 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
             let Some(f) = run.fields.get(&j) else {
                 continue;
             };
+            let last = j == n_ref;
+            // What this comparison feeds: the table's rows against the reference,
+            // the last increment (the finest stored level, whose other times no
+            // row reads), the injected and interpolation readings.
+            let against_ref = levels.contains(&n) || kind == 1;
+            let increment = kind == 0 && 2 * n == n_ref && (last || levels.contains(&n));
+            let injection = main && li == 0 && kind == 0 && levels.contains(&n);
+            if !(against_ref || increment || injection) {
+                continue;
+            }
             let interp = &interps[&run.mesh.n];
             let pu = interp.apply(&f.u);
             let ps = contact_interp(&run.mesh, &ref_mesh, interp, &f.sigma);
             let e = meter.diff(&ref_mesh, &truth, &pu, &ps);
-            let last = j == n_ref;
             if !e.iter().all(|x| x.is_finite()) {
                 failure = Some(ExpError::Table {
                     path: "table1_forensics".into(),
@@ -521,7 +530,7 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
                 });
                 return;
             }
-            if levels.contains(&n) || kind == 1 {
+            if against_ref {
                 vs_ref
                     .entry((li, kind, n))
                     .or_default()
@@ -529,10 +538,10 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
             }
             // The finest stored level against the reference: the last increment,
             // needed at t = T only.
-            if kind == 0 && 2 * n == n_ref && (last || levels.contains(&n)) {
+            if increment {
                 next.entry((li, n)).or_default().add(e, u_meas, last);
             }
-            if main && li == 0 && kind == 0 && levels.contains(&n) {
+            if injection {
                 // Injection: the reference's values at the coarse nodes.
                 let inj = &injections[&run.mesh.n];
                 let iu: Vec<[f64; 2]> = inj.iter().map(|&r| truth.u[r]).collect();
