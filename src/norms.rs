@@ -71,13 +71,30 @@ pub fn field_norms(
 }
 
 /// What [`field_norms`] needs of each triangle, computed once per mesh for fields
-/// measured many times: its vertices, area and shape-function gradients.
+/// measured many times: its vertices, and the index of its shape (area and
+/// shape-function gradients) in a table of the distinct shapes. A uniform mesh has
+/// two to four shapes, to the bit, so the table stays in cache and a pass reads
+/// 32 bytes per triangle instead of 80; the factors of the area the norms use are
+/// formed once per shape (the products they enter are the same, so the same bits).
 pub struct NormGeometry {
-    tris: Vec<([usize; 3], [f64; 7])>,
+    tris: Vec<([usize; 3], usize)>,
+    shapes: Vec<Shape>,
+}
+
+/// One triangle shape: $|T|/2$, $|T|$, $|T|/12$, and the gradients of the three
+/// shape functions ($\partial_x$ then $\partial_y$).
+struct Shape {
+    half_area: f64,
+    area: f64,
+    area_12: f64,
+    dx: [f64; 3],
+    dy: [f64; 3],
 }
 
 impl NormGeometry {
     pub fn new(mesh: &crate::mesh::Mesh) -> NormGeometry {
+        let mut index: std::collections::HashMap<[u64; 7], usize> = Default::default();
+        let mut shapes = vec![];
         let tris = mesh
             .triangles
             .iter()
@@ -90,10 +107,21 @@ impl NormGeometry {
                     geo[1 + i] = (p[j][1] - p[k][1]) / det;
                     geo[4 + i] = (p[k][0] - p[j][0]) / det;
                 }
-                (*tri, geo)
+                let id = *index.entry(geo.map(f64::to_bits)).or_insert_with(|| {
+                    let area = geo[0];
+                    shapes.push(Shape {
+                        half_area: 0.5 * area,
+                        area,
+                        area_12: area / 12.0,
+                        dx: [geo[1], geo[2], geo[3]],
+                        dy: [geo[4], geo[5], geo[6]],
+                    });
+                    shapes.len() - 1
+                });
+                (*tri, id)
             })
             .collect();
-        NormGeometry { tris }
+        NormGeometry { tris, shapes }
     }
 
     /// [`FieldNorms`] of `v` on `mesh` (the mesh this geometry was made from).
@@ -104,13 +132,13 @@ impl NormGeometry {
         v: &[[f64; 2]],
     ) -> FieldNorms {
         let mut out = FieldNorms::default();
-        for (tri, geo) in &self.tris {
-            let area = geo[0];
+        for (tri, id) in &self.tris {
+            let shape = &self.shapes[*id];
             let vals = tri.map(|k| v[k]);
             // Gradients of u_x and u_y.
             let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
             for a in 0..3 {
-                let (dx, dy) = (geo[1 + a], geo[4 + a]);
+                let (dx, dy) = (shape.dx[a], shape.dy[a]);
                 ux[0] += dx * vals[a][0];
                 ux[1] += dy * vals[a][0];
                 uy[0] += dx * vals[a][1];
@@ -118,14 +146,15 @@ impl NormGeometry {
             }
             let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
             let tr = e11 + e22;
-            out.energy_sq +=
-                0.5 * area * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma));
-            out.h1_sq += area * (ux[0] * ux[0] + ux[1] * ux[1] + uy[0] * uy[0] + uy[1] * uy[1]);
+            out.energy_sq += shape.half_area
+                * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma));
+            out.h1_sq +=
+                shape.area * (ux[0] * ux[0] + ux[1] * ux[1] + uy[0] * uy[0] + uy[1] * uy[1]);
             // Exact P1 mass: |T|/12 (sum of squares + square of the sum), per component.
             for comp in [vals.map(|x| x[0]), vals.map(|x| x[1])] {
                 let s = comp[0] + comp[1] + comp[2];
                 let q = comp[0] * comp[0] + comp[1] * comp[1] + comp[2] * comp[2];
-                out.l2_sq += area / 12.0 * (q + s * s);
+                out.l2_sq += shape.area_12 * (q + s * s);
             }
         }
         out.max = max_length(v);
