@@ -126,7 +126,7 @@ fn exact_study_time() {
         "wall_s",
     );
     assert_eq!(t.len(), 1);
-    assert_eq!((t[0] * 10.0).round() / 10.0, 47.5);
+    assert_eq!((t[0] * 10.0).round() / 10.0, 20.8);
 }
 
 #[test]
