@@ -688,6 +688,43 @@ fn a_bad_table1_reference_is_refused() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// `reproduce --log` reports each finished unit as a line with its time and its
+/// experiment instead of progress bars, and refuses to be quiet at the same time.
+#[test]
+fn reproduce_logs_lines_with_times() {
+    let dir = scratch("log");
+    let out = evhi()
+        .args(["reproduce", "static", "--quick", "--log", "--data"])
+        .arg(dir.join("data"))
+        .arg("--figures")
+        .arg(dir.join("figures"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let lines: Vec<&str> = err
+        .lines()
+        .filter(|l| l.contains("] static: static control: "))
+        .collect();
+    // Three scenes on six quick levels, each line "  [   t.t s] static: ...".
+    assert_eq!(lines.len(), 18, "{err}");
+    for l in &lines {
+        let secs = l
+            .trim_start()
+            .strip_prefix('[')
+            .and_then(|r| r.split(" s]").next());
+        let secs: f64 = secs.unwrap_or("x").trim().parse().expect(l);
+        assert!(secs >= 0.0, "{l}");
+    }
+    let both = evhi()
+        .args(["reproduce", "fig2", "--log", "-q"])
+        .output()
+        .unwrap();
+    assert!(!both.status.success());
+    assert!(String::from_utf8_lossy(&both.stderr).contains("--quiet"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// The main job changes no committed file with its own wall times: a full run keeps
 /// them in the git-ignored `local/` of the data directory, and only `--record-times`
 /// writes the table the book quotes.
