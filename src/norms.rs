@@ -137,12 +137,11 @@ impl NormGeometry {
             let vals = tri.map(|k| v[k]);
             // Gradients of u_x and u_y.
             let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
-            for a in 0..3 {
-                let (dx, dy) = (shape.dx[a], shape.dy[a]);
-                ux[0] += dx * vals[a][0];
-                ux[1] += dy * vals[a][0];
-                uy[0] += dx * vals[a][1];
-                uy[1] += dy * vals[a][1];
+            for ((dx, dy), val) in shape.dx.iter().zip(&shape.dy).zip(&vals) {
+                ux[0] += dx * val[0];
+                ux[1] += dy * val[0];
+                uy[0] += dx * val[1];
+                uy[1] += dy * val[1];
             }
             let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
             let tr = e11 + e22;
