@@ -504,9 +504,10 @@ impl Cholesky {
     /// dofs (the last $m$ rows of the ordering), as a field's contact reactions do:
     /// the sweep starts at the first supernode that holds a contact column. Every
     /// supernode before it only divides and multiplies zeros (its values stay $+0$)
-    /// and subtracts $+0$ from the rows it updates, which leaves their bits as they
-    /// are: the result is [`Cholesky::forward_many`]'s, bit for bit, for the cost
-    /// of the separator's supernodes (`tests/linalg.rs`).
+    /// and subtracts $+0$ from the rows it updates, which leaves their values as they
+    /// are: the result is [`Cholesky::forward_many`]'s, to the bit but for the sign
+    /// of a zero entry of the right-hand side (the full sweep's split halves add
+    /// $+0$ to it), for the cost of the separator's supernodes (`tests/linalg.rs`).
     pub fn forward_many_contact(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
         debug_assert!(bs.iter().all(|b| {
             let first = self.dim() - self.l_cc.nrows();

@@ -155,6 +155,16 @@ fn exact_quadrature_far_below() {
         .into_iter()
         .fold(0.0, f64::max);
     assert!(worst < 3e-8, "{worst}");
+    // The book's two readings: the largest, at n = 8, and the largest at n = 128.
+    assert_eq!(format!("{worst:.1e}"), "2.1e-8");
+    let q = rows("exact_quadrature.csv");
+    let at = |n: &str| {
+        (q.iter().filter(|r| r["n"] == n))
+            .map(|r| num(r, "load_rel_diff"))
+            .fold(0.0, f64::max)
+    };
+    assert_eq!(at("8"), worst);
+    assert_eq!(format!("{:.1e}", at("128")), "1.3e-15");
 }
 
 #[test]

@@ -54,7 +54,7 @@ pub struct Strains {
 
 /// $\varepsilon(u)$ and $\varepsilon(\dot u)$ at $(x, y, t)$, exact: by
 /// [`strains_evaluated`], or for a separable solution by [`scaled_strains`] from one
-/// evaluation of its shape (the same bits, `tests/manufactured.rs`).
+/// evaluation of its shape (the same values to the bit, `tests/manufactured.rs`).
 pub fn strains(sol: Solution, x: f64, y: f64, t: f64) -> Strains {
     if sol.separable() {
         scaled_strains(&shape_gradient(sol, x, y), sol.load_factor(t))
@@ -99,8 +99,9 @@ pub fn shape_gradient(sol: Solution, x: f64, y: f64) -> [[f64; 2]; 2] {
 
 /// [`strains`] of a separable solution ([`Solution::separable`]) at a point where its
 /// shape has gradient `g`, with $(\rho, \dot\rho)$ from [`Solution::load_factor`]: the
-/// same bits as [`strains`] (every term the hyper-dual product adds to these is an
-/// exact zero), for six products instead of two evaluations of $u$.
+/// values of [`strains_evaluated`] to the bit, but for the sign of an exact zero (every
+/// term the hyper-dual product adds to these is an exact zero), for six products
+/// instead of two evaluations of $u$.
 pub fn scaled_strains(g: &[[f64; 2]; 2], (rho, rho_dot): (f64, f64)) -> Strains {
     let e = |r: f64| [g[0][0] * r, g[1][1] * r, 0.5 * (g[0][1] * r + g[1][0] * r)];
     Strains {

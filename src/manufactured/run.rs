@@ -432,7 +432,8 @@ fn point_set(mesh: &crate::mesh::Mesh, cuts: &[f64]) -> Vec<Point> {
 /// A separable solution ([`Solution::separable`]) on a mesh: its quadrature points
 /// (whose cuts never move), the gradient of its shape at each and its shape at the
 /// nodes, evaluated once; [`Separable::at`] scales them by $\rho(t)$ and
-/// $\dot\rho(t)$, the bits of evaluating $u$ afresh (`tests/manufactured.rs`).
+/// $\dot\rho(t)$, the values of evaluating $u$ afresh, to the bit
+/// (`tests/manufactured.rs`).
 struct Separable {
     points: Vec<Point>,
     grads: Vec<[[f64; 2]; 2]>,
