@@ -114,3 +114,42 @@ fn katex_assets_ship_with_the_book() {
     let fonts = std::fs::read_dir(k.join("fonts")).unwrap().count();
     assert!(fonts >= 20, "KaTeX fonts missing ({fonts})");
 }
+
+/// Generated Markdown that the book includes writes placeholders such as `<status>` in
+/// code spans: outside one, Markdown reads `<word>` as an HTML tag and the page drops
+/// it. Only real HTML elements may appear bare.
+#[test]
+fn included_tables_have_no_bare_placeholders() {
+    const HTML: &[&str] = &[
+        "sub", "sup", "br", "em", "b", "i", "code", "span", "div", "details", "summary", "a",
+    ];
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(&data).expect("data/") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_none_or(|e| e != "md") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("readable");
+        for (n, line) in text.lines().enumerate() {
+            // Drop code spans: the odd pieces between backticks.
+            let prose: String = line.split('`').step_by(2).collect::<Vec<_>>().join(" ");
+            for (i, _) in prose.match_indices('<') {
+                let name: String = prose[i + 1..]
+                    .chars()
+                    .skip_while(|&c| c == '/')
+                    .take_while(|c| c.is_ascii_alphanumeric())
+                    .collect();
+                let tag = name.starts_with(|c: char| c.is_ascii_lowercase());
+                assert!(
+                    !tag || HTML.contains(&name.as_str()),
+                    "{}:{}: bare <{name}> would vanish from the page: {line}",
+                    path.display(),
+                    n + 1
+                );
+            }
+        }
+        checked += 1;
+    }
+    assert!(checked >= 10, "{checked} Markdown tables");
+}

@@ -145,10 +145,14 @@ pub(super) fn run(
         );
     out.write_table("hypotheses.csv", &h, &lines)?;
     let mut md = format!(
-        "# Step solvers on `{}` ({})\n\n{}\n\nOutcomes: {OUTCOMES}.\n\nColumns: H(s) is the paper's smallness condition at the level's trace constant; {CURVATURE}.\n\n| n | steps | H(s) | smallest step curvature | steps convex | {} |\n|---|---|---|---|---|{}\n",
+        "# Step solvers on `{}` ({})\n\n{}\n\nOutcomes: {}.\n\nColumns: H(s) is the paper's smallness condition at the level's trace constant; {CURVATURE}.\n\n| n | steps | H(s) | smallest step curvature | steps convex | {} |\n|---|---|---|---|---|{}\n",
         scn.name,
         if args.quick { "quick" } else { "full" },
         lines[0],
+        // Markdown would read the placeholders as HTML tags and drop them.
+        OUTCOMES
+            .replace("<status>", "`<status>`")
+            .replace("<message>", "`<message>`"),
         solvers.join(" | "),
         "---|".repeat(solvers.len())
     );
