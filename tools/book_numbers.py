@@ -44,8 +44,9 @@ its mantissa matches if |v| (or 100·|v| when followed by %) rounded to s
 significant digits equals |x|. Either kind also matches a value listed in
 tests/paper_numbers.txt (one value per line, then '#' and where the paper
 prints it), compared the same way. A number listed for its chapter, exactly as
-written, in tests/unstored_numbers.txt (a measurement data/ does not keep, with
-its source after '#') passes too.
+written (spaces aside), in tests/unstored_numbers.txt (a measurement data/ does
+not keep, with its source after '#') passes too; each listed number must occur
+exactly once in its chapter.
 
 Output: every unmatched number as chapter:line, the number and the line's
 text; exit status 1 if there is any.
@@ -62,14 +63,21 @@ UNSTORED = os.path.join(ROOT, "tests", "unstored_numbers.txt")
 
 
 def unstored():
-    """(chapter, number as written) pairs of tests/unstored_numbers.txt."""
-    pairs = set()
+    """(chapter, number as written, whitespace removed) pairs of
+    tests/unstored_numbers.txt: the chapter, the number, then '#' and its
+    source; lines starting with '#' are comments."""
+    pairs = []
     for line in open(UNSTORED, encoding="utf-8"):
-        words = line.split("#", 1)[0].split()
-        if line.startswith("#") or not words:
+        if not line.strip() or line.lstrip().startswith("#"):
             continue
-        pairs.add((words[0], words[1]))
+        entry = line.split("#", 1)[0].strip()
+        chapter, token = (entry.split(None, 1) + [""])[:2]
+        token = "".join(token.split())
+        if not token:
+            raise SystemExit(f"no number on the line: {line.rstrip()}")
+        pairs.append((chapter, token))
     return pairs
+
 
 SUP = {"⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5",
        "⁶": "6", "⁷": "7", "⁸": "8", "⁹": "9", "⁻": "-", "⁺": "+"}
@@ -377,12 +385,24 @@ def main():
     matcher = Matcher(data_values(), paper_values())
     listed = unstored()
     failures = 0
+    # Each listed number must occur exactly once in its chapter, among all its
+    # checked numbers (a matcher that matches nothing lists them all).
+    nothing = Matcher([], [])
+    for chapter, token in listed:
+        text = open(os.path.join(BOOK, chapter), encoding="utf-8").read()
+        count = sum("".join(n.split()) == token
+                    for _, _, masked in prose_lines(text)
+                    for n in check_line(masked, nothing))
+        if count != 1:
+            failures += 1
+            print(f"{chapter}: tests/unstored_numbers.txt lists {token}, "
+                  f"quoted {count} time(s)")
     for chapter in chapters():
         path = os.path.join(BOOK, chapter)
         text = open(path, encoding="utf-8").read()
         for i, line, masked in prose_lines(text):
             for number in check_line(masked, matcher):
-                if (chapter, number) in listed:
+                if (chapter, "".join(number.split())) in listed:
                     continue
                 failures += 1
                 print(f"{chapter}:{i}: {number}\n    {line.strip()}")
