@@ -17,9 +17,10 @@ pub struct ReproduceArgs {
     /// No progress bars and no summary; errors still go to stderr.
     #[arg(short, long)]
     pub quiet: bool,
-    /// Progress as lines on stderr instead of bars: each finished unit of work
-    /// (a level, a run, a cell) with the seconds since the start and its experiment,
-    /// to see where the time goes or to keep a log of a run.
+    /// Progress as lines on stderr instead of bars: each unit of work as its
+    /// experiment reports it (a level, a run, a cell; most report a unit when it is
+    /// done), with the seconds since the start and the experiment's name, to see
+    /// where the time goes or to keep a log of a run.
     #[arg(long, conflicts_with = "quiet")]
     pub log: bool,
     /// Table 1's reference level n (h = k = 1/n) in place of the paper's 512, e.g.
