@@ -164,7 +164,7 @@ impl NormGeometry {
 }
 
 /// $\max_i |v_i|$ (`hypot`), with `hypot` taken only where $v_x^2 + v_y^2$ comes within
-/// $10^{-12}$ of its largest value: rounding moves a sum of squares by a few units
+/// a relative $10^{-12}$ of its largest value: rounding moves a sum of squares by a few units
 /// in the last place, so the largest `hypot` is among these, and the result is the
 /// bits of `hypot` over all nodes at a fraction of its cost.
 pub fn max_length(v: &[[f64; 2]]) -> f64 {

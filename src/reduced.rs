@@ -152,15 +152,9 @@ impl<'d> Reduced<'d> {
         self.load(scn.load_vector(&d.mesh, &d.dofs))
     }
 
-    /// $u = B^{-1}(Y f + E_C^\top W)$: one solve.
+    /// $u = B^{-1}(Y f + E_C^\top W)$: one solve ([`Reduced::fields`] of one state).
     pub fn field(&self, load: &Load, st: &State) -> Vec<f64> {
-        let rhs = self.contact_rhs(st);
-        let y = self
-            .chol
-            .forward_many_contact(&[&rhs])
-            .pop()
-            .expect("one column");
-        self.with_load(load, st, self.chol.backward(y))
+        self.fields(load, &[st]).pop().expect("one field")
     }
 
     /// The fields of several states under one load, their solves batched (one

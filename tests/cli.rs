@@ -123,7 +123,6 @@ fn solve_writes_all_outputs() {
         .filter(|n| n.starts_with('.'))
         .collect();
     assert_eq!(hidden, vec![".evhi-run".to_string()]);
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A load history from the command line (`--ramp`) or the scenario file gives the same
@@ -185,7 +184,6 @@ fn load_histories_from_the_cli_and_the_file() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("`ramp`"));
-    std::fs::remove_dir_all(&base).ok();
 }
 
 #[test]
@@ -248,7 +246,6 @@ fn bench_sweeps_writes_every_variant() {
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("`n`"));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A scenario file: `figure` with `from` replaced by `to`.
@@ -351,7 +348,6 @@ fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
         err.contains("`scenario`") && err.contains("at most"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The evolution for ParaView: one VTU per written step and a .pvd with their times;
@@ -434,7 +430,6 @@ fn vtk_time_series_matches_the_contact_table() {
     assert_eq!(regime[17], -1.0);
     let toml = std::fs::read_to_string(dir.join("scenario.toml")).unwrap();
     assert!(toml.contains("--vtk-every 3") && toml.contains("name = \"figure\""));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `evhi scenarios` lists the built-ins; `evhi show` prints a scenario and warns where
@@ -508,7 +503,6 @@ fn scenarios_and_show() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("`n`"));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A user scenario with a five-branch law and a jump, end to end: solve writes its
@@ -571,7 +565,6 @@ fn a_user_scenario_runs_and_draws() {
     let o = evhi().args(["plot", "/nonexistent-run"]).output().unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent-run"));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `reproduce -q` prints nothing on success.
@@ -592,7 +585,6 @@ fn reproduce_quiet_prints_nothing() {
         String::from_utf8_lossy(&o.stderr)
     );
     assert!(dir.join("data/loads_search.csv").exists());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// Every registered step solver is reachable from the command line; the penalty
@@ -616,7 +608,6 @@ fn every_registered_solver_runs_from_the_command_line() {
             entry.name
         );
         assert!(dir.join("summary.csv").exists(), "{}", entry.name);
-        std::fs::remove_dir_all(&dir).ok();
     }
     let out = evhi()
         .args([
@@ -665,7 +656,6 @@ fn the_time_loop_follows_the_damping() {
         let check = column(&dir, "steps.csv", "check");
         assert_eq!(check.len(), 8);
         assert_eq!([check[0].as_str(), check[7].as_str()], checks, "{scenario}");
-        std::fs::remove_dir_all(&dir).ok();
     }
     let dir = scratch("path-refused");
     let out = evhi()
@@ -688,7 +678,6 @@ fn the_time_loop_follows_the_damping() {
         err.contains("material") && err.contains("proportional"),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// A finer reference for Table 1 that cannot serve is refused by name, before
@@ -716,7 +705,6 @@ fn a_bad_table1_reference_is_refused() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(err.contains(bad), "--reference {bad}: {err}");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// `reproduce --log` reports each finished unit as a line with its time and its
@@ -753,7 +741,6 @@ fn reproduce_logs_lines_with_times() {
         .unwrap();
     assert!(!both.status.success());
     assert!(String::from_utf8_lossy(&both.stderr).contains("--quiet"));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The main job changes no committed file with its own wall times: a full run keeps

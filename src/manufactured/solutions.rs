@@ -213,7 +213,7 @@ impl Solution {
             return s;
         }
         // The factor last: a separable solution's derivatives in space are then the
-        // shape's times rho, bit for bit (see `super::separable`).
+        // shape's times rho, bit for bit (`super::scaled_strains`).
         let rho = self.rho(t);
         [s[0] * rho, s[1] * rho]
     }
@@ -237,6 +237,8 @@ impl Solution {
         [ux, -u_nu * eta(y)]
     }
 
+    // ANCHOR_END: u
+
     /// Whether $u = \rho(t)\,U(x, y)$ with fixed quadrature cuts, so that the strains
     /// at a point are its shape's times $\rho(t)$ and $\dot\rho(t)$.
     pub fn separable(self) -> bool {
@@ -244,12 +246,11 @@ impl Solution {
     }
 
     /// $(\rho(t), \dot\rho(t))$, exact: the time part of the hyper-dual evaluation
-    /// in [`super::strains`], so the same bits.
+    /// in [`super::strains_evaluated`], so the same bits.
     pub fn load_factor(self, t: f64) -> (f64, f64) {
         let r = self.rho(num_dual::HyperDual64::new(t, 0.0, 1.0, 0.0));
         (r.re, r.eps2)
     }
-    // ANCHOR_END: u
 
     /// The unilateral reaction $\lambda = -\sigma^2_\nu \ge 0$ on $\Gamma_3$: positive
     /// only where $u_\nu = g$.
