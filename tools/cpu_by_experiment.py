@@ -1,0 +1,101 @@
+"""The CPU time of each experiment of `reproduce`, run alone.
+
+`reproduce --record-times` keeps the wall time of each experiment while the others
+run beside it (data/reproduce_times.csv); that cannot say where the CPU goes, since
+the experiments share the cores. This script runs `evhi reproduce -q NAME` for each
+experiment of the full set in a fresh process, one after the other, and keeps the
+process's own accounting (wait4: user and system seconds of all its threads, peak
+resident memory) with the wall time:
+
+    python3 tools/cpu_by_experiment.py [--bin target/release/evhi] [--out data/reproduce_cpu.csv]
+
+Run it from the repository root on a quiet machine after `cargo build --release`;
+each run rewrites its experiment's files under data/ and figures/ with what is
+committed (the main job's promise), so `git status` stays clean. The experiments'
+order is that of data/reproduce_times.csv. The last row sums the others.
+"""
+
+import argparse
+import os
+import subprocess
+import sys
+import time
+
+
+def machine():
+    cpu = "unknown CPU"
+    for line in open("/proc/cpuinfo"):
+        if line.startswith("model name"):
+            cpu = line.split(":", 1)[1].strip()
+            break
+    mem = int(open("/proc/meminfo").readline().split()[1]) / 1048576.0
+    return f"{cpu}, {os.cpu_count()} cores, {mem:.0f} GiB"
+
+
+def experiments(times_csv):
+    names = []
+    for line in open(times_csv):
+        parts = line.strip().split(",")
+        if len(parts) == 3 and parts[0] == "all" and not parts[1].startswith("("):
+            names.append(parts[1])
+    if not names:
+        sys.exit(f"{times_csv}: no row of the set `all`")
+    return names
+
+
+def run(binary, name):
+    start = time.monotonic()
+    proc = subprocess.Popen(
+        [binary, "reproduce", "-q", name],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
+    _, status, usage = os.wait4(proc.pid, 0)
+    wall = time.monotonic() - start
+    err = proc.stderr.read().decode("utf-8", "replace")
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    if proc.returncode != 0:
+        sys.exit(f"`{binary} reproduce -q {name}` failed ({proc.returncode}):\n{err}")
+    # ru_maxrss is in KiB on Linux.
+    return wall, usage.ru_utime, usage.ru_stime, usage.ru_maxrss / 1024.0
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--bin", default="target/release/evhi")
+    ap.add_argument("--times", default="data/reproduce_times.csv")
+    ap.add_argument("--out", default="data/reproduce_cpu.csv")
+    args = ap.parse_args()
+    if not os.access(args.bin, os.X_OK):
+        sys.exit(f"--bin {args.bin}: not an executable (run `cargo build --release` first)")
+    commit = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+    ).stdout.strip() or "unknown"
+    rows = []
+    for name in experiments(args.times):
+        wall, user, sys_s, rss = run(args.bin, name)
+        print(f"{name}: {wall:.1f} s wall, {user + sys_s:.1f} s CPU", file=sys.stderr)
+        rows.append((name, wall, user, sys_s, user + sys_s, rss))
+    total = ["(sum)"] + [sum(r[i] for r in rows) for i in range(1, 5)] + [max(r[5] for r in rows)]
+    lines = [
+        "# produced by `python3 tools/cpu_by_experiment.py` at commit " + commit,
+        "# each experiment of `evhi reproduce` alone, `evhi reproduce -q NAME` in a fresh "
+        "process, one after the other, once; wall, user and system seconds and peak "
+        "resident memory (MiB) of the whole process as wait4 reports them (every thread "
+        "counted); the last row sums the others (its peak is the largest); machine: "
+        + machine(),
+        "experiment,wall_s,user_s,sys_s,cpu_s,peak_rss_mib",
+    ]
+    for r in rows + [tuple(total)]:
+        lines.append(f"{r[0]},{r[1]:.2f},{r[2]:.2f},{r[3]:.2f},{r[4]:.2f},{r[5]:.0f}")
+    tmp = args.out + f".tmp-{os.getpid()}"
+    with open(tmp, "w") as f:
+        f.write("\n".join(lines) + "\n")
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, args.out)
+    print(f"wrote {args.out}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
