@@ -11,14 +11,16 @@ resident memory) with the wall time:
 
 Run it from the repository root on a quiet machine after `cargo build --release`;
 each run rewrites its experiment's files under data/ and figures/ with what is
-committed (the main job's promise), so `git status` stays clean. The experiments'
-order is that of data/reproduce_times.csv. The last row sums the others.
+committed (the main job's promise), so `git status` stays clean. The experiments, and
+their order, are those of the set `all` in data/reproduce_times.csv (rewrite it with
+`reproduce --record-times` when the set changes). The last row sums the others.
 """
 
 import argparse
 import os
 import subprocess
 import sys
+import tempfile
 import time
 
 
@@ -29,7 +31,8 @@ def machine():
             cpu = line.split(":", 1)[1].strip()
             break
     mem = int(open("/proc/meminfo").readline().split()[1]) / 1048576.0
-    return f"{cpu}, {os.cpu_count()} cores, {mem:.0f} GiB"
+    # The CPUs this process may use, as evhi's own provenance counts them.
+    return f"{cpu}, {len(os.sched_getaffinity(0))} cores, {mem:.0f} GiB"
 
 
 def experiments(times_csv):
@@ -44,18 +47,20 @@ def experiments(times_csv):
 
 
 def run(binary, name):
-    start = time.monotonic()
-    proc = subprocess.Popen(
-        [binary, "reproduce", "-q", name],
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.PIPE,
-    )
-    _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.monotonic() - start
-    err = proc.stderr.read().decode("utf-8", "replace")
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    if proc.returncode != 0:
-        sys.exit(f"`{binary} reproduce -q {name}` failed ({proc.returncode}):\n{err}")
+    # stderr goes to a file, not a pipe: a pipe read only after the wait would block a
+    # child that writes more than the pipe holds.
+    with tempfile.TemporaryFile() as err:
+        start = time.monotonic()
+        proc = subprocess.Popen(
+            [binary, "reproduce", "-q", name], stdout=subprocess.DEVNULL, stderr=err
+        )
+        _, status, usage = os.wait4(proc.pid, 0)
+        wall = time.monotonic() - start
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        if proc.returncode != 0:
+            err.seek(0)
+            text = err.read().decode("utf-8", "replace")
+            sys.exit(f"`{binary} reproduce -q {name}` failed ({proc.returncode}):\n{text}")
     # ru_maxrss is in KiB on Linux.
     return wall, usage.ru_utime, usage.ru_stime, usage.ru_maxrss / 1024.0
 
@@ -68,8 +73,9 @@ def main():
     args = ap.parse_args()
     if not os.access(args.bin, os.X_OK):
         sys.exit(f"--bin {args.bin}: not an executable (run `cargo build --release` first)")
+    # The tree the binary is assumed to be built from (`-dirty`: with uncommitted changes).
     commit = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+        ["git", "describe", "--always", "--dirty"], capture_output=True, text=True
     ).stdout.strip() or "unknown"
     rows = []
     for name in experiments(args.times):
@@ -78,7 +84,11 @@ def main():
         rows.append((name, wall, user, sys_s, user + sys_s, rss))
     total = ["(sum)"] + [sum(r[i] for r in rows) for i in range(1, 5)] + [max(r[5] for r in rows)]
     lines = [
-        "# produced by `python3 tools/cpu_by_experiment.py` at commit " + commit,
+        "# produced by `python3 tools/cpu_by_experiment.py` at commit "
+        + commit
+        + " (evhi: --bin "
+        + args.bin
+        + ", assumed built from that tree)",
         "# each experiment of `evhi reproduce` alone, `evhi reproduce -q NAME` in a fresh "
         "process, one after the other, once; wall, user and system seconds and peak "
         "resident memory (MiB) of the whole process as wait4 reports them (every thread "
@@ -89,11 +99,15 @@ def main():
     for r in rows + [tuple(total)]:
         lines.append(f"{r[0]},{r[1]:.2f},{r[2]:.2f},{r[3]:.2f},{r[4]:.2f},{r[5]:.0f}")
     tmp = args.out + f".tmp-{os.getpid()}"
-    with open(tmp, "w") as f:
-        f.write("\n".join(lines) + "\n")
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, args.out)
+    try:
+        with open(tmp, "w") as f:
+            f.write("\n".join(lines) + "\n")
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, args.out)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
     print(f"wrote {args.out}", file=sys.stderr)
 
 
