@@ -2,7 +2,8 @@
 
 `reproduce --record-times` keeps the wall time of each experiment while the others
 run beside it (data/reproduce_times.csv); that cannot say where the CPU goes, since
-the experiments share the cores. This script runs `evhi reproduce -q NAME` for each
+the experiments share the cores. This script runs `evhi reproduce --quiet NAME` (the
+full experiment, without progress bars) for each
 experiment of the full set in a fresh process, one after the other, and keeps the
 process's own accounting (wait4: user and system seconds of all its threads, peak
 resident memory) with the wall time:
@@ -31,7 +32,7 @@ def machine():
             cpu = line.split(":", 1)[1].strip()
             break
     mem = int(open("/proc/meminfo").readline().split()[1]) / 1048576.0
-    # The CPUs this process may use, as evhi's own provenance counts them.
+    # The logical CPUs this process may use (evhi's own count also heeds cgroup quotas).
     return f"{cpu}, {len(os.sched_getaffinity(0))} cores, {mem:.0f} GiB"
 
 
@@ -52,7 +53,7 @@ def run(binary, name):
     with tempfile.TemporaryFile() as err:
         start = time.monotonic()
         proc = subprocess.Popen(
-            [binary, "reproduce", "-q", name], stdout=subprocess.DEVNULL, stderr=err
+            [binary, "reproduce", "--quiet", name], stdout=subprocess.DEVNULL, stderr=err
         )
         _, status, usage = os.wait4(proc.pid, 0)
         wall = time.monotonic() - start
@@ -60,7 +61,7 @@ def run(binary, name):
         if proc.returncode != 0:
             err.seek(0)
             text = err.read().decode("utf-8", "replace")
-            sys.exit(f"`{binary} reproduce -q {name}` failed ({proc.returncode}):\n{text}")
+            sys.exit(f"`{binary} reproduce --quiet {name}` failed ({proc.returncode}):\n{text}")
     # ru_maxrss is in KiB on Linux.
     return wall, usage.ru_utime, usage.ru_stime, usage.ru_maxrss / 1024.0
 
@@ -73,10 +74,12 @@ def main():
     args = ap.parse_args()
     if not os.access(args.bin, os.X_OK):
         sys.exit(f"--bin {args.bin}: not an executable (run `cargo build --release` first)")
-    # The tree the binary is assumed to be built from (`-dirty`: with uncommitted changes).
-    commit = subprocess.run(
-        ["git", "describe", "--always", "--dirty"], capture_output=True, text=True
-    ).stdout.strip() or "unknown"
+    # The tree the binary is assumed to be built from ("-dirty": with uncommitted changes).
+    git = lambda *a: subprocess.run(["git", *a], capture_output=True, text=True)
+    commit = git("rev-parse", "--short", "HEAD").stdout.strip() or "unknown"
+    if git("status", "--porcelain", "--untracked-files=no").stdout.strip():
+        commit += "-dirty"
+    day = time.strftime("%Y-%m-%d", time.gmtime())
     rows = []
     for name in experiments(args.times):
         wall, user, sys_s, rss = run(args.bin, name)
@@ -84,12 +87,14 @@ def main():
         rows.append((name, wall, user, sys_s, user + sys_s, rss))
     total = ["(sum)"] + [sum(r[i] for r in rows) for i in range(1, 5)] + [max(r[5] for r in rows)]
     lines = [
-        "# produced by `python3 tools/cpu_by_experiment.py` at commit "
+        "# produced by `python3 tools/cpu_by_experiment.py` on "
+        + day
+        + " at commit "
         + commit
         + " (evhi: --bin "
         + args.bin
         + ", assumed built from that tree)",
-        "# each experiment of `evhi reproduce` alone, `evhi reproduce -q NAME` in a fresh "
+        "# each experiment of `evhi reproduce` alone, `evhi reproduce --quiet NAME` in a fresh "
         "process, one after the other, once; wall, user and system seconds and peak "
         "resident memory (MiB) of the whole process as wait4 reports them (every thread "
         "counted); the last row sums the others (its peak is the largest); machine: "
