@@ -566,14 +566,9 @@ fn measure_error(
     nodal_h: &[[f64; 2]],
 ) -> (f64, f64) {
     let (mut err_e_sq, mut err_v_sq) = (0.0, 0.0);
-    let mut last = usize::MAX;
-    let mut eh = [0.0; 3];
+    let eh = p1_strains(mesh, bms, nodal_h);
     for pt in points {
-        if pt.tri != last {
-            last = pt.tri;
-            eh = p1_strain(&bms[pt.tri], mesh.triangles[pt.tri].map(|v| nodal_h[v]));
-        }
-        let e = sub(pt.now.eps, eh);
+        let e = sub(pt.now.eps, eh[pt.tri]);
         err_e_sq += pt.w * energy_density(&data.elast, e);
         err_v_sq += pt.w * contract(e);
     }
