@@ -246,14 +246,7 @@ fn beyond_reproduce_paper_set() {
 fn beyond_reproduce_all() {
     let data = rows("reproduce_times.csv");
     let all: Vec<&Row> = data.iter().filter(|r| r["set"] == "all").collect();
-    let time = |e: &str| {
-        num(
-            all.iter()
-                .find(|r| r["experiment"] == e)
-                .unwrap_or_else(|| panic!("no {e}")),
-            "wall_s",
-        )
-    };
+    let time = |e: &str| of_experiment(all.iter().copied(), e, "wall_s");
     let total = time("(total)");
     assert_eq!(fix(total, 1), "88.2");
     assert_eq!(fix(time("forensics"), 1), "62.5");
@@ -1149,13 +1142,15 @@ fn cpu_rows() -> Vec<Row> {
 }
 
 fn cpu_total() -> f64 {
-    num(
-        &cpu_rows()
-            .into_iter()
-            .find(|r| r["experiment"] == "(sum)")
-            .expect("sum row"),
-        "cpu_s",
-    )
+    of_experiment(&cpu_rows(), "(sum)", "cpu_s")
+}
+
+/// Column `col` of the row of `experiment` among `rows`.
+fn of_experiment<'a>(rows: impl IntoIterator<Item = &'a Row>, experiment: &str, col: &str) -> f64 {
+    let row = (rows.into_iter())
+        .find(|r| r["experiment"] == experiment)
+        .unwrap_or_else(|| panic!("no row of {experiment}"));
+    num(row, col)
 }
 
 #[test]
@@ -1183,14 +1178,7 @@ fn beyond_cpu_by_experiment() {
         .collect();
     assert_eq!(names, set);
     assert_eq!(each.len(), set.len());
-    let cpu = |name: &str| {
-        num(
-            each.iter()
-                .find(|r| r["experiment"] == name)
-                .unwrap_or_else(|| panic!("{name}")),
-            "cpu_s",
-        )
-    };
+    let cpu = |name: &str| of_experiment(&each, name, "cpu_s");
     let quoted = [
         ("forensics", "60.0"),
         ("paths", "42.7"),
