@@ -126,8 +126,24 @@ impl Forest {
 
     /// Refines `mesh` until no triangle is `marked`, keeping it conforming.
     pub fn refine(&mut self, mesh: &Leaves, marked: impl Fn(&Forest, usize) -> bool) -> Leaves {
+        self.refine_within(mesh, marked, usize::MAX)
+            .expect("no bound on the nodes")
+    }
+
+    /// [`Forest::refine`], but giving up (`None`) once the forest holds more than
+    /// `max_nodes` nodes: a marking that asks for more than memory or double
+    /// precision allows stops there instead of growing without end.
+    pub fn refine_within(
+        &mut self,
+        mesh: &Leaves,
+        marked: impl Fn(&Forest, usize) -> bool,
+        max_nodes: usize,
+    ) -> Option<Leaves> {
         let mut state = State::new(self, mesh);
         loop {
+            if self.nodes.len() > max_nodes {
+                return None;
+            }
             let todo: Vec<usize> = state
                 .alive
                 .iter()
@@ -139,12 +155,15 @@ impl Forest {
                 break;
             }
             for t in todo {
+                if self.nodes.len() > max_nodes {
+                    return None;
+                }
                 if state.alive.get(t).copied().unwrap_or(false) {
                     state.refine(self, t);
                 }
             }
         }
-        Leaves(
+        Some(Leaves(
             state
                 .alive
                 .iter()
@@ -152,7 +171,7 @@ impl Forest {
                 .filter(|&(_, &a)| a)
                 .map(|(t, _)| t)
                 .collect(),
-        )
+        ))
     }
 
     /// The mesh of `leaves` for the solver: its nodes renumbered in the order of
@@ -390,7 +409,14 @@ pub fn centroid(f: &Forest, t: usize) -> [f64; 2] {
 /// uniform mesh of level $n$. A scene without singular points gets the uniform mesh
 /// of level $n$ by bisection.
 pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError> {
-    crate::error::in_range("grading", mu, 0.05, 0.95)?;
+    if !(0.05..=0.95).contains(&mu) {
+        return Err(InputError::field(
+            "grading",
+            mu,
+            "a number in [0.05, 0.95] (the exponent mu of the grading: near 1 almost \
+             uniform, smaller grades more strongly towards the singular points)",
+        ));
+    }
     check_n(n)?;
     let uniform = Mesh::build(n, geo, Pattern::Diagonal)?;
     let mut n0 = 4;
@@ -408,19 +434,61 @@ pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError
         .iter()
         .map(|p| [p[0] / unit, p[1] / unit])
         .collect();
+    // The bound's smallest value, d^(1/mu), is the size the triangles at a singular
+    // point approach: it must stay where coordinates can still tell their vertices apart.
+    let smallest = d.powf(1.0 / mu);
+    if !points.is_empty() && smallest < MIN_GRADED_SIZE {
+        // d^(1/mu) >= s  <=>  mu >= ln d / ln s (both logarithms negative).
+        let least = (d.ln() / MIN_GRADED_SIZE.ln() * 1000.0).ceil() / 1000.0;
+        return Err(InputError::field(
+            "grading",
+            mu,
+            format!(
+                "at least {least} at n = {n}: grading {mu} asks for triangles of about \
+                 {smallest:.1e} of min(W, H) at the singular points, below the \
+                 {MIN_GRADED_SIZE:e} that double-precision coordinates resolve; take a \
+                 larger grading or a smaller n"
+            ),
+        ));
+    }
+    // The nodes a run could hold in memory (the memory guard's rule, two dofs a
+    // node), and never more than the largest uniform mesh's.
+    let largest = 4097 * 2049;
+    let max_nodes = crate::memory::max_dofs().map_or(largest, |d| (d / 2).min(largest));
     // A hair of slack so that a triangle exactly at the bound is not cut.
     let slack = 1.0 + 1e-12;
-    let leaves = forest.refine(&root, |f, t| {
-        let c = centroid(f, t);
-        let bound = if points.is_empty() {
-            d
-        } else {
-            graded_size(d, [c[0] / unit, c[1] / unit], &points, mu)
-        };
-        f.diameter(t) / unit > slack * bound
-    });
-    Ok(forest.mesh(&leaves, n))
+    let leaves = forest.refine_within(
+        &root,
+        |f, t| {
+            let c = centroid(f, t);
+            let bound = if points.is_empty() {
+                d
+            } else {
+                graded_size(d, [c[0] / unit, c[1] / unit], &points, mu)
+            };
+            f.diameter(t) / unit > slack * bound
+        },
+        max_nodes,
+    );
+    match leaves {
+        Some(leaves) => Ok(forest.mesh(&leaves, n)),
+        None => Err(InputError::field(
+            "grading",
+            mu,
+            format!(
+                "a graded mesh that fits in memory: at n = {n} the refinement passed \
+                 {max_nodes} nodes, more than a run can hold here; take a larger grading \
+                 or a smaller n"
+            ),
+        )),
+    }
 }
+
+/// The smallest triangle a grading may ask for, in units of $\min(W, H)$: coordinates
+/// in double precision are exact to about $10^{-16}$ of the body, so below this a
+/// triangle's shape keeps fewer than four digits (and bisection near $10^{-16}$ stops
+/// making smaller triangles at all).
+pub const MIN_GRADED_SIZE: f64 = 1e-12;
 
 /// The diagonal of a cell of the structured mesh of level `n` on `geo`: $2\sqrt2/n$ on
 /// the paper's scene.

@@ -25,6 +25,31 @@ pub fn memory_for_dofs(dofs: usize) -> f64 {
     30e6 + 20.0 * 6.0 * dofs * dofs.log2()
 }
 
+/// The most unknowns a run can have within the memory available now (the rule of
+/// [`memory_for_dofs`], with the guard's margin of [`check_memory_dofs`]); `None`
+/// where the available memory is unknown.
+pub fn max_dofs() -> Option<usize> {
+    let have = 0.9 * available_memory()?;
+    if memory_for_dofs(2) > have {
+        return Some(0);
+    }
+    // memory_for_dofs grows with dofs: bisect for the last count that fits.
+    let (mut lo, mut hi) = (2usize, 2usize);
+    while memory_for_dofs(hi) <= have && hi < usize::MAX / 4 {
+        lo = hi;
+        hi *= 2;
+    }
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if memory_for_dofs(mid) <= have {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(lo)
+}
+
 /// Refuses a mesh of `dofs` unknowns (a graded one) whose run would not fit.
 pub fn check_memory_dofs(dofs: usize) -> Result<(), InputError> {
     let need = memory_for_dofs(dofs);

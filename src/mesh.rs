@@ -227,9 +227,23 @@ impl Mesh {
         boundary.extend((0..ny).map(|j| ([id(nx, j), id(nx, j + 1)], Side::Right)));
         boundary.extend((0..nx).map(|i| ([id(i, 0), id(i + 1, 0)], Side::Bottom)));
         boundary.extend((0..nx).map(|i| ([id(i, ny), id(i + 1, ny)], Side::Top)));
-        Ok(Mesh::finish(
-            n, ny, geo, pattern, nodes, triangles, fixed, boundary,
-        ))
+        let mesh = Mesh::finish(n, ny, geo, pattern, nodes, triangles, fixed, boundary);
+        if mesh.contact.is_empty() {
+            let xs: Vec<String> = (mesh.gamma3.iter())
+                .map(|&v| format!("{}", mesh.nodes[v][0]))
+                .collect();
+            return Err(InputError::field(
+                "geometry.contact",
+                format!("[{}, {}]", geo.contact[0], geo.contact[1]),
+                format!(
+                    "a Gamma_3 with a node whose normal component is free: at n = {n} its \
+                     nodes (x = {}) are all held by supports, so there is no contact to \
+                     solve; take a larger n, or let the supports leave part of Gamma_3 free",
+                    xs.join(", ")
+                ),
+            ));
+        }
+        Ok(mesh)
     }
 
     /// A mesh from its parts, $\Gamma_3$ and the contact nodes found from the

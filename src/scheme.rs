@@ -522,7 +522,7 @@ fn check_batch(
 }
 
 /// Refuses a step count out of range, and more than one step of a steady problem.
-pub(crate) fn check_steps(scn: Option<&Scenario>, opt: &Settings) -> Result<(), RunError> {
+pub fn check_steps(scn: Option<&Scenario>, opt: &Settings) -> Result<(), RunError> {
     if opt.steps == 0 || opt.steps > 1_000_000 {
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
     }

@@ -168,3 +168,20 @@ fn the_scheme_runs_on_bisected_meshes() {
     );
     assert!((a - b).abs() < 0.05 * b, "{a} against {b}");
 }
+
+/// A marking that never ends (every triangle, forever) stops at the node bound
+/// instead of growing until memory runs out, and a bound it stays under changes nothing.
+#[test]
+fn refinement_stops_at_its_node_bound() {
+    let geo = Geometry::paper();
+    let (mut forest, root) = Forest::new(4, &geo).unwrap();
+    assert!(forest.refine_within(&root, |_, _| true, 5000).is_none());
+    assert!(forest.nodes.len() <= 5000 + 1000, "{}", forest.nodes.len());
+    let (mut a, root_a) = Forest::new(4, &geo).unwrap();
+    let (mut b, root_b) = Forest::new(4, &geo).unwrap();
+    let fine = a.refine(&root_a, |f, t| f.diameter(t) > 0.2);
+    let bounded = b
+        .refine_within(&root_b, |f, t| f.diameter(t) > 0.2, 1_000_000)
+        .unwrap();
+    assert_eq!(a.mesh(&fine, 16).triangles, b.mesh(&bounded, 16).triangles);
+}

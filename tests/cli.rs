@@ -1659,3 +1659,180 @@ fn reproduce_writes_the_same_files_whatever_the_jobs() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("`jobs`"));
 }
+
+/// A grading whose smallest triangles double precision cannot resolve is refused by
+/// name, with the least grading the level allows, before any mesh is built (it used to
+/// refine until memory ran out); a grading at that bound runs.
+#[test]
+fn a_grading_finer_than_double_precision_is_refused_by_name() {
+    let dir = scratch("grading");
+    let run = |mu: &str| {
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--mesh",
+                "graded",
+                "--grading",
+                mu,
+            ])
+            .args(["--n", "32", "--steps", "2", "--out"])
+            .arg(dir.join(format!("g{mu}")))
+            .output()
+            .unwrap()
+    };
+    let o = run("0.05");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("`grading`") && err.contains("at least 0.088 at n = 32"),
+        "{err}"
+    );
+    assert!(!dir.join("g0.05").exists());
+    let o = run("0.088");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A Gamma_3 whose nodes the supports all hold (at this n) is refused by name, with the
+/// nodes and what to change; it used to panic while setting up the output. One level
+/// finer, a free node appears and the run goes.
+#[test]
+fn a_gamma3_without_a_free_node_is_refused_by_name() {
+    let dir = scratch("gamma3-held");
+    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    let file = dir.join("held.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "{text}\n[geometry]\ncontact = [1.0, 1.25]\n[geometry.supports]\nbottom = [\
+             {{from = 0.0, to = 1.0, kind = \"clamped\"}}, \
+             {{from = 1.25, to = 2.0, kind = \"clamped\"}}]\n"
+        ),
+    )
+    .unwrap();
+    let run = |n: &str| {
+        evhi()
+            .args(["solve", "--scenario"])
+            .arg(&file)
+            .args(["--n", n, "--steps", "2", "--out"])
+            .arg(dir.join(format!("run{n}")))
+            .output()
+            .unwrap()
+    };
+    let o = run("8");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("`geometry.contact`") && err.contains("(x = 1, 1.25) are all held"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    let o = run("16");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A step count out of range is refused before anything is sized by it (a table of
+/// 4e12 flags used to be allocated first: the process was killed, without a word).
+#[test]
+fn a_huge_step_count_is_refused_before_any_allocation() {
+    let dir = scratch("huge-steps");
+    let o = evhi()
+        .args([
+            "solve",
+            "--scenario",
+            "figure",
+            "--n",
+            "4",
+            "--steps",
+            "4000000000000",
+        ])
+        .arg("--out")
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("`steps`") && err.contains("an integer in 1..=1000000"),
+        "{err}"
+    );
+}
+
+/// `plot` refuses a summary or a nodes table that does not describe the run (g NaN,
+/// n NaN or not matching the nodes, the nodes cut short) by name, and leaves no
+/// temporary figure behind; each used to panic in a drawing thread, or to draw the
+/// wrong mesh. A graded run's triangles must name nodes of its nodes table.
+#[test]
+fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
+    let dir = scratch("plot-summary");
+    let out = dir.join("run");
+    succeed(&mut small_solve(&out));
+    let edit = |file: &str, column: &str, value: &str| {
+        let text = std::fs::read_to_string(out.join(file)).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let cols: Vec<&str> = lines[2].split(',').collect();
+        let at = cols.iter().position(|c| *c == column).unwrap();
+        let mut row: Vec<&str> = lines[3].split(',').collect();
+        row[at] = value;
+        let mut all: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+        all[3] = row.join(",");
+        all.join("\n") + "\n"
+    };
+    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
+    let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
+    for (file, text, expect) in [
+        (
+            "summary.csv",
+            edit("summary.csv", "g", "NaN"),
+            "column `g` holds `NaN`",
+        ),
+        (
+            "summary.csv",
+            edit("summary.csv", "n", "NaN"),
+            "column `n` holds `NaN`",
+        ),
+        (
+            "summary.csv",
+            edit("summary.csv", "n", "16"),
+            "not a lattice of rows of 17",
+        ),
+        (
+            "nodes.csv",
+            nodes.lines().take(4).map(|l| format!("{l}\n")).collect(),
+            "1 node(s) are not a lattice",
+        ),
+    ] {
+        std::fs::write(out.join(file), &text).unwrap();
+        let o = evhi().arg("plot").arg(&out).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{expect}: drawn");
+        assert!(err.contains(expect) && !err.contains("panicked"), "{err}");
+        let leftovers: Vec<String> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|f| f.contains(".tmp-"))
+            .collect();
+        assert!(leftovers.is_empty(), "{leftovers:?}");
+        std::fs::write(out.join("summary.csv"), &summary).unwrap();
+        std::fs::write(out.join("nodes.csv"), &nodes).unwrap();
+    }
+    succeed(evhi().arg("plot").arg(&out));
+
+    let graded = dir.join("graded");
+    succeed(small_solve(&graded).args(["--mesh", "graded"]));
+    let tri = std::fs::read_to_string(graded.join("triangles.csv")).unwrap();
+    let lines: Vec<&str> = tri.lines().collect();
+    let data = lines.iter().position(|l| !l.starts_with('#')).unwrap() + 1;
+    for bad in ["NaN", "-5", "1.5"] {
+        let mut row: Vec<&str> = lines[data].split(',').collect();
+        row[0] = bad;
+        let mut all: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+        all[data] = row.join(",");
+        std::fs::write(graded.join("triangles.csv"), all.join("\n") + "\n").unwrap();
+        let o = evhi().arg("plot").arg(&graded).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{bad}: drawn");
+        assert!(err.contains("not three node numbers"), "{err}");
+    }
+}

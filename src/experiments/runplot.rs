@@ -96,7 +96,26 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
                 message: format!("no value in column {c}"),
             })
     };
-    let (n, steps, g) = (first("n")? as usize, first("steps")? as usize, first("g")?);
+    let bad = |c: &str, v: f64, allowed: &str| ExpError::Table {
+        path: dir.join("summary.csv").display().to_string(),
+        message: format!(
+            "column `{c}` holds `{v}`, not {allowed} (the table was not written by this run)"
+        ),
+    };
+    let count = |c: &str, max: f64| -> Result<usize, ExpError> {
+        let v = first(c)?;
+        if v >= 1.0 && v <= max && v.fract() == 0.0 {
+            Ok(v as usize)
+        } else {
+            Err(bad(c, v, &format!("an integer in [1, {max}]")))
+        }
+    };
+    let (n, steps) = (count("n", 4096.0)?, count("steps", 1e6)?);
+    // g is positive, `inf` for a scene without a limit.
+    let g = first("g")?;
+    if g.is_nan() || g <= 0.0 {
+        return Err(bad("g", g, "a positive number (inf for no limit)"));
+    }
     let scenario = col_str(&summary, "scenario")?
         .first()
         .cloned()
@@ -126,10 +145,14 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
     std::thread::scope(|s| {
         let deformed = s.spawn(deformed);
         let evolution = draw_evolution(dir, &scenario, (n, steps, g));
-        deformed
-            .join()
-            .expect("the deformed figure's thread")
-            .and(evolution)
+        let deformed = deformed.join().unwrap_or_else(|_| {
+            Err(ExpError::Plot {
+                path: dir.join("deformed.png").display().to_string(),
+                message: "the drawing failed (panicked); the tables are not as a run writes them"
+                    .into(),
+            })
+        });
+        deformed.and(evolution)
     })
 }
 

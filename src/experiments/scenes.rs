@@ -102,16 +102,24 @@ pub fn draw_run(
         let nodes = panel.x.len();
         let mut list = Vec::with_capacity(a.len());
         for i in 0..a.len() {
-            let v = [a[i], b[i], c[i]].map(|x| x as usize);
-            if v.iter().any(|&k| k >= nodes) {
+            let raw = [a[i], b[i], c[i]];
+            if !raw
+                .iter()
+                .all(|&k| k >= 0.0 && k.fract() == 0.0 && k < nodes as f64)
+            {
                 return Err(ExpError::Table {
                     path: tri.display().to_string(),
-                    message: format!("row {i} names a node beyond the {nodes} of nodes.csv"),
+                    message: format!(
+                        "row {i} holds {raw:?}, not three node numbers in 0..{nodes} (the \
+                         nodes of nodes.csv)"
+                    ),
                 });
             }
-            list.push(v);
+            list.push(raw.map(|x| x as usize));
         }
         panel.triangles = Some(list);
+    } else {
+        panel.check_lattice(&dir.join("nodes.csv"))?;
     }
     let panels = vec![panel];
     both(
@@ -286,6 +294,35 @@ impl Panel {
 }
 
 impl Panel {
+    /// Refuses nodes that are not the lattice of `cells + 1` columns the figure draws
+    /// (at least two rows, each column at one x, each row at one y): a nodes table cut
+    /// short, or a summary whose n does not match it, would be misdrawn or index past
+    /// the end.
+    fn check_lattice(&self, path: &std::path::Path) -> Result<(), ExpError> {
+        let (cols, nodes) = (self.cells + 1, self.x.len());
+        let rows = nodes / cols;
+        let lattice = nodes.is_multiple_of(cols)
+            && rows >= 2
+            && (0..nodes).all(|v| {
+                let (i, j) = (v % cols, v / cols);
+                self.x[v] == self.x[i] && self.y[v] == self.y[j * cols]
+            })
+            && (1..cols).all(|i| self.x[i] > self.x[i - 1])
+            && (1..rows).all(|j| self.y[j * cols] > self.y[(j - 1) * cols]);
+        if lattice {
+            Ok(())
+        } else {
+            Err(ExpError::Table {
+                path: path.display().to_string(),
+                message: format!(
+                    "its {nodes} node(s) are not a lattice of rows of {cols} (the n of \
+                     summary.csv, drawn every n/32 cells); the table was not written by \
+                     this run"
+                ),
+            })
+        }
+    }
+
     /// The rectangle's width and height: the lattice's extent.
     fn width(&self) -> f64 {
         self.x.iter().copied().fold(0.0, f64::max)
