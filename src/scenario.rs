@@ -393,6 +393,11 @@ pub const MAX_LAW_VALUE: f64 = 1e6;
 /// Scenario files are a few hundred bytes; anything this large is a mistake.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
 
+/// The smallest largest load component a scenario may have, unless all are zero:
+/// squares of displacements of that order stay some 200 orders of magnitude above
+/// the smallest normal double ([`Scenario::check_load_scale`]).
+pub const MIN_LOAD_SCALE: f64 = 1e-100;
+
 /// `text` cut to at most `max` characters, marking the cut.
 fn truncate(text: &str, max: usize) -> String {
     match text.char_indices().nth(max) {
@@ -734,7 +739,7 @@ impl Scenario {
         };
         let law = law_from(&raw.law)?;
         let tractions = tractions_from(&raw.loads, f2, &geometry)?;
-        Ok(Scenario {
+        let scn = Scenario {
             name: raw.name,
             description: raw.description,
             t_end,
@@ -752,7 +757,34 @@ impl Scenario {
             law,
             geometry,
             pattern,
-        })
+        };
+        scn.check_load_scale()?;
+        Ok(scn)
+    }
+
+    /// Refuses loads that are not all zero but whose largest component is below
+    /// [`MIN_LOAD_SCALE`]: the displacements they cause have squares that underflow
+    /// double precision, so no step could be certified (they used to fail at the
+    /// first step with a certificate of order one).
+    fn check_load_scale(&self) -> Result<(), InputError> {
+        let largest = [self.f0, self.f2]
+            .into_iter()
+            .chain(self.tractions.iter().map(|t| t.f))
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        if largest > 0.0 && largest < MIN_LOAD_SCALE {
+            return Err(InputError::field(
+                "loads",
+                format!("loads whose largest component is {largest:e}"),
+                format!(
+                    "loads that are all zero or whose largest component is at least \
+                     {MIN_LOAD_SCALE:e}: smaller ones cause displacements whose squares \
+                     underflow double precision, so no step can be certified; scale the \
+                     loads up (and g and the law's breakpoints with them)"
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The same scenario as another problem: an elastic or steady one drops the
@@ -812,6 +844,7 @@ impl Scenario {
             )?;
             self.f2 = v;
         }
+        self.check_load_scale()?;
         Ok(self)
     }
 
@@ -952,13 +985,23 @@ impl Scenario {
     }
 
     /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like
-    /// coefficients in the same ratio), else `None`.
+    /// coefficients in the same ratio), else `None`. The ratio is taken on the second
+    /// coefficients, positive for both tensors, and the first ones compared by cross
+    /// multiplication: a first coefficient of zero (Poisson ratio 0) is then no
+    /// division by zero, and proportional only when the other tensor's is zero too.
     pub fn relaxation_time(&self) -> Option<f64> {
         let (g, c) = (self.elasticity(), self.viscosity());
         if !self.problem.viscous() {
             return Some(0.0);
         }
-        let (ta, tb) = (c.a / g.a, c.b / g.b);
-        ((ta - tb).abs() <= 1e-12 * ta.abs().max(tb.abs()) && ta > 0.0).then_some(ta)
+        let tb = c.b / g.b;
+        let gap = (c.a - tb * g.a).abs();
+        if !(tb > 0.0 && tb.is_finite() && gap <= 1e-12 * c.a.abs().max(c.b.abs())) {
+            return None;
+        }
+        // The first coefficients' ratio where it exists: the value every run so far
+        // has used, to the bit.
+        let ta = c.a / g.a;
+        Some(if ta > 0.0 && ta.is_finite() { ta } else { tb })
     }
 }

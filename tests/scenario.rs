@@ -224,3 +224,50 @@ fn the_elasticity_by_young_or_lame_in_plane_strain_or_stress() {
         assert_eq!(err.field_name(), Some(field), "{err}");
     }
 }
+
+/// A Poisson ratio of 0 zeroes the first coefficient of G: the damping is then
+/// proportional only if C's first coefficient is zero too (it used to divide by zero,
+/// call a non-proportional scene proportional with tau = inf, and send `solve` by
+/// default to a loop that refused it), and the paper's ratio is kept.
+#[test]
+fn a_zero_poisson_ratio_is_classified_by_both_coefficients() {
+    let zero = with("kappa = 0.4", "kappa = 0.0");
+    let scn = Scenario::from_toml(&zero, "test").unwrap();
+    assert_eq!(scn.relaxation_time(), None);
+    let both = zero.replacen("alpha = 100.0", "alpha = 0.0", 1);
+    let scn = Scenario::from_toml(&both, "test").unwrap();
+    let tau = scn.relaxation_time().expect("C = tau G");
+    assert_eq!(tau, scn.viscosity().b / scn.elasticity().b);
+    assert!(tau.is_finite() && tau > 0.0);
+    let paper = Scenario::load("figure").unwrap();
+    let tau = paper.relaxation_time().unwrap();
+    assert!((tau - 0.07).abs() < 1e-12, "{tau}");
+}
+
+/// Loads that are not all zero but tiny throughout are refused by name, in a file and
+/// as overrides (they used to fail the first step with a certificate of order one);
+/// all-zero loads, loads at the bound, and one tiny component beside a normal one pass.
+#[test]
+fn loads_too_small_to_certify_are_refused_by_name() {
+    let tiny = with("f0 = [0.0, -5.0]", "f0 = [0.0, 0.0]").replacen(
+        "f2 = [0.0, -75.0]",
+        "f2 = [0.0, -1e-200]",
+        1,
+    );
+    let err = Scenario::from_toml(&tiny, "test").unwrap_err();
+    assert_eq!(err.field_name(), Some("loads"), "{err}");
+    assert!(err.to_string().contains("1e-200"), "{err}");
+    let fig = Scenario::load("figure").unwrap();
+    let err = fig
+        .clone()
+        .with_loads(Some([0.0, 0.0]), Some([1e-300, 0.0]))
+        .unwrap_err();
+    assert_eq!(err.field_name(), Some("loads"), "{err}");
+    for (f0, f2) in [
+        ([0.0, 0.0], [0.0, 0.0]),
+        ([0.0, 0.0], [0.0, -1e-100]),
+        ([1e-300, -5.0], [0.0, -75.0]),
+    ] {
+        fig.clone().with_loads(Some(f0), Some(f2)).unwrap();
+    }
+}
