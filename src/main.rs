@@ -81,10 +81,13 @@ fn main() -> ExitCode {
         }
         Command::Show(args) => cli::show::run(args),
         Command::Study(study) => cli::study::run(study),
-        Command::Plot { run_dir } => evhi::output::rundir::lock_run_dir(&run_dir)
-            .map_err(|e| e.to_string())
-            .and_then(|_lock| evhi::experiments::runplot::draw(&run_dir).map_err(|e| e.to_string()))
-            .map_err(|e| format!("{}: {e}", run_dir.display()).into()),
+        // `plot .` from inside a run directory: the lock goes beside it, by its name.
+        Command::Plot { run_dir } => evhi::output::rundir::lock_run_dir(
+            &run_dir.canonicalize().unwrap_or_else(|_| run_dir.clone()),
+        )
+        .map_err(|e| e.to_string())
+        .and_then(|_lock| evhi::experiments::runplot::draw(&run_dir).map_err(|e| e.to_string()))
+        .map_err(|e| format!("{}: {e}", run_dir.display()).into()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -15,14 +15,24 @@ pub fn memory_estimate(n: usize) -> f64 {
 /// (28.5 M at $n = 512$), and a run peaks at about 20 bytes per entry of the factor
 /// (529 MB at $n = 512$, `data/bench.csv`), plus 30 MB.
 pub fn memory_estimate_rows(n: usize, ny: usize) -> f64 {
-    memory_for_dofs(2 * (n + 1) * (ny + 1))
+    dofs_memory(grid_dofs(n, ny))
+}
+
+/// The unknowns of the grid of $n \times n_y$ cells, in floating point: the integer
+/// product wraps for an absurd $n$ (and a wrapped count once passed the guard).
+fn grid_dofs(n: usize, ny: usize) -> f64 {
+    2.0 * (n as f64 + 1.0) * (ny as f64 + 1.0)
+}
+
+/// The rule of [`memory_for_dofs`] on a count in floating point.
+fn dofs_memory(dofs: f64) -> f64 {
+    30e6 + 20.0 * 6.0 * dofs * dofs.log2()
 }
 
 /// Estimated peak memory of a run with `dofs` unknowns, bytes (the grid's rule of
 /// [`memory_estimate_rows`] applied to any mesh).
 pub fn memory_for_dofs(dofs: usize) -> f64 {
-    let dofs = dofs as f64;
-    30e6 + 20.0 * 6.0 * dofs * dofs.log2()
+    dofs_memory(dofs as f64)
 }
 
 /// The most unknowns a run can have within the memory available now (the rule of
@@ -120,10 +130,14 @@ pub fn check_memory(n: usize, ny: usize) -> Result<(), InputError> {
             "n",
             n,
             format!(
-                "a mesh that fits in memory: n = {n} needs about {:.1} GB (factor of about {:.2e} \
+                "a mesh that fits in memory: n = {n} needs about {} GB (factor of about {:.2e} \
                  entries), but {:.1} GB are available",
-                need / 1e9,
-                6.0 * (2 * (n + 1) * (ny + 1)) as f64 * ((2 * (n + 1) * (ny + 1)) as f64).log2(),
+                if need < 1e15 {
+                    format!("{:.1}", need / 1e9)
+                } else {
+                    format!("{:.1e}", need / 1e9)
+                },
+                6.0 * grid_dofs(n, ny) * grid_dofs(n, ny).log2(),
                 have / 1e9
             ),
         )),

@@ -111,13 +111,21 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
     let (a, b, field) = if lame {
         let mu = positive("material.mu", need("mu", m.mu)?)?;
         let lambda = finite("material.lambda", need("lambda", m.lambda)?)?;
-        if lambda + mu <= 0.0 {
+        // The Poisson ratio the constants imply must exceed -1 (the (E, kappa) form
+        // the code keeps needs it): lambda > -2 mu/3 in plane strain, > -mu/2 in plane
+        // stress, each stricter than positive definiteness (lambda > -mu).
+        let (bound, name) = if stress {
+            (-0.5 * mu, "-mu/2 (plane stress)")
+        } else {
+            (-2.0 * mu / 3.0, "-2 mu/3 (plane strain)")
+        };
+        if lambda <= bound {
             return Err(InputError::field(
                 "material.lambda",
                 lambda,
                 format!(
-                    "a value > -mu = {} (the elasticity must be positive definite)",
-                    -mu
+                    "a value > {name} = {bound}: the Poisson ratio the constants imply must \
+                     exceed -1"
                 ),
             ));
         }
@@ -135,6 +143,16 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
         let nu = poisson("material.kappa", need("kappa", m.kappa)?)?;
         if !stress {
             return Ok((e, nu));
+        }
+        // The plane-strain reading of a plane-stress ratio nu is nu/(1 + nu), above
+        // -1 only for nu > -1/2.
+        if nu <= -0.5 {
+            return Err(InputError::field(
+                "material.kappa",
+                nu,
+                "a plane-stress Poisson ratio in (-1/2, 1/2): its plane-strain reading \
+                 nu/(1 + nu), which the code keeps, must exceed -1",
+            ));
         }
         (e * nu / (1.0 - nu * nu), e / (1.0 + nu), "material.kappa")
     };

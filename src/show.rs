@@ -166,10 +166,12 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         let _ = writeln!(s, "{line}");
     }
     let m = (-law.curvature_min()).max(0.0);
-    let _ = writeln!(
-        s,
-        "  H(j): constant m = max(0, -inf p') = {m} (relaxed monotonicity)"
-    );
+    if law.down_jumps().is_empty() {
+        let _ = writeln!(
+            s,
+            "  H(j): constant m = max(0, -inf p') = {m} (relaxed monotonicity)"
+        );
+    }
     for (at, jump) in law.down_jumps() {
         warn(
             &mut s,

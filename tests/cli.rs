@@ -1836,3 +1836,101 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
         assert!(err.contains("not three node numbers"), "{err}");
     }
 }
+
+/// An absurd n is refused by the memory guard (the integer count of unknowns used to
+/// wrap and let n = 5643117386039700 pass `show`), with the need in readable units.
+#[test]
+fn an_absurd_n_is_refused_by_the_memory_guard() {
+    for cmd in [
+        vec!["show", "figure", "--n", "5643117386039700"],
+        vec!["show", "figure", "--n", "4294967296"],
+    ] {
+        let o = evhi().args(&cmd).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{cmd:?} passed");
+        assert!(
+            err.contains("`n`") && err.contains("fits in memory") && err.contains("e"),
+            "{err}"
+        );
+    }
+}
+
+/// Smaller messages the audit found wrong: `plot .` inside a run directory draws (it
+/// was refused as `--out .`); a negative `--certificate-tol` reaches the range check
+/// (clap took it for a flag); `show` checks a steady scenario at its one step, as
+/// `solve` runs it, and refuses more; and a law that jumps down has no finite m, so
+/// the summary writes NaN (not 0) and `show` prints no value for it.
+#[test]
+fn the_audits_smaller_messages_say_what_holds() {
+    let dir = scratch("audit-messages");
+    let out = dir.join("run");
+    succeed(&mut small_solve(&out));
+    succeed(evhi().arg("plot").arg(".").current_dir(&out));
+    let o = small_solve(&dir.join("neg"))
+        .args(["--certificate-tol", "-1e-10"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("`certificate-tol`") && err.contains("[1e-15, 1e-4]"),
+        "{err}"
+    );
+
+    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    let steady: String = text
+        .lines()
+        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+        .map(|l| {
+            if l.starts_with("g = ") {
+                format!("{l}\nproblem = \"steady\"\n")
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    let file = dir.join("steady.toml");
+    std::fs::write(&file, steady).unwrap();
+    let o = evhi()
+        .arg("show")
+        .arg(&file)
+        .args(["--n", "8"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("steps = 1)"));
+    let o = evhi()
+        .arg("show")
+        .arg(&file)
+        .args(["--n", "8", "--steps", "4"])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`steps`"));
+
+    let cantilever = "data/scenarios/examples/cantilever.toml";
+    let o = evhi().args(["show", cantilever]).output().unwrap();
+    let shown = String::from_utf8_lossy(&o.stdout);
+    assert!(!shown.contains("H(j): constant m"), "{shown}");
+    let run = dir.join("cantilever");
+    succeed(
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                cantilever,
+                "--n",
+                "8",
+                "--steps",
+                "2",
+                "--out",
+            ])
+            .arg(&run),
+    );
+    let summary = std::fs::read_to_string(run.join("summary.csv")).unwrap();
+    let lines: Vec<&str> = summary.lines().filter(|l| !l.starts_with('#')).collect();
+    let at = lines[0]
+        .split(',')
+        .position(|c| c == "m_trace_norm_sq")
+        .unwrap();
+    assert_eq!(lines[1].split(',').nth(at), Some("NaN"));
+}

@@ -124,7 +124,7 @@ fn bad_out_paths_fail_before_the_solve_naming_the_path() {
     for (out, needle) in [
         (file.clone(), "is not a directory"),
         (PathBuf::from("/dev/full"), "is not a directory"),
-        (foreign.clone(), "holds files evhi did not write"),
+        (foreign.clone(), "not an evhi run directory"),
     ] {
         let t = Instant::now();
         // A mesh that takes over ten seconds to solve: the refusal must come before it.

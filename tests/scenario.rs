@@ -271,3 +271,44 @@ fn loads_too_small_to_certify_are_refused_by_name() {
         fig.clone().with_loads(Some(f0), Some(f2)).unwrap();
     }
 }
+
+/// The elasticity's documented ranges are the validator's, and each refusal names the
+/// constant the user gave and its bound in their terms: Lamé's lambda just above
+/// -2 mu/3 (plane strain) or -mu/2 (plane stress) passes and just below is refused as
+/// `material.lambda`; a plane-stress Poisson ratio passes above -1/2 and is refused
+/// below it as `material.kappa` (both used to be refused through the plane-strain
+/// Poisson ratio they imply, though the book allowed them).
+#[test]
+fn elasticity_ranges_are_the_documented_ones() {
+    let lame = |lambda: f64, plane: &str| {
+        with(
+            "E = 1000.0\nkappa = 0.4",
+            &format!("lambda = {lambda:e}\nmu = 300.0{plane}"),
+        )
+    };
+    for (lambda, plane, ok) in [
+        (-199.0, "", true),
+        (-201.0, "", false),
+        (-149.0, "\nplane = \"stress\"", true),
+        (-151.0, "\nplane = \"stress\"", false),
+    ] {
+        match Scenario::from_toml(&lame(lambda, plane), "test") {
+            Ok(_) => assert!(ok, "lambda = {lambda}{plane} accepted"),
+            Err(e) => {
+                assert!(!ok, "lambda = {lambda}{plane}: {e}");
+                assert_eq!(e.field_name(), Some("material.lambda"), "{e}");
+                assert!(e.to_string().contains("mu"), "{e}");
+            }
+        }
+    }
+    let stress = |kappa: &str| {
+        with(
+            "kappa = 0.4",
+            &format!("kappa = {kappa}\nplane = \"stress\""),
+        )
+    };
+    Scenario::from_toml(&stress("-0.49"), "test").unwrap();
+    let err = Scenario::from_toml(&stress("-0.6"), "test").unwrap_err();
+    assert_eq!(err.field_name(), Some("material.kappa"), "{err}");
+    assert!(err.to_string().contains("(-1/2, 1/2)"), "{err}");
+}

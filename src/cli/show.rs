@@ -9,9 +9,10 @@ pub struct ShowArgs {
     /// Contact segments n = 1/h of the run to check (a multiple of 4).
     #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub n: usize,
-    /// Time steps N of the run to check.
-    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
-    pub steps: usize,
+    /// Time steps N of the run to check (default 64, as `solve`; a scenario with
+    /// problem = "steady" is one solve, 1 step, the only value accepted).
+    #[arg(long, allow_hyphen_values = true)]
+    pub steps: Option<usize>,
 }
 
 /// Prints the report; a failed hypothesis is a warning, not an error.
@@ -19,15 +20,10 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     crate::mesh::check_n(args.n)?;
     crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
-    if args.steps == 0 || args.steps > 1_000_000 {
-        return Err(crate::error::InputError::field(
-            "steps",
-            args.steps,
-            "an integer in 1..=1000000",
-        )
-        .into());
-    }
-    let (text, warnings) = crate::show::report(&scn, args.n, args.steps);
+    // The step count `solve` would take, refused as `solve` refuses it.
+    let steps = super::steps_or_default(args.steps, &scn);
+    crate::scheme::check_steps(Some(&scn), &crate::scheme::Settings::new(args.n, steps))?;
+    let (text, warnings) = crate::show::report(&scn, args.n, steps);
     print!("{text}");
     if warnings > 0 {
         eprintln!("{warnings} warning(s)");

@@ -20,8 +20,9 @@ pub struct SolveArgs {
     pub scenario: String,
     /// Segments n on the bottom (n = 1/h on the paper's 2 x 1 rectangle; a multiple of
     /// 4, and every end of a support, traction or Γ3 segment must fall on a node; the
-    /// paper's Fig. 3 uses 128). With `--mesh graded`, the level: the grading starts
-    /// from the cell diagonal of the uniform mesh with this n.
+    /// paper's Fig. 3 uses 128; at most 4096, and a mesh whose estimated peak memory
+    /// exceeds what is available is refused). With `--mesh graded`, the level: the
+    /// grading starts from the cell diagonal of the uniform mesh with this n.
     #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub n: usize,
     /// Time steps N, k = T/N (the paper uses N = n). Default 64; a scenario with
@@ -61,7 +62,8 @@ pub struct SolveArgs {
     pub f2: Option<[f64; 2]>,
     /// Override the load history with a ramp: all loads (f0 and every traction) grow as
     /// min(t/T_R, 1), so the
-    /// data start at zero as the paper's H(f) and H(0) ask (T_R > 0, seconds). Without
+    /// data start at zero as the paper's H(f) and H(0) ask (T_R in seconds, within
+    /// [1e-12 T, 1e12 T]). Without
     /// it the scenario's `loads.history` holds (default: constant, full load at t = 0).
     #[arg(long, value_name = "T_R", allow_hyphen_values = true)]
     pub ramp: Option<f64>,
@@ -76,8 +78,8 @@ pub struct SolveArgs {
     /// Print the wall time of each phase (assembly, factorisation, condensation, steps).
     #[arg(long)]
     pub timings: bool,
-    /// Fail a step whose certificate exceeds this relative residual.
-    #[arg(long, default_value_t = crate::scheme::CERTIFICATE_TOL)]
+    /// Fail a step whose certificate exceeds this relative residual (in [1e-15, 1e-4]).
+    #[arg(long, default_value_t = crate::scheme::CERTIFICATE_TOL, allow_hyphen_values = true)]
     pub certificate_tol: f64,
     /// Fill-reducing ordering of A + kB: `nd` (nested dissection of the grid, whose
     /// two halves two threads solve at once; the default on a uniform mesh) or `amd`
@@ -150,11 +152,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         )
         .into());
     }
-    let steps = match (args.steps, scn.problem) {
-        (None, crate::scenario::Problem::Steady) => 1,
-        (None, _) => 64,
-        (Some(s), _) => s,
-    };
+    let steps = super::steps_or_default(args.steps, &scn);
     let graded = args.mesh == "graded";
     if args.grading.is_some() && !graded {
         return Err(crate::error::InputError::field(

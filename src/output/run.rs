@@ -279,7 +279,16 @@ pub fn write(
         .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
         .f64("step_curvature_min", vec![run.hessian_min])
         .f64("beta_B", vec![h_s.beta_b])
-        .f64("m_trace_norm_sq", vec![h_s.rhs()])
+        // NaN where H(j) fails (a downward jump): there is no finite m, as the
+        // stability study writes it.
+        .f64(
+            "m_trace_norm_sq",
+            vec![if scn.law.down_jumps().is_empty() {
+                h_s.rhs()
+            } else {
+                f64::NAN
+            }],
+        )
         .f64("assembly_s", vec![t.assembly])
         .f64("factorisation_s", vec![t.factorisation])
         .f64("condensation_s", vec![t.condensation])

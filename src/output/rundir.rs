@@ -116,7 +116,10 @@ impl RunDir {
                 .collect();
             if !foreign.is_empty() && !target.join(MARKER).exists() {
                 return Err(unusable(format!(
-                    "holds files evhi did not write (for example `{}`); choose a new or empty directory",
+                    "is a directory with files in it that is not an evhi run directory (it \
+                     has no `{MARKER}`; for example it holds `{}`), and a run replaces its \
+                     directory as a whole; choose a new or empty directory (for runs kept \
+                     side by side, name one inside it)",
                     foreign[0]
                 )));
             }
