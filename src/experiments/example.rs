@@ -38,17 +38,77 @@ fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> ExpError + '_ {
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let n = if ctx.quick { 16 } else { 64 };
     ctx.add_units(EXAMPLES.len());
+    let scratch = Scratch::new()?;
     for (name, toml, path) in EXAMPLES {
         let scn = Scenario::from_toml(toml, path)?;
-        one(ctx, name, toml, &scn, n)?;
+        one(ctx, &scratch, name, toml, &scn, n)?;
         if name == "five_branch" {
             step_control(ctx, &scn, n)?;
-            studies(ctx, path)?;
+            studies(ctx, &scratch, name, toml, path)?;
         } else {
             super::fig2::draw_law(ctx, &scn, &format!("example_{name}_law"))?;
         }
     }
     Ok(())
+}
+
+/// This process's scratch directory under the system's temporary directory, for the
+/// run directories and studies the example writes as the command line would: removed
+/// when dropped, with the locks those leave beside them. A process killed first
+/// leaves it; the next run removes those of processes that are gone.
+struct Scratch(std::path::PathBuf);
+
+impl Scratch {
+    const PREFIX: &'static str = "evhi-example-";
+
+    fn new() -> Result<Scratch, ExpError> {
+        let tmp = std::env::temp_dir();
+        Scratch::clean(&tmp);
+        let dir = tmp.join(format!("{}{}", Scratch::PREFIX, std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).map_err(io(&dir))?;
+        Ok(Scratch(dir))
+    }
+
+    /// Removes the scratch directories of processes that are gone, and what earlier
+    /// versions left: `evhi-example-studies-PID/` and the locks
+    /// `.evhi-example-NAME-PID.lock` beside their run directories.
+    fn clean(tmp: &std::path::Path) {
+        #[cfg(target_os = "linux")]
+        {
+            let gone = |pid: &str| {
+                pid.parse::<u32>()
+                    .is_ok_and(|p| !std::path::Path::new(&format!("/proc/{p}")).exists())
+            };
+            let Ok(entries) = std::fs::read_dir(tmp) else {
+                return;
+            };
+            for e in entries.flatten() {
+                let file = e.file_name().to_string_lossy().into_owned();
+                let Some(rest) = file
+                    .strip_prefix('.')
+                    .unwrap_or(&file)
+                    .strip_prefix(Scratch::PREFIX)
+                else {
+                    continue;
+                };
+                let rest = rest.strip_suffix(".lock").unwrap_or(rest);
+                let pid = rest.rsplit('-').next().unwrap_or(rest);
+                if gone(pid) {
+                    let _ = std::fs::remove_dir_all(e.path());
+                    let _ = std::fs::remove_file(e.path());
+                }
+            }
+        }
+        #[cfg(not(target_os = "linux"))]
+        let _ = tmp;
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }
 
 /// The three studies of `evhi study` on the worked example, in quick mode, run as the
@@ -57,13 +117,21 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
 /// A figure's stem in a study's directory and the suffix it gets here.
 type Stem = (&'static str, &'static str);
 
-fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
+fn studies(
+    ctx: &Ctx,
+    scratch: &Scratch,
+    name: &str,
+    toml: &str,
+    path: &str,
+) -> Result<(), ExpError> {
     use super::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
-    let scratch = std::env::temp_dir().join(format!("evhi-example-studies-{}", std::process::id()));
-    let fail = |e: Box<dyn std::error::Error>| ExpError::Table {
-        path: scratch.display().to_string(),
-        message: e.to_string(),
-    };
+    // The studies read the scenario from a file: the compiled-in text, so that the
+    // example runs from any working directory (the repository's path named in
+    // `path` is what the summaries quote).
+    let file = scratch.0.join(format!("{name}.toml"));
+    std::fs::write(&file, toml).map_err(io(&file))?;
+    let scenario = file.display().to_string();
+    let scratch = scratch.0.join("studies");
     ctx.add_units(3);
     let [convergence, time, stability] = super::registry::STUDIES;
     // Each study's figures (stems in its directory) and the names they get here.
@@ -72,7 +140,7 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
             convergence,
             &[("convergence", ""), ("split", "_split")],
             Study::Convergence(ConvergenceArgs {
-                scenario: path.to_string(),
+                scenario: scenario.clone(),
                 quick: true,
                 out: scratch.join(convergence),
             }),
@@ -81,7 +149,7 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
             time,
             &[("time_study", "")],
             Study::Time(TimeArgs {
-                scenario: path.to_string(),
+                scenario: scenario.clone(),
                 quick: true,
                 n: None,
                 out: scratch.join(time),
@@ -91,7 +159,7 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
             stability,
             &[(stability, "")],
             Study::Stability(StabilityArgs {
-                scenario: path.to_string(),
+                scenario: scenario.clone(),
                 quick: true,
                 out: scratch.join(stability),
             }),
@@ -99,7 +167,10 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
     ];
     for (study, stems, args) in runs {
         let command = format!("study {study} --scenario {path} --quick --out DIR");
-        let md = run_as(args, &command).map_err(fail)?;
+        let md = run_as(args, &command).map_err(|e| ExpError::Table {
+            path: format!("example_study_{study}.md (`evhi {command}`)"),
+            message: e.to_string(),
+        })?;
         ctx.write_file(
             &ctx.data_path(&format!("example_study_{study}.md")),
             md.as_bytes(),
@@ -117,12 +188,18 @@ fn studies(ctx: &Ctx, path: &str) -> Result<(), ExpError> {
         }
         ctx.log(&format!("example: study {study}"));
     }
-    let _ = std::fs::remove_dir_all(&scratch);
     Ok(())
 }
 
 /// Example `name`: its `show` report, its run directory's tables and figures.
-fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<(), ExpError> {
+fn one(
+    ctx: &Ctx,
+    scratch: &Scratch,
+    name: &str,
+    toml: &str,
+    scn: &Scenario,
+    n: usize,
+) -> Result<(), ExpError> {
     let scn = scn.clone();
     ctx.log(&format!("example: {name}, h = k = 1/{n}"));
     let (report, _) = crate::show::report(&scn, n, n);
@@ -136,7 +213,7 @@ fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<()
         .as_bytes(),
     )?;
     // The run, written exactly as `evhi solve` writes it, in a scratch directory.
-    let scratch = std::env::temp_dir().join(format!("evhi-example-{name}-{}", std::process::id()));
+    let scratch = scratch.0.join(name);
     let out = RunDir::open(&scratch).map_err(|e| ExpError::Table {
         path: scratch.display().to_string(),
         message: e.to_string(),
@@ -193,7 +270,6 @@ fn one(ctx: &Ctx, name: &str, toml: &str, scn: &Scenario, n: usize) -> Result<()
             )?;
         }
     }
-    let _ = std::fs::remove_dir_all(&scratch);
     Ok(())
 }
 
