@@ -792,7 +792,7 @@ impl Scenario {
             .fold(0.0f64, |m, x| m.max(x.abs()));
         if largest > 0.0 && largest < MIN_LOAD_SCALE {
             return Err(InputError::field(
-                "loads",
+                "[loads]",
                 format!("loads whose largest component is {largest:e}"),
                 format!(
                     "loads that are all zero or whose largest component is at least \

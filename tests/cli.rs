@@ -1934,3 +1934,158 @@ fn the_audits_smaller_messages_say_what_holds() {
         .unwrap();
     assert_eq!(lines[1].split(',').nth(at), Some("NaN"));
 }
+
+/// What the second audit found in the studies and `reproduce`, each refused by name
+/// before any work or output: a scene whose study reference would exceed the largest
+/// mesh (it refined until an allocation failed), a scene with no load (its tables were
+/// all NaN with exit 0), another cell pattern (ignored, or failing late), a scene no
+/// level up to 256 resolves (the advice named an n the study does not take).
+#[test]
+fn studies_refuse_what_they_cannot_measure() {
+    let dir = scratch("study-refusals");
+    let cantilever = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
+    let figure = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    let cases = [
+        (
+            "fine.toml",
+            cantilever.replacen("from = 1.0", "from = 1.0078125", 1),
+            "convergence",
+            "the reference would be at n = 8192",
+        ),
+        (
+            "third.toml",
+            cantilever.replacen("from = 1.0", "from = 0.3", 1),
+            "convergence",
+            "it takes no --n",
+        ),
+        (
+            "zero.toml",
+            figure
+                .replacen("f0 = [0.0, -5.0]", "f0 = [0.0, 0.0]", 1)
+                .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1),
+            "convergence",
+            "is not zero",
+        ),
+        (
+            "zero.toml",
+            figure
+                .replacen("f0 = [0.0, -5.0]", "f0 = [0.0, 0.0]", 1)
+                .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1),
+            "time",
+            "is not zero",
+        ),
+        (
+            "criss.toml",
+            format!("{figure}\n[geometry]\npattern = \"crisscross\"\n"),
+            "convergence",
+            "`geometry.pattern`",
+        ),
+    ];
+    for (i, (file, text, study, expect)) in cases.iter().enumerate() {
+        let path = dir.join(format!("{i}-{file}"));
+        std::fs::write(&path, text).unwrap();
+        let out = dir.join(format!("out{i}"));
+        let o = evhi()
+            .args(["study", study, "--quick", "--scenario"])
+            .arg(&path)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{file} {study} passed");
+        assert!(err.contains(expect) && !err.contains("panicked"), "{err}");
+        assert!(!out.join("convergence.csv").exists() && !out.join("time_study.csv").exists());
+    }
+}
+
+/// `reproduce` refuses what it would ignore or fail on late, before it makes a
+/// directory: `--jobs 0`, `--record-times --quick`, `--reference` without Table 1, a
+/// `--data` or `--figures` path that is a file (named by its option), and a finer
+/// reference with no table1.csv to compare with (it used to compute and write
+/// table1_ref64.csv first). The finer reference's shift names the reference it
+/// shifts from (the quick one is 1/32, not the paper's 1/512).
+#[test]
+fn reproduce_refuses_before_it_writes() {
+    let dir = scratch("reproduce-refusals");
+    let (data, figures) = (dir.join("data"), dir.join("figures"));
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let run = |extra: &[&str], data: &std::path::Path, figures: &std::path::Path| {
+        evhi()
+            .args(["reproduce", "--quick", "-q"])
+            .args(extra)
+            .arg("--data")
+            .arg(data)
+            .arg("--figures")
+            .arg(figures)
+            .output()
+            .unwrap()
+    };
+    for (extra, expect) in [
+        (&["fig2", "--jobs", "0"][..], "`jobs`"),
+        (&["fig2", "--record-times"][..], "`record-times`"),
+        (&["fig2", "--reference", "64"][..], "`reference`"),
+    ] {
+        let o = run(extra, &data, &figures);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains(expect),
+            "{extra:?}: {err}"
+        );
+        assert!(
+            !data.exists() && !figures.exists(),
+            "{extra:?} made a directory"
+        );
+    }
+    for (d, f, expect) in [(&file, &figures, "`data`"), (&data, &file, "`figures`")] {
+        let o = run(&["fig2"], d, f);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(expect), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&data);
+    let o = run(&["table1", "--reference", "64"], &data, &figures);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("missing"), "{err}");
+    assert!(!data.join("table1_ref64.csv").exists());
+    succeed(
+        evhi()
+            .args(["reproduce", "--quick", "-q", "table1", "--data"])
+            .arg(&data)
+            .arg("--figures")
+            .arg(&figures),
+    );
+    let o = run(&["table1", "--reference", "64"], &data, &figures);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let shift = std::fs::read_to_string(data.join("table1_reference_shift_ref64.csv")).unwrap();
+    assert!(
+        shift.contains("(reference h = k = 1/32)") && shift.contains("rel_err_T_percent_ref32")
+    );
+}
+
+/// The worked example runs from any working directory (its studies read the compiled-in
+/// scenario, not a path relative to the repository), and removes its scratch directory
+/// and the locks beside its run directories when done.
+#[test]
+fn the_example_runs_anywhere_and_leaves_nothing_in_tmp() {
+    let dir = scratch("example-anywhere");
+    let child = evhi()
+        .args(["reproduce", "--quick", "-q", "example", "--data"])
+        .arg(dir.join("data"))
+        .arg("--figures")
+        .arg(dir.join("figures"))
+        .current_dir(&dir)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id().to_string();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.join("data/example_study_convergence.md").exists());
+    let left: Vec<String> = std::fs::read_dir(std::env::temp_dir())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|f| f.contains("evhi-example") && f.contains(&pid))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+}

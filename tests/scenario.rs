@@ -255,14 +255,14 @@ fn loads_too_small_to_certify_are_refused_by_name() {
         1,
     );
     let err = Scenario::from_toml(&tiny, "test").unwrap_err();
-    assert_eq!(err.field_name(), Some("loads"), "{err}");
+    assert_eq!(err.field_name(), Some("[loads]"), "{err}");
     assert!(err.to_string().contains("1e-200"), "{err}");
     let fig = Scenario::load("figure").unwrap();
     let err = fig
         .clone()
         .with_loads(Some([0.0, 0.0]), Some([1e-300, 0.0]))
         .unwrap_err();
-    assert_eq!(err.field_name(), Some("loads"), "{err}");
+    assert_eq!(err.field_name(), Some("[loads]"), "{err}");
     for (f0, f2) in [
         ([0.0, 0.0], [0.0, 0.0]),
         ([0.0, 0.0], [0.0, -1e-100]),

@@ -53,22 +53,22 @@ pub struct ReproduceArgs {
 pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     use crate::experiments::{Ctx, registry, run};
     let all = registry::names();
-    let ctx = Ctx {
-        quick: args.quick,
-        data: args.data.unwrap_or_else(|| quick_or(args.quick, "data")),
-        figures: args
-            .figures
-            .unwrap_or_else(|| quick_or(args.quick, "figures")),
-        verbose: true,
-        progress: None,
-        reference: args.reference,
-        command: None,
-        experiment: "",
+    // Everything that can be refused is refused before a directory is made.
+    let jobs = match args.jobs {
+        Some(0) => {
+            return Err(crate::error::InputError::field("jobs", 0, "at least 1").into());
+        }
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(2, |n| n.get()),
     };
-    // One writer of an output set at a time; then the temporaries a killed run left.
-    let _lock = lock_outputs(&ctx.data)?;
-    for dir in [&ctx.data, &ctx.figures] {
-        remove_stale_temporaries(dir);
+    if args.record_times && args.quick {
+        return Err(crate::error::InputError::field(
+            "record-times",
+            "with --quick",
+            "a full run: the committed table records the full set's times, and quick runs \
+             record none",
+        )
+        .into());
     }
     let names: Vec<String> = if args.names.is_empty() {
         all.iter().map(|s| s.to_string()).collect()
@@ -87,6 +87,52 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         }
         names
     };
+    if args.reference.is_some() && !names.iter().any(|n| n == registry::WITH_REFERENCE) {
+        return Err(crate::error::InputError::field(
+            "reference",
+            args.reference.unwrap_or_default(),
+            format!(
+                "nothing unless {} is run (by name, in paper or in all): only Table 1 has \
+                 a reference level",
+                registry::WITH_REFERENCE
+            ),
+        )
+        .into());
+    }
+    let ctx = Ctx {
+        quick: args.quick,
+        data: args.data.unwrap_or_else(|| quick_or(args.quick, "data")),
+        figures: args
+            .figures
+            .unwrap_or_else(|| quick_or(args.quick, "figures")),
+        verbose: true,
+        progress: None,
+        reference: args.reference,
+        command: None,
+        experiment: "",
+    };
+    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
+        if dir.exists() && !dir.is_dir() {
+            return Err(crate::error::InputError::field(
+                flag,
+                dir.display(),
+                "a directory (created if missing): this path exists and is not one",
+            )
+            .into());
+        }
+        std::fs::create_dir_all(dir).map_err(|e| {
+            crate::error::InputError::field(
+                flag,
+                dir.display(),
+                format!("a directory that can be created: {e}"),
+            )
+        })?;
+    }
+    // One writer of an output set at a time; then the temporaries a killed run left.
+    let _lock = lock_outputs(&ctx.data)?;
+    for dir in [&ctx.data, &ctx.figures] {
+        remove_stale_temporaries(dir);
+    }
     let set = if names.len() == all.len() {
         "all".to_string()
     } else if names.iter().eq(paper_set().iter()) {
@@ -119,13 +165,6 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     // The queue, costliest first (registry order among equals): a worker takes the
     // next one as it finishes its last, so that no long experiment starts last.
-    let jobs = match args.jobs {
-        Some(0) => {
-            return Err(crate::error::InputError::field("jobs", 0, "at least 1").into());
-        }
-        Some(n) => n,
-        None => std::thread::available_parallelism().map_or(2, |n| n.get()),
-    };
     let cost = |n: &String| registry::experiment(n).map_or(0.0, |e| e.cost);
     let mut queue = names.clone();
     queue.sort_by(|a, b| cost(b).total_cmp(&cost(a)));

@@ -322,6 +322,18 @@ pub fn compute(
         .iter()
         .map(|u| ref_geo.norms(&ref_mesh, &g, u).energy_sq)
         .collect();
+    // Errors at T are relative to the reference there: zero (the loads vanish at T)
+    // leaves every one undefined, refused by name rather than written as NaN.
+    if let Some(i) = ref_norms.iter().position(|&r| r.is_nan() || r <= 0.0) {
+        return Err(crate::error::InputError::field(
+            "scenario",
+            &scns[i].name,
+            "a scene whose solution at t = T is not zero: the reference's energy norm \
+             there is 0 (the loads vanish at T), so no relative error at T is defined; \
+             take a load history that does not end at zero",
+        )
+        .into());
+    }
     let mut rows = vec![];
     for (family, list) in &families {
         let mut solved: Vec<Level> = vec![];

@@ -203,6 +203,9 @@ pub fn values() -> Vec<clap::builder::PossibleValue> {
         .collect()
 }
 
+/// The experiment that reads `reproduce --reference` (Table 1's reference level).
+pub const WITH_REFERENCE: &str = "table1";
+
 /// The names, in order.
 pub fn names() -> Vec<&'static str> {
     EXPERIMENTS.iter().map(|e| e.name).collect()

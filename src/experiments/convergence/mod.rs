@@ -608,21 +608,28 @@ fn study(
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut plan = plan(ctx.quick);
     let grid = *plan.levels.last().expect("levels");
+    let own = plan.n_ref;
     let suffix = match ctx.reference {
-        Some(r) if r != plan.n_ref => {
-            if r <= grid || !r.is_multiple_of(grid) {
+        Some(r) => {
+            if r <= own || !r.is_multiple_of(grid) {
                 return Err(crate::error::InputError::field(
                     "reference",
                     r,
-                    format!("a multiple of {grid} above {grid} (the finest level), e.g. 1024"),
+                    format!(
+                        "a multiple of {grid} (the finest level) above {own}, Table 1's own \
+                         reference (which `reproduce table1` alone writes), e.g. {}",
+                        2 * own
+                    ),
                 )
                 .into());
             }
             crate::scheme::check_memory(r, r / 2)?;
+            // The shift compares with table1.csv: it must be there before the work.
+            table::check_base(ctx)?;
             plan.n_ref = r;
             format!("_ref{r}")
         }
-        _ => String::new(),
+        None => String::new(),
     };
     let scenarios = SCENARIOS
         .iter()
@@ -632,7 +639,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     if !suffix.is_empty() {
         let command = format!("{} --reference {}", ctx.experiment, plan.n_ref);
         let path = ctx.write_as(&format!("table1{suffix}.csv"), &t, &command, &params)?;
-        return write_shift(ctx, &path, &suffix);
+        return write_shift(ctx, &path, &suffix, own);
     }
     let path = ctx.write("table1.csv", &t, &params)?;
     write_markdown(ctx, &path, &params)?;

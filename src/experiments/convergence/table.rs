@@ -4,16 +4,33 @@
 #[allow(unused_imports)]
 use super::*;
 
+/// `table1.csv`, which a finer reference's shift compares with: refused by name if
+/// missing.
+pub(super) fn check_base(ctx: &Ctx) -> Result<std::path::PathBuf, ExpError> {
+    let base = ctx.data.join("table1.csv");
+    if base.exists() {
+        Ok(base)
+    } else {
+        Err(ExpError::Table {
+            path: base.display().to_string(),
+            message: format!(
+                "missing: run `evhi reproduce table1{}` (with the same --data) before a finer \
+                 reference",
+                if ctx.quick { " --quick" } else { "" }
+            ),
+        })
+    }
+}
+
 /// How far each error of `table1.csv` (reference 1/512) moves with the finer
 /// reference of `path`: both values and their ratio, at $T$ and over $t$.
-pub(super) fn write_shift(ctx: &Ctx, path: &std::path::Path, suffix: &str) -> Result<(), ExpError> {
-    let base = ctx.data.join("table1.csv");
-    if !base.exists() {
-        return Err(ExpError::Table {
-            path: base.display().to_string(),
-            message: "missing: run `evhi reproduce table1` before a finer reference".into(),
-        });
-    }
+pub(super) fn write_shift(
+    ctx: &Ctx,
+    path: &std::path::Path,
+    suffix: &str,
+    own: usize,
+) -> Result<(), ExpError> {
+    let base = check_base(ctx)?;
     let (old, new) = (read_csv(&base)?, read_csv(path)?);
     // A row is its scenario, family and level: n, or the steps in the k family.
     let key = |df: &polars::prelude::DataFrame| -> Result<Vec<String>, ExpError> {
@@ -47,10 +64,10 @@ pub(super) fn write_shift(ctx: &Ctx, path: &std::path::Path, suffix: &str) -> Re
         .str("family", col_str(&new, "family")?)
         .f64("n", col(&new, "n")?)
         .f64("steps", col(&new, "steps")?)
-        .f64("rel_err_T_percent_ref512", t0.clone())
+        .f64(&format!("rel_err_T_percent_ref{own}"), t0.clone())
         .f64(&format!("rel_err_T_percent{suffix}"), t1.clone())
         .f64("ratio_T", ratio(&t0, &t1))
-        .f64("rel_err_max_percent_ref512", m0.clone())
+        .f64(&format!("rel_err_max_percent_ref{own}"), m0.clone())
         .f64(&format!("rel_err_max_percent{suffix}"), m1.clone())
         .f64("ratio_max", ratio(&m0, &m1));
     let command = format!(
@@ -62,7 +79,9 @@ pub(super) fn write_shift(ctx: &Ctx, path: &std::path::Path, suffix: &str) -> Re
         &format!("table1_reference_shift{suffix}.csv"),
         &t,
         &command,
-        "table1.csv (reference h = k = 1/512) against the finer reference; ratio = finer / 512",
+        &format!(
+            "table1.csv (reference h = k = 1/{own}) against the finer reference; ratio = finer / {own}"
+        ),
     )?;
     Ok(())
 }

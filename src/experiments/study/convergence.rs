@@ -184,6 +184,17 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::convergence as split;
     let scn = Scenario::load(&args.scenario)?;
+    // Every mesh of the study comes from bisection of the diagonal cut, as a graded
+    // `solve` does: another pattern would be ignored (or fail late), so it is refused.
+    if scn.pattern != crate::mesh::Pattern::Diagonal {
+        return Err(crate::error::InputError::field(
+            "geometry.pattern",
+            scn.pattern.name(),
+            "\"diagonal\" for the convergence study (its uniform and graded meshes come \
+             from newest-vertex bisection of the paper's diagonal cut)",
+        )
+        .into());
+    }
     let n0 = coarsest(&scn)?;
     let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
     let plan = if args.quick {
@@ -199,6 +210,27 @@ pub(super) fn run(
             n_ref: n0 * 64,
         }
     };
+    // The reference is the graded family refined to n_ref, at least the unknowns of
+    // the uniform mesh there: refused by name before any work if it cannot be built
+    // (it used to refine until an allocation failed).
+    let most = 4096;
+    if plan.n_ref > most {
+        let ratio = plan.n_ref / n0;
+        return Err(crate::error::InputError::field(
+            "scenario",
+            &args.scenario,
+            format!(
+                "a scene the study can afford: the coarsest mesh that resolves this one has \
+                 n = {n0}, so the reference would be at n = {} ({ratio} times that), beyond \
+                 the {most} a mesh may have; put the ends of its supports, tractions and \
+                 Gamma_3 on the grid of n = {} or coarser",
+                plan.n_ref,
+                most / ratio
+            ),
+        )
+        .into());
+    }
+    crate::scheme::check_memory(plan.n_ref, crate::mesh::rows(plan.n_ref, &scn.geometry))?;
     // The h and k parts apart only where there is a time error to part, and on the
     // reduced loop, which needs proportional damping (C = c G).
     let no_split = match scn.relaxation_time() {

@@ -136,7 +136,17 @@ pub(super) fn coarsest(scn: &Scenario) -> Result<usize, crate::error::InputError
     loop {
         match scn.mesh(n) {
             Ok(_) => return Ok(n),
-            Err(e) if n >= 256 => return Err(e),
+            Err(e) if n >= 256 => {
+                return Err(crate::error::InputError::field(
+                    "scenario",
+                    &scn.name,
+                    format!(
+                        "a scene whose segment ends fall on the nodes of a mesh with n = 4, \
+                         8, ..., 256 (a study starts from the coarsest such n; it takes no \
+                         --n); even n = 256 does not: {e}"
+                    ),
+                ));
+            }
             Err(_) => n *= 2,
         }
     }

@@ -225,6 +225,23 @@ pub fn study_of(
         Some(m) => m,
         None => general_measures(plan, &batch, &disc, ctx)?,
     };
+    // Errors are relative to the reference: a reference that is zero at every step
+    // (no load) leaves them undefined, refused by name rather than written as NaN.
+    for (i, (name, _, _)) in scns.iter().enumerate() {
+        if measured
+            .levels
+            .iter()
+            .any(|l| l[i].r_max.is_nan() || l[i].r_max <= 0.0)
+        {
+            return Err(crate::error::InputError::field(
+                "scenario",
+                name,
+                "a scene whose solution is not zero: the reference's energy norm is 0 at \
+                 every step (the loads vanish), so no relative time error is defined",
+            )
+            .into());
+        }
+    }
     let mut rows = vec![];
     for (l, &steps) in plan.levels.iter().enumerate() {
         for (i, (name, label, s)) in scns.iter().enumerate() {
