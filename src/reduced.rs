@@ -430,6 +430,7 @@ pub fn run(
     crate::scheme::check_steps(Some(scn), opt)?;
     crate::scheme::check_memory(opt.n, crate::mesh::rows(opt.n, &scn.geometry))?;
     solver.validate()?;
+    crate::step::check_takes(solver, scn)?;
     let mut timings = Timings::default();
     let (disc, _) = timed(&mut timings.assembly, || {
         crate::scheme::discretise(std::slice::from_ref(scn), opt)

@@ -260,8 +260,9 @@ fn step_failure(
         )
     } else {
         format!(
-            "solver `{solver}` did not converge: it stopped with {status:?} after {iterations} \
-             iterations, residual {residual:.3e} (certificate {certificate:.3e}, tolerance {tol:.1e})"
+            "solver `{solver}` did not converge: it stopped with {} after {iterations} \
+             iterations, residual {residual:.3e} (certificate {certificate:.3e}, tolerance {tol:.1e})",
+            status.label()
         )
     }
 }
@@ -494,6 +495,9 @@ fn check_batch(
     check_steps(scns.first(), opt)?;
     for s in solvers {
         s.validate()?;
+    }
+    for (s, scn) in solvers.iter().zip(scns) {
+        crate::step::check_takes(&**s, scn)?;
     }
     let Some(scn) = scns.first() else {
         return Ok(());

@@ -2089,3 +2089,69 @@ fn the_example_runs_anywhere_and_leaves_nothing_in_tmp() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// A solver that cannot take the scenario's law is refused by name before any step
+/// (`solve`), and the stability study lists it as a run that did not start (`error:`,
+/// as its legend says) instead of a failed first step with a debug dump of the status.
+/// A scene without singular points has no graded family, and its convergence table
+/// says so (its header used to list graded levels and a graded reference).
+#[test]
+fn declined_solvers_and_absent_families_are_said_as_they_are() {
+    let dir = scratch("declined");
+    let softening = "data/scenarios/examples/softening.toml";
+    let o = evhi()
+        .args(["solve", "--scenario", softening, "--solver", "convexify"])
+        .args(["--n", "8", "--steps", "2", "--out"])
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("`solver`") && err.contains("piecewise-affine"),
+        "{err}"
+    );
+    let out = dir.join("stability");
+    succeed(
+        evhi()
+            .args([
+                "study",
+                "stability",
+                "--quick",
+                "--scenario",
+                softening,
+                "--out",
+            ])
+            .arg(&out),
+    );
+    let table = std::fs::read_to_string(out.join("stability.csv")).unwrap();
+    assert!(!table.contains("Failed("), "{table}");
+    let rows: Vec<&str> = table
+        .lines()
+        .filter(|l| l.contains(",convexify,") || l.contains(",penalty,"))
+        .collect();
+    assert!(!rows.is_empty());
+    assert!(rows.iter().all(|r| r.contains("\"error: ")), "{rows:?}");
+
+    let smooth = dir.join("smooth");
+    succeed(
+        evhi()
+            .args([
+                "study",
+                "convergence",
+                "--quick",
+                "--scenario",
+                "smooth",
+                "--out",
+            ])
+            .arg(&smooth),
+    );
+    let csv = std::fs::read_to_string(smooth.join("convergence.csv")).unwrap();
+    let header: String = csv.lines().take(2).collect();
+    assert!(
+        header.contains("families: uniform;")
+            && header.contains("reference: the uniform family")
+            && !header.contains("graded"),
+        "{header}"
+    );
+}

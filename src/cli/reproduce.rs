@@ -8,7 +8,7 @@ use std::time::Instant;
 #[derive(clap::Args)]
 pub struct ReproduceArgs {
     /// Experiments to run (default: all; each listed below). `paper` stands for the
-    /// paper's own set, its hypotheses, Figs. 2-4 and Table 1.
+    /// paper's own set: its hypotheses, Figs. 2-4, the search for the `figure` loads and Table 1.
     #[arg(value_parser = clap::builder::PossibleValuesParser::new(crate::experiments::registry::values()))]
     pub names: Vec<String>,
     /// Coarse levels only (seconds; what the tests snapshot).

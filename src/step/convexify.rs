@@ -222,6 +222,10 @@ impl StepSolver for Convexify {
         "convexify"
     }
 
+    fn declines(&self, law: &crate::law::Law, g: f64) -> Option<String> {
+        law.convex_split(g).is_none().then(|| declined(law))
+    }
+
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
         if let Err(e) = self.settings.validate() {
             return Info::refused(e.to_string());

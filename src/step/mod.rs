@@ -51,6 +51,17 @@ pub enum Status {
     NotMinimum { lambda_min: f64 },
 }
 
+impl Status {
+    /// The status as messages and the stability tables name it: the variant's name
+    /// (`MaxIterations`, `NotMinimum { lambda_min: … }`), a failure by its own words.
+    pub fn label(&self) -> String {
+        match self {
+            Status::Failed(why) => why.clone(),
+            other => format!("{other:?}"),
+        }
+    }
+}
+
 /// What a step solve did.
 #[derive(Debug, Clone)]
 pub struct Info {
@@ -76,7 +87,28 @@ pub trait StepSolver {
     fn validate(&self) -> Result<(), crate::error::InputError> {
         Ok(())
     }
+    /// Why the solver cannot take this law and limit, if it cannot: the time loops
+    /// ask before any work, so a law outside its reach is an input error naming the
+    /// solver, not a failed first step.
+    fn declines(&self, _law: &crate::law::Law, _g: f64) -> Option<String> {
+        None
+    }
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
+}
+
+/// Refuses a solver that declines the scenario's law (see [`StepSolver::declines`]).
+pub fn check_takes(
+    solver: &dyn StepSolver,
+    scn: &crate::scenario::Scenario,
+) -> Result<(), crate::error::InputError> {
+    match solver.declines(&scn.law, scn.g) {
+        Some(why) => Err(crate::error::InputError::field(
+            "solver",
+            solver.name(),
+            format!("a solver that takes this law: {why}"),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// A solve not yet run: no iterations, no residual, the iteration limit as status

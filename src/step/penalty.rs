@@ -79,9 +79,22 @@ impl Penalty {
     }
 }
 
+/// Why the penalty cannot take a law: the penalty is an affine branch beyond g.
+fn declined(law: &Law) -> String {
+    format!(
+        "solver `penalty` needs a piecewise-affine law (the penalty is an affine branch beyond \
+         g); the scenario's law is `{}`: use `newton` or `proxgrad`",
+        law.kind()
+    )
+}
+
 impl StepSolver for Penalty {
     fn name(&self) -> &'static str {
         "penalty"
+    }
+
+    fn declines(&self, law: &Law, g: f64) -> Option<String> {
+        law.penalised(g, 1.0).is_none().then(|| declined(law))
     }
 
     fn validate(&self) -> Result<(), crate::error::InputError> {
@@ -110,11 +123,7 @@ impl StepSolver for Penalty {
         let fresh = !matches!(&self.cache, Some((l, g, s, _)) if l == p.law && *g == p.g && *s == stiffness);
         if fresh {
             let Some(law) = Self::penalised(p.law, p.g, stiffness) else {
-                return Info::refused(format!(
-                    "solver `penalty` needs a piecewise-affine law (the penalty is an affine \
-                     branch beyond g); the scenario's law is `{}`: use `newton` or `proxgrad`",
-                    p.law.kind()
-                ));
+                return Info::refused(declined(p.law));
             };
             self.cache = Some((p.law.clone(), p.g, stiffness, law));
         }

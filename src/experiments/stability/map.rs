@@ -107,7 +107,7 @@ pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'stati
             outcome: if status == Status::Converged {
                 "failed: certificate over tolerance".to_string()
             } else {
-                format!("failed: {status:?}")
+                format!("failed: {}", status.label())
             },
             failed_step: step as u64,
             mean_iterations: f64::NAN,

@@ -126,6 +126,13 @@ const MAX_INCREMENT: &str = "The max increment over t is the largest over the le
      initial layer of the book's chapter \"Time\"), that part can dominate, and the maximum then sits \
      at the first step and falls more slowly than h. No exponent is fitted to it.";
 
+/// [`MAX_INCREMENT`] for a problem without viscosity: no time part.
+const MAX_INCREMENT_STATIC: &str = "The max increment over t is the largest over the level's steps \
+     t_j of ||u_n(t_j) - u_2n(t_j)||_E / ||u_2n(t_j)||_E, each step relative to its own solution's \
+     norm, and \"at t\" is where it occurs. Without viscosity each step is the static problem at its \
+     load (one solve at T for a steady problem), so the increment is the mesh's alone. No exponent is \
+     fitted to it.";
+
 /// Below this multiple of the reference's own error a measured error is not
 /// resolved, where the two are orthogonal and add in quadrature (nested meshes):
 /// $\sqrt{1 + 1/2.18^2} = 1.100$, so the reference's error moves the measured one by 10 %.
@@ -303,8 +310,9 @@ pub(super) fn run(
         }
         crate::scenario::Problem::Viscoelastic => "k = T/n".to_string(),
     };
+    let graded_family = families.len() > 1;
     let header = format!(
-        "produced by evhi {} `evhi {}`\n# scenario {} ({}); families: {}; levels uniform {:?}, graded {:?}; {steps_word}; reference: the graded family refined to n = {} ({} unknowns), {}; grading exponent {}; errors and increments relative, energy norm; orders: observed between a level and the previous one of its family, in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh)",
+        "produced by evhi {} `evhi {}`\n# scenario {} ({}); families: {}; levels uniform {:?}{}; {steps_word}; reference: the {} family refined to n = {} ({} unknowns), {}; {}errors and increments relative, energy norm; orders: observed between a level and the previous one of its family, in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh)",
         env!("CARGO_PKG_VERSION"),
         crate::output::run::one_line(&command),
         scn.name,
@@ -315,7 +323,13 @@ pub(super) fn run(
             .collect::<Vec<_>>()
             .join(", "),
         plan.uniform,
-        plan.graded,
+        // A scene without singular points has no graded family (see `families`).
+        if graded_family {
+            format!(", graded {:?}", plan.graded)
+        } else {
+            String::new()
+        },
+        if graded_family { "graded" } else { "uniform" },
         plan.n_ref,
         ref_dofs,
         match scn.problem {
@@ -323,7 +337,11 @@ pub(super) fn run(
             crate::scenario::Problem::Elastic => "the static problem at T".to_string(),
             crate::scenario::Problem::Viscoelastic => format!("k = T/{}", plan.n_ref),
         },
-        graded::MU
+        if graded_family {
+            format!("grading exponent {}; ", graded::MU)
+        } else {
+            String::new()
+        }
     );
     let lines: Vec<String> = header.split("\n# ").map(str::to_string).collect();
     out.write_table("convergence.csv", &table, &lines)?;
@@ -371,10 +389,15 @@ pub(super) fn run(
     let mut md = String::new();
     let _ = writeln!(
         md,
-        "# Convergence of `{}` ({})\n\n{}\n\n{MAX_INCREMENT}\n\n| family | n | unknowns | error at T, % | order | resolved | increment at T, % | order | max increment over t, % | at t |\n|---|---|---|---|---|---|---|---|---|---|",
+        "# Convergence of `{}` ({})\n\n{}\n\n{}\n\n| family | n | unknowns | error at T, % | order | resolved | increment at T, % | order | max increment over t, % | at t |\n|---|---|---|---|---|---|---|---|---|---|",
         scn.name,
         if args.quick { "quick" } else { "full" },
-        lines.join(". ")
+        lines.join(". "),
+        if scn.problem.viscous() {
+            MAX_INCREMENT
+        } else {
+            MAX_INCREMENT_STATIC
+        }
     );
     for i in 0..fam.len() {
         let _ = writeln!(
