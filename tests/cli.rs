@@ -2155,3 +2155,26 @@ fn declined_solvers_and_absent_families_are_said_as_they_are() {
         "{header}"
     );
 }
+
+/// The step records count against memory too: a million steps (about 4 GB of records)
+/// under a 3 GB address-space limit are refused by name, where the run used to abort
+/// in an allocation.
+#[test]
+fn step_records_that_cannot_fit_are_refused() {
+    let dir = scratch("step-records");
+    let o = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v 3000000 && exec '{}' solve --scenario figure --n 4 --steps 1000000 --out '{}'",
+            env!("CARGO_BIN_EXE_evhi"),
+            dir.join("run").display()
+        ))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("`steps`") && err.contains("records fit in memory"),
+        "{err}"
+    );
+}
