@@ -343,9 +343,9 @@ impl Figure for MapFigure {
             }
         }
         let legend = [
-            ("certified (penalty: within g), every step convex", CONVEX),
+            ("certified (penalty: never past g), every step convex", CONVEX),
             (
-                "certified (penalty: within g), steps not convex",
+                "certified (penalty: never past g), steps not convex",
                 NOT_CONVEX,
             ),
             ("several solutions (multistart)", SEVERAL),
