@@ -60,6 +60,18 @@ pub fn max_dofs() -> Option<usize> {
     Some(lo)
 }
 
+/// A size in bytes as the guards' messages write it: MB below 0.1 GB (a small limit
+/// would read 0.0 GB), exponent form for absurd needs.
+pub fn size(bytes: f64) -> String {
+    if bytes < 1e8 {
+        format!("{:.0} MB", bytes / 1e6)
+    } else if bytes < 1e15 {
+        format!("{:.1} GB", bytes / 1e9)
+    } else {
+        format!("{:.1e} GB", bytes / 1e9)
+    }
+}
+
 /// Refuses a mesh of `dofs` unknowns (a graded one) whose run would not fit.
 pub fn check_memory_dofs(dofs: usize) -> Result<(), InputError> {
     let need = memory_for_dofs(dofs);
@@ -68,10 +80,9 @@ pub fn check_memory_dofs(dofs: usize) -> Result<(), InputError> {
             "n",
             format!("a mesh of {dofs} unknowns"),
             format!(
-                "a mesh that fits in memory: it needs about {:.1} GB, but {:.1} GB are \
-                 available",
-                need / 1e9,
-                have / 1e9
+                "a mesh that fits in memory: it needs about {}, but {} are available",
+                size(need),
+                size(have)
             ),
         )),
         _ => Ok(()),
@@ -130,15 +141,11 @@ pub fn check_memory(n: usize, ny: usize) -> Result<(), InputError> {
             "n",
             n,
             format!(
-                "a mesh that fits in memory: n = {n} needs about {} GB (factor of about {:.2e} \
-                 entries), but {:.1} GB are available",
-                if need < 1e15 {
-                    format!("{:.1}", need / 1e9)
-                } else {
-                    format!("{:.1e}", need / 1e9)
-                },
+                "a mesh that fits in memory: n = {n} needs about {} (factor of about {:.2e} \
+                 entries), but {} are available",
+                size(need),
                 6.0 * grid_dofs(n, ny) * grid_dofs(n, ny).log2(),
-                have / 1e9
+                size(have)
             ),
         )),
         _ => Ok(()),

@@ -111,9 +111,10 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
     let (a, b, field) = if lame {
         let mu = positive("material.mu", need("mu", m.mu)?)?;
         let lambda = finite("material.lambda", need("lambda", m.lambda)?)?;
-        // The Poisson ratio the constants imply must exceed -1 (the (E, kappa) form
-        // the code keeps needs it): lambda > -2 mu/3 in plane strain, > -mu/2 in plane
-        // stress, each stricter than positive definiteness (lambda > -mu).
+        // The plane-strain Poisson ratio the constants give must exceed -1 (the
+        // (E, kappa) form the code keeps needs it): lambda > -2 mu/3 in plane strain,
+        // > -mu/2 in plane stress, each stricter than positive definiteness (lambda >
+        // -mu in plane strain, > -2 mu/3 in plane stress).
         let (bound, name) = if stress {
             (-0.5 * mu, "-mu/2 (plane stress)")
         } else {
@@ -140,19 +141,20 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
         }
     } else {
         let e = positive("material.E", need("E", m.e)?)?;
-        let nu = poisson("material.kappa", need("kappa", m.kappa)?)?;
-        if !stress {
-            return Ok((e, nu));
-        }
+        let kappa = need("kappa", m.kappa)?;
         // The plane-strain reading of a plane-stress ratio nu is nu/(1 + nu), above
-        // -1 only for nu > -1/2.
-        if nu <= -0.5 {
+        // -1 only for nu > -1/2: the plane-stress range is (-1/2, 1/2).
+        if stress && !(kappa > -0.5 && kappa < 0.5) {
             return Err(InputError::field(
                 "material.kappa",
-                nu,
+                kappa,
                 "a plane-stress Poisson ratio in (-1/2, 1/2): its plane-strain reading \
                  nu/(1 + nu), which the code keeps, must exceed -1",
             ));
+        }
+        let nu = poisson("material.kappa", kappa)?;
+        if !stress {
+            return Ok((e, nu));
         }
         (e * nu / (1.0 - nu * nu), e / (1.0 + nu), "material.kappa")
     };

@@ -544,11 +544,11 @@ pub fn check_steps(scn: Option<&Scenario>, opt: &Settings) -> Result<(), RunErro
             "steps",
             opt.steps,
             format!(
-                "a step count whose records fit in memory: {} steps keep about {:.1} GB, but \
-                 {:.1} GB are available",
+                "a step count whose records fit in memory: {} steps keep about {}, but {} \
+                 are available",
                 opt.steps,
-                need / 1e9,
-                have / 1e9
+                crate::memory::size(need),
+                crate::memory::size(have)
             ),
         )
         .into());

@@ -343,7 +343,10 @@ impl Figure for MapFigure {
             }
         }
         let legend = [
-            ("certified (penalty: never past g), every step convex", CONVEX),
+            (
+                "certified (penalty: never past g), every step convex",
+                CONVEX,
+            ),
             (
                 "certified (penalty: never past g), steps not convex",
                 NOT_CONVEX,
