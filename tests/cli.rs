@@ -2178,3 +2178,52 @@ fn step_records_that_cannot_fit_are_refused() {
         "{err}"
     );
 }
+
+/// The time study's table says what its NaN and inf mean where a scene has them (the
+/// cantilever: no single relaxation time, no limit g), and the convergence summary of
+/// a scene whose singular points all lack a computed exponent calls the limit of the
+/// uniform orders unknown instead of 1.
+#[test]
+fn tables_say_what_their_nan_and_inf_mean() {
+    let dir = scratch("nan-legends");
+    let out = dir.join("time");
+    succeed(
+        evhi()
+            .args(["study", "time", "--quick", "--scenario"])
+            .arg("data/scenarios/examples/cantilever.toml")
+            .arg("--out")
+            .arg(&out),
+    );
+    let csv = std::fs::read_to_string(out.join("time_study.csv")).unwrap();
+    let legend = csv.lines().nth(1).unwrap();
+    assert!(
+        legend.contains("NaN where C is not a multiple of G")
+            && legend.contains("g = inf: no limit"),
+        "{legend}"
+    );
+    // Rollers on the upper halves of both sides and on the top: the singular points
+    // are where rollers end, whose exponent the wedge analysis does not give.
+    let text = std::fs::read_to_string("data/scenarios/figure.toml")
+        .unwrap()
+        .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1);
+    let file = dir.join("rollers.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "{text}\n[geometry.supports]\nleft = [{{from = 0.5, to = 1.0, kind = \"rollers\"}}]\n\
+             right = [{{from = 0.5, to = 1.0, kind = \"rollers\"}}]\ntop = \"rollers\"\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.join("conv");
+    let o = evhi()
+        .args(["study", "convergence", "--quick", "--scenario"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+    assert!(md.contains("(not known here:"), "{md}");
+}

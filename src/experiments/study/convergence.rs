@@ -493,8 +493,14 @@ pub(super) fn run(
         "\nAsymptotics: on uniform meshes the order in N_dof^(-1/2) tends to min(1, lambda), lambda the smallest exponent below{}.{}",
         if lambda.is_finite() {
             format!(" ({expected:.3} here)")
+        } else if sing.is_empty() {
+            " (1 here: the scene has no singular point)".to_string()
         } else {
-            " (1 here: no singular point with a computed exponent)".to_string()
+            // Points whose exponent is not computed (NaN below): the limit is unknown,
+            // and the orders are compared with 1, the most it can be.
+            " (not known here: no exponent below is computed, so it may lie under 1; the orders \
+             are compared with 1, the most it can be)"
+                .to_string()
         },
         match (above.is_empty(), trend) {
             (true, _) => String::new(),

@@ -16,12 +16,24 @@ pub fn write_rows(
          errors in the energy norm relative to the reference: max over the level's times t_n of ||u_ref(t_n) - u_n||_E \
          / max there of ||u_ref(t_n)||_E, and at t = T; model_*: the scalar backward-Euler model of the layer \
          (tau = C/G of the row), same measure; t_of_err_max: the level's time where the error is largest; \
-         t_first_limit: first reference time with a contact node at u_nu = g (NaN: never){}",
+         t_first_limit: first reference time with a contact node at u_nu = g (NaN: never){}{}{}",
         plan.n,
         plan.levels,
         plan.n_ref,
         if label == "variant" {
             "; variants: alpha and beta scaled by 0.1 and 10 (tau = C/G scaled, E kept; constant load), and figure with g = 1 (no node lands) under the constant load and the ramp to t = 1"
+        } else {
+            ""
+        },
+        // Conventions that only some scenes need, said where they occur.
+        if rows.iter().any(|r| !r.tau.is_finite()) {
+            "; tau, k_over_tau and model_*: NaN where C is not a multiple of G (no single \
+             relaxation time, so no scalar model)"
+        } else {
+            ""
+        },
+        if rows.iter().any(|r| r.g.is_infinite()) {
+            "; g = inf: no limit"
         } else {
             ""
         },
