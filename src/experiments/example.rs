@@ -353,7 +353,7 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         "example_five_branch_steps.csv",
         &t,
         &format!(
-            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2)",
+            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2); t_last_reversal: the last step time with a reversal (NaN: none)",
             4 * n,
             16 * n,
             64 * n

@@ -129,6 +129,11 @@ pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'stati
     }
 }
 
+/// What the NaN of a stability table means, column by column.
+pub const NAN_COLUMNS: &str = "NaN: multistart_spread for every solver but newton (only newton is \
+     restarted), mean_iterations where the run failed or did not start (hessian_min too, in \
+     the map's table), max_certificate_or_residual where it did not start";
+
 /// The map's solvers: the registry's entries marked `mapped`, in registry order.
 pub fn solvers() -> Vec<&'static str> {
     crate::step::SOLVERS
@@ -203,7 +208,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let path = ctx.write(
         "stability_map.csv",
         &t,
-        &format!("scenario figure with softening slope c2, h = 1/{n}, T = 1; hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e} (judged by convergence only); multistart spread: newton from 0, g and r0 besides the warm start", crate::step::penalty::RELATIVE_STIFFNESS),
+        &format!("scenario figure with softening slope c2, h = 1/{n}, T = 1; hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e} (judged by convergence only); multistart spread: newton from 0, g and r0 besides the warm start; {NAN_COLUMNS}", crate::step::penalty::RELATIVE_STIFFNESS),
     )?;
     draw_map(ctx, &path)
 }

@@ -312,7 +312,7 @@ pub(super) fn run(
     };
     let graded_family = families.len() > 1;
     let header = format!(
-        "produced by evhi {} `evhi {}`\n# scenario {} ({}); families: {}; levels uniform {:?}{}; {steps_word}; reference: the {} family refined to n = {} ({} unknowns), {}; {}errors and increments relative, energy norm; orders: observed between a level and the previous one of its family, in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh)",
+        "produced by evhi {} `evhi {}`\n# scenario {} ({}); families: {}; levels uniform {:?}{}; {steps_word}; reference: the {} family refined to n = {} ({} unknowns), {}; {}errors and increments relative, energy norm; orders: observed between a level and the previous one of its family, in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh); NaN: the first level's orders and the last level's increments (nothing to compare with)",
         env!("CARGO_PKG_VERSION"),
         crate::output::run::one_line(&command),
         scn.name,

@@ -1,6 +1,7 @@
 //! `evhi study stability`: where step solvers fail on the scenario's own law.
 
 use super::{bar, coarsest, write_scenario};
+use crate::experiments::stability::map::NAN_COLUMNS;
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
@@ -87,7 +88,7 @@ pub(super) fn run(
             env!("CARGO_PKG_VERSION")
         ),
         format!(
-            "scenario {}; levels n = {levels:?}, steps {steps:?}, T = {}; outcome: {OUTCOMES}; step_curvature_min = lambda_min(S + k diag(w) c_min), the step Hessian's worst case between the law's jumps (> 0 and no downward jump: every step strictly convex); H_s is n/a and steps_convex no where the law jumps down (H(j) fails)",
+            "scenario {}; levels n = {levels:?}, steps {steps:?}, T = {}; outcome: {OUTCOMES}; step_curvature_min = lambda_min(S + k diag(w) c_min), the step Hessian's worst case between the law's jumps (> 0 and no downward jump: every step strictly convex); H_s is n/a and steps_convex no where the law jumps down (H(j) fails); {NAN_COLUMNS}",
             scn.name, scn.t_end
         ),
     ];
