@@ -55,6 +55,18 @@ fn succeed(cmd: &mut Command) {
     );
 }
 
+/// Asserts that a command was refused and that its stderr holds every one of
+/// `needles` and no panic; returns the stderr.
+fn refused(o: &std::process::Output, needles: &[&str]) -> String {
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(!o.status.success(), "accepted: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "no `{n}` in: {err}");
+    }
+    err
+}
+
 /// `evhi solve --scenario figure --n 8 --steps 2 --out OUT`: the smallest run, for the
 /// tests of outputs and messages.
 fn small_solve(out: &std::path::Path) -> Command {
@@ -869,12 +881,7 @@ fn solve_keeps_the_users_files_in_an_earlier_run_directory() {
     std::fs::write(out.join("my_notes.txt"), "mine").unwrap();
     std::fs::create_dir(out.join("analysis")).unwrap();
     let o = solve();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`my_notes.txt`") && err.contains("`analysis/`"),
-        "{err}"
-    );
+    refused(&o, &["`my_notes.txt`", "`analysis/`"]);
     assert_eq!(
         std::fs::read_to_string(out.join("my_notes.txt")).unwrap(),
         "mine"
@@ -1583,12 +1590,7 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
         .arg(dir.join("refused"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`scenario`") && err.contains("one solve at T"),
-        "{err}"
-    );
+    refused(&o, &["`scenario`", "one solve at T"]);
     // An elastic scenario has no time error either: refused by name.
     let elastic = dir.join("elastic.toml");
     std::fs::write(
@@ -1683,12 +1685,7 @@ fn a_grading_finer_than_double_precision_is_refused_by_name() {
             .unwrap()
     };
     let o = run("0.05");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`grading`") && err.contains("at least 0.088 at n = 32"),
-        "{err}"
-    );
+    refused(&o, &["`grading`", "at least 0.088 at n = 32"]);
     assert!(!dir.join("g0.05").exists());
     let o = run("0.088");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
@@ -1751,12 +1748,7 @@ fn a_huge_step_count_is_refused_before_any_allocation() {
         .arg(dir.join("run"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`steps`") && err.contains("an integer in 1..=1000000"),
-        "{err}"
-    );
+    refused(&o, &["`steps`", "an integer in 1..=1000000"]);
 }
 
 /// `plot` refuses a summary or a nodes table that does not describe the run (g NaN,
@@ -2105,12 +2097,7 @@ fn declined_solvers_and_absent_families_are_said_as_they_are() {
         .arg(dir.join("run"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`solver`") && err.contains("piecewise-affine"),
-        "{err}"
-    );
+    refused(&o, &["`solver`", "piecewise-affine"]);
     let out = dir.join("stability");
     succeed(
         evhi()
@@ -2171,12 +2158,7 @@ fn step_records_that_cannot_fit_are_refused() {
         ))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`steps`") && err.contains("records fit in memory"),
-        "{err}"
-    );
+    refused(&o, &["`steps`", "records fit in memory"]);
 }
 
 /// The time study's table says what its NaN and inf mean where a scene has them (the
