@@ -2209,3 +2209,56 @@ fn tables_say_what_their_nan_and_inf_mean() {
     let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
     assert!(md.contains("(not known here:"), "{md}");
 }
+
+/// What a third audit (the docs against the outputs) found wrong in the run
+/// directory: `h` in summary.csv is the book's W/(2n) (it was 1/n whatever the
+/// width), and a uniform run's lattice in nodes.csv keeps the mesh's last column and
+/// row whatever n (a stride of n/32 alone left them out for n = 100), and is drawn.
+#[test]
+fn the_run_directory_holds_what_the_book_says() {
+    let dir = scratch("run-as-documented");
+    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    let wide = dir.join("wide.toml");
+    std::fs::write(&wide, format!("{text}\n[geometry]\nwidth = 4.0\n")).unwrap();
+    let out = dir.join("wide");
+    succeed(
+        evhi()
+            .args(["solve", "--scenario"])
+            .arg(&wide)
+            .args(["--n", "16", "--steps", "2", "--out"])
+            .arg(&out),
+    );
+    let column = |file: &std::path::Path, name: &str| -> Vec<f64> {
+        let text = std::fs::read_to_string(file).unwrap();
+        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let at = header.iter().position(|c| *c == name).unwrap();
+        lines
+            .map(|l| l.split(',').nth(at).unwrap().parse().unwrap())
+            .collect()
+    };
+    assert_eq!(column(&out.join("summary.csv"), "h"), vec![4.0 / 32.0]);
+
+    let out = dir.join("n100");
+    succeed(
+        evhi()
+            .args([
+                "solve",
+                "--scenario",
+                "figure",
+                "--n",
+                "100",
+                "--steps",
+                "2",
+                "--out",
+            ])
+            .arg(&out),
+    );
+    let (x, y) = (
+        column(&out.join("nodes.csv"), "x"),
+        column(&out.join("nodes.csv"), "y"),
+    );
+    let top = |v: &[f64]| v.iter().copied().fold(f64::MIN, f64::max);
+    assert_eq!((top(&x), top(&y)), (2.0, 1.0));
+    succeed(evhi().arg("plot").arg(&out));
+}

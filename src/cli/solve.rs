@@ -93,9 +93,10 @@ pub struct SolveArgs {
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
     pub threads: Option<u8>,
     /// Time loop: `reduced` (for proportional damping, C = c G as in the paper's data:
-    /// each step is the contact problem on the m = n + 1 contact nodes alone, and the
-    /// field is formed only where it is written, with a full certificate there; every
-    /// other step is certified on its condensed problem), `general` (one forward and
+    /// each step is the contact problem on the m contact nodes alone (n + 1 on the paper's scene), and the
+    /// field is formed only where it is written and at a quarter, half and three quarters
+    /// of the run, with a full certificate there; every other step is certified on its
+    /// condensed problem), `general` (one forward and
     /// backward sweep per step, every step certified on the full system), or `auto`
     /// (reduced where the damping is proportional).
     #[arg(long, default_value = "auto", value_parser = ["auto", "general", "reduced"])]

@@ -120,14 +120,45 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         .first()
         .cloned()
         .unwrap_or_default();
-    let stride = (n / 32).max(1);
+    // A uniform run's nodes are a lattice every few cells (its first row says how
+    // many columns); a graded run's are every node, drawn by its triangles.
+    let stride = if dir.join("triangles.csv").exists() {
+        1
+    } else {
+        let nodes = read_csv(&dir.join("nodes.csv"))?;
+        let y = col_f64(&nodes, "y")?;
+        let cols = y.iter().take_while(|&&v| v == y[0]).count();
+        let stride = n / cols.saturating_sub(1).max(1);
+        // The rows the lattice implies, and the stride a run with this n writes them at.
+        let ny = (y.len() / cols.max(1)).saturating_sub(1) * stride;
+        let written = crate::output::run::lattice_stride(n, ny.max(1));
+        if cols < 2 || !n.is_multiple_of(cols - 1) || stride != written {
+            return Err(ExpError::Table {
+                path: dir.join("nodes.csv").display().to_string(),
+                message: format!(
+                    "its {} node(s) are not a lattice of rows of {} (the n of summary.csv, \
+                     drawn every few cells); the table was not written by this run",
+                    y.len(),
+                    n / written + 1
+                ),
+            });
+        }
+        stride
+    };
+    // h as the summary gives it: 1/n on the paper's rectangle, W/(2n) on another.
+    let h = first("h")?;
+    let h_text = if (h * n as f64 - 1.0).abs() < 1e-12 {
+        format!("1/{n}")
+    } else {
+        format!("{h}")
+    };
     let deformed = || {
         super::scenes::draw_run(
             dir,
             g,
             n / stride,
             format!(
-                "{scenario} at t = T (true scale), forces on Γ3; h = 1/{n}, {steps} steps, {}{}",
+                "{scenario} at t = T (true scale), forces on Γ3; h = {h_text}, {steps} steps, {}{}",
                 if g.is_finite() {
                     format!("g = {g}")
                 } else {

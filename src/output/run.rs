@@ -264,7 +264,7 @@ pub fn write(
         .f64("max_overshoot_over_g", vec![max_overshoot(r)])
         .str("scenario", vec![scn.name.clone()])
         .str("solver", vec![prov.solver.clone()])
-        .f64("h", vec![1.0 / run.n as f64])
+        .f64("h", vec![run.mesh.h()])
         .f64("k", vec![scn.t_end / run.steps as f64])
         .f64("g", vec![scn.g])
         .f64("f0_x", vec![scn.f0[0]])
@@ -341,7 +341,7 @@ pub fn write(
     } else {
         out.write_table(
             "nodes.csv",
-            &nodes_table(mesh, &disp, (run.n / 32).max(1)),
+            &nodes_table(mesh, &disp, lattice_stride(mesh.n, mesh.ny)),
             &header,
         )?;
     }
@@ -387,6 +387,18 @@ pub fn write(
         .as_bytes(),
     )?;
     Ok(())
+}
+
+/// The stride, in cells, of the lattice a uniform run writes to `nodes.csv`: about
+/// n/32 (some 33 nodes across), lowered until it divides both the columns and the
+/// rows, so that the lattice keeps the mesh's last column and row (n/32 alone left
+/// them out for n = 100, say).
+pub fn lattice_stride(n: usize, ny: usize) -> usize {
+    let mut s = (n / 32).max(1);
+    while !(n.is_multiple_of(s) && ny.is_multiple_of(s)) {
+        s -= 1;
+    }
+    s
 }
 
 /// The lattice of a run's mesh every `stride` cells, with the displacement (`nodes.csv`).
