@@ -17,7 +17,7 @@ static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 /// in frictionless contact on the bottom Γ3 with a deformable layer of thickness g on a
 /// rigid base; a scenario file may set another rectangle, supports per side segment,
 /// Γ3, tractions, no limit, or a static problem (`evhi show FILE` describes it). P1
-/// triangles in space (n = 1/h contact segments), backward Euler in time
+/// triangles in space (n segments on the bottom, n = 1/h on the paper's rectangle), backward Euler in time
 /// (k = T/steps). Every step is checked by an independent certificate.
 #[derive(Parser)]
 #[command(name = "evhi", version, about, long_about)]

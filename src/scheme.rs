@@ -534,8 +534,8 @@ pub fn check_steps(scn: Option<&Scenario>, opt: &Settings) -> Result<(), RunErro
         return Err(InputError::field("steps", opt.steps, "an integer in 1..=1000000").into());
     }
     // A run keeps a record of every step: about 3 kB each whatever n (measured with
-    // `solve` at n = 4 and 64, 20 000 and 40 000 steps: 2.3 to 3.1 kB a step), so a
-    // million steps need some 3 GB beside the mesh.
+    // `solve` at n = 4 and 64, 20 000 and 40 000 steps: 2.3 to 3.1 kB a step); the
+    // guard counts 4 kB, so a million steps need 4 GB by its count, beside the mesh.
     let need = STEP_RECORD_BYTES * opt.steps as f64;
     if let Some(have) = crate::memory::available_memory()
         && need > 0.9 * have

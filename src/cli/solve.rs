@@ -35,7 +35,8 @@ pub struct SolveArgs {
     /// clamp or roller ends on the side, clamped corners beside a free side). A graded
     /// mesh is factorised with the AMD ordering on one thread, cuts cells by the
     /// paper's diagonal only, and writes every node to nodes.csv with triangles.csv
-    /// beside it (a uniform run's nodes.csv is a lattice every n/32 cells);
+    /// beside it (a uniform run's nodes.csv is a lattice every s cells, s about n/32,
+    /// lowered until it divides the columns and the rows);
     /// summary.csv's `mesh` column says which mesh ran.
     #[arg(long, default_value = "uniform", value_parser = ["uniform", "graded"])]
     pub mesh: String,
@@ -93,9 +94,10 @@ pub struct SolveArgs {
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
     pub threads: Option<u8>,
     /// Time loop: `reduced` (for proportional damping, C = c G as in the paper's data:
-    /// each step is the contact problem on the m contact nodes alone (n + 1 on the paper's scene), and the
-    /// field is formed only where it is written and at a quarter, half and three quarters
-    /// of the run, with a full certificate there; every other step is certified on its
+    /// each step is the contact problem on the m contact nodes alone (n + 1 on the paper's uniform mesh), and the
+    /// field is formed only where it is written and at every floor(N/4)-th step (a
+    /// quarter, half and three quarters of the run when 4 divides N), with a full
+    /// certificate there; every other step is certified on its
     /// condensed problem), `general` (one forward and
     /// backward sweep per step, every step certified on the full system), or `auto`
     /// (reduced where the damping is proportional).
