@@ -131,7 +131,7 @@ impl Figure for Fig2 {
         chart
             .configure_mesh()
             .x_desc("normal displacement uν [m]")
-            .y_desc("-σν [N/m²]")
+            .y_desc("-σν [N/m]")
             .label_style(("sans-serif", 18))
             .draw()
             .map_err(e2s)?;

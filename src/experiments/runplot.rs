@@ -282,7 +282,7 @@ impl Figure for Evolution {
             .fold(0.0, f64::max);
         let series: [(&str, &str, usize); 2] = [
             ("normal displacement u_ν", "u_ν [m]", 1),
-            ("interface force -σ_ν", "-σ_ν [N/m²]", 2),
+            ("interface force -σ_ν", "-σ_ν [N/m]", 2),
         ];
         for (panel, (caption, ylabel, which)) in panels.iter().zip(series) {
             let pick = |n: &NodeSeries| {

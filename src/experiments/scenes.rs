@@ -500,7 +500,7 @@ fn draw_forces<DB: DrawingBackend>(
         .configure_mesh()
         .disable_x_mesh()
         .x_desc("x [m]")
-        .y_desc("-σν [N/m²]")
+        .y_desc("-σν [N/m]")
         .label_style(("sans-serif", 16))
         .draw()
         .map_err(e2s)?;
