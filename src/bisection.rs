@@ -16,7 +16,7 @@
 use crate::element::twice_area;
 use crate::error::InputError;
 use crate::geometry::{Geometry, Side};
-use crate::mesh::{Interpolation, Mesh, Pattern, check_n};
+use crate::mesh::{Interpolation, MAX_N, Mesh, Pattern, check_n};
 use std::collections::HashMap;
 
 /// All triangles of a bisection family, and their nodes.
@@ -453,7 +453,7 @@ pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError
     }
     // The nodes a run could hold in memory (the memory guard's rule, two dofs a
     // node), and never more than the largest uniform mesh's.
-    let largest = 4097 * 2049;
+    let largest = (MAX_N + 1) * (MAX_N / 2 + 1);
     let max_nodes = crate::memory::max_dofs().map_or(largest, |d| (d / 2).min(largest));
     // A hair of slack so that a triangle exactly at the bound is not cut.
     let slack = 1.0 + 1e-12;

@@ -63,6 +63,10 @@ pub struct Mesh {
     pub boundary: Vec<([usize; 2], Side)>,
 }
 
+/// The most segments a structured mesh may have on the bottom (some 17 million
+/// unknowns on the paper's rectangle).
+pub const MAX_N: usize = 4096;
+
 /// Checks a number of contact segments: a positive multiple of 4, so that $y = 1/2$
 /// is a mesh line.
 pub fn check_n(n: usize) -> Result<(), InputError> {
@@ -137,8 +141,12 @@ impl Mesh {
                 "a grid pattern (bisected meshes come from crate::bisection)",
             ));
         }
-        if n > 4096 {
-            return Err(InputError::field("n", n, "at most 4096 (memory)"));
+        if n > MAX_N {
+            return Err(InputError::field(
+                "n",
+                n,
+                format!("at most {MAX_N} (memory)"),
+            ));
         }
         let (nx, ny) = (n, rows(n, geo));
         let side = geo.width / n as f64;

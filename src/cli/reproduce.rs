@@ -239,8 +239,8 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
 /// that is never deleted (the kernel releases the lock when the process ends). A
 /// second `reproduce` into the same directories fails at once instead of mixing its
 /// tables and figures with the first one's.
+/// The caller has made the directory (and refused a `--data` that is no directory).
 fn lock_outputs(data: &std::path::Path) -> Result<std::fs::File, String> {
-    std::fs::create_dir_all(data).map_err(|e| format!("cannot create {}: {e}", data.display()))?;
     let path = data.join(".reproduce.lock");
     crate::output::try_lock_file(&path)
         .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?
@@ -269,9 +269,7 @@ fn remove_stale_temporaries(dir: &std::path::Path) {
         else {
             continue;
         };
-        let alive =
-            pid == std::process::id() || std::path::Path::new(&format!("/proc/{pid}")).exists();
-        if !alive && entry.path().is_file() {
+        if !crate::output::process_alive(pid) && entry.path().is_file() {
             let _ = std::fs::remove_file(entry.path());
         }
     }

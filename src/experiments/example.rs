@@ -74,34 +74,28 @@ impl Scratch {
     /// versions left: `evhi-example-studies-PID/` and the locks
     /// `.evhi-example-NAME-PID.lock` beside their run directories.
     fn clean(tmp: &std::path::Path) {
-        #[cfg(target_os = "linux")]
-        {
-            let gone = |pid: &str| {
-                pid.parse::<u32>()
-                    .is_ok_and(|p| !std::path::Path::new(&format!("/proc/{p}")).exists())
+        let Ok(entries) = std::fs::read_dir(tmp) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let file = e.file_name().to_string_lossy().into_owned();
+            let Some(rest) = file
+                .strip_prefix('.')
+                .unwrap_or(&file)
+                .strip_prefix(Scratch::PREFIX)
+            else {
+                continue;
             };
-            let Ok(entries) = std::fs::read_dir(tmp) else {
-                return;
-            };
-            for e in entries.flatten() {
-                let file = e.file_name().to_string_lossy().into_owned();
-                let Some(rest) = file
-                    .strip_prefix('.')
-                    .unwrap_or(&file)
-                    .strip_prefix(Scratch::PREFIX)
-                else {
-                    continue;
-                };
-                let rest = rest.strip_suffix(".lock").unwrap_or(rest);
-                let pid = rest.rsplit('-').next().unwrap_or(rest);
-                if gone(pid) {
-                    let _ = std::fs::remove_dir_all(e.path());
-                    let _ = std::fs::remove_file(e.path());
-                }
+            let rest = rest.strip_suffix(".lock").unwrap_or(rest);
+            let pid = rest.rsplit('-').next().unwrap_or(rest);
+            if pid
+                .parse::<u32>()
+                .is_ok_and(|p| !crate::output::process_alive(p))
+            {
+                let _ = std::fs::remove_dir_all(e.path());
+                let _ = std::fs::remove_file(e.path());
             }
         }
-        #[cfg(not(target_os = "linux"))]
-        let _ = tmp;
     }
 }
 

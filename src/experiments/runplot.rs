@@ -110,7 +110,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
             Err(bad(c, v, &format!("an integer in [1, {max}]")))
         }
     };
-    let (n, steps) = (count("n", 4096.0)?, count("steps", 1e6)?);
+    let (n, steps) = (count("n", crate::mesh::MAX_N as f64)?, count("steps", 1e6)?);
     // g is positive, `inf` for a scene without a limit.
     let g = first("g")?;
     if g.is_nan() || g <= 0.0 {

@@ -316,7 +316,7 @@ impl Panel {
                 path: path.display().to_string(),
                 message: format!(
                     "its {nodes} node(s) are not a lattice of rows of {cols} (the n of \
-                     summary.csv, drawn every n/32 cells); the table was not written by \
+                     summary.csv, drawn every few cells); the table was not written by \
                      this run"
                 ),
             })

@@ -24,6 +24,17 @@ pub fn try_lock_file(path: &Path) -> std::io::Result<Option<std::fs::File>> {
     Ok(file.try_lock().is_ok().then_some(file))
 }
 
+/// Whether process `pid` may still be running, for removing what a killed process
+/// left behind (temporaries and scratch directories named by their process): this
+/// process, or one that `/proc` still lists. Where there is no `/proc` to ask, every
+/// process counts as running, so nothing of a live one is removed.
+pub fn process_alive(pid: u32) -> bool {
+    if pid == std::process::id() || cfg!(not(target_os = "linux")) {
+        return true;
+    }
+    Path::new(&format!("/proc/{pid}")).exists()
+}
+
 /// Writes `bytes` to `path` atomically (temporary file + rename).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let dir = path

@@ -220,7 +220,7 @@ pub(super) fn run(
     // The reference is the graded family refined to n_ref, at least the unknowns of
     // the uniform mesh there: refused by name before any work if it cannot be built
     // (it used to refine until an allocation failed).
-    let most = 4096;
+    let most = crate::mesh::MAX_N;
     if plan.n_ref > most {
         let ratio = plan.n_ref / n0;
         return Err(crate::error::InputError::field(
