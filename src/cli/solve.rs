@@ -95,7 +95,7 @@ pub struct SolveArgs {
     pub threads: Option<u8>,
     /// Time loop: `reduced` (for proportional damping, C = c G as in the paper's data:
     /// each step is the contact problem on the m contact nodes alone (n + 1 on the paper's uniform mesh), and the
-    /// field is formed only where it is written and at every floor(N/4)-th step (a
+    /// field is formed only where it is written and at every max(1, floor(N/4))-th step (a
     /// quarter, half and three quarters of the run when 4 divides N), with a full
     /// certificate there; every other step is certified on its
     /// condensed problem), `general` (one forward and
