@@ -222,9 +222,16 @@ impl Forest {
                         .total_cmp(&y.1.along(nodes[y.0[0]])),
                 )
         });
+        // The rows of the uniform level n this mesh stands for (a label: its nodes are
+        // the forest's).
+        let ny = if n.is_multiple_of(self.n0) {
+            n / self.n0 * self.ny0
+        } else {
+            crate::mesh::rows(n, geo)
+        };
         Mesh::finish(
             n,
-            n * self.ny0 / self.n0,
+            ny,
             geo,
             Pattern::Bisected,
             nodes,
@@ -409,6 +416,20 @@ pub fn centroid(f: &Forest, t: usize) -> [f64; 2] {
 /// uniform mesh of level $n$. A scene without singular points gets the uniform mesh
 /// of level $n$ by bisection.
 pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError> {
+    graded_mesh_resolving(geo, n, mu, &|_| Ok(()))
+}
+
+/// [`graded_mesh`] whose initial grid of $n_0$ segments must also pass `resolves(n0)`
+/// (a scene's tractions, say, whose ends must be nodes): the first of 4, 8, 16, … segments up to `n` whose
+/// grid resolves the scene, failing that the first multiple of 4 up to `n` (the
+/// uniform level `n` itself at the latest). Bisection only adds nodes, so every end
+/// the initial grid resolves is a node of the graded mesh.
+pub fn graded_mesh_resolving(
+    geo: &Geometry,
+    n: usize,
+    mu: f64,
+    resolves: &dyn Fn(usize) -> Result<(), InputError>,
+) -> Result<Mesh, InputError> {
     if !(0.05..=0.95).contains(&mu) {
         return Err(InputError::field(
             "grading",
@@ -419,14 +440,13 @@ pub fn graded_mesh(geo: &Geometry, n: usize, mu: f64) -> Result<Mesh, InputError
     }
     check_n(n)?;
     let uniform = Mesh::build(n, geo, Pattern::Diagonal)?;
-    let mut n0 = 4;
-    let (mut forest, root) = loop {
-        match Forest::new(n0, geo) {
-            Ok(f) => break f,
-            Err(e) if n0 >= n => return Err(e),
-            Err(_) => n0 *= 2,
-        }
-    };
+    resolves(n)?;
+    let powers = std::iter::successors(Some(4usize), |m| Some(2 * m)).take_while(|&m| m <= n);
+    let others = (4..=n).step_by(4).filter(|m| !m.is_power_of_two());
+    let (mut forest, root) = powers
+        .chain(others)
+        .find_map(|n0| resolves(n0).ok().and_then(|_| Forest::new(n0, geo).ok()))
+        .map_or_else(|| Forest::new(n, geo), Ok)?;
     let unit = geo.width.min(geo.height);
     let d = cell_diagonal(geo, uniform.n) / unit;
     let points: Vec<[f64; 2]> = geo

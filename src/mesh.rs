@@ -87,6 +87,18 @@ pub fn rows(n: usize, geo: &Geometry) -> usize {
     ((n as f64 * geo.height / geo.width).round() as usize).max(1)
 }
 
+/// The width and height of a cell of the structured mesh of level `n` on `geo`: square
+/// cells when the rows fit exactly (the paper's scene), else cells of height $H / n_y$.
+pub fn spacing(n: usize, geo: &Geometry) -> [f64; 2] {
+    let side = geo.width / n as f64;
+    let ny = rows(n, geo);
+    if ny as f64 * side == geo.height {
+        [side, side]
+    } else {
+        [side, geo.height / ny as f64]
+    }
+}
+
 /// Refuses a segment of `side` (a support's or a traction's, `field`) whose ends
 /// `[from, to]` miss the nodes, spaced `d` along the side on the mesh with `n`.
 pub(crate) fn check_ends(
@@ -149,14 +161,7 @@ impl Mesh {
             ));
         }
         let (nx, ny) = (n, rows(n, geo));
-        let side = geo.width / n as f64;
-        // Square cells when the rows fit exactly (the paper's scene), else cells of
-        // height H / ny.
-        let dy = if ny as f64 * side == geo.height {
-            side
-        } else {
-            geo.height / ny as f64
-        };
+        let [side, dy] = spacing(n, geo);
         if !(0.5..=2.0).contains(&(dy / side)) {
             return Err(InputError::field(
                 "n",
@@ -290,6 +295,48 @@ impl Mesh {
             contact,
             boundary,
         }
+    }
+
+    /// Refuses a segment of `side` (a support's, a traction's or $\Gamma_3$, `field`)
+    /// whose ends are not nodes of this mesh: the check on the mesh a run solves on,
+    /// whatever built it.
+    pub fn check_nodes_at(
+        &self,
+        field: &str,
+        side: Side,
+        ends: [f64; 2],
+    ) -> Result<(), InputError> {
+        let tol = 1e-9 * self.width.max(self.height);
+        for (end, v) in [("from", ends[0]), ("to", ends[1])] {
+            let hit = self
+                .boundary
+                .iter()
+                .filter(|(_, s)| *s == side)
+                .any(|(e, _)| {
+                    e.iter()
+                        .any(|&a| (side.along(self.nodes[a]) - v).abs() <= tol)
+                });
+            if !hit {
+                let key = if field == "geometry.contact" {
+                    field.to_string()
+                } else {
+                    format!("{field}.{end}")
+                };
+                return Err(InputError::field(
+                    key,
+                    v,
+                    format!(
+                        "a node of the {} side of the mesh solved on ({} mesh of level n = {}), \
+                         which has none there: the load or support would act on a shifted \
+                         segment; choose n so that the end is a node, or a uniform mesh",
+                        side.name(),
+                        self.pattern.name(),
+                        self.n
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The mesh size $h = W/(2n)$, half a cell's width: $1/n$ on the paper's scene.

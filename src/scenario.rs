@@ -939,21 +939,27 @@ impl Scenario {
     /// pattern; every traction's ends must be nodes too.
     pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
         let mesh = Mesh::build(n, &self.geometry, self.pattern)?;
-        for t in &self.tractions {
-            let d = if t.side.normal() == 0 {
-                mesh.dy()
-            } else {
-                mesh.dx()
-            };
-            crate::mesh::check_ends(&t.field, t.side, [t.from, t.to], d, n)?;
-        }
+        self.check_traction_ends(n)?;
         Ok(mesh)
     }
 
+    /// Refuses a traction whose ends are not nodes of the structured mesh of level `n`.
+    fn check_traction_ends(&self, n: usize) -> Result<(), InputError> {
+        let [dx, dy] = crate::mesh::spacing(n, &self.geometry);
+        for t in &self.tractions {
+            let d = if t.side.normal() == 0 { dy } else { dx };
+            crate::mesh::check_ends(&t.field, t.side, [t.from, t.to], d, n)?;
+        }
+        Ok(())
+    }
+
     /// The mesh of level $n$ graded towards the scene's singular points with exponent
-    /// `mu` ([`crate::bisection::graded_mesh`]). Its boundary nodes include the
-    /// uniform level-$n$ mesh's, so the ends of supports and tractions are checked on
-    /// that mesh first; the graded mesh cuts the cells by the paper's diagonal only.
+    /// `mu` ([`crate::bisection::graded_mesh_resolving`]). Bisection starts from the
+    /// coarsest grid whose nodes hold every end of the supports, the tractions and
+    /// $\Gamma_3$ (a grid of 4, 8, 16, … segments where one does, else of any multiple of
+    /// 4 up to $n$), so those ends are nodes of the graded mesh; the mesh built is then
+    /// checked for each of them, and an end it misses is refused by its key. The graded
+    /// mesh cuts the cells by the paper's diagonal only.
     pub fn graded_mesh(&self, n: usize, mu: f64) -> Result<Mesh, InputError> {
         if self.pattern != Pattern::Diagonal {
             return Err(InputError::field(
@@ -963,7 +969,31 @@ impl Scenario {
             ));
         }
         self.mesh(n)?;
-        crate::bisection::graded_mesh(&self.geometry, n, mu)
+        let mesh = crate::bisection::graded_mesh_resolving(&self.geometry, n, mu, &|n0| {
+            self.check_traction_ends(n0)
+        })?;
+        self.check_ends_on(&mesh)?;
+        Ok(mesh)
+    }
+
+    /// Refuses `mesh` for this scene, by the key of the first end of a support, a
+    /// traction or $\Gamma_3$ that is not one of its boundary nodes (where that load
+    /// or support would act on a shifted segment).
+    pub fn check_ends_on(&self, mesh: &Mesh) -> Result<(), InputError> {
+        let geo = &self.geometry;
+        let supports = geo
+            .supports
+            .iter()
+            .map(|s| (s.field.as_str(), s.side, [s.from, s.to]));
+        let tractions = self
+            .tractions
+            .iter()
+            .map(|t| (t.field.as_str(), t.side, [t.from, t.to]));
+        let contact = std::iter::once(("geometry.contact", Side::Bottom, geo.contact));
+        for (field, side, ends) in supports.chain(tractions).chain(contact) {
+            mesh.check_nodes_at(field, side, ends)?;
+        }
+        Ok(())
     }
 
     /// Every traction: the paper's $f_2$ on the whole top, then the file's others.

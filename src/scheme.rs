@@ -578,7 +578,13 @@ pub(crate) fn discretise(
 ) -> Result<(Discretisation, Vec<Vec<f64>>), RunError> {
     let scn = &scns[0];
     let disc = match &opt.mesh {
-        Some(mesh) => Discretisation::on(scn, mesh.clone()),
+        Some(mesh) => {
+            // A mesh made elsewhere must still hold every end of every scene's segments.
+            for s in scns {
+                s.check_ends_on(mesh)?;
+            }
+            Discretisation::on(scn, mesh.clone())
+        }
         None => Discretisation::new(scn, opt.n)?,
     };
     let mut loads = vec![disc.f.clone()];
