@@ -97,6 +97,83 @@ where
         .map_err(e2s)
 }
 
+/// Writes `title` across the top of `root` and returns the area below it. The title
+/// keeps `size` where it fits the width; a longer one is split at the "; " nearest its
+/// middle into two lines, and shrunk (to no less than 12 points) until every line
+/// fits, so that no figure clips its title.
+pub fn fit_title<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    title: &str,
+    size: u32,
+) -> Result<DrawingArea<DB, plotters::coord::Shift>, String> {
+    let room = root.dim_in_pixel().0.saturating_sub(24);
+    let fits = |lines: &[&str], s: u32| -> Result<bool, String> {
+        for l in lines {
+            if root
+                .estimate_text_size(l, &("sans-serif", s).into_text_style(root))
+                .map_err(e2s)?
+                .0
+                > room
+            {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    };
+    let lines: Vec<&str> = if fits(&[title], size)? {
+        vec![title]
+    } else {
+        let middle = title.len() / 2;
+        match title
+            .match_indices("; ")
+            .min_by_key(|(i, _)| i.abs_diff(middle))
+        {
+            Some((i, _)) => vec![&title[..i], &title[i + 2..]],
+            None => vec![title],
+        }
+    };
+    let mut s = size;
+    while s > 12 && !fits(&lines, s)? {
+        s -= 1;
+    }
+    let mut area = root.clone();
+    for l in lines {
+        area = area.titled(l, ("sans-serif", s)).map_err(e2s)?;
+    }
+    Ok(area)
+}
+
+/// A legend beside a chart rather than on its data: `entries` (label, colour, dashed)
+/// drawn top down in `area`, a short line sample before each label.
+pub fn side_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(String, RGBColor, bool)],
+    font: u32,
+) -> Result<(), String> {
+    let step = (font as i32 * 3) / 2;
+    let top = 40;
+    for (k, (label, colour, dashed)) in entries.iter().enumerate() {
+        let y = top + k as i32 * step;
+        let style = colour.stroke_width(3);
+        if *dashed {
+            for x in [4, 14, 24] {
+                area.draw(&PathElement::new(vec![(x, y), (x + 6, y)], style))
+                    .map_err(e2s)?;
+            }
+        } else {
+            area.draw(&PathElement::new(vec![(4, y), (30, y)], style))
+                .map_err(e2s)?;
+        }
+        area.draw(&Text::new(
+            label.clone(),
+            (36, y - font as i32 / 2),
+            ("sans-serif", font).into_font(),
+        ))
+        .map_err(e2s)?;
+    }
+    Ok(())
+}
+
 /// Maps any displayable error to a string.
 pub fn e2s<E: std::fmt::Display>(e: E) -> String {
     e.to_string()

@@ -173,9 +173,9 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         cost: 16.0,
         run: super::exact::run_study,
         tables: &[
-            table("exact_convergence.csv", 4, 8),
-            table("exact_cea.csv", 3, 8),
-            table("exact_crime.csv", 2, 8),
+            table("exact_convergence.csv", 4, 6),
+            table("exact_cea.csv", 3, 5),
+            table("exact_crime.csv", 2, 4),
         ],
     },
 ];

@@ -3,7 +3,7 @@
 //! interface forces, in the style of Fig. 3) and `evolution` (the normal displacement
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
-use super::plot::{Figure, both, e2s, legend, regime_colour};
+use super::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use super::{ExpError, col_f64, col_str, read_csv};
 use crate::certificate::regime_order;
 use plotters::prelude::*;
@@ -175,7 +175,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
     // The two figures at once (each writes its PNG and SVG on two threads).
     std::thread::scope(|s| {
         let deformed = s.spawn(deformed);
-        let evolution = draw_evolution(dir, &scenario, (n, steps, g));
+        let evolution = draw_evolution(dir, &scenario, (&h_text, steps, g));
         let deformed = deformed.join().unwrap_or_else(|_| {
             Err(ExpError::Plot {
                 path: dir.join("deformed.png").display().to_string(),
@@ -192,7 +192,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
 fn draw_evolution(
     dir: &Path,
     scenario: &str,
-    (n, steps, g): (usize, usize, f64),
+    (h_text, steps, g): (&str, usize, f64),
 ) -> Result<(), ExpError> {
     let ev = read_csv(&dir.join("evolution.csv"))?;
     let (t, x, u, s1, s2) = (
@@ -239,7 +239,7 @@ fn draw_evolution(
         "evolution",
         (1200, 1300),
         &Evolution {
-            title: format!("{scenario}: evolution on Γ3, h = 1/{n}, {steps} steps"),
+            title: format!("{scenario}: evolution on Γ3, h = {h_text}, {steps} steps"),
             g,
             nodes,
             counts,
@@ -273,18 +273,34 @@ impl Figure for Evolution {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let root = root.titled(&self.title, ("sans-serif", 26)).map_err(e2s)?;
+        let root = fit_title(root, &self.title, 26)?;
         let panels = root.split_evenly((3, 1));
         let t_max = self
             .nodes
             .iter()
             .flat_map(|n| n.1.iter().map(|p| p.0))
             .fold(0.0, f64::max);
+        // Watched nodes right of the middle are dashed: on a symmetric scene they trace
+        // their mirror images' curves, which stay visible between the dashes.
+        let (x_lo, x_hi) = self
+            .nodes
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), n| {
+                (a.min(n.0), b.max(n.0))
+            });
+        let middle = 0.5 * (x_lo + x_hi);
+        let dashed = |x: f64| x > middle + 1e-12 * (x_hi - x_lo);
         let series: [(&str, &str, usize); 2] = [
             ("normal displacement u_ν", "u_ν [m]", 1),
             ("interface force -σ_ν", "-σ_ν [N/m]", 2),
         ];
+        // Each panel: the chart, and its legend beside it rather than on the data.
+        let split = |area: &DrawingArea<DB, plotters::coord::Shift>| {
+            let w = area.dim_in_pixel().0;
+            area.split_horizontally(w.saturating_sub(LEGEND_WIDTH))
+        };
         for (panel, (caption, ylabel, which)) in panels.iter().zip(series) {
+            let (plot, key) = split(panel);
             let pick = |n: &NodeSeries| {
                 if which == 1 { n.1.clone() } else { n.2.clone() }
             };
@@ -298,10 +314,10 @@ impl Figure for Evolution {
             }
             let pad = 0.08 * (hi - lo).max(1e-300);
             (lo, hi) = (lo - pad, hi + pad);
-            let mut chart = ChartBuilder::on(panel)
+            let mut chart = ChartBuilder::on(&plot)
                 .caption(caption, ("sans-serif", 22))
                 .margin(12)
-                .x_label_area_size(45)
+                .x_label_area_size(50)
                 .y_label_area_size(95)
                 .build_cartesian_2d(0.0..t_max, lo..hi)
                 .map_err(e2s)?;
@@ -313,6 +329,7 @@ impl Figure for Evolution {
                 .axis_desc_style(("sans-serif", 18))
                 .draw()
                 .map_err(e2s)?;
+            let mut entries = vec![];
             if limit {
                 let grey = RGBColor(120, 120, 120);
                 chart
@@ -322,33 +339,34 @@ impl Figure for Evolution {
                         4,
                         grey.stroke_width(2),
                     ))
-                    .map_err(e2s)?
-                    .label("the limit g")
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], grey.stroke_width(2))
-                    });
+                    .map_err(e2s)?;
+                entries.push(("the limit g".to_string(), grey, true));
             }
             for (k, node) in self.nodes.iter().enumerate() {
                 let c = NODE_COLOURS[k % NODE_COLOURS.len()];
-                chart
-                    .draw_series(LineSeries::new(pick(node), c.stroke_width(3)))
-                    .map_err(e2s)?
-                    .label(format!("x = {}", node.0))
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
-                    });
+                if dashed(node.0) {
+                    chart
+                        .draw_series(DashedLineSeries::new(pick(node), 10, 8, c.stroke_width(3)))
+                        .map_err(e2s)?;
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(pick(node), c.stroke_width(3)))
+                        .map_err(e2s)?;
+                }
+                entries.push((format!("x = {}", node.0), c, dashed(node.0)));
             }
-            legend(&mut chart, SeriesLabelPosition::LowerRight, 17, 0.9)?;
+            side_legend(&key, &entries, 17)?;
         }
         let n_max = self
             .counts
             .iter()
             .flat_map(|c| c.1.iter().map(|p| p.1))
             .fold(1.0, f64::max);
-        let mut chart = ChartBuilder::on(&panels[2])
+        let (plot, key) = split(&panels[2]);
+        let mut chart = ChartBuilder::on(&plot)
             .caption("contact nodes in each regime", ("sans-serif", 22))
             .margin(12)
-            .x_label_area_size(45)
+            .x_label_area_size(50)
             .y_label_area_size(95)
             .build_cartesian_2d(0.0..t_max, 0.0..n_max * 1.08)
             .map_err(e2s)?;
@@ -360,17 +378,18 @@ impl Figure for Evolution {
             .axis_desc_style(("sans-serif", 18))
             .draw()
             .map_err(e2s)?;
+        let mut entries = vec![];
         for (name, pts) in &self.counts {
             let c = regime_colour(name);
             chart
                 .draw_series(LineSeries::new(pts.clone(), c.stroke_width(3)))
-                .map_err(e2s)?
-                .label(name.replace('_', " "))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 24, y)], c.stroke_width(3))
-                });
+                .map_err(e2s)?;
+            entries.push((name.replace('_', " "), c, false));
         }
-        legend(&mut chart, SeriesLabelPosition::UpperRight, 17, 0.9)?;
+        side_legend(&key, &entries, 17)?;
         Ok(())
     }
 }
+
+/// The width of the legend column beside each panel of the evolution figure.
+const LEGEND_WIDTH: u32 = 170;

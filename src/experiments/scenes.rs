@@ -2,7 +2,7 @@
 //! forces on $\Gamma_3$, nodes coloured by their regime, for the `figure` scenario
 //! ($h = k = 1/128$); Fig. 4 repeats it for several $g$.
 
-use super::plot::{Figure, REGIMES, both, e2s, legend, regime_colour, regime_label};
+use super::plot::{Figure, REGIMES, both, e2s, fit_title, legend, regime_colour, regime_label};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::certificate::{ContactState, regime_order};
 use crate::mesh::{Dofs, Mesh};
@@ -121,6 +121,7 @@ pub fn draw_run(
     } else {
         panel.check_lattice(&dir.join("nodes.csv"))?;
     }
+    panel.contact = run_contact(dir, &panel);
     let panels = vec![panel];
     both(
         dir,
@@ -132,6 +133,23 @@ pub fn draw_run(
             paper_law: false,
         },
     )
+}
+
+/// $\Gamma_3$ of a run directory where it is a part of the bottom: from the run's
+/// `scenario.toml`, or where that does not read, the span of its contact nodes.
+fn run_contact(dir: &std::path::Path, panel: &Panel) -> Option<[f64; 2]> {
+    let from_file = std::fs::read_to_string(dir.join("scenario.toml"))
+        .ok()
+        .and_then(|text| Scenario::from_toml(&text, "scenario.toml").ok())
+        .map(|scn| scn.geometry.contact);
+    let span = || {
+        let lo = panel.cx.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = panel.cx.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (lo < hi).then_some([lo, hi])
+    };
+    let contact = from_file.or_else(span)?;
+    let whole = contact[0] <= 0.0 && contact[1] >= panel.width();
+    (!whole).then_some(contact)
 }
 
 /// Nodes of the lattice with spacing `stride` (in mesh cells), with their displacement.
@@ -246,6 +264,9 @@ struct Panel {
     u_nu: Vec<f64>,
     /// A mesh that is no lattice (graded): its triangles, node indices into `x`.
     triangles: Option<Vec<[usize; 3]>>,
+    /// $\Gamma_3$ as `[from, to]` on the bottom where it is not the whole bottom: the
+    /// layer and foundation are drawn under it only.
+    contact: Option<[f64; 2]>,
 }
 
 impl Panel {
@@ -289,6 +310,7 @@ impl Panel {
             u_nu: pick(col_f64(&c, "u_nu")?, &cg),
             regime,
             triangles: None,
+            contact: None,
         })
     }
 }
@@ -351,7 +373,7 @@ impl Figure for SceneFigure {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let root = root.titled(&self.title, ("sans-serif", 24)).map_err(e2s)?;
+        let root = fit_title(root, &self.title, 24)?;
         let rows = root.split_evenly((self.panels.len(), 1));
         for (p, area) in self.panels.iter().zip(rows.iter()) {
             // The mesh panel tall enough to show x in [-0.05, W + 0.05] and y in
@@ -371,7 +393,7 @@ impl Figure for SceneFigure {
 /// The mesh panel's x span, the y span it must show, and its frame (pixels
 /// outside the plotting area: y labels and margins across; caption, x labels
 /// and margins down).
-const MESH_FRAME: (u32, u32) = (66, 74);
+const MESH_FRAME: (u32, u32) = (66, 92);
 
 fn draw_mesh<DB: DrawingBackend>(
     p: &Panel,
@@ -393,7 +415,7 @@ fn draw_mesh<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(caption, ("sans-serif", 18))
         .margin(8)
-        .x_label_area_size(30)
+        .x_label_area_size(48)
         .y_label_area_size(50)
         // True aspect: as many metres per pixel down as across.
         .build_cartesian_2d(-0.05..p.width() + 0.05, -0.16..-0.16 + aspect_span(p, area))
@@ -407,13 +429,13 @@ fn draw_mesh<DB: DrawingBackend>(
         .draw()
         .map_err(e2s)?;
     // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g;
-    // none without a limit, the layer then fills the panel's foot).
-    let right = p.width() + 0.05;
+    // none without a limit, the layer then fills the panel's foot), under Gamma_3 only.
+    let [left, right] = p.contact.unwrap_or([-0.05, p.width() + 0.05]);
     let base = p.g.min(0.16);
     if p.g.is_finite() {
         chart
             .draw_series(std::iter::once(Rectangle::new(
-                [(-0.05, -0.16), (right, -p.g)],
+                [(left, -0.16), (right, -p.g)],
                 RGBColor(120, 120, 120).mix(0.5).filled(),
             )))
             .map_err(e2s)?;
@@ -421,7 +443,7 @@ fn draw_mesh<DB: DrawingBackend>(
     chart
         .draw_series(std::iter::once(Rectangle::new(
             [
-                (-0.05, if p.g.is_finite() { -p.g } else { -base }),
+                (left, if p.g.is_finite() { -p.g } else { -base }),
                 (right, 0.0),
             ],
             RGBColor(240, 200, 120).mix(0.4).filled(),
@@ -492,7 +514,7 @@ fn draw_forces<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)", ("sans-serif", 17))
         .margin(8)
-        .x_label_area_size(35)
+        .x_label_area_size(48)
         .y_label_area_size(62)
         .build_cartesian_2d(-0.05..p.width() + 0.05, 0.0..ymax)
         .map_err(e2s)?;

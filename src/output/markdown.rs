@@ -47,6 +47,17 @@ pub fn table(csv: &str, keys: usize, max_cols: usize) -> String {
                 })
             })
             .collect();
+        // A key column (parameters such as g = 0.09) reads as given where every value
+        // is short, not padded to four digits (0.09000).
+        let short_key: Vec<bool> = cols
+            .iter()
+            .map(|&c| {
+                c < keys
+                    && body
+                        .iter()
+                        .all(|r| r.get(c).is_some_and(|v| short(v).is_some()))
+            })
+            .collect();
         out.push('|');
         for &c in &cols {
             out.push_str(&format!(" `{}` |", header[c]));
@@ -60,7 +71,11 @@ pub fn table(csv: &str, keys: usize, max_cols: usize) -> String {
             out.push('|');
             for (i, &c) in cols.iter().enumerate() {
                 let cell = r.get(c).map_or("", |s| s.as_str());
-                out.push_str(&format!(" {} |", number(cell, integer[i])));
+                let text = match short(cell) {
+                    Some(v) if short_key[i] => v,
+                    _ => number(cell, integer[i]),
+                };
+                out.push_str(&format!(" {text} |"));
             }
             out.push('\n');
         }
@@ -81,6 +96,16 @@ fn split(line: &str) -> Vec<String> {
     }
     out.push(cur);
     out
+}
+
+/// A number whose shortest decimal form has at most four significant digits, in that
+/// form (0.09, 2.5, 128); `None` for anything else.
+fn short(cell: &str) -> Option<String> {
+    let x = cell.trim().parse::<f64>().ok().filter(|x| x.is_finite())?;
+    let text = format!("{x}");
+    let digits = text.trim_start_matches(['-', '0', '.']).replace('.', "");
+    (!text.contains('e') && digits.trim_end_matches('0').len() <= 4 && !text.starts_with("0.0000"))
+        .then_some(text)
 }
 
 /// A cell: numbers to four significant digits (integers whole, NaN as a dash),
@@ -129,6 +154,22 @@ mod tests {
         assert!(md.contains("| `a` | `b` | `c` |"), "{md}");
         assert!(md.contains("| `a` | `d` |"), "{md}");
         assert!(md.contains("| y | 2.250 | 3 |"), "{md}");
+    }
+
+    #[test]
+    fn short_keys_read_as_given() {
+        let md = table("g,limit\n0.1,39\n0.09,47\n", 1, 6);
+        assert!(
+            md.contains("| 0.1 | 39 |") && md.contains("| 0.09 | 47 |"),
+            "{md}"
+        );
+        // A value column keeps its four digits; a key column with a long value keeps
+        // the rule throughout.
+        let md = table("g,err\n0.123456,0.5\n0.5,0.5\n", 1, 6);
+        assert!(
+            md.contains("| 0.1235 | 0.5000 |") && md.contains("| 0.5000 |"),
+            "{md}"
+        );
     }
 
     #[test]

@@ -114,7 +114,7 @@ impl LogLog {
         if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
             slope_guides(&mut chart, &self.guides, start, xmax, 0.4)?;
         }
-        legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.9)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 19, 0.9)?;
         Ok(())
     }
 }
@@ -139,7 +139,9 @@ impl Figure for TwoPanels {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let (l, r) = root.split_horizontally(root.dim_in_pixel().0 as i32 * 3 / 5);
+        // One above the other, so that each keeps the page's width and its legend a
+        // readable size in the book's column.
+        let (l, r) = root.split_vertically(root.dim_in_pixel().1 as i32 / 2);
         self.left.draw_on(&l, 0)?;
         self.right.draw_on(&r, self.left.series.len())
     }
@@ -245,7 +247,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
     both(
         &ctx.figures,
         "exact_convergence",
-        (1500, 760),
+        (1000, 1500),
         &TwoPanels {
             left: LogLog {
                 title: "In h: h = k and h families, against the truth".into(),
