@@ -350,12 +350,15 @@ pub struct Scenario {
 }
 
 /// The data's hypotheses at $t = 0$: see [`Scenario::time_hypotheses`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TimeHypotheses {
     /// $\varphi(0)$.
     pub phi0: f64,
-    /// $f_2(0) = 0$.
+    /// $f_2(0) = 0$: every traction vanishes at $t = 0$.
     pub f2_zero: bool,
+    /// The key of the first traction that does not (`loads.f2` or a
+    /// `loads.traction[i]`).
+    pub traction_at_0: Option<String>,
     /// $f_0(0) \in V$.
     pub f0_in_v: bool,
     /// $0 \in \partial_{Cl} j(0)$.
@@ -375,11 +378,16 @@ impl TimeHypotheses {
     pub fn failures(&self) -> Vec<String> {
         let mut out = vec![];
         if !self.f2_zero {
-            out.push(format!("f2(0) = {} f2 is not zero (H(f))", self.phi0));
+            out.push(format!(
+                "the traction `{}` is not zero at t = 0 (phi(0) = {}) (H(f))",
+                self.traction_at_0.as_deref().unwrap_or("loads.f2"),
+                self.phi0
+            ));
         }
         if !self.f0_in_v {
             out.push(format!(
-                "f0(0) = {} f0 does not vanish on the supports, so it is not in V (H(f))",
+                "the body force `loads.f0` does not vanish on the supports at t = 0 (phi(0) = \
+                 {}), so f0(0) is not in V (H(f))",
                 self.phi0
             ));
         }
@@ -601,8 +609,15 @@ impl Scenario {
 
     /// A built-in scenario by name, or a TOML file by path.
     pub fn load(name_or_path: &str) -> Result<Scenario, InputError> {
+        Scenario::read(name_or_path).map(|(scn, _)| scn)
+    }
+
+    /// [`Scenario::load`] with the text it was read from: a run writes that text, so
+    /// the file is read once (an edit or a move during the run cannot change or lose
+    /// what the run records).
+    pub fn read(name_or_path: &str) -> Result<(Scenario, String), InputError> {
         if let Some((_, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
-            return Scenario::from_toml(text, name_or_path);
+            return Ok((Scenario::from_toml(text, name_or_path)?, text.to_string()));
         }
         let path = Path::new(name_or_path);
         if path.extension().is_some_and(|e| e == "toml") || path.exists() {
@@ -646,7 +661,7 @@ impl Scenario {
                 source_name: name_or_path.to_string(),
                 message: format!("not UTF-8 text: {e}"),
             })?;
-            return Scenario::from_toml(&text, name_or_path);
+            return Ok((Scenario::from_toml(&text, name_or_path)?, text));
         }
         Err(InputError::field(
             "scenario",
@@ -893,10 +908,12 @@ impl Scenario {
     /// so it holds exactly when H(f)'s two conditions hold and $0 \in \partial_{Cl} j(0)$.
     pub fn time_hypotheses(&self) -> TimeHypotheses {
         let phi0 = self.history.phi(0.0);
-        let f2_zero = self
+        let traction_at_0 = self
             .tractions()
-            .iter()
-            .all(|t| t.f.iter().all(|&c| phi0 * c == 0.0));
+            .into_iter()
+            .find(|t| t.f.iter().any(|&c| phi0 * c != 0.0))
+            .map(|t| t.field);
+        let f2_zero = traction_at_0.is_none();
         // The body force is smooth in x; it lies in V when it vanishes on the
         // components each support holds: sampled at each held segment's ends and middle
         // (the force varies only with x, so on a side it is constant and on the top or
@@ -920,6 +937,7 @@ impl Scenario {
         TimeHypotheses {
             phi0,
             f2_zero,
+            traction_at_0,
             f0_in_v,
             zero_in_clarke,
         }

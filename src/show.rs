@@ -245,6 +245,14 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         ),
     }
     let h = scn.time_hypotheses();
+    if scn.problem != crate::scenario::Problem::Viscoelastic {
+        let _ = writeln!(
+            s,
+            "H(f), H(0) at t = 0: not asked (a {} problem has no evolution from u0 = 0)",
+            scn.problem.name()
+        );
+        return (s, warnings);
+    }
     if h.h_0() {
         let _ = writeln!(s, "H(f), H(0) at t = 0: hold (f(0) = {} (f0, f2))", h.phi0);
     }

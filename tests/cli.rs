@@ -2262,3 +2262,53 @@ fn the_run_directory_holds_what_the_book_says() {
     assert_eq!((top(&x), top(&y)), (2.0, 1.0));
     succeed(evhi().arg("plot").arg(&out));
 }
+
+/// The H(f) warning names the traction that breaks it (it blamed `f2` when f2 = (0, 0)
+/// and only a `[[loads.traction]]` was loaded), and a steady or elastic problem, which
+/// has no evolution from u0 = 0, prints none (issue 41, items 10 and 13).
+#[test]
+fn the_h_f_warning_names_its_traction_and_only_for_an_evolution() {
+    let base = scratch("cli-hf");
+    let scene = |problem: &str| {
+        format!(
+            "name = \"pulled\"\nT = 1.0\ng = \"none\"\nproblem = \"{problem}\"\n\
+             [geometry]\nwidth = 3.0\nheight = 1.0\n[geometry.supports]\nleft = \"clamped\"\n\
+             [material]\nE = 1000.0\nkappa = 0.3\n{}\
+             [loads]\nf0 = [0.0, 0.0]\nf2 = [0.0, 0.0]\n\
+             [[loads.traction]]\nside = \"top\"\nfrom = 2.25\nto = 3.0\nf = [0.0, 10.0]\n\
+             [law]\nbreakpoints = [0.0]\nslopes = [0.0, 500.0]\n",
+            if problem == "viscoelastic" {
+                "alpha = 10.0\nbeta = 5.0\n"
+            } else {
+                ""
+            }
+        )
+    };
+    for (problem, warns) in [
+        ("viscoelastic", true),
+        ("elastic", false),
+        ("steady", false),
+    ] {
+        let file = base.join(format!("{problem}.toml"));
+        std::fs::write(&file, scene(problem)).unwrap();
+        let o = evhi()
+            .args(["solve", "--n", "12", "--scenario"])
+            .arg(&file)
+            .arg("--out")
+            .arg(base.join(problem))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{problem}: {err}");
+        assert_eq!(err.contains("H(f)"), warns, "{problem}: {err}");
+        if warns {
+            assert!(
+                err.contains("`loads.traction[0]`") && !err.contains("f2"),
+                "{err}"
+            );
+        }
+        let shown = evhi().arg("show").arg(&file).output().unwrap();
+        let out = String::from_utf8_lossy(&shown.stdout);
+        assert_eq!(out.contains("not asked"), !warns, "{problem}: {out}");
+    }
+}

@@ -191,3 +191,91 @@ fn interrupted_writes_leave_a_whole_set() {
     assert!(old_kept > 0, "no kill landed inside the write phase");
     std::fs::remove_dir_all(&root).ok();
 }
+
+/// A file the user puts into `--out` while a run is writing is kept: the check at the
+/// start cannot see it, and the old set it lands in is swapped out at publish; it used
+/// to be deleted with that set, silently (issue 41, item 2). It is moved into the new
+/// set, the run says so, and the next run refuses it by name.
+#[test]
+fn a_file_added_during_the_run_is_kept() {
+    let root = scratch("added");
+    let out = root.join("run");
+    assert!(solve(8, &out).status().unwrap().success());
+    let mut run = solve(8, &out)
+        .env("EVHI_WRITE_DELAY_MS", "300")
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(600));
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let done = run.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&done.stderr);
+    assert!(done.status.success(), "{err}");
+    assert!(err.contains("`notes.txt`") && err.contains("kept"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    assert_eq!(whole_set(&out), Ok(8));
+    let again = solve(8, &out).output().unwrap();
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        !again.status.success() && err.contains("`notes.txt`"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&root).ok();
+}
+
+/// A user's file named like a temporary is the user's: `.notes.tmp-1.txt` in a run
+/// directory used to count as a run's leftover and be deleted by the next run (issue
+/// 41, item 4). Only the temporaries of a run's own files count.
+#[test]
+fn a_user_file_named_like_a_temporary_is_refused_not_deleted() {
+    use evhi::output::rundir::is_run_file;
+    assert!(is_run_file(".deformed.tmp-123.png") && is_run_file(".summary.csv.tmp-9"));
+    assert!(!is_run_file(".notes.tmp-1.txt") && !is_run_file(".deformed.tmp-x.png"));
+    let root = scratch("tmpname");
+    let out = root.join("run");
+    assert!(solve(8, &out).status().unwrap().success());
+    std::fs::write(out.join(".notes.tmp-1.txt"), "mine").unwrap();
+    let again = solve(8, &out).output().unwrap();
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        !again.status.success() && err.contains("`.notes.tmp-1.txt`"),
+        "{err}"
+    );
+    assert!(out.join(".notes.tmp-1.txt").exists());
+    std::fs::remove_dir_all(&root).ok();
+}
+
+/// The scenario file is read once: moved or edited while the run writes, the run still
+/// ends and records the text it solved (it read the file again after solving, so a move
+/// failed with `No such file or directory` naming no path and lost the result, and an
+/// edit put the new text beside the old results; issue 41, item 3).
+#[test]
+fn the_scenario_file_is_read_once() {
+    let root = scratch("readonce");
+    let out = root.join("run");
+    let file = root.join("s.toml");
+    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    std::fs::write(&file, format!("# the text solved\n{text}")).unwrap();
+    let mut c = evhi();
+    c.args(["solve", "--n", "8", "--steps", "4", "--scenario"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&out)
+        .env("EVHI_WRITE_DELAY_MS", "300")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped());
+    let run = c.spawn().unwrap();
+    std::thread::sleep(Duration::from_millis(600));
+    std::fs::rename(&file, root.join("moved.toml")).unwrap();
+    let done = run.wait_with_output().unwrap();
+    assert!(
+        done.status.success(),
+        "{}",
+        String::from_utf8_lossy(&done.stderr)
+    );
+    let recorded = std::fs::read_to_string(out.join("scenario.toml")).unwrap();
+    assert!(recorded.contains("# the text solved"), "{recorded}");
+    std::fs::remove_dir_all(&root).ok();
+}

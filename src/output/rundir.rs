@@ -44,15 +44,33 @@ pub const RUN_FILES: [&str; 14] = [
     MARKER,
 ];
 
-/// Whether `name` is a file a run writes ([`RUN_FILES`], a numbered snapshot, or a
-/// temporary `.STEM.tmp-PID.EXT` that an interrupted figure left).
+/// Whether `name` is a file a run writes ([`RUN_FILES`], a numbered snapshot, or the
+/// temporary of one of them that an interrupted write left: `.FILE.tmp-PID` or, for a
+/// figure, `.STEM.tmp-PID.EXT`, with FILE or STEM.EXT a run's file and PID digits).
+/// A user's `.notes.tmp-1.txt` is no run's and is never taken for one.
 pub fn is_run_file(name: &str) -> bool {
-    RUN_FILES.contains(&name)
-        || (name.starts_with('.') && name.contains(".tmp-"))
-        || name
-            .strip_prefix("solution_")
-            .and_then(|r| r.strip_suffix(".vtu"))
-            .is_some_and(|d| d.len() >= 6 && d.bytes().all(|b| b.is_ascii_digit()))
+    RUN_FILES.contains(&name) || is_run_temporary(name) || is_snapshot(name)
+}
+
+fn is_run_temporary(name: &str) -> bool {
+    let Some((stem, rest)) = name.strip_prefix('.').and_then(|n| n.split_once(".tmp-")) else {
+        return false;
+    };
+    let digits = |d: &str| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit());
+    match rest.split_once('.') {
+        None => digits(rest) && is_snapshot_or_file(stem),
+        Some((pid, ext)) => digits(pid) && is_snapshot_or_file(&format!("{stem}.{ext}")),
+    }
+}
+
+fn is_snapshot_or_file(name: &str) -> bool {
+    RUN_FILES.contains(&name) || is_snapshot(name)
+}
+
+fn is_snapshot(name: &str) -> bool {
+    name.strip_prefix("solution_")
+        .and_then(|r| r.strip_suffix(".vtu"))
+        .is_some_and(|d| d.len() >= 6 && d.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// Why the output directory cannot be used.
@@ -236,7 +254,31 @@ impl RunDir {
         }
         if self.target.exists() {
             exchange(&self.staging, &self.target).map_err(io(&self.target))?;
-            // The staging path now holds the previous set.
+            // The staging path now holds the previous set. A file the user put there
+            // during the run (the check at the start saw none) is moved into the new
+            // set, not deleted with the old one; the next run then refuses it by name.
+            let listed = listed_files(&self.staging);
+            let mut kept = vec![];
+            for entry in std::fs::read_dir(&self.staging).map_err(io(&self.staging))? {
+                let name = entry.map_err(io(&self.staging))?.file_name();
+                let name = name.to_string_lossy().into_owned();
+                if !is_run_file(&name) && !listed.contains(&name) {
+                    let (from, to) = (self.staging.join(&name), self.target.join(&name));
+                    std::fs::rename(&from, &to).map_err(io(&to))?;
+                    kept.push(name);
+                }
+            }
+            if !kept.is_empty() {
+                eprintln!(
+                    "warning: {} appeared in `{}` during the run and was kept beside the new \
+                     set; a later run into it will refuse until it is moved out",
+                    kept.iter()
+                        .map(|n| format!("`{n}`"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    self.target.display()
+                );
+            }
             let _ = std::fs::remove_dir_all(&self.staging);
         } else {
             std::fs::rename(&self.staging, &self.target).map_err(io(&self.target))?;

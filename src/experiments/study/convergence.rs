@@ -190,7 +190,7 @@ pub(super) fn run(
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::convergence as split;
-    let scn = Scenario::load(&args.scenario)?;
+    let (scn, text) = Scenario::read(&args.scenario)?;
     // Every mesh of the study comes from bisection of the diagonal cut, as a graded
     // `solve` does: another pattern would be ignored (or fail late), so it is refused.
     if scn.pattern != crate::mesh::Pattern::Diagonal {
@@ -662,7 +662,7 @@ pub(super) fn run(
         );
     }
     out.write("convergence.md", md.as_bytes())?;
-    super::write_scenario(&out, &args.scenario, &command)?;
+    super::write_scenario(&out, &text, &command)?;
     graded::draw(
         &out.path(""),
         "convergence",

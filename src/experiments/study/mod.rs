@@ -152,14 +152,6 @@ pub(super) fn coarsest(scn: &Scenario) -> Result<usize, crate::error::InputError
     }
 }
 
-/// The scenario file's text (a built-in's compiled-in text).
-pub(super) fn scenario_text(name: &str) -> Result<String, std::io::Error> {
-    match crate::scenario::BUILTIN.iter().find(|b| b.0 == name) {
-        Some((_, text)) => Ok(text.to_string()),
-        None => std::fs::read_to_string(name),
-    }
-}
-
 /// A percentage for the summaries: four decimals, or four significant digits in
 /// scientific notation below 0.01 (so that a small error does not print as 0.0000).
 pub(super) fn pct(x: f64) -> String {
@@ -199,20 +191,15 @@ pub(super) fn study_ctx(
     }
 }
 
-/// Writes the scenario as read into the study's directory.
+/// Writes the scenario's text, as read when the study started, into its directory.
 pub(super) fn write_scenario(
     out: &RunDir,
-    name: &str,
+    text: &str,
     command: &str,
 ) -> Result<(), Box<dyn std::error::Error>> {
     out.write(
         "scenario.toml",
-        format!(
-            "# The scenario of this study, as read.\n# evhi {}\n{}",
-            command,
-            scenario_text(name)?
-        )
-        .as_bytes(),
+        format!("# The scenario of this study, as read.\n# evhi {command}\n{text}").as_bytes(),
     )?;
     Ok(())
 }

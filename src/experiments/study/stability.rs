@@ -26,7 +26,7 @@ pub(super) fn run(
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::stability::map::{MapFigure, map_cell, solvers};
-    let scn = Scenario::load(&args.scenario)?;
+    let (scn, text) = Scenario::read(&args.scenario)?;
     let steady = scn.problem == crate::scenario::Problem::Steady;
     let n0 = coarsest(&scn)?.max(8);
     let levels: Vec<usize> = if args.quick {
@@ -210,7 +210,7 @@ pub(super) fn run(
         row_label: |n| format!("{n:.0}"),
     };
     crate::experiments::plot::both(&out.path(""), "stability", (1100, 1150), &fig)?;
-    write_scenario(&out, &args.scenario, command)?;
+    write_scenario(&out, &text, command)?;
     out.publish()?;
     Ok(md)
 }

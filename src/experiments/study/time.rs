@@ -10,7 +10,7 @@ pub(super) fn run(
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::time;
-    let scn = Scenario::load(&args.scenario)?;
+    let (scn, text) = Scenario::read(&args.scenario)?;
     if scn.problem != crate::scenario::Problem::Viscoelastic {
         return Err(crate::error::InputError::field(
             "scenario",
@@ -88,7 +88,7 @@ pub(super) fn run(
     );
     out.write("time_study.md", md.as_bytes())?;
     draw_time(&out.path(""), &rows, plan.n)?;
-    write_scenario(&out, &args.scenario, command)?;
+    write_scenario(&out, &text, command)?;
     out.publish()?;
     Ok(md)
 }
