@@ -423,7 +423,7 @@ pub const MAX_FILE_BYTES: u64 = 1 << 20;
 
 /// The smallest largest load component a scenario may have, unless all are zero:
 /// squares of displacements of that order stay some 200 orders of magnitude above
-/// the smallest normal double ([`Scenario::check_load_scale`]).
+/// the smallest normal double (`Scenario::check_load_scale`).
 pub const MIN_LOAD_SCALE: f64 = 1e-100;
 
 /// `text` cut to at most `max` characters, marking the cut.

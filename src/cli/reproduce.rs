@@ -24,8 +24,8 @@ pub struct ReproduceArgs {
     #[arg(long, conflicts_with = "quiet")]
     pub log: bool,
     /// Table 1's reference level n (h = k = 1/n) in place of the paper's 512, e.g.
-    /// 1024 (1.05 M unknowns, about 2 GB): writes table1_ref<n>.csv and
-    /// table1_reference_shift_ref<n>.csv, how far each entry of table1.csv moves
+    /// 1024 (1.05 M unknowns, about 2 GB): writes `table1_ref<n>.csv` and
+    /// `table1_reference_shift_ref<n>.csv`, how far each entry of table1.csv moves
     /// (run `reproduce table1` first); the paper's table1.csv is left as it is.
     #[arg(long, value_name = "N")]
     pub reference: Option<usize>,

@@ -21,7 +21,9 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     crate::mesh::check_n(args.n)?;
     crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
     // The step count `solve` would take, refused as `solve` refuses it.
-    let steps = super::steps_or_default(args.steps, &scn);
+    let steps = args
+        .steps
+        .unwrap_or_else(|| crate::simulation::default_steps(&scn));
     crate::scheme::check_steps(Some(&scn), &crate::scheme::Settings::new(args.n, steps))?;
     let (text, warnings) = crate::show::report(&scn, args.n, steps);
     print!("{text}");

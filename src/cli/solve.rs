@@ -1,10 +1,11 @@
 //! `evhi solve`: one scenario, written as a self-describing run directory.
 
+use crate::certificate::ContactState;
 use crate::output::run::{Provenance, Recorder};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
-use crate::scheme::{self, OrderingKind, Settings};
-use crate::step::StepSolver;
+use crate::scheme::OrderingKind;
+use crate::simulation::{Loop, MeshKind, Observer, RunSettings, Simulation};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -150,138 +151,52 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             failures.join("; ")
         );
     }
-    if !(1e-15..=1e-4).contains(&args.certificate_tol) {
-        return Err(crate::error::InputError::field(
-            "certificate-tol",
-            format!("{:e}", args.certificate_tol),
-            "a relative residual in [1e-15, 1e-4] (below 1e-15 rounding alone fails it; \
-             above 1e-4 a step would be certified that is not a solution)",
-        )
-        .into());
-    }
-    let steps = super::steps_or_default(args.steps, &scn);
-    let graded = args.mesh == "graded";
-    if args.grading.is_some() && !graded {
-        return Err(crate::error::InputError::field(
-            "grading",
-            args.grading.unwrap_or_default(),
-            "nothing without --mesh graded (the exponent of the graded mesh)",
-        )
-        .into());
-    }
-    let ordering = match (args.ordering.as_deref(), graded) {
-        (Some("nd"), true) => {
-            return Err(crate::error::InputError::field(
-                "ordering",
-                "nd",
-                "amd with --mesh graded (nested dissection cuts the uniform grid's lines)",
-            )
-            .into());
-        }
-        (Some(o), _) => o.to_string(),
-        (None, true) => "amd".to_string(),
-        (None, false) => "nd".to_string(),
-    };
-    let entry = crate::step::solver(&args.solver)?;
-    let mut solver: Box<dyn StepSolver> = entry.build();
-    let mut opt = Settings::new(args.n, steps);
-    // Before anything is sized by the step count.
-    crate::scheme::check_steps(Some(&scn), &opt)?;
-    opt.certificate_tol = if entry.certified {
-        args.certificate_tol
-    } else {
+    let sim = Simulation::new(scn, settings(&args)?)?;
+    let scn = sim.scenario();
+    let entry = sim.solver();
+    if !entry.certified {
         eprintln!(
             "note: solver `{}` ({}) is not certified; steps.csv still records each step's \
              certificate, its distance from the exact step",
             entry.name, entry.about
         );
-        f64::INFINITY
-    };
-    opt.ordering = match ordering.as_str() {
-        "amd" => OrderingKind::Amd,
-        _ => OrderingKind::NestedDissection,
-    };
-    opt.parallel = match (args.threads, opt.ordering) {
-        (Some(2), OrderingKind::Amd) => {
-            return Err(crate::error::InputError::field(
-                "threads",
-                2,
-                "1 with --ordering amd (only nested dissection splits the sweeps in two halves); \
-                 use --ordering nd for two threads",
-            )
-            .into());
-        }
-        (Some(t), _) => t == 2,
-        (None, kind) => kind == OrderingKind::NestedDissection,
-    };
-    // The mesh first: a scene whose segments miss the mesh lines is refused by name.
-    crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
-    let mesh = std::sync::Arc::new(if graded {
-        scn.graded_mesh(args.n, args.grading.unwrap_or(0.4))?
-    } else {
-        scn.mesh(args.n)?
-    });
-    if graded {
-        opt.mesh = Some(mesh.clone());
-        crate::scheme::check_memory_dofs(2 * mesh.nodes.len())?;
     }
+    let (mesh, steps, graded) = (sim.mesh().clone(), sim.steps(), args.mesh == "graded");
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
     if let Some(every) = args.vtk_every {
         check_vtk_volume(&args.out, mesh.nodes.len(), steps, every)?;
     }
-    let mut bar: Option<ProgressBar> = None;
-    let started = Instant::now();
-    let mut recorder = Recorder::new(&scn, mesh.clone(), steps, args.vtk_every)?;
-    let field_steps: Vec<bool> = (0..=steps).map(|s| recorder.wants_field(s)).collect();
-    let steps = steps as u64;
-    let mut observe =
-        |n: usize, t: f64, u: Option<&[f64]>, contact: &[crate::certificate::ContactState]| {
-            recorder.observe(&out, n, t, u, contact);
-            if bar.is_none() && started.elapsed() > Duration::from_secs(1) {
-                let b = ProgressBar::new(steps).with_style(
-                    ProgressStyle::with_template(
-                        "{spinner} step {pos}/{len} [{bar:40}] {elapsed} (eta {eta})",
-                    )
-                    .expect("valid template")
-                    .progress_chars("=> "),
-                );
-                bar = Some(b);
-            }
-            if let Some(b) = &bar {
-                b.set_position(n as u64);
-            }
-        };
-    let reduced = match args.path.as_str() {
-        "general" => false,
-        "reduced" => true,
-        // The reduced loop checks proportionality again on the assembled matrices.
-        _ => scn.relaxation_time().is_some(),
+    let mut cli = Progress {
+        recorder: Recorder::new(scn, mesh.clone(), steps, args.vtk_every)?,
+        out: &out,
+        bar: None,
+        started: Instant::now(),
+        steps: steps as u64,
     };
     // The smallness check H(s) factorises a matrix of its own: on the second core
     // while the run goes (the reduced loop keeps one core busy).
     let (run, h_s) = std::thread::scope(|s| {
-        let h_s = s.spawn(|| crate::show::Smallness::of(&scn, args.n));
-        let run = if reduced {
-            let wants = |step: usize| field_steps[step];
-            crate::reduced::run(&scn, &opt, solver.as_mut(), &wants, &mut observe)
-        } else {
-            scheme::run_with_states(&scn, &opt, solver.as_mut(), &mut |n, t, u, c| {
-                observe(n, t, Some(u), c)
-            })
-        };
+        let h_s = s.spawn(|| crate::show::Smallness::of(scn, args.n));
+        let run = sim.solve(&mut cli);
         let h_s = h_s
             .join()
             .unwrap_or_else(|_| Err("the smallness check panicked".to_string()));
         (run, h_s)
     });
+    let Progress { recorder, bar, .. } = cli;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    let run = run?;
+    let solution = run?;
+    let (run, reduced) = (&solution.run, solution.reduced);
+    let ordering = match sim.ordering() {
+        OrderingKind::Amd => "amd",
+        OrderingKind::NestedDissection => "nd",
+    };
     let h_s = h_s.unwrap_or_else(|e| {
         eprintln!("warning: the trace constant could not be computed ({e}); H(s) is unchecked");
-        crate::show::Smallness::unknown(&scn, args.n)
+        crate::show::Smallness::unknown(scn, args.n)
     });
     if h_s.rhs() >= h_s.beta_b {
         eprintln!(
@@ -318,20 +233,23 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let t_out = Instant::now();
     let prov = Provenance {
         command: crate::output::run::quote_args(std::env::args().skip(1)),
-        solver: solver.name().to_string(),
-        ordering: ordering.clone(),
+        solver: entry.name.to_string(),
+        ordering: ordering.to_string(),
         path: (if reduced { "reduced" } else { "general" }).to_string(),
         mesh: if graded {
-            format!("graded mu = {}", args.grading.unwrap_or(0.4))
+            format!(
+                "graded mu = {}",
+                args.grading.unwrap_or(crate::simulation::DEFAULT_GRADING)
+            )
         } else {
             "uniform".to_string()
         },
     };
     crate::output::run::write(
         &out,
-        &scn,
+        scn,
         &toml,
-        &run,
+        run,
         recorder,
         &prov,
         wall.elapsed().as_secs_f64(),
@@ -370,6 +288,65 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     Ok(())
+}
+
+/// The run settings the options ask for (checked by [`Simulation::new`]).
+fn settings(args: &SolveArgs) -> Result<RunSettings, crate::error::InputError> {
+    Ok(RunSettings {
+        n: args.n,
+        steps: args.steps,
+        mesh: if args.mesh == "graded" {
+            MeshKind::Graded
+        } else {
+            MeshKind::Uniform
+        },
+        grading: args.grading,
+        solver: args.solver.clone(),
+        path: match args.path.as_str() {
+            "general" => Loop::General,
+            "reduced" => Loop::Reduced,
+            _ => Loop::Auto,
+        },
+        ordering: args.ordering.as_deref().map(|o| match o {
+            "amd" => OrderingKind::Amd,
+            _ => OrderingKind::NestedDissection,
+        }),
+        threads: args.threads,
+        certificate_tol: args.certificate_tol,
+    })
+}
+
+/// The command line's observer: the run's records and files, and a progress bar
+/// once the run has taken a second.
+struct Progress<'a> {
+    recorder: Recorder,
+    out: &'a RunDir,
+    bar: Option<ProgressBar>,
+    started: Instant,
+    steps: u64,
+}
+
+impl Observer for Progress<'_> {
+    fn wants_field(&self, step: usize) -> bool {
+        self.recorder.wants_field(step)
+    }
+
+    fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, contact: &[ContactState]) {
+        self.recorder.observe(self.out, n, t, u, contact);
+        if self.bar.is_none() && self.started.elapsed() > Duration::from_secs(1) {
+            let b = ProgressBar::new(self.steps).with_style(
+                ProgressStyle::with_template(
+                    "{spinner} step {pos}/{len} [{bar:40}] {elapsed} (eta {eta})",
+                )
+                .expect("valid template")
+                .progress_chars("=> "),
+            );
+            self.bar = Some(b);
+        }
+        if let Some(b) = &self.bar {
+            b.set_position(n as u64);
+        }
+    }
 }
 
 /// The largest VTK series `--vtk-every` may write, bytes.

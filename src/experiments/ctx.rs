@@ -27,7 +27,7 @@ pub struct Ctx {
     /// The command named in the provenance lines, when it is not `evhi reproduce`
     /// (a study on a user's scenario).
     pub command: Option<String>,
-    /// The experiment running (set by [`run`] from the registry): its tables'
+    /// The experiment running (set by [`super::run`] from the registry): its tables'
     /// provenance names it.
     pub experiment: &'static str,
 }

@@ -20,7 +20,7 @@
 //!
 //! Level $n$ runs with $k = 1/n$; the reference is the graded mesh of level
 //! $n_{ref}$ with $k = 1/n_{ref}$. The reference goes by the reduced loop where the damping is
-//! proportional ([`reference_at_t`]; until the session that moved it there it went
+//! proportional (`reference_at_t`; until the session that moved it there it went
 //! by the general loop, and the errors at $T$ moved by at most $4\cdot10^{-10}$
 //! relative). The error is the relative energy norm at $t = T$
 //! (where the time part of the error is below 0.3 % at every level of Table 1).

@@ -23,7 +23,7 @@ const TABLES: [(&str, &[&str]); 4] = [
 const PLAUSIBLE: f64 = 1e100;
 
 /// Refuses a run table the figures would misdraw: missing, without a data row, a
-/// row of the wrong length, or a number that is not finite or beyond [`PLAUSIBLE`] in
+/// row of the wrong length, or a number that is not finite or beyond `PLAUSIBLE` in
 /// a numeric column; the error names the file, the line and the column.
 pub fn validate_tables(dir: &Path) -> Result<(), ExpError> {
     for (file, text_cols) in TABLES {

@@ -176,7 +176,7 @@ impl Affine {
     }
     // ANCHOR_END: clarke
 
-    /// [`Law::clarke`] widened by the breakpoints within `delta` of `s`: the hull of
+    /// [`crate::law::Law::clarke`] widened by the breakpoints within `delta` of `s`: the hull of
     /// $\partial_{Cl} j(s)$ and $\partial_{Cl} j(s_b)$ for every $|s_b - s| \le \delta$. A node that
     /// a solver put exactly on a kink comes back from the recovery solve a few units of
     /// rounding away from it; this is the subdifferential it was solved with.

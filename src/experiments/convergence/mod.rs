@@ -6,7 +6,7 @@
 //!
 //! Every run goes by the reduced loop ([`crate::reduced`]): one factorisation of
 //! $B$ per mesh serves all its step lengths, and the errors between the time
-//! levels need no field (see [`Reference::coarse`]). At $T$ the fields are formed,
+//! levels need no field (see `Reference::coarse`). At $T$ the fields are formed,
 //! the coarse one embedded exactly in the reference space (the spaces are
 //! nested). The paper does not say at which time it measures; we report $t = T$ and
 //! the maximum over the time levels shared with the reference,

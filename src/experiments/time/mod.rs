@@ -15,7 +15,7 @@
 //! With proportional damping (every built-in scenario) the study runs on the reduced
 //! loop: one factorisation of $B$ serves the reference and every level, and each
 //! error is the energy norm of a difference of reduced states, with no field formed
-//! ([`reduced_measures`]). Until the session that moved it there, the study formed
+//! (`reduced_measures`). Until the session that moved it there, the study formed
 //! every field by the general loop, whose solves leave a rounding of a few
 //! $10^{-10}\,\|u_{ref}\|_E$ in each field: the errors moved by at most
 //! $3.5\cdot10^{-10}$ relative to the reference's norm, which is below $10^{-5}$ of any

@@ -1,0 +1,321 @@
+//! One way to run a scene: a [`Simulation`] built from a [`Scenario`] and [`RunSettings`],
+//! then [`Simulation::solve`].
+//!
+//! The scheme of chapter "The fully discrete scheme": find $u_n^{hk} \in V^h$,
+//! $n = 1, \dots, N$, with
+//! $$\langle A\,\delta u_n + B u_n, v - u_n\rangle + J^0(\iota u_n; \iota v - \iota u_n) + \Phi(v) - \Phi(u_n) \ge \langle f_n, v - u_n\rangle \quad \forall v \in V^h,$$
+//! $\delta u_n = (u_n - u_{n-1})/k$, $k = T/N$, on the mesh with $n$ segments on the
+//! bottom. Every choice a run makes (the mesh, the time loop, the step solver, the
+//! ordering, the tolerance) is a field of [`RunSettings`]; [`Simulation::new`] checks
+//! each field and every rule between fields once, and refuses a bad one naming it,
+//! before any work. [`Simulation::solve`] runs the time loop, reports each step to an
+//! [`Observer`], and returns the [`Solution`]: the state at $T$, every step's record
+//! (iterations, certificate) and the timings. Writing a run directory is a separate
+//! step ([`crate::output::run`]), which `evhi solve` asks for.
+
+use crate::certificate::ContactState;
+use crate::error::InputError;
+use crate::mesh::Mesh;
+use crate::scenario::{Problem, Scenario};
+use crate::scheme::{OrderingKind, Run, RunError, Settings};
+use crate::step::{SolverEntry, StepSolver};
+use std::sync::Arc;
+
+/// Which mesh a run solves on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MeshKind {
+    /// The structured grid with $n$ segments on the bottom, each cell cut by one
+    /// diagonal, as in the paper.
+    #[default]
+    Uniform,
+    /// Newest-vertex bisection graded towards the scene's singular points
+    /// ([`Scenario::graded_mesh`]), with the exponent [`RunSettings::grading`].
+    Graded,
+}
+
+/// Which time loop a run takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Loop {
+    /// The reduced loop where the damping is proportional ($\mathcal C = c\,\mathcal G$,
+    /// as in the paper's data), else the general one.
+    #[default]
+    Auto,
+    /// One forward and backward sweep per step; every step certified on the full system.
+    General,
+    /// Each step is the contact problem on the contact nodes alone
+    /// ([`crate::reduced`]); needs proportional damping.
+    Reduced,
+}
+
+/// The choices of a run. Every field has a default ([`RunSettings::default`]: the
+/// uniform mesh with $n = 64$, the scenario's default step count, Newton, the
+/// automatic loop and ordering, tolerance $10^{-10}$).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSettings {
+    /// Segments $n$ on the bottom: a multiple of 4, at most 4096 ($n = 1/h$ on the
+    /// paper's rectangle). With a graded mesh, the level it grades from.
+    pub n: usize,
+    /// Time steps $N$, $k = T/N$; `None` takes 64, or 1 for a steady problem (the only
+    /// count it accepts).
+    pub steps: Option<usize>,
+    /// The mesh.
+    pub mesh: MeshKind,
+    /// The grading exponent $\mu$ of a graded mesh, in $[0.05, 0.95]$ (`None`: 0.4);
+    /// refused with a uniform mesh.
+    pub grading: Option<f64>,
+    /// The step solver, a name of the registry [`crate::step::SOLVERS`].
+    pub solver: String,
+    /// The time loop.
+    pub path: Loop,
+    /// The fill-reducing ordering (`None`: nested dissection on a uniform mesh, AMD on
+    /// a graded one, which nested dissection cannot cut).
+    pub ordering: Option<OrderingKind>,
+    /// Threads of the triangular sweeps, 1 or 2 (`None`: 2 with nested dissection, 1
+    /// with AMD, whose elimination tree has no two halves).
+    pub threads: Option<u8>,
+    /// A step whose certificate exceeds this relative residual fails the run; in
+    /// $[10^{-15}, 10^{-4}]$. An uncertified solver (the penalty) is judged by its own
+    /// convergence instead.
+    pub certificate_tol: f64,
+}
+
+impl Default for RunSettings {
+    fn default() -> Self {
+        RunSettings {
+            n: 64,
+            steps: None,
+            mesh: MeshKind::Uniform,
+            grading: None,
+            solver: crate::step::DEFAULT_SOLVER.to_string(),
+            path: Loop::Auto,
+            ordering: None,
+            threads: None,
+            certificate_tol: crate::scheme::CERTIFICATE_TOL,
+        }
+    }
+}
+
+/// The grading exponent a graded mesh takes when none is given.
+pub const DEFAULT_GRADING: f64 = 0.4;
+
+/// The step count a run takes when none is given: 64, or 1 for a steady problem.
+pub fn default_steps(scn: &Scenario) -> usize {
+    match scn.problem {
+        Problem::Steady => 1,
+        _ => 64,
+    }
+}
+
+/// What a run is told as it goes. Both methods have defaults, so `&mut ()` observes
+/// nothing.
+pub trait Observer {
+    /// Whether the reduced loop should form the field $u_n$ at `step` (it forms it
+    /// anyway at the last step and every $\max(1, \lfloor N/4 \rfloor)$-th); the general
+    /// loop forms it at every step.
+    fn wants_field(&self, _step: usize) -> bool {
+        false
+    }
+    /// Step `n` at time `t` is done: its field (free dofs) where it was formed, and
+    /// the state of every contact node.
+    fn step(&mut self, _n: usize, _t: f64, _u: Option<&[f64]>, _contact: &[ContactState]) {}
+}
+
+impl Observer for () {}
+
+/// A scene ready to solve: its settings checked, its mesh built.
+pub struct Simulation {
+    scenario: Scenario,
+    settings: RunSettings,
+    entry: &'static SolverEntry,
+    opt: Settings,
+    mesh: Arc<Mesh>,
+    reduced: bool,
+}
+
+/// The result of a solve: the state at $T$, every step's record and the timings.
+pub struct Solution {
+    /// The run: $u_N$ (free dofs), the contact states at $T$, each step's record
+    /// (iterations, solver residual, certificate), the timings, the mesh.
+    pub run: Run,
+    /// Whether the reduced loop ran.
+    pub reduced: bool,
+}
+
+impl Solution {
+    /// The largest certificate over the steps (relative residual of the discrete
+    /// inequality, checked independently of the solver).
+    pub fn max_certificate(&self) -> f64 {
+        self.run
+            .records
+            .iter()
+            .map(|s| s.certificate.max())
+            .fold(0.0, f64::max)
+    }
+
+    /// The energy norm of $u_N$, $\sqrt{(\mathcal G \varepsilon(u), \varepsilon(u))}$
+    /// (that of the last step's record).
+    pub fn energy_norm_t(&self) -> f64 {
+        self.run.records.last().map_or(0.0, |s| s.energy_norm)
+    }
+
+    /// The state of each contact node at $T$ ($x$, $u_\nu$, $\sigma_\nu^1$, $\sigma_\nu^2$, regime).
+    pub fn contact(&self) -> &[ContactState] {
+        &self.run.contact
+    }
+}
+
+impl Simulation {
+    /// Checks `settings` against `scenario` and builds the mesh. Every refusal names
+    /// the field (the command line's option name) and what it allows.
+    pub fn new(scenario: Scenario, settings: RunSettings) -> Result<Simulation, InputError> {
+        let s = &settings;
+        if !(1e-15..=1e-4).contains(&s.certificate_tol) {
+            return Err(InputError::field(
+                "certificate-tol",
+                format!("{:e}", s.certificate_tol),
+                "a relative residual in [1e-15, 1e-4] (below 1e-15 rounding alone fails it; \
+                 above 1e-4 a step would be certified that is not a solution)",
+            ));
+        }
+        let steps = s.steps.unwrap_or_else(|| default_steps(&scenario));
+        let graded = s.mesh == MeshKind::Graded;
+        if let (Some(mu), false) = (s.grading, graded) {
+            return Err(InputError::field(
+                "grading",
+                mu,
+                "nothing without --mesh graded (the exponent of the graded mesh)",
+            ));
+        }
+        let ordering = match (s.ordering, graded) {
+            (Some(OrderingKind::NestedDissection), true) => {
+                return Err(InputError::field(
+                    "ordering",
+                    "nd",
+                    "amd with --mesh graded (nested dissection cuts the uniform grid's lines)",
+                ));
+            }
+            (Some(o), _) => o,
+            (None, true) => OrderingKind::Amd,
+            (None, false) => OrderingKind::NestedDissection,
+        };
+        let entry = crate::step::solver(&s.solver)?;
+        let mut opt = Settings::new(s.n, steps);
+        // Before anything is sized by the step count.
+        crate::scheme::check_steps(Some(&scenario), &opt).map_err(|e| match e {
+            RunError::Input(e) => e,
+            other => InputError::field("steps", steps, other.to_string()),
+        })?;
+        opt.certificate_tol = if entry.certified {
+            s.certificate_tol
+        } else {
+            f64::INFINITY
+        };
+        opt.ordering = ordering;
+        opt.parallel = match (s.threads, ordering) {
+            (Some(t), _) if !(1..=2).contains(&t) => {
+                return Err(InputError::field("threads", t, "1 or 2"));
+            }
+            (Some(2), OrderingKind::Amd) => {
+                return Err(InputError::field(
+                    "threads",
+                    2,
+                    "1 with --ordering amd (only nested dissection splits the sweeps in two \
+                     halves); use --ordering nd for two threads",
+                ));
+            }
+            (Some(t), _) => t == 2,
+            (None, kind) => kind == OrderingKind::NestedDissection,
+        };
+        let reduced = match s.path {
+            Loop::General => false,
+            Loop::Reduced => true,
+            // The reduced loop checks proportionality again on the assembled matrices.
+            Loop::Auto => scenario.relaxation_time().is_some(),
+        };
+        // The mesh: a scene whose segments miss the mesh lines is refused by name.
+        crate::memory::check_memory(s.n, crate::mesh::rows(s.n, &scenario.geometry))?;
+        let mesh = Arc::new(if graded {
+            scenario.graded_mesh(s.n, s.grading.unwrap_or(DEFAULT_GRADING))?
+        } else {
+            scenario.mesh(s.n)?
+        });
+        if graded {
+            opt.mesh = Some(mesh.clone());
+            crate::memory::check_memory_dofs(2 * mesh.nodes.len())?;
+        }
+        Ok(Simulation {
+            scenario,
+            settings,
+            entry,
+            opt,
+            mesh,
+            reduced,
+        })
+    }
+
+    /// The scene.
+    pub fn scenario(&self) -> &Scenario {
+        &self.scenario
+    }
+
+    /// The settings, as given.
+    pub fn settings(&self) -> &RunSettings {
+        &self.settings
+    }
+
+    /// The mesh the run solves on.
+    pub fn mesh(&self) -> &Arc<Mesh> {
+        &self.mesh
+    }
+
+    /// The step count $N$.
+    pub fn steps(&self) -> usize {
+        self.opt.steps
+    }
+
+    /// The step solver's registry entry.
+    pub fn solver(&self) -> &'static SolverEntry {
+        self.entry
+    }
+
+    /// The ordering the factorisation takes.
+    pub fn ordering(&self) -> OrderingKind {
+        self.opt.ordering
+    }
+
+    /// Whether the reduced time loop runs.
+    pub fn reduced(&self) -> bool {
+        self.reduced
+    }
+
+    /// Runs the time loop, telling `observer` of each step. A step whose solver fails or
+    /// whose certificate exceeds the tolerance stops the run with an error naming the
+    /// step and its residual.
+    pub fn solve(&self, observer: &mut dyn Observer) -> Result<Solution, RunError> {
+        let mut solver: Box<dyn StepSolver> = self.entry.build();
+        let run = if self.reduced {
+            // Asked before the loop, so that the observer is free to be told.
+            let wanted: Vec<bool> = (0..=self.opt.steps)
+                .map(|s| observer.wants_field(s))
+                .collect();
+            crate::reduced::run(
+                &self.scenario,
+                &self.opt,
+                solver.as_mut(),
+                &|step| wanted[step],
+                &mut |n, t, u, c| observer.step(n, t, u, c),
+            )
+        } else {
+            crate::scheme::run_with_states(
+                &self.scenario,
+                &self.opt,
+                solver.as_mut(),
+                &mut |n, t, u, c| observer.step(n, t, Some(u), c),
+            )
+        }?;
+        Ok(Solution {
+            run,
+            reduced: self.reduced,
+        })
+    }
+}
