@@ -201,7 +201,7 @@ fn a_file_added_during_the_run_is_kept() {
     let root = scratch("added");
     let out = root.join("run");
     assert!(solve(8, &out).status().unwrap().success());
-    let mut run = solve(8, &out)
+    let run = solve(8, &out)
         .env("EVHI_WRITE_DELAY_MS", "300")
         .spawn()
         .unwrap();
