@@ -12,22 +12,7 @@
 //! TOML file or text) and [`simulation::RunSettings`], checked once; `solve` runs the
 //! time loop and returns the state at $T$ with every step's certificate:
 //!
-//! ```
-//! use evhi::scenario::Scenario;
-//! use evhi::simulation::{RunSettings, Simulation};
-//!
-//! // The paper's scene with loads that reach every branch of the law, h = k = 1/16.
-//! let scene = Scenario::load("figure")?;
-//! let settings = RunSettings { n: 16, steps: Some(16), ..RunSettings::default() };
-//! let sim = Simulation::new(scene, settings)?;
-//! let solution = sim.solve(&mut ())?;
-//!
-//! // Every step is certified, and the middle of the contact zone sits on the limit g.
-//! assert!(solution.max_certificate() <= 1e-10);
-//! let at_limit = solution.contact().iter().filter(|c| c.at_limit).count();
-//! assert!(at_limit > 0 && at_limit < solution.contact().len());
-//! # Ok::<(), Box<dyn std::error::Error>>(())
-//! ```
+#![doc = concat!("```\n", include_str!("../examples/solve_a_scene.rs"), "```\n")]
 //!
 //! `examples/own_scene.rs` builds a scene in code and solves it for several limits.
 //!

@@ -111,7 +111,7 @@ pub(crate) fn check_ends(
     for (end, v) in [("from", ends[0]), ("to", ends[1])] {
         if !on_line(v, d) {
             return Err(InputError::field(
-                format!("{field}.{end}"),
+                end_key(field, side, end),
                 v,
                 format!(
                     "a mesh line of the mesh with n = {n}, where the {} side has a node \
@@ -122,6 +122,20 @@ pub(crate) fn check_ends(
         }
     }
     Ok(())
+}
+
+/// The key of a segment's end `end` (`from` or `to`): `FIELD.from` for a segment
+/// the file spells out; for a preset's (whose field is `geometry.supports = "NAME"`),
+/// the preset and the side, since the file has no key of the end itself.
+fn end_key(field: &str, side: Side, end: &str) -> String {
+    if field.contains(" = ") {
+        format!(
+            "{field} (its {} side's clamp or rollers, `{end}`)",
+            side.name()
+        )
+    } else {
+        format!("{field}.{end}")
+    }
 }
 
 /// Whether `v` lies on a mesh line of spacing `d` (within rounding).
@@ -320,7 +334,7 @@ impl Mesh {
                 let key = if field == "geometry.contact" {
                     field.to_string()
                 } else {
-                    format!("{field}.{end}")
+                    end_key(field, side, end)
                 };
                 return Err(InputError::field(
                     key,

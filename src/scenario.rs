@@ -305,7 +305,10 @@ fn law_from(raw: &RawLaw) -> Result<Law, InputError> {
                 InputError::field("law.length", "nothing", "a > 0 in p(s) = c s exp(-s/a)")
             })?;
             bounded("law.stiffness", c, MAX_LAW)?;
-            bounded("law.length", a, 1e6)?;
+            // As small as g may be, and no smaller: below it (1e-310 was accepted) the
+            // law's scale leaves what a solve can resolve, and Newton ran out of
+            // iterations without naming the key.
+            in_range("law.length", a, MIN_MAGNITUDE, 1e6)?;
             Ok(Law::Softening(crate::law::Softening::new(c, a)?))
         }
         other => Err(InputError::field(

@@ -184,7 +184,10 @@ pub enum RunError {
         g: f64,
     },
     #[error(
-        "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}",
+        "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}. What may help: another \
+         step solver (`--solver proxgrad` and `newton-no-line-search` certify too), a smaller \
+         k (more `--steps`), or, where the law softens, a stiffer material or a milder \
+         softening",
         step_failure(.solver, .status, .iterations, .residual, .certificate, .tol)
     )]
     Step {

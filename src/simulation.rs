@@ -118,6 +118,9 @@ pub trait Observer {
     /// Step `n` at time `t` is done: its field (free dofs) where it was formed, and
     /// the state of every contact node.
     fn step(&mut self, _n: usize, _t: f64, _u: Option<&[f64]>, _contact: &[ContactState]) {}
+    /// The run starts again from $t = 0$ (with another solver, see
+    /// [`Simulation::solve`]): forget the steps told so far.
+    fn restart(&mut self) {}
 }
 
 impl Observer for () {}
@@ -139,7 +142,26 @@ pub struct Solution {
     pub run: Run,
     /// Whether the reduced loop ran.
     pub reduced: bool,
+    /// Where the default solver stalled and another solved the run instead: the
+    /// solver that did, and why the first run failed (see [`Simulation::solve`]).
+    pub fallback: Option<Fallback>,
 }
+
+/// A run the default solver could not finish, solved again by another certified one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fallback {
+    /// The registry name of the solver that certified every step.
+    pub solver: &'static str,
+    /// The default solver's failure, as its error said it.
+    pub stalled: String,
+}
+
+/// The solvers tried, in order, when the default `newton` runs out of iterations: its
+/// line search can stall on a nonconvex step (a softening law's negative curvature makes
+/// the Newton direction climb the envelope, every backtrack fails, and each iteration
+/// falls back to one short proximal-gradient step), where the plain Newton step and
+/// proximal gradient with its own iteration budget still converge.
+pub const FALLBACKS: [&str; 2] = ["newton-no-line-search", "proxgrad"];
 
 impl Solution {
     /// The largest certificate over the steps (relative residual of the discrete
@@ -291,8 +313,52 @@ impl Simulation {
     /// Runs the time loop, telling `observer` of each step. A step whose solver fails or
     /// whose certificate exceeds the tolerance stops the run with an error naming the
     /// step and its residual.
+    ///
+    /// When the solver is the default `newton` and a step runs out of iterations, the
+    /// run is solved again from the start by each of [`FALLBACKS`] in turn; the first
+    /// that certifies every step gives the solution, which records it
+    /// ([`Solution::fallback`]), and the observer is told that run's steps again. If
+    /// none does, the first failure is returned.
     pub fn solve(&self, observer: &mut dyn Observer) -> Result<Solution, RunError> {
-        let mut solver: Box<dyn StepSolver> = self.entry.build();
+        let first = self.solve_with(self.entry, observer);
+        let stalled = matches!(
+            &first,
+            Err(RunError::Step {
+                status: crate::step::Status::MaxIterations,
+                ..
+            })
+        );
+        if !(stalled && self.entry.name == crate::step::DEFAULT_SOLVER) {
+            return first;
+        }
+        for name in FALLBACKS {
+            let entry = crate::step::solver(name).map_err(RunError::Input)?;
+            observer.restart();
+            if let Ok(mut solution) = self.solve_with(entry, observer) {
+                // The failure itself, without the advice the fallback has taken.
+                let stalled = first.as_ref().err().map_or(String::new(), |e| {
+                    let text = e.to_string();
+                    text.split(". What may help")
+                        .next()
+                        .unwrap_or(&text)
+                        .to_string()
+                });
+                solution.fallback = Some(Fallback {
+                    solver: entry.name,
+                    stalled,
+                });
+                return Ok(solution);
+            }
+        }
+        first
+    }
+
+    fn solve_with(
+        &self,
+        entry: &'static SolverEntry,
+        observer: &mut dyn Observer,
+    ) -> Result<Solution, RunError> {
+        let mut solver: Box<dyn StepSolver> = entry.build();
         let run = if self.reduced {
             // Asked before the loop, so that the observer is free to be told.
             let wanted: Vec<bool> = (0..=self.opt.steps)
@@ -316,6 +382,7 @@ impl Simulation {
         Ok(Solution {
             run,
             reduced: self.reduced,
+            fallback: None,
         })
     }
 }

@@ -267,8 +267,15 @@ fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
             &mut Newton::default(),
             &mut |_, _, _| {},
         );
-        if let Err(RunError::Step { status, .. }) = &plain_run {
+        if let Err(e @ RunError::Step { status, .. }) = &plain_run {
             assert_eq!(*status, Status::MaxIterations);
+            // A failed step says what may help, with the step's own numbers (issue 41,
+            // item 17).
+            let msg = e.to_string();
+            assert!(
+                msg.contains("What may help") && msg.contains("--steps"),
+                "{msg}"
+            );
             if globalised.is_ok() {
                 shown += 1;
             }

@@ -615,3 +615,85 @@ fn graded_family_converges_to_the_uniform_limit() {
     assert!(gaps.windows(2).all(|w| w[1] < w[0]), "{gaps:?}");
     assert!(gaps[2] < 5e-3, "{gaps:?}");
 }
+
+/// A preset's support that misses the mesh is named by the preset and its side (it was
+/// named `geometry.supports = "paper".from`, which is no key), and the softening law's
+/// length is bounded below as g is (1e-310 was accepted, and Newton then ran out of
+/// iterations without naming the key) (issue 41, items 9 and 12).
+#[test]
+fn preset_ends_and_the_softening_length_are_named() {
+    // The paper's clamp starts at H/2 = 0.75 on a 2 x 1.5 rectangle: at n = 4 the side
+    // has a node every 0.5.
+    let tall = parse(&scene(
+        "[geometry]\nheight = 1.5\nsupports = \"paper\"",
+        "",
+        "0.1",
+        "viscoelastic",
+    ))
+    .unwrap();
+    let err = tall.mesh(4).unwrap_err().to_string();
+    assert!(
+        err.contains("\"paper\"") && err.contains("left side") && !err.contains("\".from"),
+        "{err}"
+    );
+    let text = std::fs::read_to_string("data/scenarios/examples/softening.toml").unwrap();
+    for tiny in ["1e-310", "5e-324", "1e-13"] {
+        let edited = regex_free_replace(&text, "length", tiny);
+        let err = parse(&edited).unwrap_err();
+        assert_eq!(err.field_name(), Some("law.length"), "{tiny}");
+    }
+}
+
+/// `text` with the value of the line `key = ...` replaced by `value`.
+fn regex_free_replace(text: &str, key: &str, value: &str) -> String {
+    text.lines()
+        .map(|l| {
+            if l.trim_start().starts_with(&format!("{key} =")) {
+                format!("{key} = {value}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The default Newton's line search stalls on a nonconvex step (a steady cantilever on a
+/// softening law: MaxIterations after 200 iterations, where `newton-no-line-search` and
+/// `proxgrad` certify it); the library then solves the run again with the next certified
+/// solver and says so (issue 41, item 5).
+#[test]
+fn a_stalled_newton_falls_back_to_a_certified_solver() {
+    use evhi::simulation::{RunSettings, Simulation};
+    let scn = parse(
+        "name = \"cs\"\nT = 1.0\ng = \"none\"\nproblem = \"steady\"\n\
+         [geometry]\nwidth = 2.0\nheight = 0.5\n[geometry.supports]\nleft = \"clamped\"\n\
+         [material]\nE = 1000.0\nkappa = 0.3\n\
+         [loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, 0.0]\n\
+         [[loads.traction]]\nside = \"top\"\nfrom = 1.0\nto = 2.0\nf = [0.0, -20.0]\n\
+         [law]\nkind = \"softening\"\nstiffness = 900.0\nlength = 0.01\n",
+    )
+    .unwrap();
+    let settings = RunSettings {
+        n: 16,
+        ..RunSettings::default()
+    };
+    let sim = Simulation::new(scn.clone(), settings.clone()).unwrap();
+    let solution = sim.solve(&mut ()).unwrap();
+    let fallback = solution.fallback.as_ref().expect("newton stalls here");
+    assert_eq!(fallback.solver, "newton-no-line-search");
+    assert!(
+        fallback.stalled.contains("MaxIterations"),
+        "{}",
+        fallback.stalled
+    );
+    assert!(solution.max_certificate() <= 1e-10);
+    // Asked for by name, the solver is taken as it is: no fallback.
+    let named = RunSettings {
+        solver: "proxgrad".into(),
+        ..settings
+    };
+    let other = Simulation::new(scn, named).unwrap().solve(&mut ()).unwrap();
+    assert!(other.fallback.is_none());
+    assert!(sup_diff(&other.run.u, &solution.run.u) <= 1e-8 * sup(&solution.run.u));
+}

@@ -169,6 +169,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut cli = Progress {
         recorder: Recorder::new(scn, mesh.clone(), steps, args.vtk_every)?,
+        fresh: &|| Recorder::new(scn, mesh.clone(), steps, args.vtk_every),
         out: &out,
         bar: None,
         started: Instant::now(),
@@ -190,6 +191,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let solution = run?;
     let (run, reduced) = (&solution.run, solution.reduced);
+    if let Some(f) = &solution.fallback {
+        eprintln!(
+            "note: the default solver stalled ({}); the run was solved again with `{}`, which \
+             certified every step (summary.csv's solver column names it)",
+            f.stalled, f.solver
+        );
+    }
     let ordering = match sim.ordering() {
         OrderingKind::Amd => "amd",
         OrderingKind::NestedDissection => "nd",
@@ -233,7 +241,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let t_out = Instant::now();
     let prov = Provenance {
         command: crate::output::run::quote_args(std::env::args().skip(1)),
-        solver: entry.name.to_string(),
+        solver: solution
+            .fallback
+            .as_ref()
+            .map_or(entry.name, |f| f.solver)
+            .to_string(),
         ordering: ordering.to_string(),
         path: (if reduced { "reduced" } else { "general" }).to_string(),
         mesh: if graded {
@@ -320,6 +332,8 @@ fn settings(args: &SolveArgs) -> Result<RunSettings, crate::error::InputError> {
 /// once the run has taken a second.
 struct Progress<'a> {
     recorder: Recorder,
+    /// A new recorder, for a run that starts again with another solver.
+    fresh: &'a dyn Fn() -> Result<Recorder, crate::error::InputError>,
     out: &'a RunDir,
     bar: Option<ProgressBar>,
     started: Instant,
@@ -345,6 +359,13 @@ impl Observer for Progress<'_> {
         }
         if let Some(b) = &self.bar {
             b.set_position(n as u64);
+        }
+    }
+
+    fn restart(&mut self) {
+        // The first recorder was built from the same arguments, so this one builds too.
+        if let Ok(r) = (self.fresh)() {
+            self.recorder = r;
         }
     }
 }
