@@ -48,7 +48,8 @@ pub enum Loop {
 }
 
 /// The choices of a run. Every field has a default ([`RunSettings::default`]: the
-/// uniform mesh with $n = 64$, the scenario's default step count, Newton, the
+/// uniform mesh with $n = 64$, the scenario's default step count, Newton (with its
+/// fallbacks), the
 /// automatic loop and ordering, tolerance $10^{-10}$).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
@@ -63,8 +64,10 @@ pub struct RunSettings {
     /// The grading exponent $\mu$ of a graded mesh, in $[0.05, 0.95]$ (`None`: 0.4);
     /// refused with a uniform mesh.
     pub grading: Option<f64>,
-    /// The step solver, a name of the registry [`crate::step::SOLVERS`].
-    pub solver: String,
+    /// The step solver, a name of the registry [`crate::step::SOLVERS`]; `None` takes
+    /// the default, `newton`, and lets [`Simulation::solve`] fall back to another
+    /// certified solver where it stalls. A solver named here is run as it is.
+    pub solver: Option<String>,
     /// The time loop.
     pub path: Loop,
     /// The fill-reducing ordering (`None`: nested dissection on a uniform mesh, AMD on
@@ -86,7 +89,7 @@ impl Default for RunSettings {
             steps: None,
             mesh: MeshKind::Uniform,
             grading: None,
-            solver: crate::step::DEFAULT_SOLVER.to_string(),
+            solver: None,
             path: Loop::Auto,
             ordering: None,
             threads: None,
@@ -220,7 +223,8 @@ impl Simulation {
             (None, true) => OrderingKind::Amd,
             (None, false) => OrderingKind::NestedDissection,
         };
-        let entry = crate::step::solver(&s.solver)?;
+        let entry =
+            crate::step::solver(s.solver.as_deref().unwrap_or(crate::step::DEFAULT_SOLVER))?;
         let mut opt = Settings::new(s.n, steps);
         // Before anything is sized by the step count.
         crate::scheme::check_steps(Some(&scenario), &opt).map_err(|e| match e {
@@ -314,7 +318,7 @@ impl Simulation {
     /// whose certificate exceeds the tolerance stops the run with an error naming the
     /// step and its residual.
     ///
-    /// When the solver is the default `newton` and a step runs out of iterations, the
+    /// When no solver was named (the default `newton` runs) and a step runs out of iterations, the
     /// run is solved again from the start by each of [`FALLBACKS`] in turn; the first
     /// that certifies every step gives the solution, which records it
     /// ([`Solution::fallback`]), and the observer is told that run's steps again. If
@@ -328,7 +332,7 @@ impl Simulation {
                 ..
             })
         );
-        if !(stalled && self.entry.name == crate::step::DEFAULT_SOLVER) {
+        if !(stalled && self.settings.solver.is_none()) {
             return first;
         }
         for name in FALLBACKS {

@@ -688,9 +688,19 @@ fn a_stalled_newton_falls_back_to_a_certified_solver() {
         fallback.stalled
     );
     assert!(solution.max_certificate() <= 1e-10);
-    // Asked for by name, the solver is taken as it is: no fallback.
+    // Asked for by name, the solver is taken as it is: no fallback, even for newton.
+    let asked = RunSettings {
+        solver: Some("newton".into()),
+        ..settings.clone()
+    };
+    assert!(
+        Simulation::new(scn.clone(), asked)
+            .unwrap()
+            .solve(&mut ())
+            .is_err()
+    );
     let named = RunSettings {
-        solver: "proxgrad".into(),
+        solver: Some("proxgrad".into()),
         ..settings
     };
     let other = Simulation::new(scn, named).unwrap().solve(&mut ()).unwrap();

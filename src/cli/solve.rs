@@ -1,7 +1,7 @@
 //! `evhi solve`: one scenario, written as a self-describing run directory.
 
 use crate::certificate::ContactState;
-use crate::output::run::{Provenance, Recorder};
+use crate::output::run::{Provenance, Recorder, Recording};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use crate::scheme::OrderingKind;
@@ -49,9 +49,12 @@ pub struct SolveArgs {
     #[arg(long, value_name = "MU", allow_hyphen_values = true)]
     pub grading: Option<f64>,
     /// Step solver, one of the registry `step::SOLVERS` (each described below; an
-    /// uncertified one is judged by its own convergence).
-    #[arg(long, default_value = crate::step::DEFAULT_SOLVER, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
-    pub solver: String,
+    /// uncertified one is judged by its own convergence). Without it `newton` runs, and
+    /// where its line search stalls the run is solved again with `newton-no-line-search`,
+    /// then `proxgrad` (a note says which certified it); a solver named here runs as
+    /// it is.
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    pub solver: Option<String>,
     /// Override the unilateral limit g (metres, in [1e-12, 1e6]; a scenario file may
     /// also say g = "none", no limit).
     #[arg(long, allow_hyphen_values = true)]
@@ -161,16 +164,17 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             entry.name, entry.about
         );
     }
-    let (mesh, steps, graded) = (sim.mesh().clone(), sim.steps(), args.mesh == "graded");
+    let (mesh, steps) = (sim.mesh().clone(), sim.steps());
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
     if let Some(every) = args.vtk_every {
         check_vtk_volume(&args.out, mesh.nodes.len(), steps, every)?;
     }
     let mut cli = Progress {
-        recorder: Recorder::new(scn, mesh.clone(), steps, args.vtk_every)?,
-        fresh: &|| Recorder::new(scn, mesh.clone(), steps, args.vtk_every),
-        out: &out,
+        recording: Recording {
+            recorder: Recorder::new(scn, mesh.clone(), steps, args.vtk_every)?,
+            out: &out,
+        },
         bar: None,
         started: Instant::now(),
         steps: steps as u64,
@@ -185,12 +189,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             .unwrap_or_else(|_| Err("the smallness check panicked".to_string()));
         (run, h_s)
     });
-    let Progress { recorder, bar, .. } = cli;
+    let Progress { recording, bar, .. } = cli;
+    let recorder = recording.recorder;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
     let solution = run?;
-    let (run, reduced) = (&solution.run, solution.reduced);
+    let run = &solution.run;
     if let Some(f) = &solution.fallback {
         eprintln!(
             "note: the default solver stalled ({}); the run was solved again with `{}`, which \
@@ -239,24 +244,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     let t_out = Instant::now();
-    let prov = Provenance {
-        command: crate::output::run::quote_args(std::env::args().skip(1)),
-        solver: solution
-            .fallback
-            .as_ref()
-            .map_or(entry.name, |f| f.solver)
-            .to_string(),
-        ordering: ordering.to_string(),
-        path: (if reduced { "reduced" } else { "general" }).to_string(),
-        mesh: if graded {
-            format!(
-                "graded mu = {}",
-                args.grading.unwrap_or(crate::simulation::DEFAULT_GRADING)
-            )
-        } else {
-            "uniform".to_string()
-        },
-    };
+    let prov = Provenance::of(
+        &sim,
+        &solution,
+        crate::output::run::quote_args(std::env::args().skip(1)),
+    );
     crate::output::run::write(
         &out,
         scn,
@@ -331,10 +323,7 @@ fn settings(args: &SolveArgs) -> Result<RunSettings, crate::error::InputError> {
 /// The command line's observer: the run's records and files, and a progress bar
 /// once the run has taken a second.
 struct Progress<'a> {
-    recorder: Recorder,
-    /// A new recorder, for a run that starts again with another solver.
-    fresh: &'a dyn Fn() -> Result<Recorder, crate::error::InputError>,
-    out: &'a RunDir,
+    recording: Recording<'a>,
     bar: Option<ProgressBar>,
     started: Instant,
     steps: u64,
@@ -342,11 +331,11 @@ struct Progress<'a> {
 
 impl Observer for Progress<'_> {
     fn wants_field(&self, step: usize) -> bool {
-        self.recorder.wants_field(step)
+        self.recording.wants_field(step)
     }
 
     fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, contact: &[ContactState]) {
-        self.recorder.observe(self.out, n, t, u, contact);
+        self.recording.step(n, t, u, contact);
         if self.bar.is_none() && self.started.elapsed() > Duration::from_secs(1) {
             let b = ProgressBar::new(self.steps).with_style(
                 ProgressStyle::with_template(
@@ -363,10 +352,7 @@ impl Observer for Progress<'_> {
     }
 
     fn restart(&mut self) {
-        // The first recorder was built from the same arguments, so this one builds too.
-        if let Ok(r) = (self.fresh)() {
-            self.recorder = r;
-        }
+        self.recording.restart();
     }
 }
 

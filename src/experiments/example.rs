@@ -8,10 +8,11 @@
 //! `softening` is drawn as Fig. 2 draws the paper's (`figures/example_softening_law`).
 
 use super::{Ctx, ExpError};
-use crate::output::run::{Provenance, Recorder};
+use crate::output::run::{Provenance, Recorder, Recording};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use crate::scheme::Settings;
+use crate::simulation::{Loop, RunSettings, Simulation};
 use crate::step::newton::Newton;
 
 /// The examples: name, TOML (compiled in), its path.
@@ -212,30 +213,36 @@ fn one(
         path: scratch.display().to_string(),
         message: e.to_string(),
     })?;
-    let mut rec = Recorder::new(&scn, std::sync::Arc::new(scn.mesh(n)?), n, None)?;
-    let res = crate::scheme::run_with_states(
-        &scn,
-        &Settings::new(n, n),
-        &mut Newton::default(),
-        &mut |step, t, u, c| rec.observe(&out, step, t, Some(u), c),
-    )?;
-    let prov = Provenance {
-        command: format!(
+    // As `evhi solve --n N --steps N --path general` solves it: the library's one
+    // way to run a scene, so no wiring here to keep in step with the command.
+    let settings = RunSettings {
+        n,
+        steps: Some(n),
+        path: Loop::General,
+        ..RunSettings::default()
+    };
+    let sim = Simulation::new(scn.clone(), settings)?;
+    let mut rec = Recording {
+        recorder: Recorder::new(&scn, sim.mesh().clone(), n, None)?,
+        out: &out,
+    };
+    let solution = sim.solve(&mut rec)?;
+    let (res, rec) = (&solution.run, rec.recorder);
+    let prov = Provenance::of(
+        &sim,
+        &solution,
+        format!(
             "reproduce example{}",
             if ctx.quick { " --quick" } else { "" }
         ),
-        solver: crate::step::DEFAULT_SOLVER.into(),
-        ordering: "nd".into(),
-        path: "general".into(),
-        mesh: "uniform".into(),
-    };
+    );
     let h_s = crate::show::Smallness::of(&scn, n)
         .unwrap_or_else(|_| crate::show::Smallness::unknown(&scn, n));
     let err = |e: crate::output::rundir::OutError| ExpError::Table {
         path: scratch.display().to_string(),
         message: e.to_string(),
     };
-    crate::output::run::write(&out, &scn, toml, &res, rec, &prov, 0.0, &h_s).map_err(err)?;
+    crate::output::run::write(&out, &scn, toml, res, rec, &prov, 0.0, &h_s).map_err(err)?;
     super::runplot::draw(&out.path(""))?;
     out.publish().map_err(err)?;
     // Newton's work per step, without the timing columns of steps.csv.

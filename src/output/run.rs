@@ -25,6 +25,68 @@ pub struct Provenance {
     pub mesh: String,
 }
 
+impl Provenance {
+    /// What a run of `sim` records of itself, `command` the command line that asked
+    /// for it: the solver that certified it (a fallback's, if one did), the ordering,
+    /// the time loop and the mesh.
+    pub fn of(
+        sim: &crate::simulation::Simulation,
+        solution: &crate::simulation::Solution,
+        command: String,
+    ) -> Provenance {
+        use crate::simulation::MeshKind;
+        let s = sim.settings();
+        Provenance {
+            command,
+            solver: solution
+                .fallback
+                .as_ref()
+                .map_or(sim.solver().name, |f| f.solver)
+                .to_string(),
+            ordering: match sim.ordering() {
+                crate::scheme::OrderingKind::Amd => "amd",
+                crate::scheme::OrderingKind::NestedDissection => "nd",
+            }
+            .to_string(),
+            path: (if solution.reduced {
+                "reduced"
+            } else {
+                "general"
+            })
+            .to_string(),
+            mesh: match s.mesh {
+                MeshKind::Graded => format!(
+                    "graded mu = {}",
+                    s.grading.unwrap_or(crate::simulation::DEFAULT_GRADING)
+                ),
+                MeshKind::Uniform => "uniform".to_string(),
+            },
+        }
+    }
+}
+
+/// The observer that writes a run directory: the [`Recorder`] and the directory its
+/// VTK series goes into (`evhi solve` and the example experiment hand it to
+/// [`crate::simulation::Simulation::solve`]).
+pub struct Recording<'a> {
+    pub recorder: Recorder,
+    pub out: &'a RunDir,
+}
+
+impl crate::simulation::Observer for Recording<'_> {
+    fn wants_field(&self, step: usize) -> bool {
+        self.recorder.wants_field(step)
+    }
+
+    fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, contact: &[ContactState]) {
+        self.recorder.observe(self.out, n, t, u, contact);
+    }
+
+    fn restart(&mut self) {
+        self.recorder.reset();
+    }
+}
+
 /// `text` on one line: control characters (a line feed or carriage return in a path)
 /// written as escapes, so that a provenance line cannot break out of its `#`.
 pub fn one_line(text: &str) -> String {
@@ -144,6 +206,14 @@ impl Recorder {
             series: vec![],
             error: None,
         })
+    }
+
+    /// Forgets every step recorded: the run starts again from $t = 0$.
+    pub fn reset(&mut self) {
+        self.evolution.clear();
+        self.counts.clear();
+        self.series.clear();
+        self.error = None;
     }
 
     /// Whether step `step` is written as a field (so the reduced loop forms it).
