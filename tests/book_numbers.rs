@@ -16,6 +16,8 @@
 //! A CSV's `#` lines are mined whole, its header line not at all;
 //! .md, .txt and .toml files are mined whole.
 
+mod common;
+
 use std::cell::RefCell;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -80,20 +82,6 @@ fn mine(text: &str, out: &mut Vec<f64>) {
     }
 }
 
-/// A CSV line's fields: split at the commas outside double quotes.
-fn csv_fields(line: &str) -> Vec<&str> {
-    let (mut out, mut quoted, mut start) = (Vec::new(), false, 0);
-    for (k, c) in line.char_indices() {
-        quoted ^= c == '"';
-        if c == ',' && !quoted {
-            out.push(&line[start..k]);
-            start = k + 1;
-        }
-    }
-    out.push(&line[start..]);
-    out
-}
-
 fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
         let path = entry.expect("a directory entry").path();
@@ -124,13 +112,13 @@ fn data_values() -> Vec<f64> {
             if line.starts_with('#') {
                 mine(line, &mut out);
             } else if let Some(skipped) = &columns {
-                let fields = csv_fields(line).into_iter().enumerate();
+                let fields = common::fields(line).into_iter().enumerate();
                 fields
                     .filter(|(k, _)| !skipped.get(*k).is_some_and(|&s| s))
-                    .for_each(|(_, f)| mine(f, &mut out));
+                    .for_each(|(_, f)| mine(&f, &mut out));
             } else {
                 columns = Some(
-                    csv_fields(line)
+                    common::fields(line)
                         .iter()
                         .map(|h| listed(SKIPPED_COLUMNS, h.trim()))
                         .collect(),

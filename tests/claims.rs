@@ -7,6 +7,8 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 
+mod common;
+
 // The claims of "Beyond the paper", "Your own scenario" and "Errata", one module each.
 #[path = "claims/beyond.rs"]
 mod beyond;
@@ -23,33 +25,16 @@ fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The rows of `data/<file>` as maps from column to text (provenance lines skipped).
+/// The rows of `data/<file>` as maps from column to text (read by tests/common's CSV
+/// reader: provenance lines skipped; a quoted field may hold a comma).
 fn rows(file: &str) -> Vec<HashMap<String, String>> {
-    let path = root().join("data").join(file);
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    parse_rows(&text)
+    common::Csv::read(root().join("data").join(file)).maps()
 }
 
 /// The rows of a table's text as maps from column to text (provenance lines skipped;
 /// a quoted field may hold a comma, as a solver's label does).
 fn parse_rows(text: &str) -> Vec<HashMap<String, String>> {
-    let split = |l: &str| -> Vec<String> {
-        let (mut out, mut cur, mut quoted) = (vec![], String::new(), false);
-        for ch in l.chars() {
-            match ch {
-                '"' => quoted = !quoted,
-                ',' if !quoted => out.push(std::mem::take(&mut cur)),
-                c => cur.push(c),
-            }
-        }
-        out.push(cur);
-        out
-    };
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header = split(lines.next().expect("a header"));
-    lines
-        .map(|l| header.iter().cloned().zip(split(l)).collect())
-        .collect()
+    common::Csv::parse(text).maps()
 }
 
 fn num(row: &HashMap<String, String>, col: &str) -> f64 {

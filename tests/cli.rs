@@ -1,115 +1,109 @@
 //! The command line: outputs, headers, and readable errors.
 
-use std::process::Command;
+mod common;
 
-fn evhi() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_evhi"))
-}
+use common::*;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
 
-/// A fresh, empty scratch directory for one test.
-fn scratch(name: &str) -> Scratch {
-    let dir = std::env::temp_dir().join(format!("evhi-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    Scratch(dir)
-}
+const FIGURE: &str = "data/scenarios/figure.toml";
+const FIVE: &str = "data/scenarios/examples/five_branch.toml";
+const CANTILEVER: &str = "data/scenarios/examples/cantilever.toml";
+/// The law of `figure`, which several tests replace.
+const SLOPES: &str = "slopes = [0.0, 200.0, -100.0, 300.0]";
 
-/// A test's scratch directory, removed when the test ends unless it failed (then it
-/// stays for a look): runs no longer leave a directory per test behind.
-struct Scratch(std::path::PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = std::path::Path;
-    fn deref(&self) -> &std::path::Path {
-        &self.0
-    }
-}
-
-impl AsRef<std::path::Path> for Scratch {
-    fn as_ref(&self) -> &std::path::Path {
-        &self.0
-    }
-}
-
-impl AsRef<std::ffi::OsStr> for Scratch {
-    fn as_ref(&self) -> &std::ffi::OsStr {
-        self.0.as_os_str()
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        if !std::thread::panicking() {
-            let _ = std::fs::remove_dir_all(&self.0);
-        }
-    }
-}
-
-/// Runs `cmd`, which must succeed (its stderr is shown otherwise).
-fn succeed(cmd: &mut Command) {
-    let out = cmd.output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
-/// Asserts that a command was refused and that its stderr holds every one of
-/// `needles` and no panic; returns the stderr.
-fn refused(o: &std::process::Output, needles: &[&str]) -> String {
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert!(!o.status.success(), "accepted: {err}");
-    assert!(!err.contains("panicked"), "{err}");
-    for n in needles {
-        assert!(err.contains(n), "no `{n}` in: {err}");
-    }
-    err
+/// `evhi solve --scenario SCENARIO WORDS... --out OUT`.
+fn solve(scenario: impl AsRef<OsStr>, words: &str, out: &Path) -> Command {
+    let mut cmd = evhi_with("solve --scenario");
+    cmd.arg(scenario)
+        .args(words.split_whitespace())
+        .arg("--out")
+        .arg(out);
+    cmd
 }
 
 /// `evhi solve --scenario figure --n 8 --steps 2 --out OUT`: the smallest run, for the
 /// tests of outputs and messages.
-fn small_solve(out: &std::path::Path) -> Command {
-    let mut cmd = evhi();
-    cmd.args([
-        "solve",
-        "--scenario",
-        "figure",
-        "--n",
-        "8",
-        "--steps",
-        "2",
-        "--out",
-    ])
-    .arg(out);
+fn small_solve(out: &Path) -> Command {
+    solve("figure", "--n 8 --steps 2", out)
+}
+
+/// `evhi study STUDY --quick --scenario SCENARIO --out OUT`.
+fn study(name: &str, scenario: impl AsRef<OsStr>, out: &Path) -> Command {
+    let mut cmd = evhi_with(&format!("study {name} --quick --scenario"));
+    cmd.arg(scenario).arg("--out").arg(out);
     cmd
+}
+
+/// `evhi reproduce WORDS... --data DATA --figures FIGURES`.
+fn reproduce_into(words: &str, data: &Path, figures: &Path) -> Command {
+    let mut cmd = evhi_with(&format!("reproduce {words} --data"));
+    cmd.arg(data).arg("--figures").arg(figures);
+    cmd
+}
+
+/// `evhi reproduce WORDS... --data DIR/data --figures DIR/figures`.
+fn reproduce(words: &str, dir: &Path) -> Command {
+    reproduce_into(words, &dir.join("data"), &dir.join("figures"))
+}
+
+/// `evhi show SCENARIO WORDS...`, run.
+fn show(scenario: impl AsRef<OsStr>, words: &str) -> Output {
+    let mut cmd = evhi_with("show");
+    cmd.arg(scenario).args(words.split_whitespace());
+    cmd.output().unwrap()
+}
+
+/// `evhi plot DIR`, run.
+fn plot(dir: &Path) -> Output {
+    evhi().arg("plot").arg(dir).output().unwrap()
+}
+
+/// A scenario file: `figure` with each `from` replaced by its `to`, in turn.
+fn figure_file(dir: &Path, name: &str, edits: &[(&str, &str)]) -> PathBuf {
+    let mut text = read(FIGURE);
+    for (from, to) in edits {
+        assert!(text.contains(from));
+        text = text.replace(from, to);
+    }
+    written(dir.join(name), text)
+}
+
+/// The cantilever example as a `problem` (steady or elastic): without its viscosity.
+fn cantilever_as(problem: &str) -> String {
+    let text = read(CANTILEVER);
+    let kept: Vec<&str> = text
+        .lines()
+        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
+        .collect();
+    let to = format!("problem = \"{problem}\"");
+    kept.join("\n").replace("problem = \"viscoelastic\"", &to)
+}
+
+/// Asserts that each of `files` exists in `dir`.
+fn assert_files(dir: &Path, label: &str, files: &[&str]) {
+    for f in files {
+        assert!(dir.join(f).exists(), "{label}: no {f}");
+    }
+}
+
+/// Whether this checkout's .gitignore has the line `line`.
+fn ignored(line: &str) -> bool {
+    let ignore = read(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore"));
+    ignore.lines().any(|l| l.trim() == line)
 }
 
 #[test]
 fn solve_writes_all_outputs() {
     let dir = scratch("cli");
-    succeed(
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--n",
-                "16",
-                "--steps",
-                "8",
-                "--out",
-            ])
-            .arg(&dir),
-    );
+    succeed(&mut solve("figure", "--n 16 --steps 8", &dir));
     // Every CSV opens with two provenance lines: the command, then the data solved.
     let body = |f: &str| -> String {
-        let text = std::fs::read_to_string(dir.join(f)).unwrap();
+        let text = read(dir.join(f));
         let mut lines = text.lines();
-        assert!(
-            lines.next().unwrap().starts_with("# produced by evhi"),
-            "{f}"
-        );
+        let first = lines.next().unwrap();
+        assert!(first.starts_with("# produced by evhi"), "{f}");
         let data = lines.next().unwrap();
         assert!(
             data.starts_with("# scenario figure;") && data.contains("load history: constant"),
@@ -124,14 +118,12 @@ fn solve_writes_all_outputs() {
     assert!(summary.starts_with("n,steps,dofs,energy_norm_T,max_certificate,wall_s,"));
     assert!(summary.contains(",load_history,compatible_data,"));
     assert!(summary.contains(",constant,false,"));
-    let steps = body("steps.csv");
-    assert_eq!(steps.lines().count(), 1 + 8);
-    let vtu = std::fs::read_to_string(dir.join("solution.vtu")).unwrap();
+    assert_eq!(body("steps.csv").lines().count(), 1 + 8);
+    let vtu = read(dir.join("solution.vtu"));
     assert!(vtu.contains("NumberOfPoints=\"153\"") && vtu.contains("NumberOfCells=\"256\""));
     // No temporary files are left behind: the only hidden file is the run marker.
-    let hidden: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+    let hidden: Vec<String> = names(&dir)
+        .into_iter()
         .filter(|n| n.starts_with('.'))
         .collect();
     assert_eq!(hidden, vec![".evhi-run".to_string()]);
@@ -142,224 +134,149 @@ fn solve_writes_all_outputs() {
 #[test]
 fn load_histories_from_the_cli_and_the_file() {
     let base = scratch("cli-hist");
-    let toml = base.join("ramp.toml");
-    let text = std::fs::read_to_string("data/scenarios/figure.toml")
-        .unwrap()
-        .replace("[loads]\n", "[loads]\nhistory = { ramp = 0.25 }\n");
-    std::fs::write(&toml, text).unwrap();
-    let run = |scenario: &str, extra: &[&str], out: &str| -> (String, String) {
+    let ramp = "[loads]\nhistory = { ramp = 0.25 }\n";
+    let toml = figure_file(&base, "ramp.toml", &[("[loads]\n", ramp)]);
+    let run = |scenario: &str, extra: &str, out: &str| -> (String, String) {
         let dir = base.join(out);
-        let o = evhi()
-            .args([
-                "solve",
-                "--scenario",
-                scenario,
-                "--n",
-                "16",
-                "--steps",
-                "16",
-            ])
-            .args(extra)
-            .arg("--out")
-            .arg(&dir)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr).to_string();
-        assert!(o.status.success(), "{err}");
-        let summary = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
-        (summary, err)
+        let words = format!("--n 16 --steps 16 {extra}");
+        let err = ok(&solve(scenario, &words, &dir).output().unwrap());
+        (read(dir.join("summary.csv")), err)
     };
-    let (from_file, warn_file) = run(toml.to_str().unwrap(), &[], "file");
-    let (from_cli, warn_cli) = run("figure", &["--ramp", "0.25"], "cli");
-    let (constant, warn_constant) = run("figure", &[], "constant");
+    let (from_file, warn_file) = run(toml.to_str().unwrap(), "", "file");
+    let (from_cli, warn_cli) = run("figure", "--ramp 0.25", "cli");
+    let (constant, warn_constant) = run("figure", "", "constant");
     assert!(
         !warn_file.contains("warning") && !warn_cli.contains("warning"),
         "{warn_cli}"
     );
-    assert!(
-        warn_constant.contains("warning") && warn_constant.contains("H(f)"),
-        "{warn_constant}"
-    );
-    let energy = |s: &str| -> f64 {
-        let rows: Vec<&str> = s.lines().filter(|l| !l.starts_with('#')).collect();
-        rows[1].split(',').nth(3).unwrap().parse().unwrap()
-    };
+    assert_contains(&warn_constant, &["warning", "H(f)"]);
+    let energy = |s: &str| Csv::parse(s).f64(0, "energy_norm_T");
     assert_eq!(energy(&from_file), energy(&from_cli));
     assert!(from_cli.contains("ramp t_r = 0.25") && from_cli.contains(",true,"));
     // The ramp has reached the full load by t = 0.25, yet the body lags behind it.
     assert!(energy(&from_cli) < energy(&constant));
     // A bad ramp names the option.
-    let o = evhi()
-        .args(["solve", "--ramp", "-1", "--out"])
+    let o = evhi_with("solve --ramp -1 --out")
         .arg(base.join("bad"))
         .output()
         .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("`ramp`"));
+    assert!(failed(&o).contains("`ramp`"));
 }
 
 #[test]
 fn bad_arguments_fail_with_the_field_named() {
     for (args, needle) in [
-        (vec!["--n", "10"], "`n`"),
-        (vec!["--g", "-0.1"], "`g`"),
-        (vec!["--steps", "0"], "`steps`"),
-        (vec!["--scenario", "nope"], "`scenario`"),
+        ("--n 10", "`n`"),
+        ("--g -0.1", "`g`"),
+        ("--steps 0", "`steps`"),
+        ("--scenario nope", "`scenario`"),
         // issue 12: negative counts name their option; absurd tolerances are refused
-        (vec!["--n", "-4"], "--n"),
-        (vec!["--steps", "-1"], "--steps"),
-        (vec!["--certificate-tol", "inf"], "`certificate-tol`"),
-        (vec!["--certificate-tol", "1e300"], "`certificate-tol`"),
-        (vec!["--certificate-tol", "1e-20"], "`certificate-tol`"),
-        (vec!["--g", "1e308"], "`g`"),
-        (vec!["--n", "4096"], "needs about"),
-        (vec!["--ramp", "1e-300"], "`ramp`"),
+        ("--n -4", "--n"),
+        ("--steps -1", "--steps"),
+        ("--certificate-tol inf", "`certificate-tol`"),
+        ("--certificate-tol 1e300", "`certificate-tol`"),
+        ("--certificate-tol 1e-20", "`certificate-tol`"),
+        ("--g 1e308", "`g`"),
+        ("--n 4096", "needs about"),
+        ("--ramp 1e-300", "`ramp`"),
     ] {
-        let out = evhi()
-            .args(["solve", "--out", "/tmp/evhi-never"])
-            .args(&args)
+        let out = evhi_with(&format!("solve --out /tmp/evhi-never {args}"))
             .output()
             .unwrap();
-        assert!(!out.status.success());
-        let err = String::from_utf8_lossy(&out.stderr);
+        let err = failed(&out);
         assert!(err.contains(needle), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{err}");
     }
-    let out = evhi()
-        .args(["solve", "--out", "/tmp/x", "--f0", "1,two"])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("two"));
+    let out = evhi_with("solve --out /tmp/x --f0 1,two").output().unwrap();
+    assert!(failed(&out).contains("two"));
 }
 
 #[test]
 fn bench_sweeps_writes_every_variant() {
     let dir = scratch("sweeps");
-    succeed(
-        evhi()
-            .args(["bench", "--sweeps", "--sweeps-n", "16", "--data"])
-            .arg(&dir),
-    );
-    let csv = std::fs::read_to_string(dir.join("bench_sweeps.csv")).unwrap();
-    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
-    assert!(rows[0].starts_with("variant,ordering,threads,prefetch,columns,nnz_l,"));
+    succeed(evhi_with("bench --sweeps --sweeps-n 16 --data").arg(&dir));
+    let text = read(dir.join("bench_sweeps.csv"));
+    let csv = Csv::parse(&text);
+    let header = csv.header.join(",");
+    assert!(header.starts_with("variant,ordering,threads,prefetch,columns,nnz_l,"));
     // faer, seven of ours, two streaming rates.
-    assert_eq!(rows.len(), 1 + 10, "{csv}");
-    for row in &rows[1..] {
-        let total: f64 = row.split(',').nth(8).unwrap().parse().unwrap();
-        assert!(total > 0.0 && total.is_finite(), "{row}");
+    assert_eq!(csv.len(), 10, "{text}");
+    for (row, total) in csv.rows().iter().zip(csv.column_f64("total_ms")) {
+        assert!(total > 0.0 && total.is_finite(), "{row:?}");
     }
     // A level the mesh does not allow is refused with the field named.
-    let out = evhi()
-        .args(["bench", "--sweeps", "--sweeps-n", "10", "--data"])
+    let o = evhi_with("bench --sweeps --sweeps-n 10 --data")
         .arg(&dir)
         .output()
         .unwrap();
-    assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("`n`"));
-}
-
-/// A scenario file: `figure` with `from` replaced by `to`.
-fn figure_file(dir: &std::path::Path, name: &str, from: &str, to: &str) -> std::path::PathBuf {
-    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
-    assert!(text.contains(from));
-    let p = dir.join(name);
-    std::fs::write(&p, text.replace(from, to)).unwrap();
-    p
+    assert!(failed(&o).contains("`n`"));
 }
 
 /// Issue 12's cases that used to look right and were not, or were refused though valid.
 #[test]
 fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
     let dir = scratch("cli-hostile");
-    let run = |scenario: &std::path::Path, extra: &[&str]| {
-        evhi()
-            .args(["solve", "--n", "32", "--steps", "32", "--scenario"])
-            .arg(scenario)
-            .args(extra)
-            .arg("--out")
-            .arg(dir.join("out"))
-            .output()
-            .unwrap()
+    let run = |scenario: &Path, extra: &str| {
+        let words = format!("--n 32 --steps 32 {extra}");
+        solve(scenario, &words, &dir.join("out")).output().unwrap()
     };
-    let slopes = "slopes = [0.0, 200.0, -100.0, 300.0]";
+    let figure = Path::new("figure");
     // An upward jump: nodes sit on the breakpoint up to rounding; it certifies.
-    let jump = figure_file(
-        &dir,
-        "jump.toml",
-        slopes,
-        &format!("{slopes}\njumps = [0.0, 5.0, 0.0]"),
-    );
-    let o = run(&jump, &[]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let up = format!("{SLOPES}\njumps = [0.0, 5.0, 0.0]");
+    ok(&run(&figure_file(&dir, "jump.toml", &[(SLOPES, &up)]), ""));
     // A very thin layer: nodes at g(1 - 1e-8) are on the limit, not on branch 1.
-    let o = run(&std::path::PathBuf::from("figure"), &["--g", "1e-9"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let contact = std::fs::read_to_string(dir.join("out/contact.csv")).unwrap();
+    ok(&run(figure, "--g 1e-9"));
+    let contact = read(dir.join("out/contact.csv"));
     assert!(
         contact.lines().filter(|l| l.ends_with(",limit")).count() > 16,
         "{contact}"
     );
     // A certificate stricter than rounding: the refusal says what refused.
-    let o = run(
-        &std::path::PathBuf::from("figure"),
-        &["--certificate-tol", "1e-15"],
-    );
-    let err = String::from_utf8_lossy(&o.stderr);
+    let o = run(figure, "--certificate-tol 1e-15");
+    let err = stderr(&o);
     if !o.status.success() {
-        assert!(
-            err.contains("reported convergence") && err.contains("independent certificate"),
-            "{err}"
-        );
+        assert_contains(&err, &["reported convergence", "independent certificate"]);
         assert!(!err.contains("ended with Converged"), "{err}");
     }
     // A strongly softening law: the step can be nonconvex; solve warns and reports it.
-    let soft = figure_file(
-        &dir,
-        "soft.toml",
-        slopes,
-        "slopes = [0.0, 200.0, -100000.0, 300.0]",
-    );
-    let o = run(&soft, &[]);
-    let err = String::from_utf8_lossy(&o.stderr);
+    let soft = "slopes = [0.0, 200.0, -100000.0, 300.0]";
+    let o = run(&figure_file(&dir, "soft.toml", &[(SLOPES, soft)]), "");
+    let err = stderr(&o);
     assert!(err.contains("not convex") || !o.status.success(), "{err}");
     if o.status.success() {
-        let summary = std::fs::read_to_string(dir.join("out/summary.csv")).unwrap();
-        assert!(summary.contains("step_curvature_min"));
+        assert!(read(dir.join("out/summary.csv")).contains("step_curvature_min"));
     }
     // A very soft material breaks H(s): solve says so.
-    let soft_e = figure_file(&dir, "soft_e.toml", "E = 1000.0", "E = 1e-3");
-    let o = run(&soft_e, &[]);
-    let err = String::from_utf8_lossy(&o.stderr);
+    let o = run(
+        &figure_file(&dir, "soft_e.toml", &[("E = 1000.0", "E = 1e-3")]),
+        "",
+    );
+    let err = stderr(&o);
     assert!(o.status.success() && err.contains("H(s) fails"), "{err}");
-    let summary = std::fs::read_to_string(dir.join("out/summary.csv")).unwrap();
-    assert!(summary.contains(",beta_B,m_trace_norm_sq,"));
+    assert!(read(dir.join("out/summary.csv")).contains(",beta_B,m_trace_norm_sq,"));
     // Values that overflow the solve are refused by name, echoed in exponent form.
-    let huge = figure_file(&dir, "huge.toml", "T = 1.0", "T = 1e300");
-    let err = String::from_utf8_lossy(&run(&huge, &[]).stderr).to_string();
+    let huge = figure_file(&dir, "huge.toml", &[("T = 1.0", "T = 1e300")]);
+    let err = stderr(&run(&huge, ""));
     assert!(
         err.contains("`T`") && err.contains("1e300") && err.len() < 400,
         "{err}"
     );
-    let kappa = figure_file(&dir, "kappa.toml", "kappa = 0.4", "kappa = 1e308");
-    let err = String::from_utf8_lossy(&run(&kappa, &[]).stderr).to_string();
+    let kappa = figure_file(&dir, "kappa.toml", &[("kappa = 0.4", "kappa = 1e308")]);
+    let err = stderr(&run(&kappa, ""));
     assert!(
         err.contains("`material.kappa`") && err.contains("1e308") && err.len() < 400,
         "{err}"
     );
     // A 10 MB line with a parse error is echoed in part; a file over 1 MiB is refused.
-    let long = dir.join("long.toml");
-    std::fs::write(&long, format!("name = \"{}", "x".repeat(900_000))).unwrap();
-    let err = String::from_utf8_lossy(&run(&long, &[]).stderr).to_string();
-    assert!(err.len() < 2000, "{} bytes of error", err.len());
-    let big = dir.join("big.toml");
-    std::fs::write(&big, "#".repeat(2 << 20)).unwrap();
-    let err = String::from_utf8_lossy(&run(&big, &[]).stderr).to_string();
-    assert!(
-        err.contains("`scenario`") && err.contains("at most"),
-        "{err}"
+    let long = written(
+        dir.join("long.toml"),
+        format!("name = \"{}", "x".repeat(900_000)),
     );
+    let err = stderr(&run(&long, ""));
+    assert!(err.len() < 2000, "{} bytes of error", err.len());
+    let big = written(dir.join("big.toml"), "#".repeat(2 << 20));
+    let err = stderr(&run(&big, ""));
+    assert_contains(&err, &["`scenario`", "at most"]);
 }
 
 /// The evolution for ParaView: one VTU per written step and a .pvd with their times;
@@ -367,25 +284,9 @@ fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
 #[test]
 fn vtk_time_series_matches_the_contact_table() {
     let dir = scratch("cli-pvd");
-    let o = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "figure",
-            "--n",
-            "16",
-            "--steps",
-            "8",
-            "--vtk-every",
-            "3",
-        ])
-        .arg("--out")
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeed(&mut solve("figure", "--n 16 --steps 8 --vtk-every 3", &dir));
     // Steps 3, 6 and the last, 8.
-    let pvd = std::fs::read_to_string(dir.join("solution.pvd")).unwrap();
+    let pvd = read(dir.join("solution.pvd"));
     let sets: Vec<(f64, String)> = pvd
         .lines()
         .filter(|l| l.starts_with("<DataSet"))
@@ -406,7 +307,7 @@ fn vtk_time_series_matches_the_contact_table() {
         assert!(dir.join(f).exists(), "{f}");
     }
     // The last dataset against contact.csv (the contact nodes are the first 17 points).
-    let vtu = std::fs::read_to_string(dir.join(&sets[2].1)).unwrap();
+    let vtu = read(dir.join(&sets[2].1));
     let array = |name: &str| -> Vec<f64> {
         let start = vtu.find(&format!("Name=\"{name}\"")).unwrap();
         let body = &vtu[start..];
@@ -416,18 +317,12 @@ fn vtk_time_series_matches_the_contact_table() {
             .collect()
     };
     let (sigma1, regime) = (array("sigma_nu1"), array("regime"));
-    let contact = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
-    let rows: Vec<Vec<String>> = contact
-        .lines()
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .map(|l| l.split(',').map(str::to_string).collect())
-        .collect();
-    assert_eq!(rows.len(), 17);
+    let contact = Csv::read(dir.join("contact.csv"));
+    assert_eq!(contact.len(), 17);
     let mut limit = 0;
-    for (i, r) in rows.iter().enumerate() {
-        assert_eq!(sigma1[i], r[2].parse::<f64>().unwrap(), "node {i}");
-        let code = match r[4].as_str() {
+    for (i, r) in contact.column_str("regime").into_iter().enumerate() {
+        assert_eq!(sigma1[i], contact.f64(i, "sigma_nu1"), "node {i}");
+        let code = match r {
             "no_contact" => 0.0,
             "limit" => {
                 limit += 1;
@@ -435,12 +330,12 @@ fn vtk_time_series_matches_the_contact_table() {
             }
             b => b.trim_start_matches("branch").parse().unwrap(),
         };
-        assert_eq!(regime[i], code, "node {i}: {}", r[4]);
+        assert_eq!(regime[i], code, "node {i}: {r}");
     }
     assert!(limit > 0, "figure has nodes at the limit at T");
     // Off the contact boundary the regime is -1; the run directory describes itself.
     assert_eq!(regime[17], -1.0);
-    let toml = std::fs::read_to_string(dir.join("scenario.toml")).unwrap();
+    let toml = read(dir.join("scenario.toml"));
     assert!(toml.contains("--vtk-every 3") && toml.contains("name = \"figure\""));
 }
 
@@ -449,72 +344,36 @@ fn vtk_time_series_matches_the_contact_table() {
 #[test]
 fn scenarios_and_show() {
     let o = evhi().arg("scenarios").output().unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
+    let out = stdout(&o);
     assert!(o.status.success());
     for name in ["literal", "figure", "smooth"] {
         assert!(out.lines().any(|l| l.starts_with(name)), "{out}");
     }
-    let o = evhi().args(["show", "figure"]).output().unwrap();
-    let (out, err) = (
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr),
-    );
+    let o = show("figure", "");
+    let (out, err) = (stdout(&o), stderr(&o));
     assert!(o.status.success(), "{err}");
-    assert!(
-        out.contains("H(s): beta_B") && out.contains(": holds"),
-        "{out}"
-    );
-    assert!(
-        out.contains("step convexity") && out.contains("tau = 0.07"),
-        "{out}"
-    );
+    assert_contains(&out, &["H(s): beta_B", ": holds"]);
+    assert_contains(&out, &["step convexity", "tau = 0.07"]);
     assert!(
         out.contains("warning: at t = 0") && err.contains("2 warning(s)"),
         "{out}{err}"
     );
     // A downward jump breaks H(j); a ramp makes the data compatible.
     let dir = scratch("cli-show");
-    let slopes = "slopes = [0.0, 200.0, -100.0, 300.0]";
-    let jump = figure_file(
-        &dir,
-        "down.toml",
-        slopes,
-        &format!("{slopes}\njumps = [0.0, -5.0, 0.0]"),
-    );
-    let text = std::fs::read_to_string(&jump)
-        .unwrap()
-        .replace("[loads]\n", "[loads]\nhistory = { ramp = 0.5 }\n");
-    std::fs::write(&jump, text).unwrap();
-    let o = evhi()
-        .arg("show")
-        .arg(&jump)
-        .args(["--n", "16", "--steps", "16"])
-        .output()
-        .unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        out.contains("warning: H(j) fails") && out.contains("(a jump)"),
-        "{out}"
-    );
+    let down = format!("{SLOPES}\njumps = [0.0, -5.0, 0.0]");
+    let ramp = ("[loads]\n", "[loads]\nhistory = { ramp = 0.5 }\n");
+    let jump = figure_file(&dir, "down.toml", &[(SLOPES, &down), ramp]);
+    let out = stdout(&show(&jump, "--n 16 --steps 16"));
+    assert_contains(&out, &["warning: H(j) fails", "(a jump)"]);
     assert!(out.contains("H(f), H(0) at t = 0: hold"), "{out}");
     // solve warns about the downward jump too.
-    let o = evhi()
-        .arg("solve")
-        .arg("--scenario")
-        .arg(&jump)
-        .args(["--n", "16", "--steps", "16", "--out"])
-        .arg(dir.join("out"))
+    let o = solve(&jump, "--n 16 --steps 16", &dir.join("out"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert!(err.contains("warning: H(j) fails"), "{err}");
     // A bad mesh is an error naming the option.
-    let o = evhi()
-        .args(["show", "figure", "--n", "10"])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("`n`"));
+    assert!(failed(&show("figure", "--n 10")).contains("`n`"));
 }
 
 /// A user scenario with a five-branch law and a jump, end to end: solve writes its
@@ -522,80 +381,46 @@ fn scenarios_and_show() {
 #[test]
 fn a_user_scenario_runs_and_draws() {
     let dir = scratch("cli-five");
-    let o = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "data/scenarios/examples/five_branch.toml",
-        ])
-        .args(["--n", "32", "--steps", "32", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "{err}");
+    let err = ok(&solve(FIVE, "--n 32 --steps 32", &dir).output().unwrap());
     assert!(
         !err.contains("warning"),
         "compatible data, H(s) holds: {err}"
     );
-    let contact = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
-    assert!(
-        contact.contains(",branch4\n") && contact.contains(",limit\n"),
-        "{contact}"
-    );
-    let regimes = std::fs::read_to_string(dir.join("regimes.csv")).unwrap();
+    let contact = read(dir.join("contact.csv"));
+    assert_contains(&contact, &[",branch4\n", ",limit\n"]);
+    let regimes = read(dir.join("regimes.csv"));
     assert!(
         regimes.contains("step,t,branch1,branch2,branch3,branch4,limit")
             || regimes.contains(",branch4,"),
         "{regimes}"
     );
-    let evolution = std::fs::read_to_string(dir.join("evolution.csv")).unwrap();
-    assert_eq!(
-        evolution.lines().filter(|l| !l.starts_with('#')).count(),
-        1 + 5 * 32
-    );
+    assert_eq!(Csv::read(dir.join("evolution.csv")).len(), 5 * 32);
     let size = |f: &str| std::fs::metadata(dir.join(f)).map(|m| m.len()).unwrap_or(0);
-    for f in [
+    let figures = [
         "deformed.png",
         "deformed.svg",
         "evolution.png",
         "evolution.svg",
-    ] {
+    ];
+    for f in figures {
         assert!(size(f) > 10_000, "{f}: {} bytes", size(f));
         std::fs::remove_file(dir.join(f)).unwrap();
     }
-    let o = evhi().arg("plot").arg(&dir).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in [
-        "deformed.png",
-        "deformed.svg",
-        "evolution.png",
-        "evolution.svg",
-    ] {
+    ok(&plot(&dir));
+    for f in figures {
         assert!(size(f) > 10_000, "redrawn {f}");
     }
-    let o = evhi().args(["plot", "/nonexistent-run"]).output().unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent-run"));
+    let o = plot(Path::new("/nonexistent-run"));
+    assert!(failed(&o).contains("/nonexistent-run"));
 }
 
 /// `reproduce -q` prints nothing on success.
 #[test]
 fn reproduce_quiet_prints_nothing() {
     let dir = scratch("cli-quiet");
-    let o = evhi()
-        .args(["reproduce", "fig2", "loads", "--quick", "-q", "--data"])
-        .arg(dir.join("data"))
-        .arg("--figures")
-        .arg(dir.join("figures"))
-        .output()
-        .unwrap();
+    let o = reproduce("fig2 loads --quick -q", &dir).output().unwrap();
     assert!(o.status.success());
-    assert!(
-        o.stderr.is_empty() && o.stdout.is_empty(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert!(o.stderr.is_empty() && o.stdout.is_empty(), "{}", stderr(&o));
     assert!(dir.join("data/loads_search.csv").exists());
 }
 
@@ -605,38 +430,19 @@ fn reproduce_quiet_prints_nothing() {
 fn every_registered_solver_runs_from_the_command_line() {
     for entry in evhi::step::SOLVERS.iter() {
         let dir = scratch(&format!("solver-{}", entry.name));
-        let out = evhi()
-            .args(["solve", "--scenario", "figure", "--n", "8", "--steps", "4"])
-            .args(["--solver", entry.name, "--out"])
-            .arg(&dir)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(out.status.success(), "{}: {stderr}", entry.name);
-        assert_eq!(
-            stderr.contains("is not certified"),
-            !entry.certified,
-            "{}: {stderr}",
-            entry.name
-        );
+        let mut cmd = solve("figure", "--n 8 --steps 4", &dir);
+        let out = cmd.args(["--solver", entry.name]).output().unwrap();
+        let err = stderr(&out);
+        assert!(out.status.success(), "{}: {err}", entry.name);
+        let uncertified = err.contains("is not certified");
+        assert_eq!(uncertified, !entry.certified, "{}: {err}", entry.name);
         assert!(dir.join("summary.csv").exists(), "{}", entry.name);
     }
-    let out = evhi()
-        .args([
-            "solve",
-            "--solver",
-            "gradient-descent",
-            "--out",
-            "/tmp/never",
-        ])
+    let out = evhi_with("solve --solver gradient-descent --out /tmp/never")
         .output()
         .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success());
-    assert!(
-        stderr.contains("newton") && stderr.contains("penalty"),
-        "{stderr}"
-    );
+    let err = failed(&out);
+    assert!(err.contains("newton") && err.contains("penalty"), "{err}");
 }
 
 /// `--path auto` takes the reduced loop where the damping is proportional and the
@@ -644,52 +450,23 @@ fn every_registered_solver_runs_from_the_command_line() {
 /// `--path reduced` on the non-proportional scene is refused by name.
 #[test]
 fn the_time_loop_follows_the_damping() {
-    let column = |dir: &std::path::Path, file: &str, name: &str| -> Vec<String> {
-        let text = std::fs::read_to_string(dir.join(file)).unwrap();
-        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-        let at = header.iter().position(|h| *h == name).unwrap();
-        lines
-            .map(|l| l.split(',').nth(at).unwrap().to_string())
-            .collect()
-    };
     for (scenario, path, checks) in [
         ("figure", "reduced", ["condensed", "full"]),
         ("nonproportional", "general", ["full", "full"]),
     ] {
         let dir = scratch(&format!("path-{scenario}"));
-        succeed(
-            evhi()
-                .args(["solve", "--scenario", scenario, "--n", "8", "--steps", "8"])
-                .arg("--out")
-                .arg(&dir),
-        );
-        assert_eq!(column(&dir, "summary.csv", "path"), vec![path.to_string()]);
-        let check = column(&dir, "steps.csv", "check");
+        succeed(&mut solve(scenario, "--n 8 --steps 8", &dir));
+        let summary = Csv::read(dir.join("summary.csv"));
+        assert_eq!(summary.column_str("path"), vec![path]);
+        let steps = Csv::read(dir.join("steps.csv"));
+        let check = steps.column_str("check");
         assert_eq!(check.len(), 8);
-        assert_eq!([check[0].as_str(), check[7].as_str()], checks, "{scenario}");
+        assert_eq!([check[0], check[7]], checks, "{scenario}");
     }
     let dir = scratch("path-refused");
-    let out = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "nonproportional",
-            "--n",
-            "8",
-            "--steps",
-            "4",
-        ])
-        .args(["--path", "reduced", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("material") && err.contains("proportional"),
-        "{err}"
-    );
+    let words = "--n 8 --steps 4 --path reduced";
+    let err = failed(&solve("nonproportional", words, &dir).output().unwrap());
+    assert_contains(&err, &["material", "proportional"]);
 }
 
 /// A finer reference for Table 1 that cannot serve is refused by name, before
@@ -698,23 +475,10 @@ fn the_time_loop_follows_the_damping() {
 fn a_bad_table1_reference_is_refused() {
     let dir = scratch("bad-reference");
     for bad in ["100", "1048576"] {
-        let out = evhi()
-            .args([
-                "reproduce",
-                "table1",
-                "--quick",
-                "--quiet",
-                "--reference",
-                bad,
-            ])
-            .arg("--data")
-            .arg(dir.join("data"))
-            .arg("--figures")
-            .arg(dir.join("figures"))
-            .output()
-            .unwrap();
+        let words = format!("table1 --quick --quiet --reference {bad}");
+        let out = reproduce(&words, &dir).output().unwrap();
         assert!(!out.status.success(), "--reference {bad} must fail");
-        let err = String::from_utf8_lossy(&out.stderr);
+        let err = stderr(&out);
         assert!(err.contains(bad), "--reference {bad}: {err}");
     }
 }
@@ -724,15 +488,7 @@ fn a_bad_table1_reference_is_refused() {
 #[test]
 fn reproduce_logs_lines_with_times() {
     let dir = scratch("log");
-    let out = evhi()
-        .args(["reproduce", "static", "--quick", "--log", "--data"])
-        .arg(dir.join("data"))
-        .arg("--figures")
-        .arg(dir.join("figures"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{err}");
+    let err = ok(&reproduce("static --quick --log", &dir).output().unwrap());
     let lines: Vec<&str> = err
         .lines()
         .filter(|l| l.contains("] static: static control: "))
@@ -747,12 +503,8 @@ fn reproduce_logs_lines_with_times() {
         let secs: f64 = secs.unwrap_or("x").trim().parse().expect(l);
         assert!(secs >= 0.0, "{l}");
     }
-    let both = evhi()
-        .args(["reproduce", "fig2", "--log", "-q"])
-        .output()
-        .unwrap();
-    assert!(!both.status.success());
-    assert!(String::from_utf8_lossy(&both.stderr).contains("--quiet"));
+    let both = evhi_with("reproduce fig2 --log -q").output().unwrap();
+    assert!(failed(&both).contains("--quiet"));
 }
 
 /// The main job changes no committed file with its own wall times: a full run keeps
@@ -761,25 +513,15 @@ fn reproduce_logs_lines_with_times() {
 #[test]
 fn reproduce_keeps_its_times_local_unless_recorded() {
     let dir = scratch("times");
-    let (data, figures) = (dir.join("data"), dir.join("figures"));
-    let run = |extra: &[&str]| {
-        succeed(
-            evhi()
-                .args(["reproduce", "fig2", "-q"])
-                .args(extra)
-                .arg("--data")
-                .arg(&data)
-                .arg("--figures")
-                .arg(&figures),
-        )
-    };
-    run(&[]);
+    let data = dir.join("data");
+    let run = |extra: &str| succeed(&mut reproduce(&format!("fig2 -q {extra}"), &dir));
+    run("");
     assert!(data.join("fig2_law.csv").exists());
     assert!(!data.join("reproduce_times.csv").exists());
-    let local = std::fs::read_to_string(data.join("local/reproduce_times.csv")).unwrap();
+    let local = read(data.join("local/reproduce_times.csv"));
     assert!(local.contains("\nfig2,fig2,"), "{local}");
-    run(&["--record-times"]);
-    let recorded = std::fs::read_to_string(data.join("reproduce_times.csv")).unwrap();
+    run("--record-times");
+    let recorded = read(data.join("reproduce_times.csv"));
     let first = recorded.lines().next().unwrap();
     assert!(
         first.contains("`evhi reproduce fig2 --record-times`"),
@@ -787,9 +529,7 @@ fn reproduce_keeps_its_times_local_unless_recorded() {
     );
     assert!(recorded.contains("machine: "), "{recorded}");
     // The git-ignored directory is the one this checkout ignores.
-    let ignore =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore")).unwrap();
-    assert!(ignore.lines().any(|l| l.trim() == "/data/local/"));
+    assert!(ignored("/data/local/"));
 }
 
 /// `solve --scenario smooth --f2 0,-1e6` (the top is clamped there) is refused naming
@@ -797,24 +537,8 @@ fn reproduce_keeps_its_times_local_unless_recorded() {
 #[test]
 fn solve_refuses_a_traction_on_a_clamped_top() {
     let dir = scratch("clamped-f2");
-    let out = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "smooth",
-            "--n",
-            "8",
-            "--steps",
-            "2",
-            "--f2",
-            "0,-1e6",
-            "--out",
-        ])
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let words = "--n 8 --steps 2 --f2 0,-1e6";
+    let err = failed(&solve("smooth", words, &dir.join("run")).output().unwrap());
     assert!(err.contains("f2") && err.contains("rollers"), "{err}");
     assert!(!dir.join("run").join("summary.csv").exists());
 }
@@ -839,26 +563,10 @@ fn displacements_that_dwarf_g_are_refused_not_certified() {
          [loads]\nf0 = [0.0, 0.0]\nf2 = [0.0, -1e8]\n[law]\nbreakpoints = [0.0]\nslopes = [0.0, 200.0]\n",
     ];
     for (i, text) in cases.iter().enumerate() {
-        let file = dir.join(format!("case{i}.toml"));
-        std::fs::write(&file, text).unwrap();
         for path in ["general", "auto"] {
-            let out = evhi()
-                .args([
-                    "solve",
-                    "--n",
-                    "16",
-                    "--steps",
-                    "4",
-                    "--path",
-                    path,
-                    "--scenario",
-                ])
-                .arg(&file)
-                .arg("--out")
-                .arg(dir.join(format!("run{i}-{path}")))
-                .output()
-                .unwrap();
-            let err = String::from_utf8_lossy(&out.stderr);
+            let extra = ["--n", "16", "--steps", "4", "--path", path];
+            let (out, _) = solve_text(&dir, &format!("case{i}-{path}"), text, &extra);
+            let err = stderr(&out);
             assert!(!out.status.success(), "case {i} ({path}) was certified");
             assert!(
                 err.contains("resolved in double precision") && err.contains("g = "),
@@ -880,12 +588,8 @@ fn solve_keeps_the_users_files_in_an_earlier_run_directory() {
     assert!(solve().status.success());
     std::fs::write(out.join("my_notes.txt"), "mine").unwrap();
     std::fs::create_dir(out.join("analysis")).unwrap();
-    let o = solve();
-    refused(&o, &["`my_notes.txt`", "`analysis/`"]);
-    assert_eq!(
-        std::fs::read_to_string(out.join("my_notes.txt")).unwrap(),
-        "mine"
-    );
+    refused(&solve(), &["`my_notes.txt`", "`analysis/`"]);
+    assert_eq!(read(out.join("my_notes.txt")), "mine");
     assert!(out.join("analysis").is_dir() && out.join("summary.csv").exists());
 }
 
@@ -895,18 +599,12 @@ fn solve_keeps_the_users_files_in_an_earlier_run_directory() {
 #[test]
 fn reproduce_quick_never_overwrites_the_committed_outputs() {
     let dir = scratch("quick-default");
-    succeed(
-        evhi()
-            .current_dir(&dir)
-            .args(["reproduce", "fig2", "--quick", "-q"]),
-    );
+    succeed(evhi_with("reproduce fig2 --quick -q").current_dir(&dir));
     assert!(dir.join("data/local/quick/fig2_law.csv").exists());
     assert!(dir.join("figures/local/quick/fig2_law.png").exists());
     assert!(!dir.join("data/fig2_law.csv").exists());
     assert!(!dir.join("figures/fig2_law.png").exists());
-    let ignore =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/.gitignore")).unwrap();
-    assert!(ignore.lines().any(|l| l.trim() == "/figures/local/"));
+    assert!(ignored("/figures/local/"));
 }
 
 /// A line feed or carriage return cannot break out of a provenance line: refused in a
@@ -914,26 +612,21 @@ fn reproduce_quick_never_overwrites_the_committed_outputs() {
 #[test]
 fn control_characters_stay_out_of_the_provenance_lines() {
     let dir = scratch("control-chars");
-    let text = std::fs::read_to_string("data/scenarios/figure.toml")
-        .unwrap()
-        .replace("name = \"figure\"", "name = \"fig\\nure\"");
-    let file = dir.join("nl.toml");
-    std::fs::write(&file, text).unwrap();
-    let o = evhi().args(["show"]).arg(&file).output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("`name`"), "{err}");
+    let file = figure_file(
+        &dir,
+        "nl.toml",
+        &[("name = \"figure\"", "name = \"fig\\nure\"")],
+    );
+    failed_with(&show(&file, ""), "`name`");
     for bad in ["cr\rrun", "lf\nrun"] {
         let out = dir.join(bad);
         succeed(&mut small_solve(&out));
-        let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+        let contact = read(out.join("contact.csv"));
         let lines: Vec<&str> = contact.lines().collect();
         assert!(lines[0].starts_with("# produced by evhi") && lines[1].starts_with("# scenario"));
         assert_eq!(lines[2], "x,u_nu,sigma_nu1,sigma_nu2,regime", "{contact}");
-        assert!(
-            lines[0].contains("\\r") || lines[0].contains("\\n"),
-            "{}",
-            lines[0]
-        );
+        let escaped = lines[0].contains("\\r") || lines[0].contains("\\n");
+        assert!(escaped, "{}", lines[0]);
     }
 }
 
@@ -948,21 +641,10 @@ fn reproduce_locks_its_outputs_and_cleans_a_killed_runs_temporaries() {
     std::fs::create_dir_all(&figures).unwrap();
     // A killed run's leftovers (no process has this id: above Linux's pid_max).
     let stale = [
-        data.join(".fig2_law.csv.tmp-999999999"),
-        figures.join(".fig2_law.tmp-999999999.png"),
+        written(data.join(".fig2_law.csv.tmp-999999999"), "partial"),
+        written(figures.join(".fig2_law.tmp-999999999.png"), "partial"),
     ];
-    for s in &stale {
-        std::fs::write(s, "partial").unwrap();
-    }
-    let run = || {
-        evhi()
-            .args(["reproduce", "fig2", "--quick", "-q", "--data"])
-            .arg(&data)
-            .arg("--figures")
-            .arg(&figures)
-            .output()
-            .unwrap()
-    };
+    let run = || reproduce("fig2 --quick -q", &dir).output().unwrap();
     let lock = std::fs::File::options()
         .create(true)
         .truncate(false)
@@ -970,19 +652,11 @@ fn reproduce_locks_its_outputs_and_cleans_a_killed_runs_temporaries() {
         .open(data.join(".reproduce.lock"))
         .unwrap();
     lock.try_lock().unwrap();
-    let o = run();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("another `evhi reproduce`"),
-        "{err}"
-    );
-    assert!(
-        stale.iter().all(|s| s.exists()),
-        "a refused run must touch nothing"
-    );
+    failed_with(&run(), "another `evhi reproduce`");
+    let untouched = stale.iter().all(|s| s.exists());
+    assert!(untouched, "a refused run must touch nothing");
     drop(lock);
-    let o = run();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ok(&run());
     assert!(stale.iter().all(|s| !s.exists()), "stale temporaries left");
     assert!(data.join("fig2_law.csv").exists());
 }
@@ -993,20 +667,11 @@ fn reproduce_locks_its_outputs_and_cleans_a_killed_runs_temporaries() {
 #[test]
 fn smallness_uses_the_runs_own_trace_constant() {
     let dir = scratch("hs-trace");
-    let file = figure_file(
-        &dir,
-        "soft.toml",
-        "slopes = [0.0, 200.0, -100.0, 300.0]",
-        "slopes = [0.0, 200.0, -290.0, 300.0]",
-    );
-    let show = |n: &str| {
-        let o = evhi()
-            .args(["show"])
-            .arg(&file)
-            .args(["--n", n])
-            .output()
-            .unwrap();
-        String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr)
+    let soft = "slopes = [0.0, 200.0, -290.0, 300.0]";
+    let file = figure_file(&dir, "soft.toml", &[(SLOPES, soft)]);
+    let shown = |n: &str| {
+        let o = show(&file, &format!("--n {n}"));
+        stdout(&o) + &stderr(&o)
     };
     let line = |text: &str| {
         text.lines()
@@ -1014,8 +679,8 @@ fn smallness_uses_the_runs_own_trace_constant() {
             .unwrap()
             .to_string()
     };
-    assert!(line(&show("64")).ends_with("holds"), "{}", show("64"));
-    let at256 = line(&show("256"));
+    assert!(line(&shown("64")).ends_with("holds"), "{}", shown("64"));
+    let at256 = line(&shown("256"));
     assert!(
         at256.contains("(n = 256)") && at256.ends_with("fails"),
         "{at256}"
@@ -1034,14 +699,9 @@ fn plot_waits_for_no_one_and_mixes_nothing() {
         .open(dir.join(".run.lock"))
         .unwrap();
     lock.try_lock().unwrap();
-    let o = evhi().arg("plot").arg(&out).output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("another evhi run"),
-        "{err}"
-    );
+    failed_with(&plot(&out), "another evhi run");
     drop(lock);
-    succeed(evhi().arg("plot").arg(&out));
+    ok(&plot(&out));
 }
 
 /// The memory guard also reads the address-space limit: under `ulimit -v 3000000` a
@@ -1050,7 +710,7 @@ fn plot_waits_for_no_one_and_mixes_nothing() {
 #[test]
 fn the_memory_guard_reads_the_address_space_limit() {
     let dir = scratch("ulimit");
-    let o = std::process::Command::new("bash")
+    let o = Command::new("bash")
         .arg("-c")
         .arg(format!(
             "ulimit -v 3000000; exec '{}' solve --scenario figure --n 2048 --steps 1 --out '{}'",
@@ -1059,7 +719,7 @@ fn the_memory_guard_reads_the_address_space_limit() {
         ))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
+    let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(
         err.contains("fits in memory") && !err.contains("backtrace"),
@@ -1073,46 +733,24 @@ fn the_memory_guard_reads_the_address_space_limit() {
 #[test]
 fn show_and_out_messages_say_what_is_wrong() {
     let dir = scratch("messages");
-    let mono = figure_file(
-        &dir,
-        "mono.toml",
-        "slopes = [0.0, 200.0, -100.0, 300.0]",
-        "slopes = [0.0, 200.0, 100.0, 300.0]",
-    );
-    let o = evhi().arg("show").arg(&mono).output().unwrap();
-    let text = String::from_utf8_lossy(&o.stdout);
+    let mono = "slopes = [0.0, 200.0, 100.0, 300.0]";
+    let text = stdout(&show(figure_file(&dir, "mono.toml", &[(SLOPES, mono)]), ""));
     assert!(
         text.contains("= 0 (relaxed monotonicity)") && !text.contains("-0"),
         "{text}"
     );
-    let o = evhi()
-        .args(["show", "figure", "--steps", "2000000"])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("`steps`"), "{err}");
+    failed_with(&show("figure", "--steps 2000000"), "`steps`");
     std::fs::create_dir(dir.join("real")).unwrap();
     std::os::unix::fs::symlink(dir.join("real"), dir.join("link")).unwrap();
-    let o = small_solve(&dir.join("link")).output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("symbolic link"),
-        "{err}"
+    failed_with(
+        &small_solve(&dir.join("link")).output().unwrap(),
+        "symbolic link",
     );
     // A last component too long for the staging directory beside it is refused
     // before anything (lock included) is written.
-    let long = dir.join("a".repeat(245));
-    let o = small_solve(&long).output().unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("245 bytes long; at most 235"),
-        "{err}"
-    );
-    let left: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.file_name().len() > 200)
-        .collect();
+    let o = small_solve(&dir.join("a".repeat(245))).output().unwrap();
+    failed_with(&o, "245 bytes long; at most 235");
+    let left: Vec<_> = names(&dir).into_iter().filter(|n| n.len() > 200).collect();
     assert!(left.is_empty(), "left behind: {left:?}");
 }
 
@@ -1122,28 +760,9 @@ fn show_and_out_messages_say_what_is_wrong() {
 #[test]
 fn a_vtk_series_that_cannot_fit_is_refused() {
     let dir = scratch("vtk-volume");
-    let o = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "figure",
-            "--n",
-            "128",
-            "--steps",
-            "1000000",
-            "--vtk-every",
-            "1",
-            "--out",
-        ])
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "{err}");
-    assert!(
-        err.contains("`vtk-every`") && err.contains("GB in all"),
-        "{err}"
-    );
+    let words = "--n 128 --steps 1000000 --vtk-every 1";
+    let err = failed(&solve("figure", words, &dir.join("run")).output().unwrap());
+    assert_contains(&err, &["`vtk-every`", "GB in all"]);
     assert!(!dir.join("run/summary.csv").exists());
 }
 
@@ -1154,47 +773,38 @@ fn plot_refuses_tampered_tables() {
     let dir = scratch("tampered");
     let out = dir.join("run");
     succeed(&mut small_solve(&out));
-    let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
+    let contact = read(out.join("contact.csv"));
     let lines: Vec<&str> = contact.lines().collect();
     let first = lines[3]; // after two provenance lines and the header
-    let fields: Vec<&str> = first.split(',').collect();
+    let cells: Vec<&str> = first.split(',').collect();
     for (bad, expect) in [("abc", "`abc`"), ("NaN", "`NaN`"), ("1e300", "`1e300`")] {
-        let row = format!("{},{bad},{}", fields[0], fields[2..].join(","));
-        let text = contact.replacen(first, &row, 1);
-        std::fs::write(out.join("contact.csv"), text).unwrap();
-        let o = evhi().arg("plot").arg(&out).output().unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let row = format!("{},{bad},{}", cells[0], cells[2..].join(","));
+        std::fs::write(out.join("contact.csv"), contact.replacen(first, &row, 1)).unwrap();
+        let o = plot(&out);
+        let err = stderr(&o);
         assert!(!o.status.success(), "{bad} drawn");
-        assert!(
-            err.contains("contact.csv:4") && err.contains("`u_nu`") && err.contains(expect),
-            "{err}"
-        );
+        assert_contains(&err, &["contact.csv:4", "`u_nu`", expect]);
     }
     let header_only: String = lines[..3].iter().map(|l| format!("{l}\n")).collect();
     std::fs::write(out.join("contact.csv"), header_only).unwrap();
-    let o = evhi().arg("plot").arg(&out).output().unwrap();
-    assert!(String::from_utf8_lossy(&o.stderr).contains("no data row"));
+    assert!(stderr(&plot(&out)).contains("no data row"));
     std::fs::write(out.join("contact.csv"), contact).unwrap();
-    succeed(evhi().arg("plot").arg(&out));
+    ok(&plot(&out));
 }
 
 #[test]
 fn two_threads_with_amd_are_refused_and_amd_alone_runs_on_one() {
     let dir = scratch("threads-amd");
-    let out = small_solve(&dir.join("run"))
+    let mut cmd = small_solve(&dir.join("run"));
+    let out = cmd
         .args(["--threads", "2", "--ordering", "amd"])
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success());
-    assert!(
-        err.contains("`threads`") && err.contains("--ordering amd"),
-        "{err}"
-    );
+    let err = failed(&out);
+    assert_contains(&err, &["`threads`", "--ordering amd"]);
     assert!(!dir.join("run").exists(), "refused before any work");
     succeed(small_solve(&dir.join("run")).args(["--ordering", "amd"]));
-    let summary = std::fs::read_to_string(dir.join("run/summary.csv")).unwrap();
-    assert!(summary.contains("amd"));
+    assert!(read(dir.join("run/summary.csv")).contains("amd"));
 }
 
 /// Issue 25's scene from the command line: the cantilever example on a uniform and on a
@@ -1204,69 +814,39 @@ fn two_threads_with_amd_are_refused_and_amd_alone_runs_on_one() {
 #[test]
 fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
     let dir = scratch("scene");
-    let file = "data/scenarios/examples/cantilever.toml";
-    let steady = dir.join("steady.toml");
-    let text = std::fs::read_to_string(file).unwrap();
-    let text: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
-        .collect();
-    std::fs::write(
-        &steady,
-        text.join("\n")
-            .replace("problem = \"viscoelastic\"", "problem = \"steady\""),
-    )
-    .unwrap();
+    let steady = written(dir.join("steady.toml"), cantilever_as("steady"));
+    let file = Path::new(CANTILEVER);
     for (name, scenario, extra) in [
-        (
-            "uniform",
-            std::path::PathBuf::from(file),
-            vec!["--steps", "16"],
-        ),
-        (
-            "graded",
-            std::path::PathBuf::from(file),
-            vec!["--steps", "16", "--mesh", "graded"],
-        ),
-        ("steady", steady.clone(), vec![]),
+        ("uniform", file, "--steps 16"),
+        ("graded", file, "--steps 16 --mesh graded"),
+        ("steady", steady.as_path(), ""),
         (
             "steady-graded",
-            steady.clone(),
-            vec!["--mesh", "graded", "--grading", "0.3"],
+            steady.as_path(),
+            "--mesh graded --grading 0.3",
         ),
     ] {
         let out = dir.join(name);
-        succeed(
-            evhi()
-                .args(["solve", "--scenario"])
-                .arg(&scenario)
-                .args(["--n", "16", "--out"])
-                .arg(&out)
-                .args(&extra),
-        );
-        for f in [
+        succeed(&mut solve(scenario, &format!("--n 16 {extra}"), &out));
+        let figures = [
             "deformed.png",
             "deformed.svg",
             "evolution.png",
             "solution.vtu",
-        ] {
-            assert!(out.join(f).exists(), "{name}: no {f}");
-        }
+        ];
+        assert_files(&out, name, &figures);
         assert_eq!(out.join("triangles.csv").exists(), name.contains("graded"));
-        let vtu = std::fs::read_to_string(out.join("solution.vtu")).unwrap();
-        let points: usize = vtu
+        let vtu = read(out.join("solution.vtu"));
+        let points = vtu
             .split("NumberOfPoints=\"")
             .nth(1)
-            .and_then(|s| s.split('"').next())
-            .unwrap()
-            .parse()
-            .unwrap();
-        let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
+            .and_then(|s| s.split('"').next());
+        let points: usize = points.unwrap().parse().unwrap();
+        let nodes = Csv::read(out.join("nodes.csv"));
         let rows: Vec<Vec<f64>> = nodes
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .skip(1)
-            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .rows()
+            .iter()
+            .map(|r| r.iter().map(|x| x.parse().unwrap()).collect())
             .collect();
         let xmax = rows.iter().map(|r| r[0]).fold(0.0, f64::max);
         let ymax = rows.iter().map(|r| r[1]).fold(0.0, f64::max);
@@ -1285,36 +865,19 @@ fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
             assert_eq!(points, 17 * 5, "{name}: 17 x 5 grid nodes");
         }
         // The clamped corner (0, 0) is no contact node.
-        let contact = std::fs::read_to_string(out.join("contact.csv")).unwrap();
-        let first_x: f64 = contact
-            .lines()
-            .filter(|l| !l.starts_with('#'))
-            .nth(1)
-            .unwrap()
-            .split(',')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap();
+        let first_x = Csv::read(out.join("contact.csv")).f64(0, "x");
         assert!(first_x > 0.0, "{name}: the clamped corner in contact.csv");
     }
     // The options that do not fit, each named.
     for (args, field) in [
-        (vec!["--steps", "4"], "steps"),
-        (vec!["--grading", "0.3"], "grading"),
-        (vec!["--mesh", "graded", "--ordering", "nd"], "ordering"),
-        (vec!["--mesh", "graded", "--grading", "1.5"], "grading"),
-        (vec!["--n", "10"], "n"),
+        ("--steps 4", "steps"),
+        ("--grading 0.3", "grading"),
+        ("--mesh graded --ordering nd", "ordering"),
+        ("--mesh graded --grading 1.5", "grading"),
+        ("--n 10", "n"),
     ] {
-        let o = evhi()
-            .args(["solve", "--scenario"])
-            .arg(&steady)
-            .args(["--out"])
-            .arg(dir.join("refused"))
-            .args(&args)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let o = solve(&steady, args, &dir.join("refused")).output().unwrap();
+        let err = stderr(&o);
         assert!(!o.status.success(), "{args:?} accepted");
         assert!(err.contains(&format!("`{field}`")), "{args:?}: {err}");
     }
@@ -1326,139 +889,77 @@ fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
 #[test]
 fn the_convergence_study_runs_on_user_scenarios() {
     let dir = scratch("study");
-    for (name, file, singular) in [
-        ("five", "data/scenarios/examples/five_branch.toml", 4),
-        ("cantilever", "data/scenarios/examples/cantilever.toml", 2),
-    ] {
+    for (name, file, singular) in [("five", FIVE, 4), ("cantilever", CANTILEVER, 2)] {
         let out = dir.join(name);
-        succeed(
-            evhi()
-                .args([
-                    "study",
-                    "convergence",
-                    "--quick",
-                    "--scenario",
-                    file,
-                    "--out",
-                ])
-                .arg(&out),
+        succeed(&mut study("convergence", file, &out));
+        let files = ["convergence.csv", "convergence.md", "convergence.png"];
+        assert_files(&out, name, &files);
+        assert_files(
+            &out,
+            name,
+            &["convergence.svg", "singular.csv", "scenario.toml"],
         );
-        for f in [
-            "convergence.csv",
-            "convergence.md",
-            "convergence.png",
-            "convergence.svg",
-            "singular.csv",
-            "scenario.toml",
-        ] {
-            assert!(out.join(f).exists(), "{name}: no {f}");
-        }
-        let text = std::fs::read_to_string(out.join("convergence.csv")).unwrap();
-        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-        let col = |c: &str| header.iter().position(|h| *h == c).unwrap();
-        let rows: Vec<Vec<String>> = lines
-            .map(|l| l.split(',').map(str::to_string).collect())
-            .collect();
-        assert_eq!(rows.len(), 8, "{name}: two families of four levels");
-        for r in &rows {
-            let n: usize = r[col("n")].parse().unwrap();
-            let err: f64 = r[col("rel_err_T_percent")].parse().unwrap();
+        let conv = Csv::read(out.join("convergence.csv"));
+        assert_eq!(conv.len(), 8, "{name}: two families of four levels");
+        for (i, r) in conv.rows().iter().enumerate() {
+            let n: usize = conv.get(i, "n").parse().unwrap();
+            let err = conv.f64(i, "rel_err_T_percent");
             assert!(err.is_finite() && err > 0.0, "{name}: {r:?}");
-            let order: f64 = r[col("order_dofs")].parse().unwrap();
+            let order = conv.f64(i, "order_dofs");
             assert_eq!(order.is_finite(), n > 4, "{name}: order at n = {n}: {r:?}");
-            let inc: f64 = r[col("increment_T_percent")].parse().unwrap();
+            let inc = conv.f64(i, "increment_T_percent");
             assert_eq!(inc.is_finite(), n < 32, "{name}: increment at n = {n}");
         }
-        let sing = std::fs::read_to_string(out.join("singular.csv")).unwrap();
-        assert_eq!(
-            sing.lines().filter(|l| !l.starts_with('#')).count(),
-            1 + singular,
-            "{name}: {sing}"
-        );
+        let sing = Csv::read(out.join("singular.csv"));
+        assert_eq!(sing.len(), singular, "{name}: {:?}", sing.rows());
         // The h and k parts where the damping is proportional (the five-branch
         // example), else a sentence saying why not (the cantilever's is not).
-        let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+        let md = read(out.join("convergence.md"));
         if name == "five" {
-            let text = std::fs::read_to_string(out.join("split.csv")).unwrap();
-            let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-            let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-            let col = |c: &str| header.iter().position(|h| *h == c).unwrap();
-            let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
-            assert_eq!(rows.len(), 9, "three families of three levels");
-            for r in &rows {
-                let e: f64 = r[col("rel_err_T_percent")].parse().unwrap();
-                let m: f64 = r[col("rel_err_max_percent")].parse().unwrap();
+            let split = Csv::read(out.join("split.csv"));
+            assert_eq!(split.len(), 9, "three families of three levels");
+            for (i, r) in split.rows().iter().enumerate() {
+                let e = split.f64(i, "rel_err_T_percent");
+                let m = split.f64(i, "rel_err_max_percent");
                 assert!(e > 0.0 && m >= e * (1.0 - 1e-12), "{r:?}");
-                let o: f64 = r[col("order_T")].parse().unwrap();
+                let o = split.f64(i, "order_T");
                 // An order from the second level of each family on (the k family
                 // varies the steps).
-                let first = if r[col("family")] == "k" {
-                    r[col("steps")] == "4"
+                let first = if split.get(i, "family") == "k" {
+                    split.get(i, "steps") == "4"
                 } else {
-                    r[col("n")] == "4"
+                    split.get(i, "n") == "4"
                 };
                 assert_eq!(o.is_finite(), !first, "{r:?}");
             }
             assert!(out.join("split.png").exists() && md.contains("**The h and k parts"));
         } else {
             assert!(!out.join("split.csv").exists());
-            assert!(
-                md.contains("No h and k parts: the damping is not proportional"),
-                "{md}"
-            );
+            let why = "No h and k parts: the damping is not proportional";
+            assert!(md.contains(why), "{md}");
         }
     }
     // A steady and an elastic copy of the cantilever: the h = k families only, the
     // steady one in one step per level.
-    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
     for problem in ["steady", "elastic"] {
-        let file = dir.join(format!("{problem}.toml"));
-        let kept: Vec<&str> = text
-            .lines()
-            .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
-            .collect();
-        std::fs::write(
-            &file,
-            kept.join("\n").replace(
-                "problem = \"viscoelastic\"",
-                &format!("problem = \"{problem}\""),
-            ),
-        )
-        .unwrap();
+        let file = written(dir.join(format!("{problem}.toml")), cantilever_as(problem));
         let out = dir.join(problem);
-        succeed(
-            evhi()
-                .args(["study", "convergence", "--quick", "--scenario"])
-                .arg(&file)
-                .arg("--out")
-                .arg(&out),
-        );
-        let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
-        assert!(
-            md.contains(&format!("No h and k parts: the problem is {problem}")),
-            "{md}"
-        );
+        succeed(&mut study("convergence", &file, &out));
+        let md = read(out.join("convergence.md"));
+        let why = format!("No h and k parts: the problem is {problem}");
+        assert!(md.contains(&why), "{md}");
         assert_eq!(md.contains("one step (steady)"), problem == "steady");
     }
     // `evhi --help` and `evhi study --help` list the studies, and each study
     // explains its options.
-    for args in [vec!["--help"], vec!["study", "--help"]] {
-        let help = evhi().args(&args).output().unwrap();
-        let help = String::from_utf8_lossy(&help.stdout);
-        for study in ["convergence", "time", "stability"] {
-            assert!(help.contains(study), "{args:?} lacks {study}: {help}");
+    for args in ["--help", "study --help"] {
+        let help = stdout(&evhi_with(args).output().unwrap());
+        for kind in ["convergence", "time", "stability"] {
+            assert!(help.contains(kind), "{args:?} lacks {kind}: {help}");
         }
     }
-    let help = evhi()
-        .args(["study", "convergence", "--help"])
-        .output()
-        .unwrap();
-    let help = String::from_utf8_lossy(&help.stdout);
-    assert!(
-        help.contains("--quick") && help.contains("singular"),
-        "{help}"
-    );
+    let help = stdout(&evhi_with("study convergence --help").output().unwrap());
+    assert_contains(&help, &["--quick", "singular"]);
 }
 
 /// `evhi study time` and `evhi study stability --quick` on user scenario files: each
@@ -1467,155 +968,67 @@ fn the_convergence_study_runs_on_user_scenarios() {
 #[test]
 fn the_time_and_stability_studies_run_on_user_scenarios() {
     let dir = scratch("studies");
-    let read = |path: std::path::PathBuf| -> (Vec<String>, Vec<Vec<String>>) {
-        let text = std::fs::read_to_string(&path).unwrap();
-        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-        let header = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(str::to_string)
-            .collect();
-        let rows = lines
-            .map(|l| l.split(',').map(str::to_string).collect())
-            .collect();
-        (header, rows)
-    };
-    for (name, file) in [
-        ("five", "data/scenarios/examples/five_branch.toml"),
-        ("cantilever", "data/scenarios/examples/cantilever.toml"),
-    ] {
+    for (name, file) in [("five", FIVE), ("cantilever", CANTILEVER)] {
         let out = dir.join(format!("time-{name}"));
-        succeed(
-            evhi()
-                .args(["study", "time", "--quick", "--scenario", file, "--out"])
-                .arg(&out),
-        );
-        for f in [
-            "time_study.csv",
-            "time_study.md",
-            "time_study.png",
-            "time_study.svg",
-            "scenario.toml",
-        ] {
-            assert!(out.join(f).exists(), "{name}: no {f}");
-        }
-        let (h, rows) = read(out.join("time_study.csv"));
-        let c = |n: &str| h.iter().position(|x| x == n).unwrap();
-        assert_eq!(rows.len(), 7, "{name}: N = 4 … 256");
-        for (i, r) in rows.iter().enumerate() {
-            let e: f64 = r[c("rel_err_max_percent")].parse().unwrap();
+        succeed(&mut study("time", file, &out));
+        let files = ["time_study.csv", "time_study.md", "time_study.png"];
+        assert_files(&out, name, &files);
+        assert_files(&out, name, &["time_study.svg", "scenario.toml"]);
+        let time = Csv::read(out.join("time_study.csv"));
+        assert_eq!(time.len(), 7, "{name}: N = 4 … 256");
+        for (i, r) in time.rows().iter().enumerate() {
+            let e = time.f64(i, "rel_err_max_percent");
             assert!(e.is_finite() && e > 0.0, "{name}: {r:?}");
-            let o: f64 = r[c("order_T")].parse().unwrap();
-            assert_eq!(o.is_finite(), i > 0, "{name}: {r:?}");
+            assert_eq!(time.f64(i, "order_T").is_finite(), i > 0, "{name}: {r:?}");
         }
         let out = dir.join(format!("stab-{name}"));
-        succeed(
-            evhi()
-                .args(["study", "stability", "--quick", "--scenario", file, "--out"])
-                .arg(&out),
-        );
-        for f in [
-            "stability.csv",
-            "hypotheses.csv",
-            "stability.md",
-            "stability.png",
-            "scenario.toml",
-        ] {
-            assert!(out.join(f).exists(), "{name}: no {f}");
-        }
-        let (h, rows) = read(out.join("stability.csv"));
-        let outcome = h.iter().position(|x| x == "outcome").unwrap();
-        let solver = h.iter().position(|x| x == "solver").unwrap();
-        assert!(!rows.is_empty());
+        succeed(&mut study("stability", file, &out));
+        let files = ["stability.csv", "hypotheses.csv", "stability.md"];
+        assert_files(&out, name, &files);
+        assert_files(&out, name, &["stability.png", "scenario.toml"]);
+        let stab = Csv::read(out.join("stability.csv"));
+        assert!(!stab.is_empty());
         // Newton, the default, is certified on both examples at every cell.
-        for r in rows.iter().filter(|r| r[solver] == "newton") {
-            assert_eq!(r[outcome], "certified", "{name}: {r:?}");
+        for (i, r) in stab.rows().iter().enumerate() {
+            if stab.get(i, "solver") == "newton" {
+                assert_eq!(stab.get(i, "outcome"), "certified", "{name}: {r:?}");
+            }
         }
         // A study's directory is a run directory: rerunning into it replaces its set,
         // while a file of the user's in it is refused by name and kept.
-        let rerun = || {
-            evhi()
-                .args(["study", "stability", "--quick", "--scenario", file, "--out"])
-                .arg(&out)
-                .output()
-                .unwrap()
-        };
+        let rerun = || study("stability", file, &out).output().unwrap();
         if name == "cantilever" {
-            let o = rerun();
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            ok(&rerun());
             std::fs::write(out.join("my_notes.txt"), "mine").unwrap();
-            let o = rerun();
-            let err = String::from_utf8_lossy(&o.stderr);
-            assert!(
-                !o.status.success() && err.contains("`my_notes.txt`"),
-                "{err}"
-            );
+            failed_with(&rerun(), "`my_notes.txt`");
             assert!(out.join("my_notes.txt").exists() && out.join("stability.csv").exists());
         }
-        let (h, rows) = read(out.join("hypotheses.csv"));
-        assert_eq!(rows.len(), 4, "{name}: two levels, two step counts");
-        let hs = h.iter().position(|x| x == "H_s").unwrap();
-        let convex = h.iter().position(|x| x == "steps_convex").unwrap();
+        let hyp = Csv::read(out.join("hypotheses.csv"));
+        assert_eq!(hyp.len(), 4, "{name}: two levels, two step counts");
         // The cantilever's law jumps down: H(j) fails, so H(s) does not apply and
         // the steps are not convex whatever the curvature between the jumps.
-        for r in &rows {
+        for (i, r) in hyp.rows().iter().enumerate() {
+            let (hs, convex) = (hyp.get(i, "H_s"), hyp.get(i, "steps_convex"));
             if name == "cantilever" {
-                assert_eq!(
-                    (r[hs].as_str(), r[convex].as_str()),
-                    ("n/a (H(j) fails)", "no (downward jump)")
-                );
+                assert_eq!((hs, convex), ("n/a (H(j) fails)", "no (downward jump)"));
             } else {
-                assert!(r[hs] == "holds" || r[hs] == "fails", "{r:?}");
-                assert!(r[convex] == "yes" || r[convex] == "no", "{r:?}");
+                assert!(hs == "holds" || hs == "fails", "{r:?}");
+                assert!(convex == "yes" || convex == "no", "{r:?}");
             }
         }
     }
-    let steady = dir.join("steady.toml");
-    let text = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
-    let text: Vec<&str> = text
-        .lines()
-        .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
-        .collect();
-    std::fs::write(
-        &steady,
-        text.join("\n")
-            .replace("problem = \"viscoelastic\"", "problem = \"steady\""),
-    )
-    .unwrap();
-    let o = evhi()
-        .args(["study", "time", "--quick", "--scenario"])
-        .arg(&steady)
-        .arg("--out")
-        .arg(dir.join("refused"))
+    let steady = written(dir.join("steady.toml"), cantilever_as("steady"));
+    let o = study("time", &steady, &dir.join("refused"))
         .output()
         .unwrap();
     refused(&o, &["`scenario`", "one solve at T"]);
     // An elastic scenario has no time error either: refused by name.
-    let elastic = dir.join("elastic.toml");
-    std::fs::write(
-        &elastic,
-        std::fs::read_to_string(&steady)
-            .unwrap()
-            .replace("problem = \"steady\"", "problem = \"elastic\""),
-    )
-    .unwrap();
-    let o = evhi()
-        .args(["study", "time", "--quick", "--scenario"])
-        .arg(&elastic)
-        .arg("--out")
-        .arg(dir.join("refused-elastic"))
+    let elastic = written(dir.join("elastic.toml"), cantilever_as("elastic"));
+    let o = study("time", &elastic, &dir.join("refused-elastic"))
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success());
-    assert!(
-        err.contains("`scenario`")
-            && err.contains("elastic")
-            && err.contains("no time error")
-            && err.contains("f(t_n)"),
-        "{err}"
-    );
+    let err = failed(&o);
+    assert_contains(&err, &["`scenario`", "elastic", "no time error", "f(t_n)"]);
 }
 
 /// `reproduce --jobs N` gives the same files whatever N: one worker, and more workers
@@ -1625,24 +1038,14 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
 #[test]
 fn reproduce_writes_the_same_files_whatever_the_jobs() {
     let dir = scratch("jobs");
-    let names = ["hypotheses", "fig2", "fig3", "table1", "graded", "time"];
+    let experiments = "hypotheses fig2 fig3 table1 graded time";
     for jobs in ["1", "8"] {
-        succeed(
-            evhi()
-                .args(["reproduce", "--quick", "-q", "--jobs", jobs])
-                .args(names)
-                .arg("--data")
-                .arg(dir.join(jobs).join("data"))
-                .arg("--figures")
-                .arg(dir.join(jobs).join("figures")),
-        );
+        let words = format!("--quick -q --jobs {jobs} {experiments}");
+        succeed(&mut reproduce(&words, &dir.join(jobs)));
     }
     let mut compared = 0;
     for sub in ["data", "figures"] {
-        let mut files: Vec<_> = std::fs::read_dir(dir.join("1").join(sub))
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
+        let mut files = names(&dir.join("1").join(sub));
         files.sort();
         for f in files {
             let a = std::fs::read(dir.join("1").join(sub).join(&f)).unwrap();
@@ -1653,13 +1056,10 @@ fn reproduce_writes_the_same_files_whatever_the_jobs() {
         }
     }
     assert!(compared > 20, "only {compared} files compared");
-    let o = evhi()
-        .args(["reproduce", "fig2", "--quick", "--jobs", "0", "--data"])
+    let o = evhi_with("reproduce fig2 --quick --jobs 0 --data")
         .arg(dir.join("zero"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("`jobs`"));
+        .output();
+    assert!(failed(&o.unwrap()).contains("`jobs`"));
 }
 
 /// A grading whose smallest triangles double precision cannot resolve is refused by
@@ -1669,26 +1069,14 @@ fn reproduce_writes_the_same_files_whatever_the_jobs() {
 fn a_grading_finer_than_double_precision_is_refused_by_name() {
     let dir = scratch("grading");
     let run = |mu: &str| {
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--mesh",
-                "graded",
-                "--grading",
-                mu,
-            ])
-            .args(["--n", "32", "--steps", "2", "--out"])
-            .arg(dir.join(format!("g{mu}")))
+        let words = format!("--mesh graded --grading {mu} --n 32 --steps 2");
+        solve("figure", &words, &dir.join(format!("g{mu}")))
             .output()
             .unwrap()
     };
-    let o = run("0.05");
-    refused(&o, &["`grading`", "at least 0.088 at n = 32"]);
+    refused(&run("0.05"), &["`grading`", "at least 0.088 at n = 32"]);
     assert!(!dir.join("g0.05").exists());
-    let o = run("0.088");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ok(&run("0.088"));
 }
 
 /// A Gamma_3 whose nodes the supports all hold (at this n) is refused by name, with the
@@ -1697,36 +1085,18 @@ fn a_grading_finer_than_double_precision_is_refused_by_name() {
 #[test]
 fn a_gamma3_without_a_free_node_is_refused_by_name() {
     let dir = scratch("gamma3-held");
-    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
-    let file = dir.join("held.toml");
-    std::fs::write(
-        &file,
-        format!(
-            "{text}\n[geometry]\ncontact = [1.0, 1.25]\n[geometry.supports]\nbottom = [\
-             {{from = 0.0, to = 1.0, kind = \"clamped\"}}, \
-             {{from = 1.25, to = 2.0, kind = \"clamped\"}}]\n"
-        ),
-    )
-    .unwrap();
-    let run = |n: &str| {
-        evhi()
-            .args(["solve", "--scenario"])
-            .arg(&file)
-            .args(["--n", n, "--steps", "2", "--out"])
-            .arg(dir.join(format!("run{n}")))
-            .output()
-            .unwrap()
-    };
-    let o = run("8");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "{err}");
-    assert!(
-        err.contains("`geometry.contact`") && err.contains("(x = 1, 1.25) are all held"),
-        "{err}"
+    let text = format!(
+        "{}\n[geometry]\ncontact = [1.0, 1.25]\n[geometry.supports]\nbottom = [\
+         {{from = 0.0, to = 1.0, kind = \"clamped\"}}, \
+         {{from = 1.25, to = 2.0, kind = \"clamped\"}}]\n",
+        read(FIGURE)
     );
-    assert!(!err.contains("panicked"), "{err}");
-    let o = run("16");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let run = |n: &str| solve_text(&dir, &format!("run{n}"), &text, &["--n", n, "--steps", "2"]).0;
+    refused(
+        &run("8"),
+        &["`geometry.contact`", "(x = 1, 1.25) are all held"],
+    );
+    ok(&run("16"));
 }
 
 /// A step count out of range is refused before anything is sized by it (a table of
@@ -1734,21 +1104,8 @@ fn a_gamma3_without_a_free_node_is_refused_by_name() {
 #[test]
 fn a_huge_step_count_is_refused_before_any_allocation() {
     let dir = scratch("huge-steps");
-    let o = evhi()
-        .args([
-            "solve",
-            "--scenario",
-            "figure",
-            "--n",
-            "4",
-            "--steps",
-            "4000000000000",
-        ])
-        .arg("--out")
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
-    refused(&o, &["`steps`", "an integer in 1..=1000000"]);
+    let o = solve("figure", "--n 4 --steps 4000000000000", &dir.join("run")).output();
+    refused(&o.unwrap(), &["`steps`", "an integer in 1..=1000000"]);
 }
 
 /// `plot` refuses a summary or a nodes table that does not describe the run (g NaN,
@@ -1761,7 +1118,7 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
     let out = dir.join("run");
     succeed(&mut small_solve(&out));
     let edit = |file: &str, column: &str, value: &str| {
-        let text = std::fs::read_to_string(out.join(file)).unwrap();
+        let text = read(out.join(file));
         let lines: Vec<&str> = text.lines().collect();
         let cols: Vec<&str> = lines[2].split(',').collect();
         let at = cols.iter().position(|c| *c == column).unwrap();
@@ -1771,8 +1128,9 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
         all[3] = row.join(",");
         all.join("\n") + "\n"
     };
-    let summary = std::fs::read_to_string(out.join("summary.csv")).unwrap();
-    let nodes = std::fs::read_to_string(out.join("nodes.csv")).unwrap();
+    let summary = read(out.join("summary.csv"));
+    let nodes = read(out.join("nodes.csv"));
+    let cut: String = nodes.lines().take(4).map(|l| format!("{l}\n")).collect();
     for (file, text, expect) in [
         (
             "summary.csv",
@@ -1789,31 +1147,26 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
             edit("summary.csv", "n", "16"),
             "not a lattice of rows of 17",
         ),
-        (
-            "nodes.csv",
-            nodes.lines().take(4).map(|l| format!("{l}\n")).collect(),
-            "1 node(s) are not a lattice",
-        ),
+        ("nodes.csv", cut, "1 node(s) are not a lattice"),
     ] {
         std::fs::write(out.join(file), &text).unwrap();
-        let o = evhi().arg("plot").arg(&out).output().unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let o = plot(&out);
+        let err = stderr(&o);
         assert!(!o.status.success(), "{expect}: drawn");
         assert!(err.contains(expect) && !err.contains("panicked"), "{err}");
-        let leftovers: Vec<String> = std::fs::read_dir(&out)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        let leftovers: Vec<String> = names(&out)
+            .into_iter()
             .filter(|f| f.contains(".tmp-"))
             .collect();
         assert!(leftovers.is_empty(), "{leftovers:?}");
         std::fs::write(out.join("summary.csv"), &summary).unwrap();
         std::fs::write(out.join("nodes.csv"), &nodes).unwrap();
     }
-    succeed(evhi().arg("plot").arg(&out));
+    ok(&plot(&out));
 
     let graded = dir.join("graded");
     succeed(small_solve(&graded).args(["--mesh", "graded"]));
-    let tri = std::fs::read_to_string(graded.join("triangles.csv")).unwrap();
+    let tri = read(graded.join("triangles.csv"));
     let lines: Vec<&str> = tri.lines().collect();
     let data = lines.iter().position(|l| !l.starts_with('#')).unwrap() + 1;
     for bad in ["NaN", "-5", "1.5"] {
@@ -1822,8 +1175,8 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
         let mut all: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
         all[data] = row.join(",");
         std::fs::write(graded.join("triangles.csv"), all.join("\n") + "\n").unwrap();
-        let o = evhi().arg("plot").arg(&graded).output().unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let o = plot(&graded);
+        let err = stderr(&o);
         assert!(!o.status.success(), "{bad}: drawn");
         assert!(err.contains("not three node numbers"), "{err}");
     }
@@ -1834,16 +1187,13 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
 #[test]
 fn an_absurd_n_is_refused_by_the_memory_guard() {
     for cmd in [
-        vec!["show", "figure", "--n", "5643117386039700"],
-        vec!["show", "figure", "--n", "4294967296"],
+        "show figure --n 5643117386039700",
+        "show figure --n 4294967296",
     ] {
-        let o = evhi().args(&cmd).output().unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let o = evhi_with(cmd).output().unwrap();
+        let err = stderr(&o);
         assert!(!o.status.success(), "{cmd:?} passed");
-        assert!(
-            err.contains("`n`") && err.contains("fits in memory") && err.contains("e"),
-            "{err}"
-        );
+        assert_contains(&err, &["`n`", "fits in memory", "e"]);
     }
 }
 
@@ -1858,18 +1208,11 @@ fn the_audits_smaller_messages_say_what_holds() {
     let out = dir.join("run");
     succeed(&mut small_solve(&out));
     succeed(evhi().arg("plot").arg(".").current_dir(&out));
-    let o = small_solve(&dir.join("neg"))
-        .args(["--certificate-tol", "-1e-10"])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("`certificate-tol`") && err.contains("[1e-15, 1e-4]"),
-        "{err}"
-    );
+    let mut cmd = small_solve(&dir.join("neg"));
+    let err = stderr(&cmd.args(["--certificate-tol", "-1e-10"]).output().unwrap());
+    assert_contains(&err, &["`certificate-tol`", "[1e-15, 1e-4]"]);
 
-    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
-    let steady: String = text
+    let steady: String = read(FIGURE)
         .lines()
         .filter(|l| !l.starts_with("alpha") && !l.starts_with("beta"))
         .map(|l| {
@@ -1880,51 +1223,18 @@ fn the_audits_smaller_messages_say_what_holds() {
             }
         })
         .collect();
-    let file = dir.join("steady.toml");
-    std::fs::write(&file, steady).unwrap();
-    let o = evhi()
-        .arg("show")
-        .arg(&file)
-        .args(["--n", "8"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("steps = 1)"));
-    let o = evhi()
-        .arg("show")
-        .arg(&file)
-        .args(["--n", "8", "--steps", "4"])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("`steps`"));
+    let file = written(dir.join("steady.toml"), steady);
+    let o = show(&file, "--n 8");
+    ok(&o);
+    assert!(stdout(&o).contains("steps = 1)"));
+    assert!(failed(&show(&file, "--n 8 --steps 4")).contains("`steps`"));
 
-    let cantilever = "data/scenarios/examples/cantilever.toml";
-    let o = evhi().args(["show", cantilever]).output().unwrap();
-    let shown = String::from_utf8_lossy(&o.stdout);
+    let shown = stdout(&show(CANTILEVER, ""));
     assert!(!shown.contains("H(j): constant m"), "{shown}");
     let run = dir.join("cantilever");
-    succeed(
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                cantilever,
-                "--n",
-                "8",
-                "--steps",
-                "2",
-                "--out",
-            ])
-            .arg(&run),
-    );
-    let summary = std::fs::read_to_string(run.join("summary.csv")).unwrap();
-    let lines: Vec<&str> = summary.lines().filter(|l| !l.starts_with('#')).collect();
-    let at = lines[0]
-        .split(',')
-        .position(|c| c == "m_trace_norm_sq")
-        .unwrap();
-    assert_eq!(lines[1].split(',').nth(at), Some("NaN"));
+    succeed(&mut solve(CANTILEVER, "--n 8 --steps 2", &run));
+    let summary = Csv::read(run.join("summary.csv"));
+    assert_eq!(summary.get(0, "m_trace_norm_sq"), "NaN");
 }
 
 /// What the second audit found in the studies and `reproduce`, each refused by name
@@ -1935,8 +1245,11 @@ fn the_audits_smaller_messages_say_what_holds() {
 #[test]
 fn studies_refuse_what_they_cannot_measure() {
     let dir = scratch("study-refusals");
-    let cantilever = std::fs::read_to_string("data/scenarios/examples/cantilever.toml").unwrap();
-    let figure = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    let cantilever = read(CANTILEVER);
+    let figure = read(FIGURE);
+    let zero = figure
+        .replacen("f0 = [0.0, -5.0]", "f0 = [0.0, 0.0]", 1)
+        .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1);
     let cases = [
         (
             "fine.toml",
@@ -1950,22 +1263,8 @@ fn studies_refuse_what_they_cannot_measure() {
             "convergence",
             "it takes no --n",
         ),
-        (
-            "zero.toml",
-            figure
-                .replacen("f0 = [0.0, -5.0]", "f0 = [0.0, 0.0]", 1)
-                .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1),
-            "convergence",
-            "is not zero",
-        ),
-        (
-            "zero.toml",
-            figure
-                .replacen("f0 = [0.0, -5.0]", "f0 = [0.0, 0.0]", 1)
-                .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1),
-            "time",
-            "is not zero",
-        ),
+        ("zero.toml", zero.clone(), "convergence", "is not zero"),
+        ("zero.toml", zero, "time", "is not zero"),
         (
             "criss.toml",
             format!("{figure}\n[geometry]\npattern = \"crisscross\"\n"),
@@ -1973,19 +1272,12 @@ fn studies_refuse_what_they_cannot_measure() {
             "`geometry.pattern`",
         ),
     ];
-    for (i, (file, text, study, expect)) in cases.iter().enumerate() {
-        let path = dir.join(format!("{i}-{file}"));
-        std::fs::write(&path, text).unwrap();
+    for (i, (file, text, kind, expect)) in cases.iter().enumerate() {
+        let path = written(dir.join(format!("{i}-{file}")), text);
         let out = dir.join(format!("out{i}"));
-        let o = evhi()
-            .args(["study", study, "--quick", "--scenario"])
-            .arg(&path)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(!o.status.success(), "{file} {study} passed");
+        let o = study(kind, &path, &out).output().unwrap();
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{file} {kind} passed");
         assert!(err.contains(expect) && !err.contains("panicked"), "{err}");
         assert!(!out.join("convergence.csv").exists() && !out.join("time_study.csv").exists());
     }
@@ -2001,26 +1293,18 @@ fn studies_refuse_what_they_cannot_measure() {
 fn reproduce_refuses_before_it_writes() {
     let dir = scratch("reproduce-refusals");
     let (data, figures) = (dir.join("data"), dir.join("figures"));
-    let file = dir.join("a-file");
-    std::fs::write(&file, "x").unwrap();
-    let run = |extra: &[&str], data: &std::path::Path, figures: &std::path::Path| {
-        evhi()
-            .args(["reproduce", "--quick", "-q"])
-            .args(extra)
-            .arg("--data")
-            .arg(data)
-            .arg("--figures")
-            .arg(figures)
-            .output()
-            .unwrap()
+    let file = written(dir.join("a-file"), "x");
+    let run = |extra: &str, data: &Path, figures: &Path| {
+        let words = format!("--quick -q {extra}");
+        reproduce_into(&words, data, figures).output().unwrap()
     };
     for (extra, expect) in [
-        (&["fig2", "--jobs", "0"][..], "`jobs`"),
-        (&["fig2", "--record-times"][..], "`record-times`"),
-        (&["fig2", "--reference", "64"][..], "`reference`"),
+        ("fig2 --jobs 0", "`jobs`"),
+        ("fig2 --record-times", "`record-times`"),
+        ("fig2 --reference 64", "`reference`"),
     ] {
         let o = run(extra, &data, &figures);
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = stderr(&o);
         assert!(
             !o.status.success() && err.contains(expect),
             "{extra:?}: {err}"
@@ -2031,25 +1315,14 @@ fn reproduce_refuses_before_it_writes() {
         );
     }
     for (d, f, expect) in [(&file, &figures, "`data`"), (&data, &file, "`figures`")] {
-        let o = run(&["fig2"], d, f);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(!o.status.success() && err.contains(expect), "{err}");
+        failed_with(&run("fig2", d, f), expect);
     }
     let _ = std::fs::remove_dir_all(&data);
-    let o = run(&["table1", "--reference", "64"], &data, &figures);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("missing"), "{err}");
+    failed_with(&run("table1 --reference 64", &data, &figures), "missing");
     assert!(!data.join("table1_ref64.csv").exists());
-    succeed(
-        evhi()
-            .args(["reproduce", "--quick", "-q", "table1", "--data"])
-            .arg(&data)
-            .arg("--figures")
-            .arg(&figures),
-    );
-    let o = run(&["table1", "--reference", "64"], &data, &figures);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let shift = std::fs::read_to_string(data.join("table1_reference_shift_ref64.csv")).unwrap();
+    ok(&run("table1", &data, &figures));
+    ok(&run("table1 --reference 64", &data, &figures));
+    let shift = read(data.join("table1_reference_shift_ref64.csv"));
     assert!(
         shift.contains("(reference h = k = 1/32)") && shift.contains("rel_err_T_percent_ref32")
     );
@@ -2061,22 +1334,16 @@ fn reproduce_refuses_before_it_writes() {
 #[test]
 fn the_example_runs_anywhere_and_leaves_nothing_in_tmp() {
     let dir = scratch("example-anywhere");
-    let child = evhi()
-        .args(["reproduce", "--quick", "-q", "example", "--data"])
-        .arg(dir.join("data"))
-        .arg("--figures")
-        .arg(dir.join("figures"))
+    let child = reproduce("--quick -q example", &dir)
         .current_dir(&dir)
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
     let pid = child.id().to_string();
-    let o = child.wait_with_output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ok(&child.wait_with_output().unwrap());
     assert!(dir.join("data/example_study_convergence.md").exists());
-    let left: Vec<String> = std::fs::read_dir(std::env::temp_dir())
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+    let left: Vec<String> = names(&std::env::temp_dir())
+        .into_iter()
         .filter(|f| f.contains("evhi-example") && f.contains(&pid))
         .collect();
     assert!(left.is_empty(), "{left:?}");
@@ -2091,27 +1358,12 @@ fn the_example_runs_anywhere_and_leaves_nothing_in_tmp() {
 fn declined_solvers_and_absent_families_are_said_as_they_are() {
     let dir = scratch("declined");
     let softening = "data/scenarios/examples/softening.toml";
-    let o = evhi()
-        .args(["solve", "--scenario", softening, "--solver", "convexify"])
-        .args(["--n", "8", "--steps", "2", "--out"])
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
+    let words = "--solver convexify --n 8 --steps 2";
+    let o = solve(softening, words, &dir.join("run")).output().unwrap();
     refused(&o, &["`solver`", "piecewise-affine"]);
     let out = dir.join("stability");
-    succeed(
-        evhi()
-            .args([
-                "study",
-                "stability",
-                "--quick",
-                "--scenario",
-                softening,
-                "--out",
-            ])
-            .arg(&out),
-    );
-    let table = std::fs::read_to_string(out.join("stability.csv")).unwrap();
+    succeed(&mut study("stability", softening, &out));
+    let table = read(out.join("stability.csv"));
     assert!(!table.contains("Failed("), "{table}");
     let rows: Vec<&str> = table
         .lines()
@@ -2121,19 +1373,8 @@ fn declined_solvers_and_absent_families_are_said_as_they_are() {
     assert!(rows.iter().all(|r| r.contains("\"error: ")), "{rows:?}");
 
     let smooth = dir.join("smooth");
-    succeed(
-        evhi()
-            .args([
-                "study",
-                "convergence",
-                "--quick",
-                "--scenario",
-                "smooth",
-                "--out",
-            ])
-            .arg(&smooth),
-    );
-    let csv = std::fs::read_to_string(smooth.join("convergence.csv")).unwrap();
+    succeed(&mut study("convergence", "smooth", &smooth));
+    let csv = read(smooth.join("convergence.csv"));
     let header: String = csv.lines().take(2).collect();
     assert!(
         header.contains("families: uniform;")
@@ -2149,7 +1390,7 @@ fn declined_solvers_and_absent_families_are_said_as_they_are() {
 #[test]
 fn step_records_that_cannot_fit_are_refused() {
     let dir = scratch("step-records");
-    let o = std::process::Command::new("sh")
+    let o = Command::new("sh")
         .arg("-c")
         .arg(format!(
             "ulimit -v 3000000 && exec '{}' solve --scenario figure --n 4 --steps 1000000 --out '{}'",
@@ -2169,44 +1410,24 @@ fn step_records_that_cannot_fit_are_refused() {
 fn tables_say_what_their_nan_and_inf_mean() {
     let dir = scratch("nan-legends");
     let out = dir.join("time");
-    succeed(
-        evhi()
-            .args(["study", "time", "--quick", "--scenario"])
-            .arg("data/scenarios/examples/cantilever.toml")
-            .arg("--out")
-            .arg(&out),
-    );
-    let csv = std::fs::read_to_string(out.join("time_study.csv")).unwrap();
+    succeed(&mut study("time", CANTILEVER, &out));
+    let csv = read(out.join("time_study.csv"));
     let legend = csv.lines().nth(1).unwrap();
-    assert!(
-        legend.contains("NaN where C is not a multiple of G")
-            && legend.contains("g = inf: no limit"),
-        "{legend}"
+    assert_contains(
+        legend,
+        &["NaN where C is not a multiple of G", "g = inf: no limit"],
     );
     // Rollers on the upper halves of both sides and on the top: the singular points
     // are where rollers end, whose exponent the wedge analysis does not give.
-    let text = std::fs::read_to_string("data/scenarios/figure.toml")
-        .unwrap()
-        .replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1);
-    let file = dir.join("rollers.toml");
-    std::fs::write(
-        &file,
-        format!(
-            "{text}\n[geometry.supports]\nleft = [{{from = 0.5, to = 1.0, kind = \"rollers\"}}]\n\
-             right = [{{from = 0.5, to = 1.0, kind = \"rollers\"}}]\ntop = \"rollers\"\n"
-        ),
-    )
-    .unwrap();
+    let text = read(FIGURE).replacen("f2 = [0.0, -75.0]", "f2 = [0.0, 0.0]", 1);
+    let text = format!(
+        "{text}\n[geometry.supports]\nleft = [{{from = 0.5, to = 1.0, kind = \"rollers\"}}]\n\
+         right = [{{from = 0.5, to = 1.0, kind = \"rollers\"}}]\ntop = \"rollers\"\n"
+    );
+    let file = written(dir.join("rollers.toml"), text);
     let out = dir.join("conv");
-    let o = evhi()
-        .args(["study", "convergence", "--quick", "--scenario"])
-        .arg(&file)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+    ok(&study("convergence", &file, &out).output().unwrap());
+    let md = read(out.join("convergence.md"));
     assert!(md.contains("(not known here:"), "{md}");
 }
 
@@ -2217,50 +1438,19 @@ fn tables_say_what_their_nan_and_inf_mean() {
 #[test]
 fn the_run_directory_holds_what_the_book_says() {
     let dir = scratch("run-as-documented");
-    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
-    let wide = dir.join("wide.toml");
-    std::fs::write(&wide, format!("{text}\n[geometry]\nwidth = 4.0\n")).unwrap();
-    let out = dir.join("wide");
-    succeed(
-        evhi()
-            .args(["solve", "--scenario"])
-            .arg(&wide)
-            .args(["--n", "16", "--steps", "2", "--out"])
-            .arg(&out),
-    );
-    let column = |file: &std::path::Path, name: &str| -> Vec<f64> {
-        let text = std::fs::read_to_string(file).unwrap();
-        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-        let at = header.iter().position(|c| *c == name).unwrap();
-        lines
-            .map(|l| l.split(',').nth(at).unwrap().parse().unwrap())
-            .collect()
-    };
-    assert_eq!(column(&out.join("summary.csv"), "h"), vec![4.0 / 32.0]);
+    let wide = format!("{}\n[geometry]\nwidth = 4.0\n", read(FIGURE));
+    let (o, out) = solve_text(&dir, "wide", &wide, &["--n", "16", "--steps", "2"]);
+    ok(&o);
+    let summary = Csv::read(out.join("summary.csv"));
+    assert_eq!(summary.column_f64("h"), vec![4.0 / 32.0]);
 
     let out = dir.join("n100");
-    succeed(
-        evhi()
-            .args([
-                "solve",
-                "--scenario",
-                "figure",
-                "--n",
-                "100",
-                "--steps",
-                "2",
-                "--out",
-            ])
-            .arg(&out),
-    );
-    let (x, y) = (
-        column(&out.join("nodes.csv"), "x"),
-        column(&out.join("nodes.csv"), "y"),
-    );
+    succeed(&mut solve("figure", "--n 100 --steps 2", &out));
+    let nodes = Csv::read(out.join("nodes.csv"));
+    let (x, y) = (nodes.column_f64("x"), nodes.column_f64("y"));
     let top = |v: &[f64]| v.iter().copied().fold(f64::MIN, f64::max);
     assert_eq!((top(&x), top(&y)), (2.0, 1.0));
-    succeed(evhi().arg("plot").arg(&out));
+    ok(&plot(&out));
 }
 
 /// The H(f) warning names the traction that breaks it (it blamed `f2` when f2 = (0, 0)
@@ -2289,16 +1479,8 @@ fn the_h_f_warning_names_its_traction_and_only_for_an_evolution() {
         ("elastic", false),
         ("steady", false),
     ] {
-        let file = base.join(format!("{problem}.toml"));
-        std::fs::write(&file, scene(problem)).unwrap();
-        let o = evhi()
-            .args(["solve", "--n", "12", "--scenario"])
-            .arg(&file)
-            .arg("--out")
-            .arg(base.join(problem))
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
+        let (o, _) = solve_text(&base, problem, &scene(problem), &["--n", "12"]);
+        let err = stderr(&o);
         assert!(o.status.success(), "{problem}: {err}");
         assert_eq!(err.contains("H(f)"), warns, "{problem}: {err}");
         if warns {
@@ -2307,8 +1489,7 @@ fn the_h_f_warning_names_its_traction_and_only_for_an_evolution() {
                 "{err}"
             );
         }
-        let shown = evhi().arg("show").arg(&file).output().unwrap();
-        let out = String::from_utf8_lossy(&shown.stdout);
+        let out = stdout(&show(base.join(format!("{problem}.toml")), ""));
         assert_eq!(out.contains("not asked"), !warns, "{problem}: {out}");
     }
 }

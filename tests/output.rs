@@ -1,19 +1,11 @@
 //! A run's output set: written whole or not at all, never mixed, never lost.
 
+mod common;
+
+use common::{evhi, names, scratch};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-
-fn evhi() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_evhi"))
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("evhi-out-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn solve(n: usize, out: &Path) -> Command {
     solve_steps(n, 8, out)
@@ -69,22 +61,20 @@ fn whole_set(dir: &Path) -> Result<usize, String> {
 /// stays by design (deleting a lock file while it is locked lets two writers hold
 /// it: issue 27, case 7) and must exist after a run.
 fn leftovers(parent: &Path) -> Vec<String> {
-    let names: Vec<String> = std::fs::read_dir(parent)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
+    let hidden: Vec<String> = names(parent)
+        .into_iter()
         .filter(|n| n.starts_with('.'))
         .collect();
     assert!(
-        names.iter().any(|n| n == ".run.lock"),
-        "no lock file: {names:?}"
+        hidden.iter().any(|n| n == ".run.lock"),
+        "no lock file: {hidden:?}"
     );
-    names.into_iter().filter(|n| n != ".run.lock").collect()
+    hidden.into_iter().filter(|n| n != ".run.lock").collect()
 }
 
 #[test]
 fn a_second_writer_fails_at_once() {
-    let root = scratch("busy");
+    let root = scratch("out-busy");
     let out = root.join("run");
     let mut first = solve_steps(64, 64, &out)
         .env("EVHI_WRITE_DELAY_MS", "400")
@@ -110,12 +100,11 @@ fn a_second_writer_fails_at_once() {
             .contains("\n64,64,")
     );
     assert!(leftovers(&root).is_empty(), "{:?}", leftovers(&root));
-    std::fs::remove_dir_all(&root).ok();
 }
 
 #[test]
 fn bad_out_paths_fail_before_the_solve_naming_the_path() {
-    let root = scratch("bad");
+    let root = scratch("out-bad");
     let file = root.join("a_file");
     std::fs::write(&file, "x").unwrap();
     let foreign = root.join("mine");
@@ -144,7 +133,6 @@ fn bad_out_paths_fail_before_the_solve_naming_the_path() {
         std::fs::read_to_string(foreign.join("notes.txt")).unwrap(),
         "keep me"
     );
-    std::fs::remove_dir_all(&root).ok();
 }
 
 /// Kills `solve` at pseudo-random moments of its write phase (slowed by the test hook)
@@ -153,7 +141,7 @@ fn bad_out_paths_fail_before_the_solve_naming_the_path() {
 /// killed one left.
 #[test]
 fn interrupted_writes_leave_a_whole_set() {
-    let root = scratch("kill");
+    let root = scratch("out-kill");
     let out = root.join("run");
     assert!(solve(16, &out).status().unwrap().success());
     assert_eq!(whole_set(&out), Ok(16));
@@ -189,7 +177,6 @@ fn interrupted_writes_leave_a_whole_set() {
     assert!(leftovers(&root).is_empty(), "{:?}", leftovers(&root));
     eprintln!("24 interrupted writes: {old_kept} kept the old set, {new_whole} the new");
     assert!(old_kept > 0, "no kill landed inside the write phase");
-    std::fs::remove_dir_all(&root).ok();
 }
 
 /// A file the user puts into `--out` while a run is writing is kept: the check at the
@@ -198,7 +185,7 @@ fn interrupted_writes_leave_a_whole_set() {
 /// set, the run says so, and the next run refuses it by name.
 #[test]
 fn a_file_added_during_the_run_is_kept() {
-    let root = scratch("added");
+    let root = scratch("out-added");
     let out = root.join("run");
     assert!(solve(8, &out).status().unwrap().success());
     let run = solve(8, &out)
@@ -222,7 +209,6 @@ fn a_file_added_during_the_run_is_kept() {
         !again.status.success() && err.contains("`notes.txt`"),
         "{err}"
     );
-    std::fs::remove_dir_all(&root).ok();
 }
 
 /// A user's file named like a temporary is the user's: `.notes.tmp-1.txt` in a run
@@ -233,7 +219,7 @@ fn a_user_file_named_like_a_temporary_is_refused_not_deleted() {
     use evhi::output::rundir::is_run_file;
     assert!(is_run_file(".deformed.tmp-123.png") && is_run_file(".summary.csv.tmp-9"));
     assert!(!is_run_file(".notes.tmp-1.txt") && !is_run_file(".deformed.tmp-x.png"));
-    let root = scratch("tmpname");
+    let root = scratch("out-tmpname");
     let out = root.join("run");
     assert!(solve(8, &out).status().unwrap().success());
     std::fs::write(out.join(".notes.tmp-1.txt"), "mine").unwrap();
@@ -244,7 +230,6 @@ fn a_user_file_named_like_a_temporary_is_refused_not_deleted() {
         "{err}"
     );
     assert!(out.join(".notes.tmp-1.txt").exists());
-    std::fs::remove_dir_all(&root).ok();
 }
 
 /// The scenario file is read once: moved or edited while the run writes, the run still
@@ -253,7 +238,7 @@ fn a_user_file_named_like_a_temporary_is_refused_not_deleted() {
 /// edit put the new text beside the old results; issue 41, item 3).
 #[test]
 fn the_scenario_file_is_read_once() {
-    let root = scratch("readonce");
+    let root = scratch("out-readonce");
     let out = root.join("run");
     let file = root.join("s.toml");
     let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
@@ -277,5 +262,4 @@ fn the_scenario_file_is_read_once() {
     );
     let recorded = std::fs::read_to_string(out.join("scenario.toml")).unwrap();
     assert!(recorded.contains("# the text solved"), "{recorded}");
-    std::fs::remove_dir_all(&root).ok();
 }

@@ -4,6 +4,8 @@
 //! `cargo test` runs a bounded number of cases; a longer fuzzing run is
 //! `PROPTEST_CASES=20000 cargo test --release --test robustness`.
 
+mod common;
+
 use evhi::law::Law;
 use evhi::scenario::Scenario;
 use evhi::scheme::{RunError, Settings, run};
@@ -176,16 +178,12 @@ fn the_observer_never_sees_a_failed_step() {
 
 #[test]
 fn writes_are_atomic() {
-    let dir = std::env::temp_dir().join(format!("evhi-atomic-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch("atomic");
     let p = dir.join("t.csv");
     evhi::output::write_atomic(&p, b"a,b\n1,2\n").unwrap();
     evhi::output::write_atomic(&p, b"a,b\n3,4\n").unwrap();
     assert_eq!(std::fs::read_to_string(&p).unwrap(), "a,b\n3,4\n");
-    let names: Vec<String> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
+    let names = common::names(&dir);
     assert_eq!(
         names,
         vec!["t.csv".to_string()],
@@ -194,7 +192,6 @@ fn writes_are_atomic() {
     // A target that cannot be written fails cleanly and leaves nothing behind.
     let bad = dir.join("t.csv").join("inside-a-file.csv");
     assert!(evhi::output::write_atomic(&bad, b"x").is_err());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

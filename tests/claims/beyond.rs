@@ -8,30 +8,6 @@ use std::collections::{BTreeSet, HashMap};
 
 type Row = HashMap<String, String>;
 
-/// The rows of `data/<file>` like `rows`, but a cell in double quotes may hold commas
-/// (the solver label "newton, no line search" of data/stability_map.csv).
-fn quoted_rows(file: &str) -> Vec<Row> {
-    let path = super::root().join("data").join(file);
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let split = |line: &str| -> Vec<String> {
-        let (mut out, mut cell, mut quoted) = (Vec::new(), String::new(), false);
-        for c in line.chars() {
-            match c {
-                '"' => quoted = !quoted,
-                ',' if !quoted => out.push(std::mem::take(&mut cell)),
-                _ => cell.push(c),
-            }
-        }
-        out.push(cell);
-        out
-    };
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let header = split(lines.next().expect("a header"));
-    lines
-        .map(|l| header.iter().cloned().zip(split(l)).collect())
-        .collect()
-}
-
 /// `x` in scientific notation with `d` decimals of the mantissa.
 fn sci(x: f64, d: usize) -> String {
     format!("{x:.d$e}")
@@ -714,7 +690,7 @@ fn beyond_wp_handful_of_steps_at_t() {
 const SOLVERS: [&str; 4] = ["newton", "newton, no line search", "convexify", "penalty"];
 
 fn map() -> Vec<Row> {
-    quoted_rows("stability_map.csv")
+    rows("stability_map.csv")
 }
 
 fn at_cell<'a>(m: &'a [Row], solver: &str, c2: f64, k: f64) -> &'a Row {

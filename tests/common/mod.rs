@@ -1,0 +1,273 @@
+//! What the test binaries share (as cargo's own `cargo-test-support`): running the `evhi`
+//! binary, a scratch directory per test, the checks of a run that must succeed or be
+//! refused, solving a scenario given as text, and one CSV reader for every table a test
+//! reads. Each test binary takes it with `mod common;` and uses a part of it.
+#![allow(dead_code)]
+
+use std::collections::HashMap;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `evhi` binary of this build.
+pub fn evhi() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_evhi"))
+}
+
+/// `evhi` with the blank-separated words of `words` as its first arguments (no
+/// argument given this way holds a blank): `evhi_with("solve --n 8 --out").arg(dir)`.
+pub fn evhi_with(words: &str) -> Command {
+    let mut cmd = evhi();
+    cmd.args(words.split_whitespace());
+    cmd
+}
+
+/// A fresh, empty scratch directory for one test.
+pub fn scratch(name: &str) -> Scratch {
+    let dir = std::env::temp_dir().join(format!("evhi-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    Scratch(dir)
+}
+
+/// A test's scratch directory, removed when the test ends unless it failed (then it
+/// stays for a look): runs no longer leave a directory per test behind.
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<OsStr> for Scratch {
+    fn as_ref(&self) -> &OsStr {
+        self.0.as_os_str()
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
+
+/// A command's standard error as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A command's standard output as text.
+pub fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Asserts that a command succeeded (its stderr is shown otherwise); returns the stderr.
+pub fn ok(o: &Output) -> String {
+    let err = stderr(o);
+    assert!(o.status.success(), "{err}");
+    err
+}
+
+/// Asserts that `text` holds every one of `needles` (the text is shown otherwise).
+pub fn assert_contains(text: &str, needles: &[&str]) {
+    for n in needles {
+        assert!(text.contains(n), "no `{n}` in: {text}");
+    }
+}
+
+/// Asserts that a command failed (its stderr is shown otherwise); returns the stderr.
+pub fn failed(o: &Output) -> String {
+    let err = stderr(o);
+    assert!(!o.status.success(), "accepted: {err}");
+    err
+}
+
+/// Asserts that a command failed with `needle` in its stderr; returns the stderr.
+pub fn failed_with(o: &Output, needle: &str) -> String {
+    let err = stderr(o);
+    assert!(!o.status.success() && err.contains(needle), "{err}");
+    err
+}
+
+/// Runs `cmd`, which must succeed (its stderr is shown otherwise).
+pub fn succeed(cmd: &mut Command) -> Output {
+    let out = cmd.output().unwrap();
+    ok(&out);
+    out
+}
+
+/// Asserts that a command was refused and that its stderr holds every one of
+/// `needles` and no panic; returns the stderr.
+pub fn refused(o: &Output, needles: &[&str]) -> String {
+    let err = stderr(o);
+    assert!(!o.status.success(), "accepted: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_contains(&err, needles);
+    err
+}
+
+/// A file's text; a missing file panics with its path.
+pub fn read(path: impl AsRef<Path>) -> String {
+    let path = path.as_ref();
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Writes `text` to `path` and returns the path.
+pub fn written(path: impl Into<PathBuf>, text: impl AsRef<[u8]>) -> PathBuf {
+    let path = path.into();
+    std::fs::write(&path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    path
+}
+
+/// The names of the entries of `dir`.
+pub fn names(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect()
+}
+
+/// Solves a scenario given as text: writes `text` to `dir/NAME.toml` and runs
+/// `evhi solve --scenario dir/NAME.toml EXTRA... --out dir/NAME`, returning the output
+/// (succeeded or not) and the run directory.
+pub fn solve_text(dir: &Path, name: &str, text: &str, extra: &[&str]) -> (Output, PathBuf) {
+    let file = dir.join(format!("{name}.toml"));
+    std::fs::write(&file, text).unwrap();
+    let out = dir.join(name);
+    let o = evhi()
+        .arg("solve")
+        .arg("--scenario")
+        .arg(&file)
+        .args(extra)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    (o, out)
+}
+
+/// A CSV line's fields: split at the commas outside double quotes (the quotes dropped),
+/// so that a label such as "newton, no line search" stays one field.
+pub fn fields(line: &str) -> Vec<String> {
+    let (mut out, mut cell, mut quoted) = (Vec::new(), String::new(), false);
+    for c in line.chars() {
+        match c {
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(std::mem::take(&mut cell)),
+            _ => cell.push(c),
+        }
+    }
+    out.push(cell);
+    out
+}
+
+/// A table as evhi writes it: `#` provenance lines (anywhere, skipped but kept), a
+/// header, then rows; fields split by [`fields`]. Access by column name panics with the
+/// file and the column when either is wrong.
+pub struct Csv {
+    /// Where the table came from, for messages.
+    pub source: String,
+    /// The `#` lines, in order.
+    pub provenance: Vec<String>,
+    pub header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl Csv {
+    /// The table in the file at `path`.
+    pub fn read(path: impl AsRef<Path>) -> Csv {
+        let path = path.as_ref();
+        Csv::parse_from(&read(path), &path.display().to_string())
+    }
+
+    /// The table in `text`.
+    pub fn parse(text: &str) -> Csv {
+        Csv::parse_from(text, "a table's text")
+    }
+
+    fn parse_from(text: &str, source: &str) -> Csv {
+        let (provenance, lines): (Vec<&str>, Vec<&str>) =
+            text.lines().partition(|l| l.starts_with('#'));
+        let mut lines = lines.into_iter();
+        let header = fields(
+            lines
+                .next()
+                .unwrap_or_else(|| panic!("{source}: no header")),
+        );
+        Csv {
+            source: source.to_string(),
+            provenance: provenance.into_iter().map(str::to_string).collect(),
+            header,
+            rows: lines.map(fields).collect(),
+        }
+    }
+
+    /// The data rows (the header not among them).
+    pub fn rows(&self) -> &[Vec<String>] {
+        &self.rows
+    }
+
+    /// How many data rows.
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// The index of column `name`.
+    pub fn col(&self, name: &str) -> usize {
+        self.header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("{}: no column `{name}` in {:?}", self.source, self.header))
+    }
+
+    /// The text in row `row` (0 is the first data row), column `name`.
+    pub fn get(&self, row: usize, name: &str) -> &str {
+        let at = self.col(name);
+        let r = self
+            .rows
+            .get(row)
+            .unwrap_or_else(|| panic!("{}: no row {row} of {}", self.source, self.rows.len()));
+        r.get(at)
+            .unwrap_or_else(|| panic!("{}: row {row} has no `{name}`: {r:?}", self.source))
+    }
+
+    /// The number in row `row`, column `name`.
+    pub fn f64(&self, row: usize, name: &str) -> f64 {
+        let text = self.get(row, name);
+        text.parse()
+            .unwrap_or_else(|e| panic!("{}: row {row}, `{name}` = {text:?}: {e}", self.source))
+    }
+
+    /// Every row's text in column `name`.
+    pub fn column_str(&self, name: &str) -> Vec<&str> {
+        (0..self.rows.len()).map(|r| self.get(r, name)).collect()
+    }
+
+    /// Every row's number in column `name`.
+    pub fn column_f64(&self, name: &str) -> Vec<f64> {
+        (0..self.rows.len()).map(|r| self.f64(r, name)).collect()
+    }
+
+    /// The rows as maps from column to text (a row shorter than the header has only its
+    /// first columns).
+    pub fn maps(&self) -> Vec<HashMap<String, String>> {
+        self.rows
+            .iter()
+            .map(|r| self.header.iter().cloned().zip(r.iter().cloned()).collect())
+            .collect()
+    }
+}
