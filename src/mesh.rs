@@ -138,6 +138,42 @@ fn end_key(field: &str, side: Side, end: &str) -> String {
     }
 }
 
+/// Refuses a level `n` whose structured grid on `geo` would not be a mesh of the scene:
+/// cells far from square, or a support's or $\Gamma_3$'s end off the grid lines. Builds
+/// nothing, so a study can ask it of levels it will build later.
+pub fn check_grid(n: usize, geo: &Geometry) -> Result<(), InputError> {
+    check_n(n)?;
+    let [side, dy] = spacing(n, geo);
+    if !(0.5..=2.0).contains(&(dy / side)) {
+        return Err(InputError::field(
+            "n",
+            n,
+            format!(
+                "a mesh whose cells are near squares: n = {n} gives cells {side:e} wide \
+                     and {dy:e} tall on the {} x {} rectangle; take a larger n",
+                geo.width, geo.height
+            ),
+        ));
+    }
+    for s in &geo.supports {
+        let d = if s.side.normal() == 0 { dy } else { side };
+        check_ends(&s.field, s.side, [s.from, s.to], d, n)?;
+    }
+    for v in geo.contact {
+        if !on_line(v, side) {
+            return Err(InputError::field(
+                "geometry.contact",
+                v,
+                format!(
+                    "a mesh line of the mesh with n = {n} (a node every {side} on the \
+                         bottom): choose n so that Gamma_3's ends are nodes"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Whether `v` lies on a mesh line of spacing `d` (within rounding).
 pub(crate) fn on_line(v: f64, d: f64) -> bool {
     let q = v / d;
@@ -174,35 +210,9 @@ impl Mesh {
                 format!("at most {MAX_N} (memory)"),
             ));
         }
+        check_grid(n, geo)?;
         let (nx, ny) = (n, rows(n, geo));
         let [side, dy] = spacing(n, geo);
-        if !(0.5..=2.0).contains(&(dy / side)) {
-            return Err(InputError::field(
-                "n",
-                n,
-                format!(
-                    "a mesh whose cells are near squares: n = {n} gives cells {side:e} wide \
-                     and {dy:e} tall on the {} x {} rectangle; take a larger n",
-                    geo.width, geo.height
-                ),
-            ));
-        }
-        for s in &geo.supports {
-            let d = if s.side.normal() == 0 { dy } else { side };
-            check_ends(&s.field, s.side, [s.from, s.to], d, n)?;
-        }
-        for v in geo.contact {
-            if !on_line(v, side) {
-                return Err(InputError::field(
-                    "geometry.contact",
-                    v,
-                    format!(
-                        "a mesh line of the mesh with n = {n} (a node every {side} on the \
-                         bottom): choose n so that Gamma_3's ends are nodes"
-                    ),
-                ));
-            }
-        }
         let id = |i: usize, j: usize| j * (nx + 1) + i;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
         let mut fixed = Vec::with_capacity(nodes.capacity());

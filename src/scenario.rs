@@ -964,6 +964,14 @@ impl Scenario {
         Ok(mesh)
     }
 
+    /// Refuses a level `n` whose structured grid would not resolve this scene (its
+    /// supports', tractions' and $\Gamma_3$'s ends on grid lines, cells near squares),
+    /// without building the mesh.
+    pub fn check_grid(&self, n: usize) -> Result<(), InputError> {
+        crate::mesh::check_grid(n, &self.geometry)?;
+        self.check_traction_ends(n)
+    }
+
     /// Refuses a traction whose ends are not nodes of the structured mesh of level `n`.
     fn check_traction_ends(&self, n: usize) -> Result<(), InputError> {
         let [dx, dy] = crate::mesh::spacing(n, &self.geometry);

@@ -202,7 +202,15 @@ pub(super) fn run(
         )
         .into());
     }
-    let n0 = coarsest(&scn)?;
+    // The split's uniform levels and its reference are structured meshes: each must
+    // resolve the scene (the bisection families nest by construction).
+    let split_multiples: Vec<usize> = if scn.problem.viscous() && scn.relaxation_time().is_some() {
+        let k = if args.quick { 3 } else { 6 };
+        (0..k).map(|j| 1 << j).chain([1 << (k + 1)]).collect()
+    } else {
+        vec![1]
+    };
+    let n0 = coarsest(&scn, &split_multiples, 4)?;
     let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
     let plan = if args.quick {
         graded::Plan {

@@ -130,26 +130,37 @@ pub fn run_as(study: Study, command: &str) -> Result<String, Box<dyn std::error:
     }
 }
 
-/// The coarsest n (4, 8, 16, …) whose grid resolves the scene.
-pub(super) fn coarsest(scn: &Scenario) -> Result<usize, crate::error::InputError> {
-    let mut n = 4;
-    loop {
-        match scn.mesh(n) {
-            Ok(_) => return Ok(n),
-            Err(e) if n >= 256 => {
-                return Err(crate::error::InputError::field(
-                    "scenario",
-                    &scn.name,
-                    format!(
-                        "a scene whose segment ends fall on the nodes of a mesh with n = 4, \
-                         8, ..., 256 (a study starts from the coarsest such n; it takes no \
-                         --n); even n = 256 does not: {e}"
-                    ),
-                ));
-            }
-            Err(_) => n *= 2,
+/// The coarsest n0 (at least `floor`; 4, 8, 16, … up to 256 first, then any other
+/// multiple of 4 up to 256) at which every level the study builds, n0 times each of
+/// `levels`, resolves the scene. On a rectangle whose rows do not double with n (3 x 1:
+/// 5 rows at n = 16, 11 at n = 32) a grid that resolves the supports at n0 may miss
+/// them at 2 n0, so every level is checked before any work.
+pub(super) fn coarsest(
+    scn: &Scenario,
+    levels: &[usize],
+    floor: usize,
+) -> Result<usize, crate::error::InputError> {
+    let mut last = None;
+    let powers = (2..=8).map(|e| 1usize << e);
+    let others = (4..=256)
+        .step_by(4)
+        .filter(|n: &usize| !n.is_power_of_two());
+    for n0 in powers.chain(others).filter(|&n0| n0 >= floor) {
+        match levels.iter().try_for_each(|&m| scn.check_grid(n0 * m)) {
+            Ok(()) => return Ok(n0),
+            Err(e) => last = Some(e),
         }
     }
+    let why = last.map_or(String::new(), |e| format!(": {e}"));
+    Err(crate::error::InputError::field(
+        "scenario",
+        &scn.name,
+        format!(
+            "a scene whose segment ends fall on the nodes of every level the study builds, \
+             n0 times {levels:?} for some multiple of 4 n0 up to 256 (a study starts from \
+             the coarsest such n0; it takes no --n); none does{why}"
+        ),
+    ))
 }
 
 /// A percentage for the summaries: four decimals, or four significant digits in

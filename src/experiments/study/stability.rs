@@ -28,12 +28,9 @@ pub(super) fn run(
     use crate::experiments::stability::map::{MapFigure, map_cell, solvers};
     let (scn, text) = Scenario::read(&args.scenario)?;
     let steady = scn.problem == crate::scenario::Problem::Steady;
-    let n0 = coarsest(&scn)?.max(8);
-    let levels: Vec<usize> = if args.quick {
-        vec![n0, 2 * n0]
-    } else {
-        vec![n0, 2 * n0, 4 * n0]
-    };
+    let multiples: &[usize] = if args.quick { &[1, 2] } else { &[1, 2, 4] };
+    let n0 = coarsest(&scn, multiples, 8)?;
+    let levels: Vec<usize> = multiples.iter().map(|m| m * n0).collect();
     let steps: Vec<usize> = if steady {
         vec![1]
     } else if args.quick {
