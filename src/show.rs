@@ -10,7 +10,9 @@ use std::fmt::Write;
 /// the coercivity of $\mathcal G$, $m = \max(0, -\min_b c_b)$, and the trace constant of the
 /// run's own mesh. It grows with $n$ (the spaces are nested: `data/hypotheses.csv`), so a
 /// coarser mesh would understate it; above [`TRACE_EXACT_MAX`] segments it is
-/// extrapolated upward from the meshes of 128, 256 and 512 segments.
+/// extrapolated upward from the meshes of 128, 256 and 512 segments, and where the
+/// scene has no such meshes (ends that only the run's own level resolves) it is
+/// computed on the run's own mesh if that has at most [`TRACE_EXACT_NODES`] nodes.
 #[derive(Debug, Clone, Copy)]
 pub struct Smallness {
     pub beta_b: f64,
@@ -26,6 +28,11 @@ pub struct Smallness {
 /// factorisation and eigenvalues take well under a second there).
 pub const TRACE_EXACT_MAX: usize = 512;
 
+/// The most nodes of a mesh above [`TRACE_EXACT_MAX`] segments on which the trace
+/// constant is computed exactly when it cannot be extrapolated: those of the paper's
+/// mesh at 512 segments, whose exact constant the extrapolation computes anyway.
+pub const TRACE_EXACT_NODES: usize = 513 * 257;
+
 impl Smallness {
     pub fn of(scn: &Scenario, n: usize) -> Result<Smallness, String> {
         let trace = |n: usize| crate::norms::trace_norm_sq(scn, n);
@@ -34,13 +41,21 @@ impl Smallness {
         } else {
             // A geometric tail from the last two increments, doubled: an estimate
             // from above of the limit the constant approaches.
-            let (a, b, c) = (trace(128)?, trace(256)?, trace(512)?);
-            let r = if b > a {
-                ((c - b) / (b - a)).clamp(0.0, 0.9)
-            } else {
-                0.9
+            let extrapolated = || -> Result<f64, String> {
+                let (a, b, c) = (trace(128)?, trace(256)?, trace(512)?);
+                let r = if b > a {
+                    ((c - b) / (b - a)).clamp(0.0, 0.9)
+                } else {
+                    0.9
+                };
+                Ok(c + 2.0 * (c - b).max(0.0) * r / (1.0 - r))
             };
-            (c + 2.0 * (c - b).max(0.0) * r / (1.0 - r), true)
+            let nodes = (n + 1) * (crate::mesh::rows(n, &scn.geometry) + 1);
+            match extrapolated() {
+                Ok(v) => (v, true),
+                Err(_) if nodes <= TRACE_EXACT_NODES => (trace(n)?, false),
+                Err(e) => return Err(e),
+            }
         };
         Ok(Smallness {
             beta_b: scn.elasticity().coercivity(),

@@ -707,3 +707,24 @@ fn a_stalled_newton_falls_back_to_a_certified_solver() {
     assert!(other.fallback.is_none());
     assert!(sup_diff(&other.run.u, &solution.run.u) <= 1e-8 * sup(&solution.run.u));
 }
+
+/// H(s) is checked on a scene whose ends only the run's own level resolves (a traction
+/// from W/3 on an 8 x 1 strip, at n = 516): the trace constant above 512 segments is
+/// extrapolated from the meshes of 128, 256 and 512, which this scene does not have, so
+/// H(s) was left unchecked (NaN); it is now computed on the run's own mesh, which is
+/// small (issue 41, item 14).
+#[test]
+fn smallness_is_checked_on_the_runs_own_mesh() {
+    let scn = parse(
+        "name = \"strip\"\nT = 1.0\ng = 0.1\nproblem = \"steady\"\n\
+         [geometry]\nwidth = 8.0\nheight = 1.0\n[geometry.supports]\nleft = \"clamped\"\n\
+         [material]\nE = 1000.0\nkappa = 0.3\n\
+         [loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, 0.0]\n\
+         [[loads.traction]]\nside = \"top\"\nfrom = 2.6666666666666665\nto = 8.0\nf = [0.0, -2.0]\n\
+         [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n",
+    )
+    .unwrap();
+    assert!(scn.mesh(512).is_err());
+    let s = evhi::show::Smallness::of(&scn, 516).unwrap();
+    assert!(s.trace_sq.is_finite() && s.trace_sq > 0.0 && !s.extrapolated);
+}
