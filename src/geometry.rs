@@ -118,12 +118,18 @@ pub struct Traction {
 }
 
 /// A point where the solution is expected to be singular: the holds that meet there,
-/// at a corner (opening $\pi/2$) or inside a side (opening $\pi$).
+/// at a corner (opening $\pi/2$) or inside a side (opening $\pi$), or an end of
+/// $\Gamma_3$ inside the bottom, where the free boundary meets the contact zone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Singularity {
     pub point: [f64; 2],
     pub holds: [Hold; 2],
     pub corner: bool,
+    /// An end of $\Gamma_3$ inside the bottom: the boundary condition changes from free
+    /// to normal compliance (and, where the limit is reached there, to a unilateral
+    /// one). No exponent is known for it in general, so none is predicted; graded
+    /// meshes refine towards it as towards the others.
+    pub contact_end: bool,
 }
 
 /// The rectangle, its supports and its contact segment.
@@ -296,6 +302,7 @@ impl Geometry {
                         point: point(side, a),
                         holds,
                         corner: false,
+                        contact_end: false,
                     });
                 }
             }
@@ -319,6 +326,28 @@ impl Geometry {
                     point: point(s1, f1 * self.length(s1)),
                     holds,
                     corner: true,
+                    contact_end: false,
+                });
+            }
+        }
+        // The ends of Gamma_3 inside the bottom (the ends of the zone held at the limit
+        // move with the solution and are not graded towards).
+        let tol = self.tol();
+        for a in self.contact {
+            let inside = a > tol && a < w - tol;
+            let known = out
+                .iter()
+                .any(|s| (s.point[0] - a).abs() <= tol && s.point[1] == 0.0);
+            if inside && !known {
+                let d = 1e-6 * w;
+                out.push(Singularity {
+                    point: [a, 0.0],
+                    holds: [
+                        self.hold_at(Side::Bottom, a - d),
+                        self.hold_at(Side::Bottom, a + d),
+                    ],
+                    corner: false,
+                    contact_end: true,
                 });
             }
         }
@@ -350,7 +379,12 @@ impl Geometry {
                 held.join(", ")
             ),
             format!(
-                "  singular points (clamp or roller ends, clamped corners beside free sides): {}",
+                "  singular points (clamp or roller ends, clamped corners beside free sides{}): {}",
+                if self.singularities().iter().any(|s| s.contact_end) {
+                    ", ends of Gamma_3 inside the bottom"
+                } else {
+                    ""
+                },
                 if pts.is_empty() {
                     "none".to_string()
                 } else {

@@ -728,3 +728,48 @@ fn smallness_is_checked_on_the_runs_own_mesh() {
     let s = evhi::show::Smallness::of(&scn, 516).unwrap();
     assert!(s.trace_sq.is_finite() && s.trace_sq > 0.0 && !s.extrapolated);
 }
+
+/// The ends of Γ3 inside the bottom are singular points (issue 41, item 16): a block
+/// clamped on the left and in contact on [0.5, 2] lists (0.5, 0), with no predicted
+/// exponent, and its graded mesh refines towards it (it did not: only the supports'
+/// ends counted, and graded meshes of such scenes stalled at the uniform order).
+#[test]
+fn the_ends_of_gamma_3_are_singular_points() {
+    let scn = parse(&scene(
+        "[geometry]\ncontact = [0.5, 2.0]\n[geometry.supports]\nleft = \"clamped\"",
+        "",
+        "0.1",
+        "viscoelastic",
+    ))
+    .unwrap();
+    let ends: Vec<[f64; 2]> = scn
+        .geometry
+        .singularities()
+        .into_iter()
+        .filter(|s| s.contact_end)
+        .map(|s| s.point)
+        .collect();
+    assert_eq!(ends, vec![[0.5, 0.0]]);
+    let n = 16;
+    let mesh = scn.graded_mesh(n, 0.4).unwrap();
+    let at_end = |p: &[f64; 2]| (p[0] - 0.5).abs() < 1e-12 && p[1] == 0.0;
+    let smallest = mesh
+        .triangles
+        .iter()
+        .filter(|t| t.iter().any(|&v| at_end(&mesh.nodes[v])))
+        .map(|t| {
+            let p = t.map(|v| mesh.nodes[v]);
+            (0..3)
+                .map(|e| {
+                    let (a, b) = (p[e], p[(e + 1) % 3]);
+                    (a[0] - b[0]).hypot(a[1] - b[1])
+                })
+                .fold(0.0, f64::max)
+        })
+        .fold(f64::INFINITY, f64::min);
+    let cell = 2.0 / n as f64;
+    assert!(
+        smallest < 0.25 * cell,
+        "{smallest} against a cell of {cell}"
+    );
+}

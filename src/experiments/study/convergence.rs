@@ -21,6 +21,10 @@ fn predicted(s: &crate::geometry::Singularity, kappa: f64) -> f64 {
     let (Some(a), Some(b)) = (edge(s.holds[0]), edge(s.holds[1])) else {
         return f64::NAN;
     };
+    // No exponent is known in general where Gamma_3 ends inside the bottom.
+    if s.contact_end {
+        return f64::NAN;
+    }
     if !s.corner {
         return clamp_end_exponent(kappa_m).0;
     }
@@ -362,7 +366,11 @@ pub(super) fn run(
             sing.iter()
                 .map(|s| {
                     let [a, b] = holds_named(s, &scn.geometry);
-                    format!("{} {a}-{b}", if s.corner { "corner" } else { "side" })
+                    if s.contact_end {
+                        "contact end".to_string()
+                    } else {
+                        format!("{} {a}-{b}", if s.corner { "corner" } else { "side" })
+                    }
                 })
                 .collect(),
         )
