@@ -307,7 +307,8 @@ pub fn compute(
     let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
     let clock = std::time::Instant::now();
     let ref_steps = steps_of(scns, plan.n_ref);
-    let reference = reference_at_t(scns, &ref_mesh, plan.n_ref, ref_steps)?;
+    let reference = reference_at_t(scns, &ref_mesh, plan.n_ref, ref_steps)
+        .map_err(|e| e.at(format!("the graded reference, level n = {}", plan.n_ref)))?;
     let ref_dofs = Dofs::new(&ref_mesh, true);
     log(&format!(
         "graded reference: {} dofs, k = 1/{} ({:.1} s)",
@@ -342,7 +343,8 @@ pub fn compute(
             let mesh = Arc::new(forest.mesh(leaves, *n));
             let dofs = Dofs::new(&mesh, true);
             let steps = steps_of(scns, *n);
-            let fields = solve_steps(scns, &mesh, *n, steps, |_| true)?;
+            let fields = solve_steps(scns, &mesh, *n, steps, |_| true)
+                .map_err(|e| e.at(format!("the {family} family, level n = {n}")))?;
             solved.push(Level {
                 n: *n,
                 steps,

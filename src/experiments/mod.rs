@@ -47,6 +47,22 @@ pub enum ExpError {
     Table { path: String, message: String },
     #[error("figure {path}: {message}")]
     Plot { path: String, message: String },
+    /// Where in a study or experiment the error arose (a family, a level).
+    #[error("{context}: {source}")]
+    At {
+        context: String,
+        source: Box<ExpError>,
+    },
+}
+
+impl ExpError {
+    /// This error, said to have arisen at `context` (say, "graded family, level n = 32").
+    pub fn at(self, context: impl Into<String>) -> ExpError {
+        ExpError::At {
+            context: context.into(),
+            source: Box::new(self),
+        }
+    }
 }
 
 /// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'

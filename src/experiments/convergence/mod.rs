@@ -539,7 +539,9 @@ fn study(
             (Task::Level { group, level }, Some(reference)) => {
                 let n = plan.levels[level];
                 let clock = std::time::Instant::now();
-                let errors = reference.coarse(&groups[group], n, plan.n_ref);
+                let errors = reference
+                    .coarse(&groups[group], n, plan.n_ref)
+                    .map_err(|e| e.at(format!("the h = k and h families, level n = {n}")));
                 let names: Vec<&str> = groups[group].iter().map(|s| s.name.as_str()).collect();
                 ctx.log(&format!(
                     "{}: h = k and h families, h = 1/{n} ({:.1} s)",
