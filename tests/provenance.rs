@@ -1,0 +1,71 @@
+//! What a run directory and `evhi show` say about the data solved (issue 41, item 11):
+//! the `#` provenance lines name every load, the further tractions among them;
+//! `summary.csv` records the material the solver used; `show` says when E and kappa
+//! are converted from the file's plane-stress or Lamé constants, and from what.
+
+mod common;
+
+use common::*;
+
+/// The paper's scene with `figure`'s material and law; `loads` is its `[loads]` table.
+fn scene(loads: &str) -> String {
+    format!(
+        "name = \"same_load\"\nT = 1.0\ng = 0.1\n\n\
+         [material]\nE = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0\n\n\
+         [loads]\n{loads}\n\
+         [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n"
+    )
+}
+
+/// `figure`'s loads, `f2` on the whole top.
+const AS_F2: &str = "f0 = [0.0, -5.0]\nf2 = [0.0, -75.0]\n";
+
+/// A `[material]` table in each form the file may give (`figure`'s is plane strain).
+const PLANE_STRESS: &str =
+    "E = 1000.0\nkappa = 0.3\nplane = \"stress\"\nalpha = 100.0\nbeta = 50.0";
+const LAME: &str = "lambda = 600.0\nmu = 400.0\nalpha = 100.0\nbeta = 50.0";
+const PLANE_STRAIN: &str = "E = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0";
+
+fn with_material(material: &str) -> String {
+    scene(AS_F2).replace(
+        "E = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0",
+        material,
+    )
+}
+
+#[test]
+fn show_says_when_e_and_kappa_are_converted_and_from_what() {
+    let dir = scratch("prov-show");
+    let show = |name: &str, material: &str| -> String {
+        let file = written(dir.join(format!("{name}.toml")), with_material(material));
+        stdout(&succeed(evhi_with("show --n 16").arg(file)))
+    };
+    // Plane stress E_s = 1000, nu_s = 0.3: kappa = nu_s/(1 + nu_s), E = E_s(1 + 2 nu_s)/(1 + nu_s)^2.
+    let text = show("stress", PLANE_STRESS);
+    let scn = evhi::scenario::Scenario::from_toml(&with_material(PLANE_STRESS), "stress").unwrap();
+    assert!((scn.kappa - 0.3 / 1.3).abs() < 1e-14 && (scn.e - 1000.0 * 1.6 / 1.69).abs() < 1e-9);
+    assert_contains(
+        &text,
+        &[&format!(
+            "material: E = {}, kappa = {} (plane strain, converted from the file's plane-stress \
+             E = 1000, nu = 0.3), alpha = 100, beta = 50",
+            scn.e, scn.kappa
+        )],
+    );
+    assert_contains(
+        &show("lame", LAME),
+        &["(plane strain, converted from the file's plane-strain Lame lambda = 600, mu = 400)"],
+    );
+    let stress_lame = format!("{LAME}\nplane = \"stress\"");
+    assert_contains(
+        &show("stress_lame", &stress_lame),
+        &["converted from the file's plane-stress Lame lambda = 600, mu = 400"],
+    );
+    // Plane strain by E and kappa is solved as given: the line says nothing more.
+    let plain = show("strain", PLANE_STRAIN);
+    assert_contains(
+        &plain,
+        &["material: E = 1000, kappa = 0.4, alpha = 100, beta = 50\n"],
+    );
+    assert!(!plain.contains("converted"), "{plain}");
+}
