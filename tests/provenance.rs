@@ -69,3 +69,49 @@ fn show_says_when_e_and_kappa_are_converted_and_from_what() {
     );
     assert!(!plain.contains("converted"), "{plain}");
 }
+
+#[test]
+fn summary_records_the_material_the_solver_used_after_the_old_columns() {
+    let dir = scratch("prov-material");
+    for (name, material) in [
+        ("strain", PLANE_STRAIN),
+        ("stress", PLANE_STRESS),
+        ("lame", LAME),
+    ] {
+        let text = with_material(material);
+        let scn = evhi::scenario::Scenario::from_toml(&text, name).unwrap();
+        let (o, run) = solve_text(&dir, name, &text, &["--n", "8", "--steps", "2"]);
+        ok(&o);
+        let s = Csv::read(run.join("summary.csv"));
+        for (col, want) in [
+            ("E", scn.e),
+            ("kappa", scn.kappa),
+            ("alpha", scn.alpha),
+            ("beta", scn.beta),
+        ] {
+            assert_eq!(s.f64(0, col), want, "{name}: {col}");
+        }
+        // Appended: the columns before them keep their places, `version` last of them.
+        let tail: Vec<&str> = s
+            .header
+            .iter()
+            .rev()
+            .take(6)
+            .rev()
+            .map(|h| h.as_str())
+            .collect();
+        assert_eq!(
+            tail,
+            ["version", "E", "kappa", "alpha", "beta", "tractions"]
+        );
+        assert_eq!(s.header[..4], ["n", "steps", "dofs", "energy_norm_T"]);
+    }
+    // An elastic problem has no viscosity: 0 and 0 are what the solver used.
+    let elastic = with_material("E = 1000.0\nkappa = 0.4")
+        .replace("g = 0.1", "g = 0.1\nproblem = \"elastic\"");
+    let (o, run) = solve_text(&dir, "elastic", &elastic, &["--n", "8", "--steps", "2"]);
+    ok(&o);
+    let s = Csv::read(run.join("summary.csv"));
+    assert_eq!((s.f64(0, "alpha"), s.f64(0, "beta")), (0.0, 0.0));
+    assert_eq!((s.f64(0, "E"), s.f64(0, "kappa")), (1000.0, 0.4));
+}

@@ -374,7 +374,16 @@ pub fn write(
         .str(
             "version",
             vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
-        );
+        )
+        // Appended after the columns above, so that readers by position keep
+        // working: the material the solver used (plane strain, converted where the
+        // file gave plane stress or Lame constants) and the number of the file's
+        // further tractions (the `#` lines name each).
+        .f64("E", vec![scn.e])
+        .f64("kappa", vec![scn.kappa])
+        .f64("alpha", vec![scn.alpha])
+        .f64("beta", vec![scn.beta])
+        .u64("tractions", vec![scn.tractions.len() as u64]);
     out.write_table("summary.csv", &summary, &header)?;
     let disp = dofs.expand(&run.u);
     let codes: Vec<i32> = run
