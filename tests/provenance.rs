@@ -115,3 +115,64 @@ fn summary_records_the_material_the_solver_used_after_the_old_columns() {
     assert_eq!((s.f64(0, "alpha"), s.f64(0, "beta")), (0.0, 0.0));
     assert_eq!((s.f64(0, "E"), s.f64(0, "kappa")), (1000.0, 0.4));
 }
+
+/// `figure`'s load as a `[[loads.traction]]` on the whole top with `f2 = (0, 0)`:
+/// the same load vector as [`AS_F2`], so the same results; the `#` lines used to say
+/// only `f2 = (0, 0)`, as if the top were free.
+const AS_TRACTION: &str = "f0 = [0.0, -5.0]\nf2 = [0.0, 0.0]\n\n\
+    [[loads.traction]]\nside = \"top\"\nfrom = 0.0\nto = 2.0\nf = [0.0, -75.0]\n";
+
+/// The data line of a run's `#` lines (the second, after the command).
+fn data_line(run: &std::path::Path, file: &str) -> String {
+    let csv = Csv::read(run.join(file));
+    assert_eq!(csv.provenance.len(), 2, "{:?}", csv.provenance);
+    csv.provenance[1].clone()
+}
+
+#[test]
+fn the_same_load_as_f2_or_as_a_traction_solves_alike_and_each_header_names_it() {
+    let dir = scratch("prov-same-load");
+    let words = ["--n", "16", "--steps", "8"];
+    let (o, f2_run) = solve_text(&dir, "f2", &scene(AS_F2), &words);
+    ok(&o);
+    let (o, traction_run) = solve_text(&dir, "traction", &scene(AS_TRACTION), &words);
+    ok(&o);
+    let (a, b) = (
+        Csv::read(f2_run.join("summary.csv")),
+        Csv::read(traction_run.join("summary.csv")),
+    );
+    let (ea, eb) = (a.f64(0, "energy_norm_T"), b.f64(0, "energy_norm_T"));
+    assert!(
+        ea > 0.0 && (ea - eb).abs() <= 1e-12 * ea,
+        "{ea} against {eb}"
+    );
+    assert_eq!(a.get(0, "path"), b.get(0, "path"));
+    // The results agree; the headers differ, each naming the load it was given.
+    let (la, lb) = (
+        data_line(&f2_run, "summary.csv"),
+        data_line(&traction_run, "summary.csv"),
+    );
+    assert_ne!(la, lb);
+    assert_contains(&la, &["f2 = (0, -75)", "f0 = (0, -5)", "f0_modulation = 0"]);
+    assert!(!la.contains("loads.traction"), "{la}");
+    assert_contains(
+        &lb,
+        &[
+            "f2 = (0, 0)",
+            "loads.traction[0] = (0, -75) on the top side over [0, 2]",
+        ],
+    );
+    // Every table of the run opens with the same lines.
+    for f in [
+        "contact.csv",
+        "steps.csv",
+        "nodes.csv",
+        "evolution.csv",
+        "regimes.csv",
+    ] {
+        assert_eq!(data_line(&traction_run, f), lb, "{f}");
+    }
+    // summary.csv counts the further tractions.
+    assert_eq!(a.get(0, "tractions"), "0");
+    assert_eq!(b.get(0, "tractions"), "1");
+}
