@@ -77,7 +77,7 @@ struct RawMaterial {
 /// every other form first gives the 2D tensor's $(a, b)$ (plane stress:
 /// $a = E\nu/(1-\nu^2)$ or $2\lambda\mu/(\lambda+2\mu)$, $b = 2\mu$; Lamé in plane
 /// strain: $a = \lambda$, $b = 2\mu$), then $\kappa = a/(b + 2a)$, $E = b(1 + \kappa)$.
-fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
+fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64, MaterialForm), InputError> {
     let stress = match m.plane.as_deref().unwrap_or("strain") {
         "strain" => false,
         "stress" => true,
@@ -108,7 +108,7 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
             )
         })
     };
-    let (a, b, field) = if lame {
+    let (a, b, field, form) = if lame {
         let mu = positive("material.mu", need("mu", m.mu)?)?;
         let lambda = finite("material.lambda", need("lambda", m.lambda)?)?;
         // The plane-strain Poisson ratio the constants give must exceed -1 (the
@@ -130,14 +130,20 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
                 ),
             ));
         }
+        let form = MaterialForm::Lame {
+            lambda,
+            mu,
+            plane_stress: stress,
+        };
         if stress {
             (
                 2.0 * lambda * mu / (lambda + 2.0 * mu),
                 2.0 * mu,
                 "material.lambda",
+                form,
             )
         } else {
-            (lambda, 2.0 * mu, "material.lambda")
+            (lambda, 2.0 * mu, "material.lambda", form)
         }
     } else {
         let e = positive("material.E", need("E", m.e)?)?;
@@ -154,9 +160,14 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
         }
         let nu = poisson("material.kappa", kappa)?;
         if !stress {
-            return Ok((e, nu));
+            return Ok((e, nu, MaterialForm::PlaneStrain));
         }
-        (e * nu / (1.0 - nu * nu), e / (1.0 + nu), "material.kappa")
+        (
+            e * nu / (1.0 - nu * nu),
+            e / (1.0 + nu),
+            "material.kappa",
+            MaterialForm::PlaneStress { e, nu },
+        )
     };
     let kappa = a / (b + 2.0 * a);
     poisson(field, kappa).map_err(|_| {
@@ -166,7 +177,60 @@ fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64), InputError> {
             "constants whose plane-strain reading has a Poisson ratio in (-1, 1/2)",
         )
     })?;
-    Ok((b * (1.0 + kappa), kappa))
+    Ok((b * (1.0 + kappa), kappa, form))
+}
+
+/// How a `[material]` table gave the elasticity. The solver uses the plane-strain
+/// $(E, \kappa)$ of the printed formulas ([`Scenario::e`], [`Scenario::kappa`]); every
+/// other form is converted to them when the file is read, and this records what it was.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum MaterialForm {
+    /// `E` and `kappa` of a plane-strain body (the default): the values solved, as given.
+    #[default]
+    PlaneStrain,
+    /// `E` and `kappa` of a plane-stress body (`plane = "stress"`): its $E_s$, $\nu_s$.
+    PlaneStress { e: f64, nu: f64 },
+    /// Lamé's `lambda` and `mu`, of a plane-strain or (`plane_stress`) plane-stress body.
+    Lame {
+        lambda: f64,
+        mu: f64,
+        plane_stress: bool,
+    },
+}
+
+impl MaterialForm {
+    /// What the solved $(E, \kappa)$ were converted from, as printed after them:
+    /// `plane-stress E = 1000, nu = 0.3`, `plane-strain Lame lambda = 1, mu = 2`; `None`
+    /// for plane-strain `E` and `kappa`, which are solved as given.
+    pub fn converted_from(&self) -> Option<String> {
+        match *self {
+            MaterialForm::PlaneStrain => None,
+            MaterialForm::PlaneStress { e, nu } => Some(format!("plane-stress E = {e}, nu = {nu}")),
+            MaterialForm::Lame {
+                lambda,
+                mu,
+                plane_stress,
+            } => Some(format!(
+                "{} Lame lambda = {lambda}, mu = {mu}",
+                if plane_stress {
+                    "plane-stress"
+                } else {
+                    "plane-strain"
+                }
+            )),
+        }
+    }
+
+    /// `E = …, kappa = …` for the solved constants `e`, `kappa`, followed, where the
+    /// file gave another form, by `(plane strain, converted from the file's …)`.
+    pub fn describe(&self, e: f64, kappa: f64) -> String {
+        match self.converted_from() {
+            None => format!("E = {e}, kappa = {kappa}"),
+            Some(from) => {
+                format!("E = {e}, kappa = {kappa} (plane strain, converted from the file's {from})")
+            }
+        }
+    }
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -330,9 +394,13 @@ pub struct Scenario {
     pub g: f64,
     /// What is solved (the paper's viscoelastic evolution by default).
     pub problem: Problem,
-    /// Young's modulus $E$, Poisson's ratio $\kappa$.
+    /// Young's modulus $E$, Poisson's ratio $\kappa$: the plane-strain constants the
+    /// solver uses, converted from the file's form where it gave another.
     pub e: f64,
     pub kappa: f64,
+    /// How the file gave the elasticity (plane strain by `E`, `kappa` unless it says
+    /// otherwise), so that outputs can say when `e` and `kappa` are converted.
+    pub material_form: MaterialForm,
     /// Viscosity constants $\alpha$, $\beta$ (both 0 for an elastic or steady problem).
     pub alpha: f64,
     pub beta: f64,
@@ -711,7 +779,7 @@ impl Scenario {
             }
         };
         let m = &raw.material;
-        let (e, kappa) = elasticity_from(m)?;
+        let (e, kappa, material_form) = elasticity_from(m)?;
         let (alpha, beta) = if problem.viscous() {
             let need = |field: &str, v: Option<f64>| {
                 v.ok_or_else(|| {
@@ -785,6 +853,7 @@ impl Scenario {
             problem,
             e,
             kappa,
+            material_form,
             alpha,
             beta,
             f0,
@@ -1049,10 +1118,12 @@ impl Scenario {
         self
     }
 
-    /// Replaces the elasticity constants (validated like the file's).
+    /// Replaces the elasticity constants (validated like the file's) by plane-strain
+    /// ones, solved as given.
     pub fn with_elasticity(mut self, e: f64, kappa: f64) -> Result<Self, InputError> {
         self.e = positive("material.E", e)?;
         self.kappa = poisson("material.kappa", kappa)?;
+        self.material_form = MaterialForm::PlaneStrain;
         Ok(self)
     }
 

@@ -144,9 +144,8 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
     let (g_t, c_t) = (scn.elasticity(), scn.viscosity());
     let _ = writeln!(
         s,
-        "material: E = {}, kappa = {}, alpha = {}, beta = {}\n  elasticity G: a = {:.6e}, b = {:.6e} (coercivity {:.6e}); viscosity C: a = {}, b = {} (coercivity {:.6e})",
-        scn.e,
-        scn.kappa,
+        "material: {}, alpha = {}, beta = {}\n  elasticity G: a = {:.6e}, b = {:.6e} (coercivity {:.6e}); viscosity C: a = {}, b = {} (coercivity {:.6e})",
+        scn.material_form.describe(scn.e, scn.kappa),
         scn.alpha,
         scn.beta,
         g_t.a,

@@ -119,7 +119,9 @@ pub fn quote_args(args: impl IntoIterator<Item = String>) -> String {
         .join(" ")
 }
 
-/// The `#` lines that open every CSV of a run: the command and the data it solved.
+/// The `#` lines that open every CSV of a run: the command and the data it solved,
+/// every load among them (the file's `[[loads.traction]]`s after `f0_modulation`,
+/// where it has any).
 pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<String> {
     vec![
         format!(
@@ -129,7 +131,7 @@ pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<Str
         ),
         format!(
             "scenario {}; n = {n}, steps = {steps}, T = {}; solver {}, ordering {}; g = {}; \
-             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}; load history: {}",
+             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}{}; load history: {}",
             scn.name,
             scn.t_end,
             p.solver,
@@ -140,9 +142,29 @@ pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<Str
             scn.f2[0],
             scn.f2[1],
             scn.f0_modulation,
+            tractions(scn),
             scn.history
         ),
     ]
+}
+
+/// The file's further tractions as the header names them, each after a comma:
+/// `, loads.traction[0] = (0, -75) on the top side over [0, 2]` (empty without any).
+fn tractions(scn: &Scenario) -> String {
+    scn.tractions
+        .iter()
+        .map(|t| {
+            format!(
+                ", {} = ({}, {}) on the {} side over [{}, {}]",
+                t.field,
+                t.f[0],
+                t.f[1],
+                t.side.name(),
+                t.from,
+                t.to
+            )
+        })
+        .collect()
 }
 
 /// Peak resident memory of this process (Linux `VmHWM`), MiB; NaN where unknown.
@@ -374,7 +396,16 @@ pub fn write(
         .str(
             "version",
             vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
-        );
+        )
+        // Appended after the columns above, so that readers by position keep
+        // working: the material the solver used (plane strain, converted where the
+        // file gave plane stress or Lame constants) and the number of the file's
+        // further tractions (the `#` lines name each).
+        .f64("E", vec![scn.e])
+        .f64("kappa", vec![scn.kappa])
+        .f64("alpha", vec![scn.alpha])
+        .f64("beta", vec![scn.beta])
+        .u64("tractions", vec![scn.tractions.len() as u64]);
     out.write_table("summary.csv", &summary, &header)?;
     let disp = dofs.expand(&run.u);
     let codes: Vec<i32> = run

@@ -1,0 +1,178 @@
+//! What a run directory and `evhi show` say about the data solved (issue 41, item 11):
+//! the `#` provenance lines name every load, the further tractions among them;
+//! `summary.csv` records the material the solver used; `show` says when E and kappa
+//! are converted from the file's plane-stress or Lamé constants, and from what.
+
+mod common;
+
+use common::*;
+
+/// The paper's scene with `figure`'s material and law; `loads` is its `[loads]` table.
+fn scene(loads: &str) -> String {
+    format!(
+        "name = \"same_load\"\nT = 1.0\ng = 0.1\n\n\
+         [material]\nE = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0\n\n\
+         [loads]\n{loads}\n\
+         [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n"
+    )
+}
+
+/// `figure`'s loads, `f2` on the whole top.
+const AS_F2: &str = "f0 = [0.0, -5.0]\nf2 = [0.0, -75.0]\n";
+
+/// A `[material]` table in each form the file may give (`figure`'s is plane strain).
+const PLANE_STRESS: &str =
+    "E = 1000.0\nkappa = 0.3\nplane = \"stress\"\nalpha = 100.0\nbeta = 50.0";
+const LAME: &str = "lambda = 600.0\nmu = 400.0\nalpha = 100.0\nbeta = 50.0";
+const PLANE_STRAIN: &str = "E = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0";
+
+fn with_material(material: &str) -> String {
+    scene(AS_F2).replace(
+        "E = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0",
+        material,
+    )
+}
+
+#[test]
+fn show_says_when_e_and_kappa_are_converted_and_from_what() {
+    let dir = scratch("prov-show");
+    let show = |name: &str, material: &str| -> String {
+        let file = written(dir.join(format!("{name}.toml")), with_material(material));
+        stdout(&succeed(evhi_with("show --n 16").arg(file)))
+    };
+    // Plane stress E_s = 1000, nu_s = 0.3: kappa = nu_s/(1 + nu_s), E = E_s(1 + 2 nu_s)/(1 + nu_s)^2.
+    let text = show("stress", PLANE_STRESS);
+    let scn = evhi::scenario::Scenario::from_toml(&with_material(PLANE_STRESS), "stress").unwrap();
+    assert!((scn.kappa - 0.3 / 1.3).abs() < 1e-14 && (scn.e - 1000.0 * 1.6 / 1.69).abs() < 1e-9);
+    assert_contains(
+        &text,
+        &[&format!(
+            "material: E = {}, kappa = {} (plane strain, converted from the file's plane-stress \
+             E = 1000, nu = 0.3), alpha = 100, beta = 50",
+            scn.e, scn.kappa
+        )],
+    );
+    assert_contains(
+        &show("lame", LAME),
+        &["(plane strain, converted from the file's plane-strain Lame lambda = 600, mu = 400)"],
+    );
+    let stress_lame = format!("{LAME}\nplane = \"stress\"");
+    assert_contains(
+        &show("stress_lame", &stress_lame),
+        &["converted from the file's plane-stress Lame lambda = 600, mu = 400"],
+    );
+    // Plane strain by E and kappa is solved as given: the line says nothing more.
+    let plain = show("strain", PLANE_STRAIN);
+    assert_contains(
+        &plain,
+        &["material: E = 1000, kappa = 0.4, alpha = 100, beta = 50\n"],
+    );
+    assert!(!plain.contains("converted"), "{plain}");
+}
+
+#[test]
+fn summary_records_the_material_the_solver_used_after_the_old_columns() {
+    let dir = scratch("prov-material");
+    for (name, material) in [
+        ("strain", PLANE_STRAIN),
+        ("stress", PLANE_STRESS),
+        ("lame", LAME),
+    ] {
+        let text = with_material(material);
+        let scn = evhi::scenario::Scenario::from_toml(&text, name).unwrap();
+        let (o, run) = solve_text(&dir, name, &text, &["--n", "8", "--steps", "2"]);
+        ok(&o);
+        let s = Csv::read(run.join("summary.csv"));
+        for (col, want) in [
+            ("E", scn.e),
+            ("kappa", scn.kappa),
+            ("alpha", scn.alpha),
+            ("beta", scn.beta),
+        ] {
+            assert_eq!(s.f64(0, col), want, "{name}: {col}");
+        }
+        // Appended: the columns before them keep their places, `version` last of them.
+        let tail: Vec<&str> = s
+            .header
+            .iter()
+            .rev()
+            .take(6)
+            .rev()
+            .map(|h| h.as_str())
+            .collect();
+        assert_eq!(
+            tail,
+            ["version", "E", "kappa", "alpha", "beta", "tractions"]
+        );
+        assert_eq!(s.header[..4], ["n", "steps", "dofs", "energy_norm_T"]);
+    }
+    // An elastic problem has no viscosity: 0 and 0 are what the solver used.
+    let elastic = with_material("E = 1000.0\nkappa = 0.4")
+        .replace("g = 0.1", "g = 0.1\nproblem = \"elastic\"");
+    let (o, run) = solve_text(&dir, "elastic", &elastic, &["--n", "8", "--steps", "2"]);
+    ok(&o);
+    let s = Csv::read(run.join("summary.csv"));
+    assert_eq!((s.f64(0, "alpha"), s.f64(0, "beta")), (0.0, 0.0));
+    assert_eq!((s.f64(0, "E"), s.f64(0, "kappa")), (1000.0, 0.4));
+}
+
+/// `figure`'s load as a `[[loads.traction]]` on the whole top with `f2 = (0, 0)`:
+/// the same load vector as [`AS_F2`], so the same results; the `#` lines used to say
+/// only `f2 = (0, 0)`, as if the top were free.
+const AS_TRACTION: &str = "f0 = [0.0, -5.0]\nf2 = [0.0, 0.0]\n\n\
+    [[loads.traction]]\nside = \"top\"\nfrom = 0.0\nto = 2.0\nf = [0.0, -75.0]\n";
+
+/// The data line of a run's `#` lines (the second, after the command).
+fn data_line(run: &std::path::Path, file: &str) -> String {
+    let csv = Csv::read(run.join(file));
+    assert_eq!(csv.provenance.len(), 2, "{:?}", csv.provenance);
+    csv.provenance[1].clone()
+}
+
+#[test]
+fn the_same_load_as_f2_or_as_a_traction_solves_alike_and_each_header_names_it() {
+    let dir = scratch("prov-same-load");
+    let words = ["--n", "16", "--steps", "8"];
+    let (o, f2_run) = solve_text(&dir, "f2", &scene(AS_F2), &words);
+    ok(&o);
+    let (o, traction_run) = solve_text(&dir, "traction", &scene(AS_TRACTION), &words);
+    ok(&o);
+    let (a, b) = (
+        Csv::read(f2_run.join("summary.csv")),
+        Csv::read(traction_run.join("summary.csv")),
+    );
+    let (ea, eb) = (a.f64(0, "energy_norm_T"), b.f64(0, "energy_norm_T"));
+    assert!(
+        ea > 0.0 && (ea - eb).abs() <= 1e-12 * ea,
+        "{ea} against {eb}"
+    );
+    assert_eq!(a.get(0, "path"), b.get(0, "path"));
+    // The results agree; the headers differ, each naming the load it was given.
+    let (la, lb) = (
+        data_line(&f2_run, "summary.csv"),
+        data_line(&traction_run, "summary.csv"),
+    );
+    assert_ne!(la, lb);
+    assert_contains(&la, &["f2 = (0, -75)", "f0 = (0, -5)", "f0_modulation = 0"]);
+    assert!(!la.contains("loads.traction"), "{la}");
+    assert_contains(
+        &lb,
+        &[
+            "f2 = (0, 0)",
+            "loads.traction[0] = (0, -75) on the top side over [0, 2]",
+        ],
+    );
+    // Every table of the run opens with the same lines.
+    for f in [
+        "contact.csv",
+        "steps.csv",
+        "nodes.csv",
+        "evolution.csv",
+        "regimes.csv",
+    ] {
+        assert_eq!(data_line(&traction_run, f), lb, "{f}");
+    }
+    // summary.csv counts the further tractions.
+    assert_eq!(a.get(0, "tractions"), "0");
+    assert_eq!(b.get(0, "tractions"), "1");
+}
