@@ -176,3 +176,35 @@ fn the_same_load_as_f2_or_as_a_traction_solves_alike_and_each_header_names_it() 
     assert_eq!(a.get(0, "tractions"), "0");
     assert_eq!(b.get(0, "tractions"), "1");
 }
+
+/// The `#` line names the material the solver used, and for a plane-stress file the
+/// constants it was converted from: two runs that differ only in the material no longer
+/// carry the same header.
+#[test]
+fn the_provenance_line_names_the_material() {
+    let dir = scratch("prov-header-material");
+    let (o, strain) = solve_text(
+        &dir,
+        "strain",
+        &with_material(PLANE_STRAIN),
+        &["--n", "8", "--steps", "2"],
+    );
+    ok(&o);
+    let (o, stress) = solve_text(
+        &dir,
+        "stress",
+        &with_material(PLANE_STRESS),
+        &["--n", "8", "--steps", "2"],
+    );
+    ok(&o);
+    let a = data_line(&strain, "contact.csv");
+    let b = data_line(&stress, "contact.csv");
+    assert!(
+        a.contains("material: E = 1000, kappa = 0.4, alpha = 100, beta = 50"),
+        "{a}"
+    );
+    assert!(
+        b.contains("converted from the file's plane-stress E = 1000, nu = 0.3"),
+        "{b}"
+    );
+}

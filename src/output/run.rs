@@ -131,7 +131,8 @@ pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<Str
         ),
         format!(
             "scenario {}; n = {n}, steps = {steps}, T = {}; solver {}, ordering {}; g = {}; \
-             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}{}; load history: {}",
+             f0 = ({}, {}), f2 = ({}, {}), f0_modulation = {}{}; load history: {}; \
+             material: {}, alpha = {}, beta = {}",
             scn.name,
             scn.t_end,
             p.solver,
@@ -143,7 +144,10 @@ pub fn header(p: &Provenance, scn: &Scenario, n: usize, steps: usize) -> Vec<Str
             scn.f2[1],
             scn.f0_modulation,
             tractions(scn),
-            scn.history
+            scn.history,
+            scn.material_form.describe(scn.e, scn.kappa),
+            scn.alpha,
+            scn.beta
         ),
     ]
 }
