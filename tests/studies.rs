@@ -36,3 +36,36 @@ fn a_study_picks_levels_that_all_resolve_the_scene() {
     assert_eq!(levels, vec![120.0, 240.0]);
     assert!(table.column_str("outcome").contains(&"certified"));
 }
+
+/// The convergence study lists an end of Γ3 inside the bottom as a singular point with no
+/// predicted exponent, and its graded family refines towards it (issue 41, item 16).
+#[test]
+fn the_convergence_study_knows_the_ends_of_gamma_3() {
+    let dir = scratch("study-contact-end");
+    let scene = written(
+        dir.join("block.toml"),
+        "name = \"block\"\nT = 1.0\ng = 0.05\n[geometry]\nwidth = 2.0\nheight = 0.5\n\
+         supports = { left = \"clamped\" }\ncontact = [0.5, 2.0]\n\
+         [material]\nE = 1000.0\nkappa = 0.25\nalpha = 40.0\nbeta = 80.0\n\
+         [loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, -20.0]\nhistory = { ramp = 0.25 }\n\
+         [law]\nbreakpoints = [0.0, 0.02, 0.04]\nslopes = [0.0, 500.0, -5.0, 300.0]\n",
+    );
+    let out = dir.join("conv");
+    ok(&evhi()
+        .args(["study", "convergence", "--quick", "--scenario"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap());
+    let sing = Csv::read(out.join("singular.csv"));
+    let kinds = sing.column_str("kind");
+    let at = kinds
+        .iter()
+        .position(|k| *k == "contact end")
+        .expect("a contact end");
+    assert_eq!(sing.f64(at, "x"), 0.5);
+    assert!(sing.f64(at, "predicted_exponent").is_nan());
+    let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+    assert!(md.contains("an end of Gamma_3 inside the bottom"), "{md}");
+}

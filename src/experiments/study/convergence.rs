@@ -554,6 +554,25 @@ pub(super) fn run(
             ),
         }
     );
+    // A graded family no better than the uniform one has missed something: a singular
+    // point the code does not know, or levels not yet asymptotic.
+    let last_order = |family: &str| {
+        (0..fam.len())
+            .filter(|&i| fam[i] == family && order[i].is_finite())
+            .map(|i| order[i])
+            .next_back()
+    };
+    if let (Some(g), Some(u)) = (last_order("graded"), last_order("uniform"))
+        && g <= u + 0.05
+    {
+        let warning = format!(
+            "the graded family's last order, {g:.3}, is no better than the uniform one's, {u:.3}: \
+             the grading gains nothing on these levels (a singular point it does not refine \
+             towards, or levels not yet asymptotic){finer}"
+        );
+        eprintln!("warning: {warning}");
+        let _ = writeln!(md, "\nWarning: {warning}.");
+    }
     let _ = writeln!(
         md,
         "\nSingular points of the scene and the exponent each predicts (plane strain, Poisson ratio {kappa}; \
@@ -567,6 +586,15 @@ pub(super) fn run(
     }
     for s in &sing {
         let [a, b] = holds_named(s, &scn.geometry);
+        if s.contact_end {
+            let _ = writeln!(
+                md,
+                "- ({}, {}): an end of Gamma_3 inside the bottom, free meeting contact: no exponent \
+                 known (graded towards all the same)",
+                s.point[0], s.point[1]
+            );
+            continue;
+        }
         let _ = writeln!(
             md,
             "- ({}, {}): {} {a} meeting {b}: exponent {:.4}",
