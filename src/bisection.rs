@@ -441,10 +441,7 @@ pub fn graded_mesh_resolving(
     check_n(n)?;
     let uniform = Mesh::build(n, geo, Pattern::Diagonal)?;
     resolves(n)?;
-    let powers = std::iter::successors(Some(4usize), |m| Some(2 * m)).take_while(|&m| m <= n);
-    let others = (4..=n).step_by(4).filter(|m| !m.is_power_of_two());
-    let (mut forest, root) = powers
-        .chain(others)
+    let (mut forest, root) = crate::mesh::grid_candidates(n)
         .find_map(|n0| resolves(n0).ok().and_then(|_| Forest::new(n0, geo).ok()))
         .map_or_else(|| Forest::new(n, geo), Ok)?;
     let unit = geo.width.min(geo.height);

@@ -362,10 +362,10 @@ impl Geometry {
             .iter()
             .map(|s| format!("{} [{}, {}] {}", s.side.name(), s.from, s.to, s.hold.name()))
             .collect();
-        let pts: Vec<String> = self
-            .singular_points()
+        let sing = self.singularities();
+        let pts: Vec<String> = sing
             .iter()
-            .map(|p| format!("({}, {})", p[0], p[1]))
+            .map(|s| format!("({}, {})", s.point[0], s.point[1]))
             .collect();
         vec![
             format!(
@@ -380,7 +380,7 @@ impl Geometry {
             ),
             format!(
                 "  singular points (clamp or roller ends, clamped corners beside free sides{}): {}",
-                if self.singularities().iter().any(|s| s.contact_end) {
+                if sing.iter().any(|s| s.contact_end) {
                     ", ends of Gamma_3 inside the bottom"
                 } else {
                     ""

@@ -174,6 +174,16 @@ pub fn check_grid(n: usize, geo: &Geometry) -> Result<(), InputError> {
     Ok(())
 }
 
+/// The grids, by segments on the bottom, in the order a coarsest grid that resolves a
+/// scene is sought: 4, 8, 16, … up to `max` first (levels that double from them nest
+/// with the uniform meshes), then every other multiple of 4 up to `max`.
+pub fn grid_candidates(max: usize) -> impl Iterator<Item = usize> {
+    let powers =
+        std::iter::successors(Some(4usize), |m| Some(2 * m)).take_while(move |&m| m <= max);
+    let others = (4..=max).step_by(4).filter(|m| !m.is_power_of_two());
+    powers.chain(others)
+}
+
 /// Whether `v` lies on a mesh line of spacing `d` (within rounding).
 pub(crate) fn on_line(v: f64, d: f64) -> bool {
     let q = v / d;

@@ -1066,7 +1066,8 @@ impl Scenario {
                 "\"diagonal\" with a graded mesh (bisection starts from the paper's diagonal cut)",
             ));
         }
-        self.mesh(n)?;
+        // The uniform level's checks, without building it (graded_mesh_resolving builds it).
+        self.check_grid(n)?;
         let mesh = crate::bisection::graded_mesh_resolving(&self.geometry, n, mu, &|n0| {
             self.check_traction_ends(n0)
         })?;

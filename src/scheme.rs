@@ -184,11 +184,10 @@ pub enum RunError {
         g: f64,
     },
     #[error(
-        "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}. What may help: another \
-         step solver (`--solver proxgrad` and `newton-no-line-search` certify too), a smaller \
-         k (more `--steps`), or, where the law softens, a stiffer material or a milder \
-         softening",
-        step_failure(.solver, .status, .iterations, .residual, .certificate, .tol)
+        "{}. What may help: another step solver (`--solver proxgrad` and \
+         `newton-no-line-search` certify too), a smaller k (more `--steps`), or, where the law \
+         softens, a stiffer material or a milder softening",
+        self.failed_step().unwrap_or_default()
     )]
     Step {
         scenario: String,
@@ -245,6 +244,30 @@ pub fn step_curvature(scn: &Scenario, n: usize, steps: usize) -> Result<f64, Run
     Ok(op.hessian_min)
 }
 
+impl RunError {
+    /// A failed step in words, without the advice its error ends with: `scenario `…`,
+    /// step n (t = …) failed: …`; `None` for an error of another kind.
+    pub fn failed_step(&self) -> Option<String> {
+        match self {
+            RunError::Step {
+                scenario,
+                step,
+                t,
+                solver,
+                status,
+                iterations,
+                residual,
+                certificate,
+                tol,
+            } => Some(format!(
+                "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}",
+                step_failure(solver, status, iterations, residual, certificate, tol)
+            )),
+            _ => None,
+        }
+    }
+}
+
 /// Why a step failed, in words: the solver's own verdict, or the certificate that
 /// refused a step the solver called converged.
 fn step_failure(
@@ -296,6 +319,16 @@ pub enum OrderingKind {
     NestedDissection,
     /// faer's approximate minimum degree.
     Amd,
+}
+
+impl OrderingKind {
+    /// Its name on the command line (`--ordering`) and in `summary.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            OrderingKind::NestedDissection => "nd",
+            OrderingKind::Amd => "amd",
+        }
+    }
 }
 
 /// Below this many entries of $L$ a solve takes under about a millisecond and a

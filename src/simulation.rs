@@ -340,13 +340,11 @@ impl Simulation {
             observer.restart();
             if let Ok(mut solution) = self.solve_with(entry, observer) {
                 // The failure itself, without the advice the fallback has taken.
-                let stalled = first.as_ref().err().map_or(String::new(), |e| {
-                    let text = e.to_string();
-                    text.split(". What may help")
-                        .next()
-                        .unwrap_or(&text)
-                        .to_string()
-                });
+                let stalled = first
+                    .as_ref()
+                    .err()
+                    .and_then(RunError::failed_step)
+                    .unwrap_or_default();
                 solution.fallback = Some(Fallback {
                     solver: entry.name,
                     stalled,

@@ -154,7 +154,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             failures.join("; ")
         );
     }
-    let sim = Simulation::new(scn, settings(&args)?)?;
+    let sim = Simulation::new(scn, settings(&args))?;
     let scn = sim.scenario();
     let entry = sim.solver();
     if !entry.certified {
@@ -203,10 +203,6 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             f.stalled, f.solver
         );
     }
-    let ordering = match sim.ordering() {
-        OrderingKind::Amd => "amd",
-        OrderingKind::NestedDissection => "nd",
-    };
     let h_s = h_s.unwrap_or_else(|e| {
         eprintln!("warning: the trace constant could not be computed ({e}); H(s) is unchecked");
         crate::show::Smallness::unknown(scn, args.n)
@@ -281,7 +277,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             run.dofs,
             run.contact.len(),
             run.nnz_l,
-            ordering,
+            sim.ordering().name(),
             run.sweep_threads
         );
         eprintln!(
@@ -295,8 +291,8 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
 }
 
 /// The run settings the options ask for (checked by [`Simulation::new`]).
-fn settings(args: &SolveArgs) -> Result<RunSettings, crate::error::InputError> {
-    Ok(RunSettings {
+fn settings(args: &SolveArgs) -> RunSettings {
+    RunSettings {
         n: args.n,
         steps: args.steps,
         mesh: if args.mesh == "graded" {
@@ -317,7 +313,7 @@ fn settings(args: &SolveArgs) -> Result<RunSettings, crate::error::InputError> {
         }),
         threads: args.threads,
         certificate_tol: args.certificate_tol,
-    })
+    }
 }
 
 /// The command line's observer: the run's records and files, and a progress bar

@@ -43,11 +43,7 @@ impl Provenance {
                 .as_ref()
                 .map_or(sim.solver().name, |f| f.solver)
                 .to_string(),
-            ordering: match sim.ordering() {
-                crate::scheme::OrderingKind::Amd => "amd",
-                crate::scheme::OrderingKind::NestedDissection => "nd",
-            }
-            .to_string(),
+            ordering: sim.ordering().name().to_string(),
             path: (if solution.reduced {
                 "reduced"
             } else {

@@ -141,11 +141,7 @@ pub(super) fn coarsest(
     floor: usize,
 ) -> Result<usize, crate::error::InputError> {
     let mut last = None;
-    let powers = (2..=8).map(|e| 1usize << e);
-    let others = (4..=256)
-        .step_by(4)
-        .filter(|n: &usize| !n.is_power_of_two());
-    for n0 in powers.chain(others).filter(|&n0| n0 >= floor) {
+    for n0 in crate::mesh::grid_candidates(256).filter(|&n0| n0 >= floor) {
         match levels.iter().try_for_each(|&m| scn.check_grid(n0 * m)) {
             Ok(()) => return Ok(n0),
             Err(e) => last = Some(e),
