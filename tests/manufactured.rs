@@ -83,7 +83,14 @@ fn separable_strains_are_the_evaluated_ones_bit_for_bit() {
     let separable: Vec<Solution> = SOLUTIONS.into_iter().filter(|s| s.separable()).collect();
     assert_eq!(
         separable,
-        [Solution::Branch1, Solution::Regimes, Solution::P1]
+        [
+            Solution::Branch1,
+            Solution::Regimes,
+            Solution::P1,
+            Solution::P1Limit,
+            Solution::Landing,
+            Solution::OffNode
+        ]
     );
     assert!(!Solution::Moving.separable() && !Solution::Steady.separable());
     let mut compared = 0;
@@ -108,7 +115,7 @@ fn separable_strains_are_the_evaluated_ones_bit_for_bit() {
             }
         }
     }
-    assert_eq!(compared, 3 * 41 * 21 * 65);
+    assert_eq!(compared, 6 * 41 * 21 * 65);
 }
 
 #[test]
@@ -218,7 +225,10 @@ fn data_satisfy_the_hypotheses_and_the_contact_conditions() {
         }
         assert_eq!(
             touched,
-            matches!(sol, Solution::Regimes | Solution::Moving),
+            !matches!(
+                sol,
+                Solution::Branch1 | Solution::Steady | Solution::P1
+            ),
             "{sol:?}"
         );
         if sol.is_static() {
@@ -283,4 +293,23 @@ fn the_steady_solution_by_hand() {
     );
     let top = data.traction(0.7, 1.0, 0.0, [0.0, 1.0]);
     assert_eq!(top, [0.0, 0.0]);
+}
+
+/// (g) lands on the limit at normal speed 2g/0.4 = 0.5 and stops; (f), the same but for
+/// its rise, lands at zero speed. On the plateau $[0.5, 1.5]$, one-sided differences.
+#[test]
+fn landing_lands_at_speed_and_p1limit_at_rest() {
+    let scn = paper();
+    let dt = 1e-7;
+    for (sol, speed) in [(Solution::Landing, 0.5), (Solution::P1Limit, 0.0)] {
+        let data = Data::new(sol, &scn);
+        assert_eq!(sol.landing_time(), (sol == Solution::Landing).then_some(0.4));
+        for x in [0.5, 0.8, 1.0, 1.5] {
+            assert_eq!(data.u_nu(x, 0.4), scn.g, "{sol:?} at {x}");
+            let before = (data.u_nu(x, 0.4) - data.u_nu(x, 0.4 - dt)) / dt;
+            let after = (data.u_nu(x, 0.4 + dt) - data.u_nu(x, 0.4)) / dt;
+            assert!((before - speed).abs() < 1e-5, "{sol:?} at {x}: {before}");
+            assert!(after.abs() < 1e-12, "{sol:?} at {x}: {after}");
+        }
+    }
 }

@@ -42,8 +42,9 @@ pub struct StepRow {
     /// $\|e_n\|_E$ and $\|e_n\|^2_V$.
     pub err_e: f64,
     pub err_v_sq: f64,
-    /// $\|u_n\|_E$.
+    /// $\|u_n\|_E$ and $\|u_n\|^2_V$.
     pub exact_e: f64,
+    pub exact_v_sq: f64,
     /// $\|u_n - \Pi^h u_n\|^2_V$.
     pub interp_v_sq: f64,
     /// $\|\delta(u_n - \Pi^h u_n)\|^2_V$.
@@ -116,6 +117,10 @@ impl ExactRun {
         } else {
             self.lhs() / (self.h * self.h + self.k * self.k)
         }
+    }
+    /// $\max_n\|u(t_n)\|^2_V$.
+    pub fn max_exact_v_sq(&self) -> f64 {
+        self.max(|r| r.exact_v_sq)
     }
     pub fn max_certificate(&self) -> f64 {
         self.max(|r| r.certificate)
@@ -529,6 +534,7 @@ fn measure_exact(
     for pt in points {
         let (ei, ei_prev) = (interp[pt.tri], interp_prev[pt.tri]);
         exact_e_sq += pt.w * energy_density(&data.elast, pt.now.eps);
+        row.exact_v_sq += pt.w * contract(pt.now.eps);
         row.interp_v_sq += pt.w * contract(sub(pt.now.eps, ei));
         if !sol.is_static() {
             let du = sub(pt.now.eps, pt.prev);

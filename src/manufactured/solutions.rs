@@ -27,6 +27,19 @@
 //!     ($n = 4$) of $v = (A\sin(\pi x)(1+y)/2,\; -0.8\,w(x)\,\eta(y))$. It lies in every
 //!     $V^h$ of the nested family, so its space error is the nodal contact rule's alone
 //!     and its $k$ family shows the time error by itself; $u_\nu \le 0.08 < g$.
+//! (f) `p1limit`: (b)'s $\rho(t)$ times the $n = 4$ interpolant of $(A\sin(\pi x)(1+y)/2,\;
+//!     -w_4(x)\,\eta(y))$ with $w_4 = g - G_0\,((|x - 1| - \tfrac12)_+/\tfrac12)^2$ at the
+//!     coarse nodes: $g$ at $x = \tfrac12, 1, \tfrac32$, $g - G_0$ at the corners. In every
+//!     $V^h$ like (e), but on the hold the plateau $[\tfrac12, \tfrac32]$ sits at $g$ (its
+//!     ends are coarse nodes) and $u_\nu$ falls linearly through every branch of the law
+//!     outward; the reaction is (b)'s with $R = \tfrac12$. It lands at zero normal speed.
+//! (g) `landing`: (f) with $\rho(t) = (t/0.4)^2$ on the rise: it lands on $g$ at
+//!     $t = 0.4$ with normal speed $2g/0.4 = 0.5$ and stops, so $\dot u$ jumps there and
+//!     $\ddot u \notin L^2(0, T; V)$: (4.14) fails in time alone. Hold and fall as (b).
+//! (h) `offnode`: (b) with the plateau half-width $R = \pi/12$ (irrational: its ends
+//!     $1 \pm R$ are nodes of no mesh), $L = 1 - R$ (so $w(0) = g - G_0$ as in (b)), and a
+//!     reaction $\lambda = \Lambda\mu(t)$ constant on the plateau: it does not vanish at
+//!     the zone's ends, so $R_n(\Pi^h u_n) \ne 0$ in the cells the ends cut.
 
 use super::Scalar;
 
@@ -46,15 +59,24 @@ pub enum Solution {
     Moving,
     /// (e) (b)'s time profile on a field of the coarsest mesh's P1 space.
     P1,
+    /// (f) (e) with a plateau at the limit whose ends are coarse nodes.
+    P1Limit,
+    /// (g) (f) landing on the limit at nonzero normal speed.
+    Landing,
+    /// (h) (b) with zone ends on no node and a reaction that does not vanish there.
+    OffNode,
 }
 
 /// The solutions, in the book's order.
-pub const SOLUTIONS: [Solution; 5] = [
+pub const SOLUTIONS: [Solution; 8] = [
     Solution::Branch1,
     Solution::Regimes,
     Solution::Steady,
     Solution::Moving,
     Solution::P1,
+    Solution::P1Limit,
+    Solution::Landing,
+    Solution::OffNode,
 ];
 
 const A: f64 = 0.02;
@@ -70,6 +92,12 @@ const L: f64 = 0.75;
 const R0: f64 = 0.25;
 const LAMBDA: f64 = 20.0;
 const DELTA: f64 = 0.06;
+/// (f), (g): the plateau's half-width and fall length at the coarse nodes.
+const R4: f64 = 0.5;
+const L4: f64 = 0.5;
+/// (h): the plateau's half-width, on no node of any mesh, and its fall length.
+const R_OFF: f64 = std::f64::consts::PI / 12.0;
+const L_OFF: f64 = 1.0 - R_OFF;
 /// The hold $[T_1, T_2]$ of (b) and (d).
 const T1: f64 = 0.4;
 const T2: f64 = 0.7;
@@ -106,15 +134,14 @@ fn dist<D: Scalar>(x: D, r: D) -> D {
 }
 
 /// The P1 interpolant on the $n = 4$ mesh (cells of side $1/2$, cut lower-left to
-/// upper-right) of $(A\sin(\pi x)(1+y)/2,\; -0.8\,w(x)\,\eta(y))$ with (b)'s $w$.
-fn coarse_p1<D: Scalar>(x: D, y: D) -> [D; 2] {
+/// upper-right) of $(A\sin(\pi x)(1+y)/2,\; -u_\nu(x)\,\eta(y))$, where `u_nu` gives the
+/// normal displacement at the coarse nodes of $\Gamma_3$.
+fn coarse_p1<D: Scalar>(x: D, y: D, u_nu: fn(f64) -> f64) -> [D; 2] {
     let node = |i: usize, j: usize| -> [f64; 2] {
         let (xn, yn) = (0.5 * i as f64, 0.5 * j as f64);
-        let d = ((xn - 1.0).abs() - R0).max(0.0) / L;
-        let w = G - G0 * d * d;
         [
             A / 2.0 * (std::f64::consts::PI * xn).sin() * (1.0 + yn),
-            -P1_SCALE * w * eta(yn),
+            -u_nu(xn) * eta(yn),
         ]
     };
     let (i, j) = (
@@ -137,6 +164,23 @@ fn coarse_p1<D: Scalar>(x: D, y: D) -> [D; 2] {
     })
 }
 
+/// $G - G_0\,((|x - 1| - r)_+/l)^2$: the normal displacement on the hold of (b) ($r = R$,
+/// $l = L$) and of its variants.
+fn plateau(x: f64, r: f64, l: f64) -> f64 {
+    let d = ((x - 1.0).abs() - r).max(0.0) / l;
+    G - G0 * d * d
+}
+
+/// (e)'s normal displacement at a coarse node: $0.8\,w$ with (b)'s $w$.
+fn p1_nodes(x: f64) -> f64 {
+    P1_SCALE * plateau(x, R0, L)
+}
+
+/// (f)'s and (g)'s at a coarse node: $g$ on $[\tfrac12, \tfrac32]$, $g - G_0$ at the corners.
+fn p1_limit_nodes(x: f64) -> f64 {
+    plateau(x, R4, L4)
+}
+
 /// The constants of the solutions, written into the study's tables.
 pub fn parameters() -> String {
     format!(
@@ -146,13 +190,17 @@ pub fn parameters() -> String {
          w(0) = {:.2}, plateau [{}, {}], reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) (1 - ((x - 1)/R)^2)^2 on the hold; \
          (c) u = (0, -delta eta), delta = {DELTA}, p(delta) = {}; \
          (d) R(t) = {R0} + {GROW} S((t - {T1})/{:.1}); \
-         (e) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -{P1_SCALE} w eta)",
+         (e) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -{P1_SCALE} w eta); \
+         (f) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -w4 eta), w4 = g - G0 ((|x - 1| - {R4})_+/{L4})^2 (g at x = 0.5, 1, 1.5), reaction of (b) with R = {R4}; \
+         (g) (f) with rho = (t/{T1})^2 before t = {T1} (lands at normal speed 2g/{T1}); \
+         (h) (b) with R = pi/12, L = 1 - R, reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) on |x - 1| < R",
         1.0 - T2,
         G - G0,
         1.0 - R0,
         1.0 + R0,
         T2 - T1,
         crate::law::paper_law().p(DELTA),
+        T2 - T1,
         T2 - T1,
     )
 }
@@ -166,6 +214,9 @@ impl Solution {
             Solution::Steady => "steady",
             Solution::Moving => "moving",
             Solution::P1 => "p1",
+            Solution::P1Limit => "p1limit",
+            Solution::Landing => "landing",
+            Solution::OffNode => "offnode",
         }
     }
 
@@ -177,6 +228,9 @@ impl Solution {
             Solution::Steady => "(c) steady, static problem",
             Solution::Moving => "(d) moving zone ends",
             Solution::P1 => "(e) P1 in space",
+            Solution::P1Limit => "(f) P1 in space, at the limit",
+            Solution::Landing => "(g) (f) landing at speed",
+            Solution::OffNode => "(h) zone ends on no node",
         }
     }
 
@@ -185,12 +239,24 @@ impl Solution {
         self == Solution::Steady
     }
 
-    /// The load factor $\rho(t)$ of (a), (b), (d).
+    /// The load factor $\rho(t)$.
     fn rho<D: Scalar>(self, t: D) -> D {
+        let fall = smoothstep((t - T2) / (1.0 - T2)) * 0.5;
         match self {
             Solution::Branch1 => smoothstep(t),
-            Solution::Regimes | Solution::Moving | Solution::P1 => {
-                smoothstep(t / T1) - smoothstep((t - T2) / (1.0 - T2)) * 0.5
+            Solution::Regimes
+            | Solution::Moving
+            | Solution::P1
+            | Solution::P1Limit
+            | Solution::OffNode => smoothstep(t / T1) - fall,
+            Solution::Landing => {
+                let rise = if t.re() < T1 {
+                    let s = t / T1;
+                    s * s
+                } else {
+                    c(1.0)
+                };
+                rise - fall
             }
             Solution::Steady => c(1.0),
         }
@@ -200,6 +266,8 @@ impl Solution {
     fn half_width<D: Scalar>(self, t: D) -> D {
         match self {
             Solution::Moving => c::<D>(R0) + smoothstep((t - T1) / (T2 - T1)) * GROW,
+            Solution::P1Limit | Solution::Landing => c(R4),
+            Solution::OffNode => c(R_OFF),
             _ => c(R0),
         }
     }
@@ -219,7 +287,7 @@ impl Solution {
     }
 
     /// $u / \rho$: a function of $(x, y)$ alone except for (d), whose plateau grows
-    /// with $t$.
+    /// with $t$. (The steady solution has no factor: this is $u$.)
     pub fn shape<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
         let ux = (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
         let u_nu = match self {
@@ -231,8 +299,13 @@ impl Solution {
                 let d = dist(x, self.half_width(t)) / L;
                 c::<D>(G) - d * d * G0
             }
+            Solution::OffNode => {
+                let d = dist(x, c(R_OFF)) / L_OFF;
+                c::<D>(G) - d * d * G0
+            }
             Solution::Steady => return [c(0.0), -eta(y) * DELTA],
-            Solution::P1 => return coarse_p1(x, y),
+            Solution::P1 => return coarse_p1(x, y, p1_nodes),
+            Solution::P1Limit | Solution::Landing => return coarse_p1(x, y, p1_limit_nodes),
         };
         [ux, -u_nu * eta(y)]
     }
@@ -242,7 +315,7 @@ impl Solution {
     /// Whether $u = \rho(t)\,U(x, y)$ with fixed quadrature cuts, so that the strains
     /// at a point are its shape's times $\rho(t)$ and $\dot\rho(t)$.
     pub fn separable(self) -> bool {
-        matches!(self, Solution::Branch1 | Solution::Regimes | Solution::P1)
+        !matches!(self, Solution::Steady | Solution::Moving)
     }
 
     /// $(\rho(t), \dot\rho(t))$, exact: the time part of the hyper-dual evaluation
@@ -256,24 +329,66 @@ impl Solution {
     /// only where $u_\nu = g$.
     pub fn reaction(self, x: f64, t: f64) -> f64 {
         match self {
-            Solution::Regimes | Solution::Moving if (T1..=T2).contains(&t) => {
+            Solution::Regimes | Solution::Moving | Solution::P1Limit | Solution::Landing
+            | Solution::OffNode
+                if (T1..=T2).contains(&t) =>
+            {
                 let r = self.half_width(t);
                 let s = (x - 1.0) / r;
                 if s.abs() >= 1.0 {
                     return 0.0;
                 }
                 let mu = (std::f64::consts::PI * (t - T1) / (T2 - T1)).sin().powi(2);
-                LAMBDA * mu * (1.0 - s * s).powi(2)
+                if self == Solution::OffNode {
+                    LAMBDA * mu
+                } else {
+                    LAMBDA * mu * (1.0 - s * s).powi(2)
+                }
             }
             _ => 0.0,
         }
+    }
+
+    /// When (g) lands on $g$ at nonzero normal speed ($T_1 = 0.4$; `None` for the others).
+    pub fn landing_time(self) -> Option<f64> {
+        (self == Solution::Landing).then_some(T1)
+    }
+
+    /// $k\sum_n|R_n(\Pi^h u_n)|$ in closed form for (h) on the mesh with `n` segments
+    /// and `steps` steps of $[0, T]$ (`None` for the others). On the hold $u_\nu = g$
+    /// on the plateau and $g - c\,(|x - 1| - R)^2$ outside ($c = G_0/L^2$), and
+    /// $\lambda = \Lambda\mu(t)$ inside. $\Pi^h u_\nu - u_\nu$ vanishes on every plateau
+    /// cell but the one each end $a$ cuts, $[x_j, x_j + 2h]$; there, with
+    /// $\theta = (a - x_j)/2h$, the plateau part of $\int\lambda\,(\Pi^h u_\nu - u_\nu)$ is
+    /// $\Lambda\mu(t)\,c\,(2h)^3\theta^2(1 - \theta)^2/2$. Summed over both ends and the steps:
+    /// $$k\sum_n|R_n| = \Lambda\,\Big(k\sum_n\mu(t_n)\Big)\,\frac{c\,(2h)^3}{2}\,
+    /// \big(\varphi(\theta_-) + \varphi(\theta_+)\big), \qquad \varphi(\theta) = \theta^2(1 - \theta)^2,$$
+    /// $O(h^3)$ with a factor that wanders with the ends' place in their cells, where
+    /// the proof of Corollary 4.1 bounds it by $\|\Pi^h u_\nu - u_\nu\|_{L^2(\Gamma_3)} = O(h^2)$.
+    pub fn predicted_r_sum(self, n: usize, steps: usize, t_end: f64) -> Option<f64> {
+        if self != Solution::OffNode {
+            return None;
+        }
+        let (h, k) = (1.0 / n as f64, t_end / steps as f64);
+        let mu_sum: f64 = (1..=steps)
+            .map(|i| i as f64 * k)
+            .filter(|t| (T1..=T2).contains(t))
+            .map(|t| (std::f64::consts::PI * (t - T1) / (T2 - T1)).sin().powi(2))
+            .sum::<f64>()
+            * k;
+        let phi = |a: f64| {
+            let th = (a / (2.0 * h)).fract();
+            th * th * (1.0 - th) * (1.0 - th)
+        };
+        let c = G0 / (L_OFF * L_OFF);
+        Some(LAMBDA * mu_sum * c * (2.0 * h).powi(3) / 2.0 * (phi(1.0 - R_OFF) + phi(1.0 + R_OFF)))
     }
 
     /// The vertical lines $x = c$ across which $u(\cdot, t)$ is smooth only
     /// piecewise (quadrature cuts there): the plateau's ends.
     pub fn cuts(self, t: f64) -> Vec<f64> {
         match self {
-            Solution::Regimes | Solution::Moving => {
+            Solution::Regimes | Solution::Moving | Solution::OffNode => {
                 let r = self.half_width(t);
                 vec![1.0 - r, 1.0 + r]
             }

@@ -193,7 +193,7 @@ impl Figure for Regimes {
     }
 }
 
-const COLOURS: [(&str, &str, RGBColor); 8] = [
+const COLOURS: [(&str, &str, RGBColor); 12] = [
     ("branch1", "h=k", RGBColor(0, 114, 178)),
     ("regimes", "h=k", RGBColor(213, 94, 0)),
     ("regimes", "h", RGBColor(230, 159, 0)),
@@ -202,6 +202,10 @@ const COLOURS: [(&str, &str, RGBColor); 8] = [
     ("moving", "h=k", RGBColor(86, 180, 233)),
     ("p1", "k", RGBColor(60, 60, 60)),
     ("p1", "h", RGBColor(150, 150, 150)),
+    ("offnode", "h=k", RGBColor(0, 0, 0)),
+    ("p1limit", "k", RGBColor(0, 114, 178)),
+    ("landing", "k", RGBColor(213, 94, 0)),
+    ("landing", "k_on_step", RGBColor(0, 158, 115)),
 ];
 
 fn label_of(sol: &str) -> &'static str {
@@ -229,16 +233,20 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
                 .collect();
             let pts = rows
                 .iter()
-                .map(|&i| (if f == "k" { steps[i] } else { n[i] }, err[i]))
+                .map(|&i| (if f.starts_with('k') { steps[i] } else { n[i] }, err[i]))
                 .collect::<Vec<_>>();
             let first = rows.first().copied().unwrap_or(0);
             let what = match f {
                 "h=k" => "h = k = 1/n".to_string(),
                 "h" if s == "steady" => "h = 1/n, static".to_string(),
                 "h" => format!("h = 1/n, N = {}", steps.get(first).copied().unwrap_or(0.0)),
+                "k_on_step" => format!(
+                    "k = 1/N, N = 5·2^m, n = {}",
+                    n.get(first).copied().unwrap_or(0.0)
+                ),
                 _ => format!("k = 1/N, n = {}", n.get(first).copied().unwrap_or(0.0)),
             };
-            ((format!("{}: {what}", label_of(s)), pts, c), f == "k")
+            ((format!("{}: {what}", label_of(s)), pts, c), f.starts_with('k'))
         })
         .filter(|s| !s.0.1.is_empty())
         .collect();
@@ -302,6 +310,11 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
             RGBColor(86, 180, 233),
         ),
         (
+            "(h) k Σ |R_n(Πu_n)|, ends on no node".into(),
+            pick("offnode", "r_sum")?,
+            RGBColor(0, 0, 0),
+        ),
+        (
             "(b) left side of (4.24)".into(),
             pick("regimes", "lhs")?,
             RGBColor(213, 94, 0),
@@ -358,4 +371,136 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
             series,
         },
     )
+}
+
+/// The observed constant of (4.24) over the $(h, k)$ grid: one panel per solution,
+/// a cell per $(n, N)$ coloured by $\log_{10}$ of its value (each panel on its own
+/// range) and labelled with it.
+struct Grid {
+    /// (panel title, cells (n, N, value)).
+    panels: Vec<(String, Vec<(f64, f64, f64)>)>,
+}
+
+/// A sequential colour from pale yellow (0) to dark blue (1), readable in grey.
+fn sequential(s: f64) -> RGBColor {
+    const STOPS: [(f64, [f64; 3]); 4] = [
+        (0.0, [255.0, 247.0, 188.0]),
+        (0.35, [161.0, 218.0, 180.0]),
+        (0.7, [44.0, 127.0, 184.0]),
+        (1.0, [37.0, 52.0, 148.0]),
+    ];
+    let s = s.clamp(0.0, 1.0);
+    let i = STOPS.iter().rposition(|p| p.0 <= s).unwrap_or(0).min(2);
+    let ((a, ca), (b, cb)) = (STOPS[i], STOPS[i + 1]);
+    let w = (s - a) / (b - a);
+    let mix = |j: usize| (ca[j] + w * (cb[j] - ca[j])).round() as u8;
+    RGBColor(mix(0), mix(1), mix(2))
+}
+
+impl Figure for Grid {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let panels = root.split_evenly((1, self.panels.len()));
+        for (area, (title, cells)) in panels.iter().zip(&self.panels) {
+            let levels = |pick: fn(&(f64, f64, f64)) -> f64| {
+                let mut v: Vec<f64> = cells.iter().map(pick).collect();
+                v.sort_by(f64::total_cmp);
+                v.dedup();
+                v
+            };
+            let (ns, steps) = (levels(|c| c.0), levels(|c| c.1));
+            let mut chart = ChartBuilder::on(area)
+                .caption(title, ("sans-serif", 22))
+                .margin(15)
+                .x_label_area_size(60)
+                .y_label_area_size(80)
+                .build_cartesian_2d(0.0..ns.len() as f64, 0.0..steps.len() as f64)
+                .map_err(e2s)?;
+            let name = |v: &[f64], x: f64| {
+                v.get(x.floor() as usize)
+                    .filter(|_| (x - x.floor() - 0.5).abs() < 1e-9)
+                    .map_or(String::new(), |n| format!("{n}"))
+            };
+            chart
+                .configure_mesh()
+                .disable_mesh()
+                .x_labels(ns.len() * 2 + 1)
+                .y_labels(steps.len() * 2 + 1)
+                .x_label_formatter(&|x| name(&ns, *x))
+                .y_label_formatter(&|y| name(&steps, *y))
+                .x_desc("n = 1/h")
+                .y_desc("N = T/k")
+                .label_style(("sans-serif", 18))
+                .axis_desc_style(("sans-serif", 18))
+                .draw()
+                .map_err(e2s)?;
+            let logs = cells.iter().map(|c| c.2.log10());
+            let (lo, hi) = (
+                logs.clone().fold(f64::INFINITY, f64::min),
+                logs.fold(f64::NEG_INFINITY, f64::max),
+            );
+            for &(n, s, v) in cells {
+                let (i, j) = (
+                    ns.iter().position(|&x| x == n).unwrap_or(0) as f64,
+                    steps.iter().position(|&x| x == s).unwrap_or(0) as f64,
+                );
+                let shade = (v.log10() - lo) / (hi - lo).max(1e-12);
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(i, j), (i + 1.0, j + 1.0)],
+                        sequential(shade).filled(),
+                    )))
+                    .map_err(e2s)?;
+                let ink = if shade > 0.55 { WHITE } else { BLACK };
+                let style = ("sans-serif", 17)
+                    .into_font()
+                    .color(&ink)
+                    .pos(plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Center,
+                        plotters::style::text_anchor::VPos::Center,
+                    ));
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        if v >= 0.01 {
+                            format!("{v:.3}")
+                        } else {
+                            format!("{v:.1e}")
+                        },
+                        (i + 0.5, j + 0.5),
+                        style,
+                    )))
+                    .map_err(e2s)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The heat map of the $(h, k)$ grid ([`super::grid`]) from `exact_grid.csv`.
+pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
+    let df = read_csv(grid)?;
+    let (sol, n, steps, c) = (
+        col_str(&df, "solution")?,
+        col_f64(&df, "n")?,
+        col_f64(&df, "steps")?,
+        col_f64(&df, "lhs_over_h2_plus_k2")?,
+    );
+    let mut names: Vec<&str> = sol.iter().map(String::as_str).collect();
+    names.dedup();
+    let panels: Vec<(String, Vec<(f64, f64, f64)>)> = names
+        .iter()
+        .map(|&s| {
+            let cells = (0..sol.len())
+                .filter(|&i| sol[i] == s)
+                .map(|i| (n[i], steps[i], c[i]))
+                .collect();
+            (
+                format!("{}: LHS/(h² + k²), h = 1/n", label_of(s)),
+                cells,
+            )
+        })
+        .collect();
+    both(&ctx.figures, "exact_grid", (1400, 640), &Grid { panels })
 }

@@ -22,7 +22,8 @@ use crate::scenario::Scenario;
 /// One family of levels of one solution: (n, N) pairs.
 pub struct Family {
     pub sol: Solution,
-    /// `h=k`, `h` ($N$ fixed) or `k` ($n$ fixed).
+    /// `h=k`, `h` ($N$ fixed) or `k` ($n$ fixed, $N$ powers of two); `k_on_step`: $n$
+    /// fixed, $N = 5\cdot 2^m$, so that $t = 0.4$ (where (g) lands) is a time step.
     pub kind: &'static str,
     pub levels: Vec<(usize, usize)>,
 }
@@ -45,6 +46,12 @@ pub fn families(quick: bool) -> Vec<Family> {
             fam(Moving, "h=k", hk(&ns)),
             fam(P1, "k", k(16, &[4, 8, 16, 32])),
             fam(P1, "h", h(&ns, 16)),
+            fam(P1Limit, "k", k(16, &[4, 8, 16, 32])),
+            fam(P1Limit, "h=k", hk(&ns)),
+            fam(Landing, "k", k(16, &[4, 8, 16, 32])),
+            fam(Landing, "k_on_step", k(16, &[5, 10, 20, 40])),
+            fam(Landing, "h=k", hk(&ns)),
+            fam(OffNode, "h=k", hk(&ns)),
         ]
     } else {
         let ns = [8, 16, 32, 64, 128];
@@ -52,11 +59,17 @@ pub fn families(quick: bool) -> Vec<Family> {
             fam(Branch1, "h=k", hk(&ns)),
             fam(Regimes, "h=k", hk(&ns)),
             fam(Regimes, "h", h(&ns, 256)),
-            fam(Regimes, "k", k(256, &[4, 8, 16, 32])),
+            fam(Regimes, "k", k(256, &[4, 8, 16, 32, 64, 128])),
             fam(Steady, "h", h(&[8, 16, 32, 64, 128, 256], 1)),
             fam(Moving, "h=k", hk(&ns)),
             fam(P1, "k", k(64, &[4, 8, 16, 32, 64, 128, 256, 512])),
             fam(P1, "h", h(&ns, 64)),
+            fam(P1Limit, "k", k(64, &[4, 8, 16, 32, 64, 128, 256, 512])),
+            fam(P1Limit, "h=k", hk(&ns)),
+            fam(Landing, "k", k(64, &[4, 8, 16, 32, 64, 128, 256, 512])),
+            fam(Landing, "k_on_step", k(64, &[5, 10, 20, 40, 80, 160, 320, 640])),
+            fam(Landing, "h=k", hk(&ns)),
+            fam(OffNode, "h=k", hk(&ns)),
         ]
     }
 }
@@ -123,12 +136,69 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
             ));
         }
     }
+    let grid = run_grid(ctx, &scn)?;
     let conv = write_convergence(ctx, &fams, &study)?;
     let cea = write_cea(ctx, &fams, &study)?;
     write_crime(ctx, &fams, &study)?;
     let regimes = write_regimes(ctx, &fams, &study)?;
     write_quadrature(ctx, &scn)?;
-    figure::draw_all(ctx, &conv, &cea, &regimes)
+    let grid = write_grid(ctx, &grid)?;
+    figure::draw_all(ctx, &conv, &cea, &regimes)?;
+    figure::draw_grid(ctx, &grid)
+}
+
+/// The solutions and levels of the $(h, k)$ grid: every pair of $n$ and $N$ from one
+/// list, for (b) and (f).
+pub fn grid(quick: bool) -> (Vec<Solution>, Vec<usize>) {
+    let levels = if quick {
+        vec![8, 16, 32]
+    } else {
+        vec![8, 16, 32, 64, 128]
+    };
+    (vec![Solution::Regimes, Solution::P1Limit], levels)
+}
+
+/// Runs the $(h, k)$ grid of [`grid`], row by row.
+fn run_grid(ctx: &Ctx, scn: &Scenario) -> Result<Vec<ExactRun>, ExpError> {
+    let (sols, levels) = grid(ctx.quick);
+    ctx.add_units(sols.len() * levels.len() * levels.len());
+    let mut out = vec![];
+    for sol in sols {
+        for &n in &levels {
+            for &steps in &levels {
+                out.push(run(sol, scn, n, steps)?);
+                ctx.log(&format!("exact grid {} n = {n}, N = {steps}", sol.name()));
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn write_grid(ctx: &Ctx, runs: &[ExactRun]) -> Result<std::path::PathBuf, ExpError> {
+    let mut t = Cols::default();
+    for r in runs {
+        let (h, k, lhs) = (r.h, r.k, r.lhs());
+        t.s("solution", r.sol.name());
+        t.u("n", r.n);
+        t.u("steps", r.steps);
+        t.f("h", h);
+        t.f("k", k);
+        t.f("lhs", lhs);
+        t.f("lhs_over_h2_plus_k2", lhs / (h * h + k * k));
+        t.f("lhs_over_h_plus_k_sq", lhs / ((h + k) * (h + k)));
+        t.f("max_u_v_sq", r.max_exact_v_sq());
+        t.f(
+            "rel_lhs_over_h2_plus_k2",
+            lhs / r.max_exact_v_sq() / (h * h + k * k),
+        );
+        t.f("rel_err_max_percent", 100.0 * r.rel_max());
+        t.f("max_certificate", r.max_certificate());
+    }
+    let params = format!(
+        "{}; solutions (b) and (f) on every pair (n, N) of the levels, h = 1/n (the paper's h: Gamma_3 in 1/h segments, the cells have side 2h), k = T/N; lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, the left side of (4.24); max_u_v_sq = max_n ||u(t_n)||_V^2; rel_lhs_over_h2_plus_k2 = lhs / max_u_v_sq / (h^2 + k^2), the constant with the size of u divided out",
+        params()
+    );
+    ctx.write("exact_grid.csv", &t.table(), &params)
 }
 
 /// The provenance every table of the study shares.
@@ -162,14 +232,24 @@ fn write_convergence(
             t.f("rel_err_l2_percent", 100.0 * l2[i]);
             t.f("order_l2", ol[i]);
             t.f("lhs_over_h2_plus_k2", r.constant());
+            t.f("landing_gap", landing_gap(fam.sol, r.k));
             t.f("max_certificate", r.max_certificate());
         }
     }
     let params = format!(
-        "{}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column",
+        "{}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); landing_gap (g only) = T1 - t_m, t_m the last step before the landing time T1 = 0.4; steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column",
         params()
     );
     ctx.write("exact_convergence.csv", &t.table(), &params)
+}
+
+/// For (g): $T_1 - t_m$, how long before the landing time $T_1$ the last step
+/// $t_m < T_1$ falls (in $(0, k]$; $k$ when $T_1$ is a step); NaN for the others.
+fn landing_gap(sol: Solution, k: f64) -> f64 {
+    sol.landing_time().map_or(f64::NAN, |t1| {
+        let m = (t1 / k - 1e-9).ceil() - 1.0;
+        t1 - m * k
+    })
 }
 
 fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf, ExpError> {
@@ -182,7 +262,12 @@ fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf
         "delta_sum",
     ];
     for (fi, fam) in fams.iter().enumerate() {
-        if fam.kind != "h=k" || !matches!(fam.sol, Solution::Regimes | Solution::Moving) {
+        if fam.kind != "h=k"
+            || !matches!(
+                fam.sol,
+                Solution::Regimes | Solution::Moving | Solution::OffNode
+            )
+        {
             continue;
         }
         let runs: Vec<&ExactRun> = s.runs.iter().filter(|r| r.0 == fi).map(|r| &r.1).collect();
@@ -203,11 +288,18 @@ fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf
             t.f("lhs", lhs[i]);
             t.f("order_lhs", ol[i]);
             t.f("lhs_over_terms", lhs[i] / terms[i].iter().sum::<f64>());
+            t.f("r_share", terms[i][3] / terms[i].iter().sum::<f64>());
+            t.f(
+                "r_sum_predicted",
+                fam.sol
+                    .predicted_r_sum(r.n, r.steps, r.k * r.steps as f64)
+                    .unwrap_or(f64::NAN),
+            );
             t.f("lhs_over_h2_plus_k2", lhs[i] / (r.h * r.h + r.k * r.k));
         }
     }
     let params = format!(
-        "{}; the right side of (4.16) with v_n = Pi^h u_n (nodal interpolant), h = k = 1/n: interp_max = max_n ||u_n - Pi u_n||_V^2, dinterp_sum = k sum ||delta(u_n - Pi u_n)||_V^2, gamma_sum = k sum ||u_n,nu - Pi u_n,nu||_L2(Gamma3), r_sum = k sum |R_n(Pi u_n)|, delta_sum = k sum ||delta u_n - u'(t_n)||_V^2; predicted orders (4.20)-(4.23): 2 each (h^2 or k^2); lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, predicted 2; lhs_over_terms = lhs / (the sum of the five terms), the observed constant of (4.16); lhs_over_h2_plus_k2 that of (4.24)",
+        "{}; the right side of (4.16) with v_n = Pi^h u_n (nodal interpolant), h = k = 1/n: interp_max = max_n ||u_n - Pi u_n||_V^2, dinterp_sum = k sum ||delta(u_n - Pi u_n)||_V^2, gamma_sum = k sum ||u_n,nu - Pi u_n,nu||_L2(Gamma3), r_sum = k sum |R_n(Pi u_n)|, delta_sum = k sum ||delta u_n - u'(t_n)||_V^2; predicted orders (4.20)-(4.23): 2 each (h^2 or k^2); lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, predicted 2; lhs_over_terms = lhs / (the sum of the five terms), the observed constant of (4.16); r_share = r_sum / (the sum of the five terms); r_sum_predicted: (h)'s k sum |R_n| in closed form (Solution::predicted_r_sum), NaN for the others; lhs_over_h2_plus_k2 that of (4.24)",
         params()
     );
     ctx.write("exact_cea.csv", &t.table(), &params)
@@ -261,7 +353,7 @@ fn write_regimes(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::Pat
         }
     }
     let params = format!(
-        "{}; solutions (a), (b) and (d) on h = k = 1/n: the number of contact nodes (n + 1) in each regime of the discrete solution after every step, and Newton's iterations",
+        "{}; every solution with an h = k family ((a), (b), (d), (f), (g), (h)) on h = k = 1/n: the number of contact nodes (n + 1) in each regime of the discrete solution after every step, and Newton's iterations",
         params()
     );
     ctx.write("exact_regimes.csv", &t.table(), &params)
