@@ -9,11 +9,14 @@ use std::path::Path;
 
 mod common;
 
-// The claims of "Beyond the paper", "Your own scenario" and "Errata", one module each.
+// The claims of "Beyond the paper", "Your own scenario", "Errata", "Results", "Time"
+// and the newer ones of "Exact solutions", one module each.
 #[path = "claims/beyond.rs"]
 mod beyond;
 #[path = "claims/errata.rs"]
 mod errata;
+#[path = "claims/exact.rs"]
+mod exact;
 #[path = "claims/own.rs"]
 mod own;
 #[path = "claims/results.rs"]
@@ -219,45 +222,6 @@ fn exact_moving_dinterp() {
         "order_dinterp_sum",
     );
     assert!(od[od.len() - 1] < ob[ob.len() - 1], "{od:?} {ob:?}");
-}
-
-#[test]
-fn exact_b_k_follows_e() {
-    let b = column(
-        "exact_convergence.csv",
-        &[("solution", "regimes"), ("family", "k")],
-        "rel_err_max_percent",
-    );
-    let bs = column(
-        "exact_convergence.csv",
-        &[("solution", "regimes"), ("family", "k")],
-        "steps",
-    );
-    let e = column(
-        "exact_convergence.csv",
-        &[("solution", "p1"), ("family", "k")],
-        "rel_err_max_percent",
-    );
-    let es = column(
-        "exact_convergence.csv",
-        &[("solution", "p1"), ("family", "k")],
-        "steps",
-    );
-    for (i, steps) in bs.iter().enumerate() {
-        let j = es
-            .iter()
-            .position(|s| s == steps)
-            .expect("the same N in (e)");
-        if *steps < 32.0 {
-            // within 5 % of each other
-            assert!(
-                (b[i] - e[j]).abs() < 0.05 * e[j],
-                "N = {steps}: {} {}",
-                b[i],
-                e[j]
-            );
-        }
-    }
 }
 
 #[test]

@@ -225,10 +225,7 @@ fn data_satisfy_the_hypotheses_and_the_contact_conditions() {
         }
         assert_eq!(
             touched,
-            !matches!(
-                sol,
-                Solution::Branch1 | Solution::Steady | Solution::P1
-            ),
+            !matches!(sol, Solution::Branch1 | Solution::Steady | Solution::P1),
             "{sol:?}"
         );
         if sol.is_static() {
@@ -303,7 +300,10 @@ fn landing_lands_at_speed_and_p1limit_at_rest() {
     let dt = 1e-7;
     for (sol, speed) in [(Solution::Landing, 0.5), (Solution::P1Limit, 0.0)] {
         let data = Data::new(sol, &scn);
-        assert_eq!(sol.landing_time(), (sol == Solution::Landing).then_some(0.4));
+        assert_eq!(
+            sol.landing_time(),
+            (sol == Solution::Landing).then_some(0.4)
+        );
         for x in [0.5, 0.8, 1.0, 1.5] {
             assert_eq!(data.u_nu(x, 0.4), scn.g, "{sol:?} at {x}");
             let before = (data.u_nu(x, 0.4) - data.u_nu(x, 0.4 - dt)) / dt;

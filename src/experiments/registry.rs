@@ -169,8 +169,8 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "exact",
         about: "manufactured solutions: Corollary 4.1 against the truth",
         paper: false,
-        // Alone 15.8 s (one run, after the separable solutions came to be scaled).
-        cost: 16.0,
+        // Alone 46.0 s (one run, with solutions (f)-(h) and the (h, k) grid).
+        cost: 46.0,
         run: super::exact::run_study,
         tables: &[
             table("exact_convergence.csv", 4, 6),

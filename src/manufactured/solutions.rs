@@ -329,7 +329,10 @@ impl Solution {
     /// only where $u_\nu = g$.
     pub fn reaction(self, x: f64, t: f64) -> f64 {
         match self {
-            Solution::Regimes | Solution::Moving | Solution::P1Limit | Solution::Landing
+            Solution::Regimes
+            | Solution::Moving
+            | Solution::P1Limit
+            | Solution::Landing
             | Solution::OffNode
                 if (T1..=T2).contains(&t) =>
             {

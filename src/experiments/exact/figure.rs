@@ -246,7 +246,10 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
                 ),
                 _ => format!("k = 1/N, n = {}", n.get(first).copied().unwrap_or(0.0)),
             };
-            ((format!("{}: {what}", label_of(s)), pts, c), f.starts_with('k'))
+            (
+                (format!("{}: {what}", label_of(s)), pts, c),
+                f.starts_with('k'),
+            )
         })
         .filter(|s| !s.0.1.is_empty())
         .collect();
@@ -454,13 +457,12 @@ impl Figure for Grid {
                     )))
                     .map_err(e2s)?;
                 let ink = if shade > 0.55 { WHITE } else { BLACK };
-                let style = ("sans-serif", 17)
-                    .into_font()
-                    .color(&ink)
-                    .pos(plotters::style::text_anchor::Pos::new(
+                let style = ("sans-serif", 17).into_font().color(&ink).pos(
+                    plotters::style::text_anchor::Pos::new(
                         plotters::style::text_anchor::HPos::Center,
                         plotters::style::text_anchor::VPos::Center,
-                    ));
+                    ),
+                );
                 chart
                     .draw_series(std::iter::once(Text::new(
                         if v >= 0.01 {
@@ -496,10 +498,7 @@ pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
                 .filter(|&i| sol[i] == s)
                 .map(|i| (n[i], steps[i], c[i]))
                 .collect();
-            (
-                format!("{}: LHS/(h² + k²), h = 1/n", label_of(s)),
-                cells,
-            )
+            (format!("{}: LHS/(h² + k²), h = 1/n", label_of(s)), cells)
         })
         .collect();
     both(&ctx.figures, "exact_grid", (1400, 640), &Grid { panels })

@@ -67,7 +67,11 @@ pub fn families(quick: bool) -> Vec<Family> {
             fam(P1Limit, "k", k(64, &[4, 8, 16, 32, 64, 128, 256, 512])),
             fam(P1Limit, "h=k", hk(&ns)),
             fam(Landing, "k", k(64, &[4, 8, 16, 32, 64, 128, 256, 512])),
-            fam(Landing, "k_on_step", k(64, &[5, 10, 20, 40, 80, 160, 320, 640])),
+            fam(
+                Landing,
+                "k_on_step",
+                k(64, &[5, 10, 20, 40, 80, 160, 320, 640]),
+            ),
             fam(Landing, "h=k", hk(&ns)),
             fam(OffNode, "h=k", hk(&ns)),
         ]
@@ -136,7 +140,7 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
             ));
         }
     }
-    let grid = run_grid(ctx, &scn)?;
+    let grid = run_grid(ctx, &scn, &study.runs)?;
     let conv = write_convergence(ctx, &fams, &study)?;
     let cea = write_cea(ctx, &fams, &study)?;
     write_crime(ctx, &fams, &study)?;
@@ -158,15 +162,25 @@ pub fn grid(quick: bool) -> (Vec<Solution>, Vec<usize>) {
     (vec![Solution::Regimes, Solution::P1Limit], levels)
 }
 
-/// Runs the $(h, k)$ grid of [`grid`], row by row.
-fn run_grid(ctx: &Ctx, scn: &Scenario) -> Result<Vec<ExactRun>, ExpError> {
+/// Runs the $(h, k)$ grid of [`grid`], row by row, taking a pair the families already
+/// ran (`done`) from there.
+fn run_grid(
+    ctx: &Ctx,
+    scn: &Scenario,
+    done: &[(usize, ExactRun)],
+) -> Result<Vec<ExactRun>, ExpError> {
     let (sols, levels) = grid(ctx.quick);
     ctx.add_units(sols.len() * levels.len() * levels.len());
     let mut out = vec![];
     for sol in sols {
         for &n in &levels {
             for &steps in &levels {
-                out.push(run(sol, scn, n, steps)?);
+                let same =
+                    |r: &&(usize, ExactRun)| r.1.sol == sol && r.1.n == n && r.1.steps == steps;
+                match done.iter().find(same) {
+                    Some((_, r)) => out.push(r.clone()),
+                    None => out.push(run(sol, scn, n, steps)?),
+                }
                 ctx.log(&format!("exact grid {} n = {n}, N = {steps}", sol.name()));
             }
         }

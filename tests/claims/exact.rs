@@ -1,0 +1,286 @@
+//! The claims of chapter "Exact solutions" about solutions (f)–(h), (b)'s longer k
+//! family and the (h, k) grid.
+
+use super::{column, fix, fixes, last, num, rows, sig, sigs};
+
+fn conv(sol: &str, family: &str, col: &str) -> Vec<f64> {
+    column(
+        "exact_convergence.csv",
+        &[("solution", sol), ("family", family)],
+        col,
+    )
+}
+
+fn grid(sol: &str, col: &str) -> Vec<f64> {
+    column("exact_grid.csv", &[("solution", sol)], col)
+}
+
+/// The row of `sol` in exact_grid.csv where `col` is largest: (n, N, value).
+fn grid_max(sol: &str, col: &str) -> (f64, f64, f64) {
+    let (n, s, v) = (grid(sol, "n"), grid(sol, "steps"), grid(sol, col));
+    let i = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b])).unwrap();
+    (n[i], s[i], v[i])
+}
+
+#[test]
+fn exact_p1limit_k_order() {
+    let o = conv("p1limit", "k", "order_max");
+    assert_eq!(
+        fixes(&o[1..], 3),
+        [
+            "0.438", "0.778", "0.782", "0.844", "0.881", "0.981", "0.981"
+        ]
+    );
+    let [a, b]: [f64; 2] = last(&o);
+    assert!(a >= 0.95 && b >= 0.95, "{o:?}");
+    let (f, e) = (
+        conv("p1limit", "k", "rel_err_max_percent"),
+        conv("p1", "k", "rel_err_max_percent"),
+    );
+    assert_eq!(conv("p1limit", "k", "steps"), conv("p1", "k", "steps"));
+    let ratio: Vec<f64> = f.iter().zip(&e).map(|(f, e)| f / e).collect();
+    let (lo, hi) = (super::min(&ratio), super::max(&ratio));
+    assert_eq!((fix(lo, 3), fix(hi, 3)), ("0.977".into(), "1.035".into()));
+    assert!(hi - 1.0 < 0.035 && 1.0 - lo < 0.035, "{ratio:?}");
+}
+
+#[test]
+fn exact_p1limit_limit_nodes() {
+    let limit = column(
+        "exact_regimes.csv",
+        &[("solution", "p1limit"), ("n", "64")],
+        "limit",
+    );
+    assert_eq!(super::max(&limit), 29.0);
+    // The plateau [0.5, 1.5] holds the nodes 2j/64, j = 16 ... 48.
+    assert_eq!((16..=48).count(), 33);
+}
+
+#[test]
+fn exact_b_k_orders() {
+    let e = conv("regimes", "k", "rel_err_max_percent");
+    assert_eq!(
+        sigs(&e, 4),
+        ["8.458", "6.388", "3.856", "2.462", "1.714", "1.399"]
+    );
+    let o = conv("regimes", "k", "order_max");
+    assert_eq!(
+        fixes(&o[1..], 3),
+        ["0.405", "0.728", "0.647", "0.522", "0.294"]
+    );
+    assert_eq!(conv("regimes", "k", "n"), vec![256.0; 6]);
+}
+
+#[test]
+fn exact_b_k_in_quadrature() {
+    let (he, ho) = (
+        conv("regimes", "h", "rel_err_max_percent"),
+        conv("regimes", "h", "order_max"),
+    );
+    assert_eq!(conv("regimes", "h", "n").last(), Some(&128.0));
+    let (e128, o128) = (he[he.len() - 1], ho[ho.len() - 1]);
+    assert_eq!(
+        (fix(e128, 3), fix(o128, 3)),
+        ("2.499".into(), "0.977".into())
+    );
+    let floor = e128 / 2f64.powf(o128);
+    assert_eq!(fix(floor, 3), "1.269");
+    let b = conv("regimes", "k", "rel_err_max_percent");
+    let bs = conv("regimes", "k", "steps");
+    let f = conv("p1limit", "k", "rel_err_max_percent");
+    let fs = conv("p1limit", "k", "steps");
+    for (i, n) in bs.iter().enumerate() {
+        let j = fs.iter().position(|s| s == n).expect("(f) at the same N");
+        let q = floor.hypot(f[j]);
+        assert!(
+            (q - b[i]).abs() < 0.02 * b[i],
+            "N = {n}: {q} against {}",
+            b[i]
+        );
+        if *n == 32.0 {
+            assert_eq!((fix(q, 2), fix(f[j], 3)), ("2.48".into(), "2.127".into()));
+        }
+        // From N = 64 on the space part is the larger.
+        assert_eq!(floor > f[j], *n >= 64.0, "N = {n}");
+    }
+}
+
+#[test]
+fn exact_b_k_constant_rises() {
+    let c = conv("regimes", "k", "lhs_over_h2_plus_k2");
+    assert!(c.windows(2).all(|w| w[1] > w[0]), "{c:?}");
+    assert_eq!(
+        (sig(c[0], 2), sig(c[c.len() - 1], 4)),
+        ("0.0073".into(), "0.1515".into())
+    );
+}
+
+#[test]
+fn exact_landing_on_step_order() {
+    let e = conv("landing", "k_on_step", "rel_err_max_percent");
+    let s = conv("landing", "k_on_step", "steps");
+    assert_eq!((s[0], s[s.len() - 1]), (5.0, 640.0));
+    assert_eq!(
+        (sig(e[0], 4), sig(e[e.len() - 1], 4)),
+        ("17.44".into(), "0.6982".into())
+    );
+    let o = conv("landing", "k_on_step", "order_max");
+    assert!(o[1..].windows(2).all(|w| w[1] > w[0]), "not rising: {o:?}");
+    let [a, b]: [f64; 2] = last(&o);
+    assert_eq!((fix(a, 3), fix(b, 3)), ("0.930".into(), "0.963".into()));
+    // t = 0.4 is a step: the gap is k.
+    let gap = conv("landing", "k_on_step", "landing_gap");
+    for (g, n) in gap.iter().zip(&s) {
+        assert!((g - 1.0 / n).abs() < 1e-12, "{g} at N = {n}");
+    }
+}
+
+#[test]
+fn exact_landing_gap_stalls() {
+    let s = conv("landing", "k", "steps");
+    let gap = conv("landing", "k", "landing_gap");
+    let e = conv("landing", "k", "rel_err_max_percent");
+    let mut seen = 0;
+    for i in 0..s.len() {
+        if [128.0, 256.0, 512.0].contains(&s[i]) {
+            assert!((gap[i] - 1.0 / 640.0).abs() < 1e-12, "{}", gap[i]);
+            assert!((0.495..0.685).contains(&e[i]), "{}", e[i]);
+            seen += 1;
+        }
+    }
+    assert_eq!(seen, 3);
+    let o = conv("landing", "k", "order_max");
+    let o = &o[1..];
+    assert_eq!(
+        (fix(super::min(o), 2), fix(super::max(o), 2)),
+        ("-0.60".into(), "2.70".into())
+    );
+}
+
+#[test]
+fn exact_landing_error_over_gap() {
+    let per = |fam: &str| -> Vec<f64> {
+        let e = conv("landing", fam, "rel_err_max_percent");
+        let g = conv("landing", fam, "landing_gap");
+        e.iter().zip(&g).map(|(e, g)| e / g).collect()
+    };
+    let on = per("k_on_step");
+    let [a, b]: [f64; 2] = last(&on);
+    let p2 = per("k");
+    assert_eq!(conv("landing", "k", "steps").last(), Some(&512.0));
+    // "near 450 % per second": within 5 % of it.
+    for x in [a, b, p2[p2.len() - 1]] {
+        assert!((x - 450.0).abs() < 22.5, "{x}");
+    }
+}
+
+#[test]
+fn exact_landing_four_times() {
+    let g = conv("landing", "k", "rel_err_max_percent");
+    let f = conv("p1limit", "k", "rel_err_max_percent");
+    assert_eq!(conv("landing", "k", "steps"), conv("p1limit", "k", "steps"));
+    let (a, b) = (g[g.len() - 1], f[f.len() - 1]);
+    assert_eq!((fix(a, 4), fix(b, 4)), ("0.6781".into(), "0.1650".into()));
+    assert!((3.5..4.5).contains(&(a / b)), "{}", a / b);
+}
+
+#[test]
+fn exact_grid_b_max() {
+    let (n, s, v) = grid_max("regimes", "lhs_over_h2_plus_k2");
+    assert_eq!((n, s, fix(v, 4)), (32.0, 128.0, "0.5872".into()));
+    let all = rows("exact_grid.csv");
+    let b: Vec<_> = all.iter().filter(|r| r["solution"] == "regimes").collect();
+    assert_eq!(b.len(), 25);
+    for r in &b {
+        let c = num(r, "lhs_over_h2_plus_k2");
+        if r["steps"] == "128" {
+            assert!(c >= 0.33, "{r:?}");
+        }
+        if r["steps"] == r["n"] {
+            assert!((0.26615..0.33045).contains(&c), "{r:?}");
+        }
+        assert!(num(r, "max_certificate") < 1e-8, "{r:?}");
+    }
+    // The h family at N = 256 reaches 0.6117 at n = 32.
+    let h = conv("regimes", "h", "lhs_over_h2_plus_k2");
+    assert_eq!(fix(super::max(&h), 4), "0.6117");
+}
+
+#[test]
+fn exact_grid_b_h_plus_k() {
+    let (n, s, v) = grid_max("regimes", "lhs_over_h_plus_k_sq");
+    assert_eq!((n, s, fix(v, 4)), (16.0, 128.0, "0.4681".into()));
+}
+
+#[test]
+fn exact_grid_f_max() {
+    let (n, s, v) = grid_max("p1limit", "lhs_over_h2_plus_k2");
+    assert_eq!((n, s, sig(v, 4)), (128.0, 64.0, "0.02832".into()));
+    let b = grid_max("regimes", "lhs_over_h2_plus_k2").2;
+    assert!(b / v > 20.0 && b / v < 21.0, "{}", b / v);
+    assert_eq!(grid("p1limit", "n").len(), 25);
+}
+
+#[test]
+fn exact_grid_relative() {
+    let u = |s: &str| sig(grid(s, "max_u_v_sq")[0], 4);
+    assert_eq!(
+        (u("regimes"), u("p1limit")),
+        ("0.03773".into(), "0.04795".into())
+    );
+    let r = |s: &str| sig(grid_max(s, "rel_lhs_over_h2_plus_k2").2, 4);
+    assert_eq!(
+        (r("regimes"), r("p1limit")),
+        ("15.56".into(), "0.5906".into())
+    );
+}
+
+#[test]
+fn exact_r_offnode_predicted() {
+    let m = column("exact_cea.csv", &[("solution", "offnode")], "r_sum");
+    let p = column(
+        "exact_cea.csv",
+        &[("solution", "offnode")],
+        "r_sum_predicted",
+    );
+    assert_eq!(m.len(), 5);
+    for (m, p) in m.iter().zip(&p) {
+        assert!(*m > 0.0 && ((m - p) / p).abs() < 1e-11, "{m} {p}");
+    }
+}
+
+#[test]
+fn exact_r_offnode_orders() {
+    let o = column("exact_cea.csv", &[("solution", "offnode")], "order_r_sum");
+    assert_eq!(fixes(&o[1..], 2), ["1.21", "1.32", "1.76", "3.69"]);
+    // O(h^3) times a factor at most 1/8: r_sum / h^3 is bounded by
+    // Lambda (k sum mu) c 8 / 2 / 8 with Lambda = 20, k sum mu <= 0.3, c = G0/L^2.
+    let n = column("exact_cea.csv", &[("solution", "offnode")], "n");
+    let m = column("exact_cea.csv", &[("solution", "offnode")], "r_sum");
+    let l = 1.0 - std::f64::consts::PI / 12.0;
+    let bound = 20.0 * 0.3 * (0.16 / (l * l)) * 8.0 / 2.0 / 8.0;
+    for (n, m) in n.iter().zip(&m) {
+        assert!(m * n.powi(3) <= bound, "n = {n}: {}", m * n.powi(3));
+    }
+}
+
+#[test]
+fn exact_r_offnode_share() {
+    let share = column("exact_cea.csv", &[("solution", "offnode")], "r_share");
+    assert!(super::max(&share) <= 0.00125, "{share:?}");
+    assert_eq!(fix(100.0 * super::max(&share), 3), "0.125");
+    let (h, b) = (
+        conv("offnode", "h=k", "rel_err_max_percent"),
+        conv("regimes", "h=k", "rel_err_max_percent"),
+    );
+    for (x, y) in h.iter().zip(&b) {
+        assert!((x - y).abs() < 8e-4 * y, "{x} {y}");
+    }
+    let (oh, ob) = (
+        conv("offnode", "h=k", "order_max"),
+        conv("regimes", "h=k", "order_max"),
+    );
+    for (x, y) in oh[1..].iter().zip(&ob[1..]) {
+        assert!((x - y).abs() < 1e-3, "{x} {y}");
+    }
+}
