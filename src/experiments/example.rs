@@ -286,6 +286,14 @@ struct Trace {
     at_t: f64,
     /// When the middle node first sits at the limit.
     t_landing: f64,
+    /// When each contact node first sits at the limit (NaN: never).
+    landings: Vec<f64>,
+    /// The middle node's normal velocity over the last step before it lands,
+    /// $(u_{\nu,m} - u_{\nu,m-1})/k$, and which nodes sat at the limit then.
+    v_before: f64,
+    at_limit_before: Vec<bool>,
+    /// $-\sigma_\nu$ at the middle node at the last step before it lands.
+    sigma_before: f64,
 }
 
 fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
@@ -298,8 +306,14 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
         t_peak: f64::NAN,
         at_t: f64::NAN,
         t_landing: f64::NAN,
+        landings: vec![],
+        v_before: f64::NAN,
+        at_limit_before: vec![],
+        sigma_before: f64::NAN,
     };
     let mid = n / 2;
+    let k = scn.t_end / steps as f64;
+    let mut last: Option<(f64, Vec<bool>)> = None;
     crate::scheme::run_with_states(
         scn,
         &Settings::new(n, steps),
@@ -319,6 +333,26 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
             }
             if tr.t_landing.is_nan() && c[mid].at_limit {
                 tr.t_landing = t;
+                // The state of the step before: its limit set; v_before is the
+                // velocity of the step that ended there.
+                if let Some((_, limit)) = last.take() {
+                    tr.at_limit_before = limit;
+                }
+            }
+            if tr.landings.is_empty() {
+                tr.landings = vec![f64::NAN; c.len()];
+            }
+            for (l, s) in tr.landings.iter_mut().zip(c) {
+                if l.is_nan() && s.at_limit {
+                    *l = t;
+                }
+            }
+            if tr.t_landing.is_nan() {
+                if let Some((u_prev, _)) = &last {
+                    tr.v_before = (c[mid].u_nu - u_prev) / k;
+                }
+                last = Some((c[mid].u_nu, c.iter().map(|s| s.at_limit).collect()));
+                tr.sigma_before = s;
             }
             tr.at_t = s;
             prev = Some(codes);
@@ -327,14 +361,62 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
     Ok(tr)
 }
 
-/// The example at the same mesh with 1, 4, 16 and 64 times the steps: does the regime
-/// chatter and the force peak at the landing follow the time step (a numerical
-/// artefact) or stay (the solution's own)? `data/example_five_branch_steps.csv`.
+// ANCHOR: landing_jump
+/// The jump of the middle node's reaction when it lands, from the space-discrete,
+/// time-continuous problem on the contact nodes. With proportional damping ($A = \tau B$)
+/// it reads $\tau S\dot r + S r + W(p(r) + \lambda) = F(t)$, $S$ the condensed stiffness,
+/// $W$ the nodal weights. At the landing $r$, $p(r)$ and $F$ are continuous; the middle
+/// node's velocity drops from $v$ to 0, the nodes already at the limit stay at rest,
+/// and on the free set $\mathcal F$ the equations without reaction keep
+/// $(S\,\Delta\dot r)_{\mathcal F} = 0$. So
+/// $$w_m\,\Delta\lambda_m = \tau v\,\big(S_{mm} - S_{m\mathcal F}S_{\mathcal F\mathcal F}^{-1}S_{\mathcal F m}\big),$$
+/// the middle node's stiffness with the free nodes condensed out and the limit nodes
+/// held: a finite jump, which the scheme can resolve only with steps shorter than the
+/// time in which the next nodes land.
+fn landing_jump(scn: &Scenario, n: usize, v: f64, at_limit: &[bool]) -> Result<f64, ExpError> {
+    let disc = crate::scheme::Discretisation::new(scn, n)?;
+    let red = crate::reduced::Reduced::new(
+        scn,
+        &disc,
+        crate::scheme::OrderingKind::NestedDissection,
+        false,
+        &mut crate::scheme::Timings::default(),
+    )?;
+    let mid = n / 2;
+    let s = &red.s_b;
+    let free: Vec<usize> = (0..s.nrows())
+        .filter(|&i| i != mid && !at_limit.get(i).copied().unwrap_or(false))
+        .collect();
+    let sff = nalgebra::DMatrix::from_fn(free.len(), free.len(), |a, b| s[(free[a], free[b])]);
+    let sfm = nalgebra::DVector::from_fn(free.len(), |a, _| s[(free[a], mid)]);
+    let x = sff
+        .cholesky()
+        .ok_or_else(|| {
+            crate::scheme::RunError::Condense("the free block of S is not positive definite".into())
+        })?
+        .solve(&sfm);
+    let s_eff = s[(mid, mid)] - sfm.dot(&x);
+    let w = disc.mesh.contact_weights()[mid];
+    Ok(red.c * v * s_eff / w)
+}
+// ANCHOR_END: landing_jump
+
+/// The example at the same mesh with 1, 4, 16, 64 and 256 times the steps: does the
+/// regime chatter and the force peak at the landing follow the time step (a numerical
+/// artefact) or stay (the solution's own)? And the landing's own scale: when the
+/// neighbours of the middle node land, and the reaction jump [`landing_jump`]
+/// predicts. `data/example_five_branch_steps.csv`.
 fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
-    let rows: Vec<Trace> = [1, 4, 16, 64]
+    let rows: Vec<Trace> = [1, 4, 16, 64, 256]
         .iter()
         .map(|m| trace(scn, n, m * n))
         .collect::<Result<_, _>>()?;
+    let mid = n / 2;
+    let jumps: Vec<f64> = rows
+        .iter()
+        .map(|r| landing_jump(scn, n, r.v_before, &r.at_limit_before))
+        .collect::<Result<_, _>>()?;
+    let next = |r: &Trace| r.landings.get(mid + 1).copied().unwrap_or(f64::NAN);
     let t = crate::output::csv::Table::new()
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
         .f64("k", rows.iter().map(|r| 1.0 / r.steps as f64).collect())
@@ -349,15 +431,40 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         .f64("t_landing_mid", rows.iter().map(|r| r.t_landing).collect())
         .f64("sigma_peak_mid", rows.iter().map(|r| r.peak).collect())
         .f64("t_sigma_peak_mid", rows.iter().map(|r| r.t_peak).collect())
-        .f64("sigma_T_mid", rows.iter().map(|r| r.at_t).collect());
+        .f64("sigma_T_mid", rows.iter().map(|r| r.at_t).collect())
+        .f64("t_landing_next", rows.iter().map(next).collect())
+        .f64(
+            "landing_interval",
+            rows.iter().map(|r| next(r) - r.t_landing).collect(),
+        )
+        .u64(
+            "at_limit_before",
+            rows.iter()
+                .map(|r| r.at_limit_before.iter().filter(|&&b| b).count() as u64)
+                .collect(),
+        )
+        .f64("v_before_mid", rows.iter().map(|r| r.v_before).collect())
+        .f64(
+            "sigma_before_mid",
+            rows.iter().map(|r| r.sigma_before).collect(),
+        )
+        .f64("sigma_jump_predicted", jumps.clone())
+        .f64(
+            "sigma_peak_predicted",
+            rows.iter()
+                .zip(&jumps)
+                .map(|(r, j)| r.sigma_before + j)
+                .collect(),
+        );
     ctx.write(
         "example_five_branch_steps.csv",
         &t,
         &format!(
-            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2); t_last_reversal: the last step time with a reversal (NaN: none)",
+            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2); t_last_reversal: the last step time with a reversal (NaN: none); t_landing_next: when the node x = 1 + 2/n first sits at the limit, landing_interval its delay after mid; at_limit_before: nodes at the limit at the step before mid lands; v_before_mid: mid's normal velocity over the step before that; sigma_jump_predicted = tau v (S_mm - S_mF S_FF^-1 S_Fm) / w_m, the reaction jump of the time-continuous problem on this mesh when mid stops (S the condensed stiffness, F the free nodes, w_m mid's weight); sigma_peak_predicted = sigma_before_mid + that jump",
             4 * n,
             16 * n,
-            64 * n
+            64 * n,
+            256 * n
         ),
     )?;
     Ok(())

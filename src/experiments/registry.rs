@@ -149,7 +149,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
         name: "example",
         about: "the worked examples of chapter \"Your own scenario\"",
         paper: false,
-        cost: 3.0,
+        cost: 12.5,
         run: super::example::run,
         tables: &[],
     },
