@@ -36,7 +36,7 @@
 //! (g) `landing`: (f) with $\rho(t) = (t/0.4)^2$ on the rise: it lands on $g$ at
 //!     $t = 0.4$ with normal speed $2g/0.4 = 0.5$ and stops, so $\dot u$ jumps there and
 //!     $\ddot u \notin L^2(0, T; V)$: (4.14) fails in time alone. Hold and fall as (b).
-//! (h) `offnode`: (b) with the plateau half-width $R = \pi/12$ (irrational: its ends
+//! (h) `offnode`: (b) with the plateau half-width $R = \sqrt2/4$ (irrational: its ends
 //!     $1 \pm R$ are nodes of no mesh), $L = 1 - R$ (so $w(0) = g - G_0$ as in (b)), and a
 //!     reaction $\lambda = \Lambda\mu(t)$ constant on the plateau: it does not vanish at
 //!     the zone's ends, so $R_n(\Pi^h u_n) \ne 0$ in the cells the ends cut.
@@ -95,8 +95,9 @@ const DELTA: f64 = 0.06;
 /// (f), (g): the plateau's half-width and fall length at the coarse nodes.
 const R4: f64 = 0.5;
 const L4: f64 = 0.5;
-/// (h): the plateau's half-width, on no node of any mesh, and its fall length.
-const R_OFF: f64 = std::f64::consts::PI / 12.0;
+/// (h): the plateau's half-width, on no node of any mesh (irrational), its ends at
+/// 0.17 to 0.69 of their cells on the study's levels, and its fall length.
+const R_OFF: f64 = std::f64::consts::SQRT_2 / 4.0;
 const L_OFF: f64 = 1.0 - R_OFF;
 /// The hold $[T_1, T_2]$ of (b) and (d).
 const T1: f64 = 0.4;
@@ -193,7 +194,7 @@ pub fn parameters() -> String {
          (e) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -{P1_SCALE} w eta); \
          (f) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -w4 eta), w4 = g - G0 ((|x - 1| - {R4})_+/{L4})^2 (g at x = 0.5, 1, 1.5), reaction of (b) with R = {R4}; \
          (g) (f) with rho = (t/{T1})^2 before t = {T1} (lands at normal speed 2g/{T1}); \
-         (h) (b) with R = pi/12, L = 1 - R, reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) on |x - 1| < R",
+         (h) (b) with R = sqrt(2)/4, L = 1 - R, reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) on |x - 1| < R",
         1.0 - T2,
         G - G0,
         1.0 - R0,
