@@ -20,6 +20,8 @@ struct LogLog {
     series: Vec<Series>,
     /// (slope, label) of each dashed guide, drawn through the first series' start.
     guides: Vec<(f64, String)>,
+    /// Where the legend goes.
+    legend_at: SeriesLabelPosition,
 }
 
 /// The outline of marker `i` in pixels around its centre: circle, triangle, square,
@@ -114,7 +116,7 @@ impl LogLog {
         if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
             slope_guides(&mut chart, &self.guides, start, xmax, 0.4)?;
         }
-        legend(&mut chart, SeriesLabelPosition::UpperRight, 19, 0.9)?;
+        legend(&mut chart, self.legend_at.clone(), 19, 0.9)?;
         Ok(())
     }
 }
@@ -266,6 +268,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
                 y_desc: y_desc.clone(),
                 series: h.into_iter().map(|s| s.0).collect(),
                 guides: vec![(1.0, "slope -1".into())],
+                legend_at: SeriesLabelPosition::UpperRight,
             },
             right: LogLog {
                 title: "In k: k families".into(),
@@ -273,6 +276,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
                 y_desc,
                 series: k.into_iter().map(|s| s.0).collect(),
                 guides: vec![(1.0, "slope -1".into())],
+                legend_at: SeriesLabelPosition::UpperRight,
             },
         },
     )?;
@@ -333,6 +337,8 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
             y_desc: "term".into(),
             series,
             guides: vec![(2.0, "slope -2 (h², k²)".into())],
+            // The terms fall to the right; the lower left is empty.
+            legend_at: SeriesLabelPosition::LowerLeft,
         },
     )?;
     // The regimes (b) visits, at the finest level up to 64.
