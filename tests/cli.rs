@@ -694,11 +694,10 @@ fn plot_waits_for_no_one_and_mixes_nothing() {
     let dir = scratch("plot-lock");
     let out = dir.join("run");
     succeed(&mut small_solve(&out));
-    let lock = std::fs::File::options()
-        .write(true)
-        .open(dir.join(".run.lock"))
+    // Another process's lock, as a run holds it.
+    let lock = evhi::output::try_lock_file(&dir.join(".run.lock"))
+        .unwrap()
         .unwrap();
-    lock.try_lock().unwrap();
     failed_with(&plot(&out), "another evhi run");
     drop(lock);
     ok(&plot(&out));

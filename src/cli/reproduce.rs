@@ -235,12 +235,13 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
 }
 
-/// Takes the lock of an output set: `.reproduce.lock` in its data directory, a file
-/// that is never deleted (the kernel releases the lock when the process ends). A
+/// Takes the lock of an output set: `.reproduce.lock` in its data directory, a
+/// [`crate::output::HeldLock`] (removed when the run ends; the kernel releases it if
+/// the process dies). A
 /// second `reproduce` into the same directories fails at once instead of mixing its
 /// tables and figures with the first one's.
 /// The caller has made the directory (and refused a `--data` that is no directory).
-fn lock_outputs(data: &std::path::Path) -> Result<std::fs::File, String> {
+fn lock_outputs(data: &std::path::Path) -> Result<crate::output::HeldLock, String> {
     let path = data.join(".reproduce.lock");
     crate::output::try_lock_file(&path)
         .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?

@@ -12,17 +12,71 @@ pub mod vtu;
 use std::io::Write;
 use std::path::Path;
 
-/// Opens (creating it if missing, never truncating or deleting it) the lock file
-/// `path` and takes its exclusive lock: `Ok(None)` when another process holds it.
-/// The kernel releases the lock when the returned file is closed or the process ends.
-pub fn try_lock_file(path: &Path) -> std::io::Result<Option<std::fs::File>> {
-    let file = std::fs::File::options()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(path)?;
-    Ok(file.try_lock().is_ok().then_some(file))
+// ANCHOR: held_lock
+/// An exclusive lock on a file that exists only while it is held, so that no lock
+/// file is left behind a finished run.
+///
+/// Taking it: open the path (creating it), lock the open file, and check that the
+/// path still names that file; if not, a holder that was releasing it unlinked it
+/// between our open and our lock, and we try again on a fresh file. Releasing it:
+/// unlink the path while the lock is still held, then close. Every holder has seen
+/// the path name its file while holding it, and only a holder unlinks, so two
+/// processes never hold "the" lock at once. A killed holder leaves the file, unlocked:
+/// the next one takes it and removes it.
+#[derive(Debug)]
+pub struct HeldLock {
+    file: std::fs::File,
+    path: std::path::PathBuf,
 }
+
+impl Drop for HeldLock {
+    fn drop(&mut self) {
+        // Still held here: `file` closes (and the kernel releases the lock) after
+        // this body, when the fields drop.
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+/// Whether `a` and `b` describe the same file.
+#[cfg(unix)]
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    a.dev() == b.dev() && a.ino() == b.ino()
+}
+
+#[cfg(not(unix))]
+fn same_file(_: &std::fs::Metadata, _: &std::fs::Metadata) -> bool {
+    true
+}
+
+/// Takes the [`HeldLock`] of `path`: `Ok(None)` when another process holds it.
+pub fn try_lock_file(path: &Path) -> std::io::Result<Option<HeldLock>> {
+    for _ in 0..1000 {
+        let file = std::fs::File::options()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(path)?;
+        if file.try_lock().is_err() {
+            return Ok(None);
+        }
+        match std::fs::metadata(path) {
+            Ok(m) if same_file(&m, &file.metadata()?) => {
+                return Ok(Some(HeldLock {
+                    file,
+                    path: path.to_path_buf(),
+                }));
+            }
+            // Unlinked (or replaced) since we opened it: a fresh file next time.
+            _ => continue,
+        }
+    }
+    Err(std::io::Error::other(format!(
+        "the lock file {} kept being replaced while we took it",
+        path.display()
+    )))
+}
+// ANCHOR_END: held_lock
 
 /// Whether process `pid` may still be running, for removing what a killed process
 /// left behind (temporaries and scratch directories named by their process): this

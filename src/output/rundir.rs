@@ -4,8 +4,8 @@
 //! (`.NAME.staging-PID`), then swaps the two in one atomic rename (Linux
 //! `renameat2(RENAME_EXCHANGE)`; elsewhere two renames). A reader of the target
 //! therefore sees the previous set or the new one, never a mix, whatever interrupts
-//! the run. A lock beside the target (`.NAME.lock`, released by the kernel when
-//! the process dies, and never deleted, so that every writer locks the same file)
+//! the run. A lock beside the target (`.NAME.lock`, a [`super::HeldLock`]: it exists
+//! only while a run holds it, and the kernel releases it when the process dies)
 //! makes a second writer fail at once. Leftovers of a killed run
 //! (staging directories, an old set that was swapped out) are removed by the next
 //! run that takes the lock.
@@ -101,7 +101,7 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutError + '_ {
 pub struct RunDir {
     target: PathBuf,
     staging: PathBuf,
-    _lock: File,
+    _lock: super::HeldLock,
     delay: Option<std::time::Duration>,
 }
 
@@ -297,7 +297,7 @@ fn listed_files(target: &Path) -> Vec<String> {
 
 /// Takes the lock `.NAME.lock` beside the run directory `target` (in `parent`, the
 /// directory's name `name`), or fails at once if another process holds it.
-fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<File, OutError> {
+fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<super::HeldLock, OutError> {
     let lock_path = parent.join(format!(".{name}.lock"));
     match super::try_lock_file(&lock_path) {
         Ok(Some(lock)) => Ok(lock),
@@ -352,7 +352,7 @@ fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
 
 /// Takes the lock of an existing run directory for a reader that rewrites part of it
 /// (`evhi plot`), so that it never mixes its figures with a `solve` writing there.
-pub fn lock_run_dir(dir: &Path) -> Result<File, OutError> {
+pub fn lock_run_dir(dir: &Path) -> Result<super::HeldLock, OutError> {
     let (parent, name) = parent_and_name(dir)?;
     lock_beside(dir, &parent, &name)
 }
@@ -362,9 +362,7 @@ impl Drop for RunDir {
     /// its staging directory (a published one is already gone).
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.staging);
-        // The lock file stays: deleting it while locked would let a process that
-        // opened it before the deletion and one that creates a new one both hold
-        // "the" lock. The kernel releases the lock when `_lock` closes.
+        // `_lock` drops after this: its file is removed while still held.
     }
 }
 
