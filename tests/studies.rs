@@ -69,3 +69,65 @@ fn the_convergence_study_knows_the_ends_of_gamma_3() {
     let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
     assert!(md.contains("an end of Gamma_3 inside the bottom"), "{md}");
 }
+
+/// A smooth softening law on which the default Newton stalls (issue 41, item 5): the
+/// convergence study fails naming `--solver`, which the studies now take, and with
+/// `--solver newton-no-line-search` it runs; an uncertified solver is refused by name.
+#[test]
+fn every_study_takes_a_solver() {
+    let dir = scratch("study-solver");
+    let scene = written(
+        dir.join("cs.toml"),
+        "name = \"cs\"\nT = 1.0\ng = \"none\"\nproblem = \"steady\"\n[geometry]\nwidth = 2.0\n\
+         height = 0.5\npattern = \"diagonal\"\n[geometry.supports]\nleft = \"clamped\"\n\
+         [material]\nE = 1000.0\nkappa = 0.3\n[loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, 0.0]\n\
+         [[loads.traction]]\nside = \"top\"\nfrom = 1.0\nto = 2.0\nf = [0.0, -20.0]\n\
+         [law]\nkind = \"softening\"\nstiffness = 900.0\nlength = 0.01\n",
+    );
+    let study = |kind: &str, extra: &[&str], out: &str| {
+        evhi()
+            .args(["study", kind, "--quick", "--scenario"])
+            .arg(&scene)
+            .args(extra)
+            .arg("--out")
+            .arg(dir.join(out))
+            .output()
+            .unwrap()
+    };
+    let failed = study("convergence", &[], "plain");
+    assert!(!failed.status.success());
+    let err = String::from_utf8_lossy(&failed.stderr);
+    assert!(err.contains("`--solver proxgrad`"), "{err}");
+    ok(&study(
+        "convergence",
+        &["--solver", "newton-no-line-search"],
+        "nnls",
+    ));
+    let table = Csv::read(dir.join("nnls/convergence.csv"));
+    assert!(table.column_f64("n").len() >= 8);
+    // The stability map runs the one solver asked for.
+    ok(&study("stability", &["--solver", "proxgrad"], "stab"));
+    let map = Csv::read(dir.join("stab/stability.csv"));
+    assert!(map.column_str("solver").iter().all(|s| *s == "proxgrad"));
+    // The time study takes certified solvers only.
+    let refused = evhi()
+        .args([
+            "study",
+            "time",
+            "--quick",
+            "--scenario",
+            "figure",
+            "--solver",
+            "penalty",
+        ])
+        .arg("--out")
+        .arg(dir.join("time"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        !refused.status.success() && err.contains("`solver`") && err.contains("certified"),
+        "{err}"
+    );
+    assert!(!dir.join("time").exists());
+}

@@ -137,6 +137,7 @@ fn studies(
             Study::Convergence(ConvergenceArgs {
                 scenario: scenario.clone(),
                 quick: true,
+                solver: None,
                 out: scratch.join(convergence),
             }),
         ),
@@ -147,6 +148,7 @@ fn studies(
                 scenario: scenario.clone(),
                 quick: true,
                 n: None,
+                solver: None,
                 out: scratch.join(time),
             }),
         ),
@@ -156,6 +158,7 @@ fn studies(
             Study::Stability(StabilityArgs {
                 scenario: scenario.clone(),
                 quick: true,
+                solver: None,
                 out: scratch.join(stability),
             }),
         ),
@@ -294,6 +297,25 @@ struct Trace {
     at_limit_before: Vec<bool>,
     /// $-\sigma_\nu$ at the middle node at the last step before it lands.
     sigma_before: f64,
+    /// $-\sigma_\nu$ at the middle node after every step.
+    mid_sigma: Vec<f64>,
+}
+
+impl Trace {
+    /// When the first of the middle node's two neighbours lands.
+    fn first_neighbour(&self, mid: usize) -> f64 {
+        let at = |i: usize| self.landings.get(i).copied().unwrap_or(f64::NAN);
+        at(mid - 1).min(at(mid + 1))
+    }
+
+    /// $-\sigma_\nu$ at the middle node at time `t` (a step time of the run).
+    fn mid_sigma_at(&self, t: f64) -> f64 {
+        let step = (t * self.steps as f64).round() as usize;
+        step.checked_sub(1)
+            .and_then(|i| self.mid_sigma.get(i))
+            .copied()
+            .unwrap_or(f64::NAN)
+    }
 }
 
 fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
@@ -310,6 +332,7 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
         v_before: f64::NAN,
         at_limit_before: vec![],
         sigma_before: f64::NAN,
+        mid_sigma: Vec::with_capacity(steps),
     };
     let mid = n / 2;
     let k = scn.t_end / steps as f64;
@@ -328,6 +351,7 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
                 }
             }
             let s = -(c[mid].sigma_nu1 + c[mid].sigma_nu2);
+            tr.mid_sigma.push(s);
             if s > tr.peak {
                 (tr.peak, tr.t_peak) = (s, t);
             }
@@ -416,7 +440,8 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         .iter()
         .map(|r| landing_jump(scn, n, r.v_before, &r.at_limit_before))
         .collect::<Result<_, _>>()?;
-    let next = |r: &Trace| r.landings.get(mid + 1).copied().unwrap_or(f64::NAN);
+    let side = |r: &Trace, i: usize| r.landings.get(i).copied().unwrap_or(f64::NAN);
+    let after = |r: &Trace| r.mid_sigma_at(r.t_landing + 1.0 / r.steps as f64);
     let t = crate::output::csv::Table::new()
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
         .f64("k", rows.iter().map(|r| 1.0 / r.steps as f64).collect())
@@ -432,10 +457,19 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         .f64("sigma_peak_mid", rows.iter().map(|r| r.peak).collect())
         .f64("t_sigma_peak_mid", rows.iter().map(|r| r.t_peak).collect())
         .f64("sigma_T_mid", rows.iter().map(|r| r.at_t).collect())
-        .f64("t_landing_next", rows.iter().map(next).collect())
+        .f64(
+            "t_landing_left",
+            rows.iter().map(|r| side(r, mid - 1)).collect(),
+        )
+        .f64(
+            "t_landing_right",
+            rows.iter().map(|r| side(r, mid + 1)).collect(),
+        )
         .f64(
             "landing_interval",
-            rows.iter().map(|r| next(r) - r.t_landing).collect(),
+            rows.iter()
+                .map(|r| r.first_neighbour(mid) - r.t_landing)
+                .collect(),
         )
         .u64(
             "at_limit_before",
@@ -448,9 +482,20 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
             "sigma_before_mid",
             rows.iter().map(|r| r.sigma_before).collect(),
         )
+        .f64(
+            "sigma_landing_step_mid",
+            rows.iter().map(|r| r.mid_sigma_at(r.t_landing)).collect(),
+        )
+        .f64("sigma_after_mid", rows.iter().map(after).collect())
+        .f64(
+            "sigma_first_neighbour_mid",
+            rows.iter()
+                .map(|r| r.mid_sigma_at(r.first_neighbour(mid)))
+                .collect(),
+        )
         .f64("sigma_jump_predicted", jumps.clone())
         .f64(
-            "sigma_peak_predicted",
+            "sigma_after_predicted",
             rows.iter()
                 .zip(&jumps)
                 .map(|(r, j)| r.sigma_before + j)
@@ -460,7 +505,7 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         "example_five_branch_steps.csv",
         &t,
         &format!(
-            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2); t_last_reversal: the last step time with a reversal (NaN: none); t_landing_next: when the node x = 1 + 2/n first sits at the limit, landing_interval its delay after mid; at_limit_before: nodes at the limit at the step before mid lands; v_before_mid: mid's normal velocity over the step before that; sigma_jump_predicted = tau v (S_mm - S_mF S_FF^-1 S_Fm) / w_m, the reaction jump of the time-continuous problem on this mesh when mid stops (S the condensed stiffness, F the free nodes, w_m mid's weight); sigma_peak_predicted = sigma_before_mid + that jump",
+            "scenario five_branch, h = 1/{n}, steps N = {n}, {}, {}, {}, {}; reversals = node-steps at which a contact node's regime code fell (a lower branch, or off the limit), summed over the run; mid = the node x = 1; sigma = -(sigma_nu1 + sigma_nu2); t_last_reversal: the last step time with a reversal (NaN: none); sigma is a traction (per unit length of Gamma_3; the nodal force is w_m sigma, w_m = 2/n); t_landing_left, t_landing_right: when the nodes x = 1 - 2/n and 1 + 2/n first sit at the limit, landing_interval the delay of the first of them after mid; at_limit_before: nodes at the limit at the step before mid lands; v_before_mid: mid's normal velocity over the step before that; sigma_landing_step_mid, sigma_after_mid, sigma_first_neighbour_mid: sigma at mid at the step it lands, the step after, and the step its first neighbour lands; sigma_jump_predicted = tau v (S_mm - S_mF S_FF^-1 S_Fm) / w_m, the reaction jump of the time-continuous problem on this mesh when mid stops (S the condensed stiffness, F the free nodes); sigma_after_predicted = sigma_before_mid + that jump, the value just after the stop",
             4 * n,
             16 * n,
             64 * n,

@@ -60,6 +60,8 @@ pub struct Plan {
     pub uniform: Vec<usize>,
     pub graded: Vec<usize>,
     pub n_ref: usize,
+    /// The step solver of every run (the registry's; `newton` in the book's study).
+    pub solver: &'static crate::step::SolverEntry,
 }
 
 pub fn plan(quick: bool) -> Plan {
@@ -68,12 +70,14 @@ pub fn plan(quick: bool) -> Plan {
             uniform: vec![4, 8, 16, 32],
             graded: vec![4, 8, 16, 32],
             n_ref: 128,
+            solver: &crate::step::SOLVERS[0],
         }
     } else {
         Plan {
             uniform: vec![4, 8, 16, 32, 64, 128],
             graded: vec![4, 8, 16, 32, 64],
             n_ref: 256,
+            solver: &crate::step::SOLVERS[0],
         }
     }
 }
@@ -148,6 +152,7 @@ fn solve_steps(
     mesh: &Arc<Mesh>,
     n: usize,
     steps: usize,
+    solver: &crate::step::SolverEntry,
     keep: impl Fn(usize) -> bool,
 ) -> Result<Vec<Vec<Vec<f64>>>, ExpError> {
     let mut fields = vec![vec![vec![]; steps + 1]; scns.len()];
@@ -155,7 +160,7 @@ fn solve_steps(
         mesh: Some(mesh.clone()),
         ..Settings::new(n, steps)
     };
-    super::run_newton_batch_with(scns, &opt, &mut |i, step, _, u| {
+    super::run_batch_with(scns, &opt, solver, &mut |i, step, _, u| {
         if keep(step) {
             fields[i][step] = u.to_vec();
         }
@@ -174,10 +179,11 @@ fn reference_at_t(
     mesh: &Arc<Mesh>,
     n: usize,
     steps: usize,
+    solver: &crate::step::SolverEntry,
 ) -> Result<Vec<Vec<f64>>, ExpError> {
     let disc = crate::scheme::Discretisation::on(&scns[0], mesh.clone());
     if crate::reduced::proportional(&scns[0], &disc).is_none() {
-        return Ok(solve_steps(scns, mesh, n, steps, |s| s == steps)?
+        return Ok(solve_steps(scns, mesh, n, steps, solver, |s| s == steps)?
             .into_iter()
             .map(|mut fields| fields.pop().expect("the last step"))
             .collect());
@@ -194,11 +200,20 @@ fn reference_at_t(
     for scn in scns {
         let load = op.load_of(scn);
         let mut at_t = vec![];
-        op.march_newton(scn, &load, steps, &|s| s == steps, &mut timings, &mut |s| {
-            if let Some(u) = s.field {
-                at_t = u.to_vec();
-            }
-        })?;
+        op.march(
+            scn,
+            &load,
+            steps,
+            solver.build().as_mut(),
+            crate::scheme::CERTIFICATE_TOL,
+            &|s| s == steps,
+            &mut timings,
+            &mut |s| {
+                if let Some(u) = s.field {
+                    at_t = u.to_vec();
+                }
+            },
+        )?;
         out.push(at_t);
     }
     Ok(out)
@@ -307,7 +322,7 @@ pub fn compute(
     let ref_mesh = Arc::new(forest.mesh(&ref_leaves, plan.n_ref));
     let clock = std::time::Instant::now();
     let ref_steps = steps_of(scns, plan.n_ref);
-    let reference = reference_at_t(scns, &ref_mesh, plan.n_ref, ref_steps)
+    let reference = reference_at_t(scns, &ref_mesh, plan.n_ref, ref_steps, plan.solver)
         .map_err(|e| e.at(format!("the graded reference, level n = {}", plan.n_ref)))?;
     let ref_dofs = Dofs::new(&ref_mesh, true);
     log(&format!(
@@ -343,7 +358,7 @@ pub fn compute(
             let mesh = Arc::new(forest.mesh(leaves, *n));
             let dofs = Dofs::new(&mesh, true);
             let steps = steps_of(scns, *n);
-            let fields = solve_steps(scns, &mesh, *n, steps, |_| true)
+            let fields = solve_steps(scns, &mesh, *n, steps, plan.solver, |_| true)
                 .map_err(|e| e.at(format!("the {family} family, level n = {n}")))?;
             solved.push(Level {
                 n: *n,

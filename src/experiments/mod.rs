@@ -113,6 +113,27 @@ pub fn run_newton_batch_with(
     run_newton_batch_states(scns, opt, &mut |i, step, t, u, _| observe(i, step, t, u))
 }
 
+/// [`run_newton_batch_with`] with the registry's step solver `solver` (one per scenario).
+pub fn run_batch_with(
+    scns: &[crate::scenario::Scenario],
+    opt: &crate::scheme::Settings,
+    solver: &crate::step::SolverEntry,
+    observe: &mut crate::scheme::BatchObserver<'_>,
+) -> Result<Vec<crate::scheme::Run>, ExpError> {
+    let mut built: Vec<Box<dyn crate::step::StepSolver>> =
+        scns.iter().map(|_| solver.build()).collect();
+    let mut solvers: Vec<&mut dyn crate::step::StepSolver> = built
+        .iter_mut()
+        .map(|s| -> &mut dyn crate::step::StepSolver { &mut **s })
+        .collect();
+    let runs =
+        crate::scheme::run_batch_states(scns, opt, &mut solvers, &mut |i, step, t, u, _| {
+            observe(i, step, t, u)
+        })?;
+    drop(solvers);
+    Ok(runs)
+}
+
 /// [`run_newton_batch_with`] with an observer that also sees each step's contact states.
 pub fn run_newton_batch_states(
     scns: &[crate::scenario::Scenario],

@@ -25,7 +25,7 @@ use std::path::Path;
 /// the next one takes it and removes it.
 #[derive(Debug)]
 pub struct HeldLock {
-    file: std::fs::File,
+    _file: std::fs::File,
     path: std::path::PathBuf,
 }
 
@@ -63,7 +63,7 @@ pub fn try_lock_file(path: &Path) -> std::io::Result<Option<HeldLock>> {
         match std::fs::metadata(path) {
             Ok(m) if same_file(&m, &file.metadata()?) => {
                 return Ok(Some(HeldLock {
-                    file,
+                    _file: file,
                     path: path.to_path_buf(),
                 }));
             }

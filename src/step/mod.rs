@@ -181,6 +181,12 @@ pub struct SolverEntry {
     make: fn() -> Box<dyn StepSolver>,
 }
 
+impl std::fmt::Debug for SolverEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "SolverEntry({})", self.name)
+    }
+}
+
 impl SolverEntry {
     /// A new solver with default settings.
     pub fn build(&self) -> Box<dyn StepSolver> {

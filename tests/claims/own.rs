@@ -133,12 +133,18 @@ fn own_example_landing_interval() {
     let f = "example_five_branch_steps.csv";
     let before = column(f, &[], "at_limit_before");
     assert!(before.iter().all(|&b| b == 0.0), "{before:?}");
-    let gap = column(f, &[], "landing_interval");
-    assert_eq!(format!("{:.5}", gap[gap.len() - 1]), "0.00092");
-    // Resolved only once k is below it: the coarse runs land both in one step.
-    let k = column(f, &[], "k");
-    assert_eq!(gap[0], 0.0);
-    assert!(k[k.len() - 1] < gap[gap.len() - 1] / 10.0);
+    let last = |c: &str| {
+        let v = column(f, &[], c);
+        v[v.len() - 1]
+    };
+    assert_eq!(column(f, &[], "steps").last(), Some(&16384.0));
+    let mid = last("t_landing_mid");
+    let (l, r) = (last("t_landing_left") - mid, last("t_landing_right") - mid);
+    assert_eq!(
+        (format!("{l:.5}"), format!("{r:.5}")),
+        ("0.00073".into(), "0.00092".into())
+    );
+    assert_eq!(last("landing_interval"), l.min(r));
 }
 
 #[test]
@@ -151,26 +157,54 @@ fn own_example_landing_jump() {
     assert_eq!(format!("{:.3}", last("v_before_mid")), "0.582");
     assert_eq!(format!("{:.1}", last("sigma_jump_predicted")), "348.3");
     assert_eq!(format!("{:.2}", last("sigma_before_mid")), "15.00");
-    let (pred, peak) = (last("sigma_peak_predicted"), last("sigma_peak_mid"));
+    let (pred, after) = (last("sigma_after_predicted"), last("sigma_after_mid"));
     assert_eq!(
-        (format!("{pred:.1}"), format!("{peak:.1}")),
-        ("363.3".into(), "367.2".into())
+        (format!("{pred:.1}"), format!("{after:.1}")),
+        ("363.3".into(), "363.9".into())
     );
-    assert_eq!(format!("{:.1}", 100.0 * (peak - pred) / peak), "1.1");
-    // The peak comes 0.00067 s after the landing, before the neighbours land.
-    let (tl, tp, tn) = (
-        last("t_landing_mid"),
-        last("t_sigma_peak_mid"),
-        last("t_landing_next"),
-    );
-    assert_eq!(format!("{:.5}", tp - tl), "0.00067");
-    assert!(tp < tn);
     // The prediction holds from 1024 steps on, within 2 %.
-    let p = column(f, &[], "sigma_peak_predicted");
+    let p = column(f, &[], "sigma_after_predicted");
     assert!(
         p[2..].windows(2).all(|w| (w[1] - w[0]).abs() < 0.02 * w[1]),
         "{p:?}"
     );
+}
+
+#[test]
+fn own_example_landing_peak() {
+    let f = "example_five_branch_steps.csv";
+    let col = |c: &str| column(f, &[], c);
+    let (steps, k) = (col("steps"), col("k"));
+    let (peak, t_peak) = (col("sigma_peak_mid"), col("t_sigma_peak_mid"));
+    let (mid, left, right) = (
+        col("t_landing_mid"),
+        col("t_landing_left"),
+        col("t_landing_right"),
+    );
+    let first: Vec<f64> = left.iter().zip(&right).map(|(a, b)| a.min(*b)).collect();
+    let i = steps.len() - 1;
+    assert_eq!(format!("{:.1}", col("sigma_landing_step_mid")[i]), "316.7");
+    // The peak at the last step before the first neighbour lands, then the fall.
+    assert_eq!(format!("{:.1}", peak[i]), "367.2");
+    assert!(
+        (t_peak[i] - (first[i] - k[i])).abs() < 1e-12,
+        "{} {}",
+        t_peak[i],
+        first[i]
+    );
+    assert_eq!(
+        format!("{:.1}", col("sigma_first_neighbour_mid")[i]),
+        "262.4"
+    );
+    // 1024 steps: k longer than the interval, the neighbours land in the next step,
+    // and the peak stays at 219; 4096 steps reach 366.
+    let j = steps.iter().position(|&s| s == 1024.0).unwrap();
+    assert_eq!(format!("{:.1e}", k[j]), "9.8e-4");
+    assert!(k[j] > first[i] - mid[i]);
+    assert!((first[j] - mid[j] - k[j]).abs() < 1e-12);
+    assert_eq!(peak[j].round(), 219.0);
+    let q = steps.iter().position(|&s| s == 4096.0).unwrap();
+    assert_eq!(peak[q].round(), 366.0);
 }
 
 #[test]
@@ -361,6 +395,7 @@ fn own_study_cantilever() {
         Study::Convergence(ConvergenceArgs {
             scenario,
             quick: true,
+            solver: None,
             out,
         })
     });
@@ -394,6 +429,7 @@ fn time_study(file: &str) -> Vec<std::collections::HashMap<String, String>> {
             scenario,
             quick: true,
             n: None,
+            solver: None,
             out,
         })
     })
@@ -453,6 +489,7 @@ fn own_study_stability_cantilever() {
         Study::Stability(StabilityArgs {
             scenario,
             quick: true,
+            solver: None,
             out,
         })
     });
@@ -521,6 +558,7 @@ fn own_study_is_table1() {
         Study::Convergence(ConvergenceArgs {
             scenario,
             quick: true,
+            solver: None,
             out,
         })
     });

@@ -43,6 +43,8 @@ pub const PAPER: [(usize, f64); 6] = [
 pub struct Plan {
     pub levels: Vec<usize>,
     pub n_ref: usize,
+    /// The step solver of every run (the registry's; `newton` in the book's study).
+    pub solver: &'static crate::step::SolverEntry,
 }
 
 pub fn plan(quick: bool) -> Plan {
@@ -50,11 +52,13 @@ pub fn plan(quick: bool) -> Plan {
         Plan {
             levels: vec![4, 8, 16],
             n_ref: 32,
+            solver: &crate::step::SOLVERS[0],
         }
     } else {
         Plan {
             levels: vec![4, 8, 16, 32, 64, 128],
             n_ref: 512,
+            solver: &crate::step::SOLVERS[0],
         }
     }
 }
@@ -69,6 +73,8 @@ struct Reference {
     runs: Vec<RefRun>,
     tensor: crate::material::Isotropic,
     regions: Regions,
+    /// The step solver of every run.
+    solver: &'static crate::step::SolverEntry,
 }
 
 /// One scenario's reference.
@@ -225,19 +231,28 @@ fn march_on_grid(
     scn: &Scenario,
     load: &crate::reduced::Load,
     steps: usize,
-    grid: usize,
+    (grid, solver): (usize, &crate::step::SolverEntry),
     timings: &mut Timings,
     mut at_level: impl FnMut(usize, &State),
 ) -> Result<Vec<f64>, ExpError> {
     let mut field_t = vec![];
-    op.march_newton(scn, load, steps, &|step| step == steps, timings, &mut |s| {
-        if let Some(j) = grid_level(s.step, steps, grid) {
-            at_level(j, s.state);
-        }
-        if let Some(u) = s.field {
-            field_t = u.to_vec();
-        }
-    })?;
+    op.march(
+        scn,
+        load,
+        steps,
+        solver.build().as_mut(),
+        crate::scheme::CERTIFICATE_TOL,
+        &|step| step == steps,
+        timings,
+        &mut |s| {
+            if let Some(j) = grid_level(s.step, steps, grid) {
+                at_level(j, s.state);
+            }
+            if let Some(u) = s.field {
+                field_t = u.to_vec();
+            }
+        },
+    )?;
     Ok(field_t)
 }
 
@@ -263,9 +278,17 @@ impl Reference {
         for scn in scns {
             let load = op.load_of(scn);
             let mut at = BTreeMap::new();
-            let field_t = march_on_grid(&op, scn, &load, n_ref, grid, &mut timings, |j, st| {
-                at.insert(j, (st.clone(), op.quad(&load, st)));
-            })?;
+            let field_t = march_on_grid(
+                &op,
+                scn,
+                &load,
+                n_ref,
+                (grid, plan.solver),
+                &mut timings,
+                |j, st| {
+                    at.insert(j, (st.clone(), op.quad(&load, st)));
+                },
+            )?;
             runs.push((
                 load,
                 RefRun {
@@ -288,6 +311,7 @@ impl Reference {
             runs: vec![],
             tensor,
             regions: regions.clone(),
+            solver: plan.solver,
         };
         // The k family: h = 1/n_ref, k = 1/n, on the same factorisation.
         let clock = std::time::Instant::now();
@@ -296,14 +320,22 @@ impl Reference {
             let (load, run) = &runs[i];
             for &steps in &plan.levels {
                 let mut acc = Accumulator::default();
-                let field_t = march_on_grid(&op, scn, load, steps, grid, &mut timings, |j, st| {
-                    let (st_ref, quad) = &run.at[&j];
-                    acc.add(
-                        op.energy_diff(load, st_ref, st),
-                        energy_of_quad(*quad),
-                        j == grid,
-                    );
-                })?;
+                let field_t = march_on_grid(
+                    &op,
+                    scn,
+                    load,
+                    steps,
+                    (grid, plan.solver),
+                    &mut timings,
+                    |j, st| {
+                        let (st_ref, quad) = &run.at[&j];
+                        acc.add(
+                            op.energy_diff(load, st_ref, st),
+                            energy_of_quad(*quad),
+                            j == grid,
+                        );
+                    },
+                )?;
                 let diff: Vec<f64> = run
                     .field_t
                     .iter()
@@ -370,8 +402,14 @@ impl Reference {
             let d_c: Vec<f64> = disc.contact_dofs.iter().map(|&c| d[c]).collect();
             for (slot, steps) in [(0, n), (1, n_ref)] {
                 let mut acc = Accumulator::default();
-                let field_t =
-                    march_on_grid(&op, scn, &load, steps, self.grid, &mut timings, |j, st| {
+                let field_t = march_on_grid(
+                    &op,
+                    scn,
+                    &load,
+                    steps,
+                    (self.grid, self.solver),
+                    &mut timings,
+                    |j, st| {
                         let (st_ref, quad_ref) = &run.at[&j];
                         let wd: f64 = st.w.iter().zip(&d_c).map(|(a, b)| a * b).sum();
                         let wr: f64 = (st_ref.w.iter().zip(on_contact(&st.r)))
@@ -384,7 +422,8 @@ impl Reference {
                             energy_of_quad(*quad_ref),
                             j == self.grid,
                         );
-                    })?;
+                    },
+                )?;
                 let fine = self.dofs.gather(&interp.apply(&disc.dofs.expand(&field_t)));
                 let diff: Vec<f64> = run.field_t.iter().zip(&fine).map(|(a, b)| a - b).collect();
                 acc.regions = self.regions(&diff);
@@ -663,8 +702,8 @@ pub fn compute(
     let grid = *plan.levels.last().expect("levels");
     let all = study(scenarios, plan, grid, ctx, regions)?;
     let params = format!(
-        "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over the level's own time steps (all on the grid t = j/{grid}); solver newton",
-        plan.n_ref, plan.n_ref, plan.n_ref
+        "reference h = k = 1/{}; families: h=k (h = k = 1/n), h (k = 1/{}), k (h = 1/{}); rel_err_T at t = T, rel_err_max = max_n ||e_n||_E / max_n ||u_ref,n||_E over the level's own time steps (all on the grid t = j/{grid}); solver {}",
+        plan.n_ref, plan.n_ref, plan.n_ref, plan.solver.name
     );
     // Observed orders within each (scenario, family), against the parameter that varies.
     let order = |v: &dyn Fn(&LevelError) -> f64| -> Vec<f64> {

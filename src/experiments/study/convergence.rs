@@ -167,6 +167,7 @@ pub fn split_plan(n0: usize, quick: bool) -> crate::experiments::convergence::Pl
     crate::experiments::convergence::Plan {
         levels: (0..levels).map(|j| n0 << j).collect(),
         n_ref: n0 << (levels + 1),
+        solver: &crate::step::SOLVERS[0],
     }
 }
 
@@ -195,6 +196,7 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use crate::experiments::convergence as split;
     let (scn, text) = Scenario::read(&args.scenario)?;
+    let solver = super::study_solver(args.solver.as_deref())?;
     // Every mesh of the study comes from bisection of the diagonal cut, as a graded
     // `solve` does: another pattern would be ignored (or fail late), so it is refused.
     if scn.pattern != crate::mesh::Pattern::Diagonal {
@@ -221,12 +223,14 @@ pub(super) fn run(
             uniform: levels(4),
             graded: levels(4),
             n_ref: n0 * 32,
+            solver,
         }
     } else {
         graded::Plan {
             uniform: levels(6),
             graded: levels(5),
             n_ref: n0 * 64,
+            solver,
         }
     };
     // The reference is the graded family refined to n_ref, at least the unknowns of
@@ -269,7 +273,10 @@ pub(super) fn run(
         ),
     };
     let viscous = no_split.is_none();
-    let split_plan = split_plan(n0, args.quick);
+    let split_plan = crate::experiments::convergence::Plan {
+        solver,
+        ..split_plan(n0, args.quick)
+    };
     if viscous {
         crate::scheme::check_memory(
             split_plan.n_ref,

@@ -74,6 +74,10 @@ pub struct TimeArgs {
     /// Override the mesh level n (a multiple of 4 on which the scene resolves).
     #[arg(long)]
     pub n: Option<usize>,
+    /// The step solver of every run of the study (default newton), a certified one:
+    /// the study compares runs whose every step is certified.
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    pub solver: Option<String>,
     /// Output directory (created if missing).
     #[arg(long)]
     pub out: PathBuf,
@@ -90,6 +94,10 @@ pub struct StabilityArgs {
     /// scene.
     #[arg(long)]
     pub quick: bool,
+    /// Map this step solver only (any of the registry; default: every solver the
+    /// book's map runs).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    pub solver: Option<String>,
     /// Output directory (created if missing).
     #[arg(long)]
     pub out: PathBuf,
@@ -107,9 +115,38 @@ pub struct ConvergenceArgs {
     /// AMD EPYC: median of three whole runs, 7.7 to 8.8 s).
     #[arg(long)]
     pub quick: bool,
+    /// The step solver of every run of the study (default newton), a certified one:
+    /// the study compares runs whose every step is certified.
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    pub solver: Option<String>,
     /// Output directory (created if missing).
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// The registry entry of a study's `--solver` (newton when none is named), refused by
+/// name when its steps cannot be certified.
+fn study_solver(
+    name: Option<&str>,
+) -> Result<&'static crate::step::SolverEntry, crate::error::InputError> {
+    let entry = crate::step::solver(name.unwrap_or(crate::step::DEFAULT_SOLVER))?;
+    if !entry.certified {
+        return Err(crate::error::InputError::field(
+            "solver",
+            entry.name,
+            format!(
+                "a certified solver for a convergence or time study (one of {}): their \
+                 errors compare runs whose every step is certified",
+                crate::step::SOLVERS
+                    .iter()
+                    .filter(|s| s.certified)
+                    .map(|s| s.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ));
+    }
+    Ok(entry)
 }
 
 pub fn run(study: Study) -> Result<(), Box<dyn std::error::Error>> {

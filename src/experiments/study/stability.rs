@@ -38,7 +38,10 @@ pub(super) fn run(
     } else {
         vec![1, 2, 4, 8, 16, 32, 64]
     };
-    let solvers = solvers();
+    let solvers = match &args.solver {
+        Some(name) => vec![crate::step::solver(name)?.label],
+        None => solvers(),
+    };
     // A downward jump breaks both hypotheses at once: H(j) fails, so H(s) has no
     // finite m to test, and the step energy is not convex whatever its curvature
     // bound between the jumps says.

@@ -32,6 +32,7 @@ pub(super) fn run(
     if let Some(n) = args.n {
         plan.n = n;
     }
+    plan.solver = super::study_solver(args.solver.as_deref())?;
     scn.mesh(plan.n)?;
     let out = RunDir::open(&args.out)?;
     let progress = bar(0);

@@ -61,6 +61,8 @@ pub struct Plan {
     pub n: usize,
     pub levels: Vec<usize>,
     pub n_ref: usize,
+    /// The step solver of every run (the registry's; `newton` in the book's study).
+    pub solver: &'static crate::step::SolverEntry,
 }
 
 pub fn plan(quick: bool) -> Plan {
@@ -69,12 +71,14 @@ pub fn plan(quick: bool) -> Plan {
             n: 16,
             levels: vec![4, 8, 16, 32, 64, 128, 256],
             n_ref: 16384,
+            solver: &crate::step::SOLVERS[0],
         }
     } else {
         Plan {
             n: 32,
             levels: vec![4, 8, 16, 32, 64, 128, 256, 512, 1024],
             n_ref: 32768,
+            solver: &crate::step::SOLVERS[0],
         }
     }
 }
@@ -354,7 +358,16 @@ fn reduced_measures(
                  timings: &mut crate::scheme::Timings,
                  observe: &mut dyn FnMut(crate::reduced::Stepped)|
      -> Result<(), ExpError> {
-        op.march_newton(scn, load, steps, &|_| false, timings, observe)?;
+        op.march(
+            scn,
+            load,
+            steps,
+            plan.solver.build().as_mut(),
+            crate::scheme::CERTIFICATE_TOL,
+            &|_| false,
+            timings,
+            observe,
+        )?;
         Ok(())
     };
     let mut first_limit = vec![f64::NAN; batch.len()];
@@ -416,7 +429,7 @@ fn general_measures(
     let mut refs: Vec<Vec<Vec<f64>>> = vec![vec![vec![0.0; disc.dofs.count]]; nb];
     let mut first_limit = vec![f64::NAN; nb];
     let opt = Settings::new(plan.n, plan.n_ref);
-    super::run_newton_batch_with(batch, &opt, &mut |i, step, t, u| {
+    super::run_batch_with(batch, &opt, plan.solver, &mut |i, step, t, u| {
         if step % stride == 0 {
             refs[i].push(u.to_vec());
         }
@@ -439,7 +452,7 @@ fn general_measures(
         let ratio = n_max / steps;
         let mut m = vec![LevelMeasure::default(); nb];
         let opt = Settings::new(plan.n, steps);
-        super::run_newton_batch_with(batch, &opt, &mut |i, step, t, u| {
+        super::run_batch_with(batch, &opt, plan.solver, &mut |i, step, t, u| {
             let j = step * ratio;
             let diff: Vec<f64> = u.iter().zip(&refs[i][j]).map(|(a, b)| a - b).collect();
             m[i].add(
