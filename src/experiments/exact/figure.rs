@@ -386,9 +386,11 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
 /// a cell per $(n, N)$ coloured by $\log_{10}$ of its value (each panel on its own
 /// range) and labelled with it.
 struct Grid {
-    /// (panel title, cells (n, N, value)).
-    panels: Vec<(String, Vec<(f64, f64, f64)>)>,
+    panels: Vec<Panel>,
 }
+
+/// A panel of [`Grid`]: its title and its cells $(n, N, \text{value})$.
+type Panel = (String, Vec<(f64, f64, f64)>);
 
 /// A sequential colour from pale yellow (0) to dark blue (1), readable in grey.
 fn sequential(s: f64) -> RGBColor {
@@ -497,7 +499,7 @@ pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
     );
     let mut names: Vec<&str> = sol.iter().map(String::as_str).collect();
     names.dedup();
-    let panels: Vec<(String, Vec<(f64, f64, f64)>)> = names
+    let panels: Vec<Panel> = names
         .iter()
         .map(|&s| {
             let cells = (0..sol.len())
