@@ -312,8 +312,9 @@ fn exact_solutions() {
             "exact_cea.csv",
             "exact_crime.csv",
             "exact_quadrature.csv",
+            "exact_grid.csv",
         ],
-        &["exact_convergence", "exact_cea", "exact_regimes"],
+        &["exact_convergence", "exact_cea", "exact_regimes", "exact_grid"],
         1e-11,
     );
 }
