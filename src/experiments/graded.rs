@@ -70,14 +70,14 @@ pub fn plan(quick: bool) -> Plan {
             uniform: vec![4, 8, 16, 32],
             graded: vec![4, 8, 16, 32],
             n_ref: 128,
-            solver: &crate::step::SOLVERS[0],
+            solver: crate::step::DEFAULT_SOLVER_ENTRY,
         }
     } else {
         Plan {
             uniform: vec![4, 8, 16, 32, 64, 128],
             graded: vec![4, 8, 16, 32, 64],
             n_ref: 256,
-            solver: &crate::step::SOLVERS[0],
+            solver: crate::step::DEFAULT_SOLVER_ENTRY,
         }
     }
 }

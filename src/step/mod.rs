@@ -197,6 +197,9 @@ impl SolverEntry {
 /// The name of the default step solver (the first of [`SOLVERS`]).
 pub const DEFAULT_SOLVER: &str = SOLVERS[0].name;
 
+/// The registry entry of [`DEFAULT_SOLVER`].
+pub const DEFAULT_SOLVER_ENTRY: &SolverEntry = &SOLVERS[0];
+
 /// The step solvers, each spelled once: the command line, the benchmark and the
 /// stability map take their names and constructors from here.
 pub const SOLVERS: [SolverEntry; 5] = [

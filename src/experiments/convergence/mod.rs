@@ -52,13 +52,13 @@ pub fn plan(quick: bool) -> Plan {
         Plan {
             levels: vec![4, 8, 16],
             n_ref: 32,
-            solver: &crate::step::SOLVERS[0],
+            solver: crate::step::DEFAULT_SOLVER_ENTRY,
         }
     } else {
         Plan {
             levels: vec![4, 8, 16, 32, 64, 128],
             n_ref: 512,
-            solver: &crate::step::SOLVERS[0],
+            solver: crate::step::DEFAULT_SOLVER_ENTRY,
         }
     }
 }

@@ -167,7 +167,7 @@ pub fn split_plan(n0: usize, quick: bool) -> crate::experiments::convergence::Pl
     crate::experiments::convergence::Plan {
         levels: (0..levels).map(|j| n0 << j).collect(),
         n_ref: n0 << (levels + 1),
-        solver: &crate::step::SOLVERS[0],
+        solver: crate::step::DEFAULT_SOLVER_ENTRY,
     }
 }
 

@@ -71,14 +71,14 @@ pub fn plan(quick: bool) -> Plan {
             n: 16,
             levels: vec![4, 8, 16, 32, 64, 128, 256],
             n_ref: 16384,
-            solver: &crate::step::SOLVERS[0],
+            solver: crate::step::DEFAULT_SOLVER_ENTRY,
         }
     } else {
         Plan {
             n: 32,
             levels: vec![4, 8, 16, 32, 64, 128, 256, 512, 1024],
             n_ref: 32768,
-            solver: &crate::step::SOLVERS[0],
+            solver: crate::step::DEFAULT_SOLVER_ENTRY,
         }
     }
 }
