@@ -190,8 +190,10 @@ fn no_solver_is_picked_by_index() {
 /// happens to be spelled alike, listed here with what it means.
 #[test]
 fn experiment_names_are_spelled_in_the_registry_only() {
-    let other_meaning: [(&str, &str); 6] = [
+    let other_meaning: [(&str, &str); 8] = [
         ("src/cli/solve.rs", "graded"), // the mesh kind of --mesh
+        ("src/experiments/study/mod.rs", "time"), // the study `evhi study time`
+        ("src/experiments/study/mod.rs", "stability"), // the study `evhi study stability`
         ("src/experiments/study/convergence.rs", "graded"), // a mesh family's label
         ("src/experiments/graded.rs", "graded"), // a mesh family's label
         ("src/experiments/study/stability.rs", "stability"), // the study's figure stem

@@ -128,7 +128,7 @@ fn studies(
     let scenario = file.display().to_string();
     let scratch = scratch.0.join("studies");
     ctx.add_units(3);
-    let [convergence, time, stability] = super::registry::STUDIES;
+    let [convergence, time, stability] = super::study::STUDIES;
     // Each study's figures (stems in its directory) and the names they get here.
     let runs: [(&str, &[Stem], Study); 3] = [
         (

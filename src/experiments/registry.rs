@@ -180,10 +180,6 @@ pub const EXPERIMENTS: [Experiment; 14] = [
     },
 ];
 
-/// The studies of `evhi study` (the experiments' computations on any scenario), by
-/// name: `convergence`, `time`, `stability`.
-pub const STUDIES: [&str; 3] = ["convergence", "time", "stability"];
-
 /// The names with their descriptions, for the command line, and `paper`.
 pub fn values() -> Vec<clap::builder::PossibleValue> {
     EXPERIMENTS

@@ -20,6 +20,10 @@ mod stability;
 pub use convergence::split_plan;
 mod time;
 
+/// The studies of `evhi study` (the experiments' computations on any scenario), by
+/// name: `convergence`, `time`, `stability`.
+pub const STUDIES: [&str; 3] = ["convergence", "time", "stability"];
+
 #[derive(clap::Subcommand)]
 pub enum Study {
     /// Convergence in space and time on the scenario's own scene: a uniform and a
