@@ -314,7 +314,12 @@ fn exact_solutions() {
             "exact_quadrature.csv",
             "exact_grid.csv",
         ],
-        &["exact_convergence", "exact_cea", "exact_regimes", "exact_grid"],
+        &[
+            "exact_convergence",
+            "exact_cea",
+            "exact_regimes",
+            "exact_grid",
+        ],
         1e-11,
     );
 }

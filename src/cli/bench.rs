@@ -91,7 +91,7 @@ fn child_run(
     ));
     solve_into(&dir, n, steps, solver, path)?;
     // Both files through the project's own CSV reader (polars); string columns are skipped.
-    use crate::experiments::{col_f64, read_csv};
+    use crate::output::csv::{col_f64, read_csv};
     let read =
         || -> Result<std::collections::HashMap<String, f64>, crate::experiments::ExpError> {
             let summary = read_csv(&dir.join("summary.csv"))?;
@@ -240,13 +240,13 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         ),
     )?;
     // Work-precision: every configuration of the convergence study, timed.
-    let table1 = crate::experiments::read_csv(&ctx.data_path("table1.csv"))?;
-    let sc = crate::experiments::col_str(&table1, "scenario")?;
-    let fam = crate::experiments::col_str(&table1, "family")?;
-    let n = crate::experiments::col_f64(&table1, "n")?;
-    let st = crate::experiments::col_f64(&table1, "steps")?;
-    let err = crate::experiments::col_f64(&table1, "rel_err_T_percent")?;
-    let errm = crate::experiments::col_f64(&table1, "rel_err_max_percent")?;
+    let table1 = crate::output::csv::read_csv(&ctx.data_path("table1.csv"))?;
+    let sc = crate::output::csv::col_str(&table1, "scenario")?;
+    let fam = crate::output::csv::col_str(&table1, "family")?;
+    let n = crate::output::csv::col_f64(&table1, "n")?;
+    let st = crate::output::csv::col_f64(&table1, "steps")?;
+    let err = crate::output::csv::col_f64(&table1, "rel_err_T_percent")?;
+    let errm = crate::output::csv::col_f64(&table1, "rel_err_max_percent")?;
     let mut wp = vec![];
     for i in (0..sc.len()).filter(|&i| sc[i] == "figure") {
         let (ni, si) = (n[i] as usize, st[i] as usize);

@@ -315,7 +315,7 @@ fn record_times(
     wall: f64,
     jobs: usize,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::experiments::{col_f64, col_str, read_csv};
+    use crate::output::csv::{col_f64, col_str, read_csv};
     let path = ctx.data_path(file);
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)

@@ -2,9 +2,9 @@
 //! compliance (5.1) up to $g$, then the vertical wall of the unilateral limit (5.2),
 //! where $-\sigma_\nu = p(g) + \mu$ with any $\mu \ge 0$.
 
-use super::plot::{Figure, both, e2s, legend};
 use super::{Ctx, ExpError, col_f64, read_csv};
 use crate::output::csv::Table;
+use crate::output::plot::{Figure, both, e2s, legend};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 
@@ -98,7 +98,7 @@ fn draw_in(
         law_label: labels.law.clone(),
         points_label: labels.points.clone(),
     };
-    both(&ctx.figures, stem, (900, 600), &fig)
+    Ok(both(&ctx.figures, stem, (900, 600), &fig)?)
 }
 
 struct Fig2 {

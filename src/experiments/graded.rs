@@ -28,12 +28,12 @@
 //! family, $\|u_n - u_{2n}\| / \|u_{2n}\|$ in the energy norm, at $T$ and its
 //! maximum over the level's time grid $t_j = j/n$, with the time where it occurs.
 
-use super::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::bisection::{Forest, Leaves, centroid};
 use crate::geometry::Geometry;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
+use crate::output::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
 use crate::scenario::Scenario;
 use crate::scheme::Settings;
 use plotters::prelude::*;
@@ -542,7 +542,7 @@ pub fn draw(
             ),
         ],
     };
-    both(dir, stem, (1500, 700), &fig)
+    Ok(both(dir, stem, (1500, 700), &fig)?)
 }
 
 /// The outline of family `f`'s marker: square (uniform), octagon (graded towards all
@@ -587,7 +587,7 @@ impl Figure for GradedFig {
                 .get(1)
                 .and_then(|s| s.1.first())
                 .map_or(f64::INFINITY, |&start| {
-                    super::plot::slope_guides_low(&[0.5, 0.25], start, xmax, 0.45)
+                    crate::output::plot::slope_guides_low(&[0.5, 0.25], start, xmax, 0.45)
                 });
             let (xr, yr) = (
                 (xmin / 1.5, xmax * 1.5),

@@ -7,10 +7,10 @@
 //! hold nodes; among those we take the one whose least-populated regime is largest
 //! (the most even spread), the smaller load on ties.
 
-use super::plot::REGIMES;
 use super::scenes::counts;
 use super::{Ctx, ExpError};
 use crate::output::csv::Table;
+use crate::output::plot::REGIMES;
 use crate::scenario::Scenario;
 
 /// The grid searched: $q_0$ (volume, N/m²) and $q_2$ (top, N/m).

@@ -16,9 +16,9 @@ pub mod graded;
 pub mod hypotheses;
 pub mod loads;
 pub mod paths;
-pub mod plot;
 pub mod registry;
 pub mod runplot;
+pub use crate::output::csv::{col_f64, col_str, read_csv};
 pub mod scenes;
 pub mod singular;
 pub mod stability;
@@ -28,8 +28,6 @@ pub mod time;
 pub mod workprec;
 
 pub use ctx::Ctx;
-use polars::prelude::*;
-use std::path::Path;
 
 /// An experiment's failure.
 #[derive(Debug, thiserror::Error)]
@@ -38,6 +36,8 @@ pub enum ExpError {
     Run(#[from] crate::scheme::RunError),
     #[error(transparent)]
     Input(#[from] crate::error::InputError),
+    #[error(transparent)]
+    File(#[from] crate::output::FileError),
     #[error("i/o on {path}: {source}")]
     Io {
         path: String,
@@ -154,47 +154,6 @@ pub fn run_newton_batch_states(
         &mut solvers,
         observe,
     )?)
-}
-
-/// Reads a CSV written by [`Ctx::write`] (comment lines skipped).
-pub fn read_csv(path: &Path) -> Result<DataFrame, ExpError> {
-    let err = |e: PolarsError| ExpError::Table {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    };
-    CsvReadOptions::default()
-        .with_parse_options(CsvParseOptions::default().with_comment_prefix(Some("#")))
-        .try_into_reader_with_file_path(Some(path.to_path_buf()))
-        .map_err(err)?
-        .finish()
-        .map_err(err)
-}
-
-/// A numeric column as `f64`.
-pub fn col_f64(df: &DataFrame, name: &str) -> Result<Vec<f64>, ExpError> {
-    let err = |m: String| ExpError::Table {
-        path: name.to_string(),
-        message: m,
-    };
-    let c = df.column(name).map_err(|e| err(e.to_string()))?;
-    let c = c.cast(&DataType::Float64).map_err(|e| err(e.to_string()))?;
-    Ok(c.f64()
-        .map_err(|e| err(e.to_string()))?
-        .into_no_null_iter()
-        .collect())
-}
-
-/// A string column.
-pub fn col_str(df: &DataFrame, name: &str) -> Result<Vec<String>, ExpError> {
-    let err = |m: String| ExpError::Table {
-        path: name.to_string(),
-        message: m,
-    };
-    let c = df.column(name).map_err(|e| err(e.to_string()))?;
-    let ca = c.str().map_err(|e| err(e.to_string()))?;
-    Ok((0..ca.len())
-        .map(|i| ca.get(i).unwrap_or("").to_string())
-        .collect())
 }
 
 /// Rounds every number in CSV text to `sig` significant digits and drops comment

@@ -3,9 +3,9 @@
 //! interface forces, in the style of Fig. 3) and `evolution` (the normal displacement
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
-use super::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use super::{ExpError, col_f64, col_str, read_csv};
 use crate::certificate::regime_order;
+use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -234,7 +234,7 @@ fn draw_evolution(
             ))
         })
         .collect::<Result<Vec<_>, ExpError>>()?;
-    both(
+    Ok(both(
         dir,
         "evolution",
         (1200, 1300),
@@ -244,7 +244,7 @@ fn draw_evolution(
             nodes,
             counts,
         },
-    )
+    )?)
 }
 
 /// One watched node: x, its (t, u_nu) and its (t, -sigma_nu).

@@ -2,11 +2,13 @@
 //! forces on $\Gamma_3$, nodes coloured by their regime, for the `figure` scenario
 //! ($h = k = 1/128$); Fig. 4 repeats it for several $g$.
 
-use super::plot::{Figure, REGIMES, both, e2s, fit_title, legend, regime_colour, regime_label};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::certificate::{ContactState, regime_order};
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
+use crate::output::plot::{
+    Figure, REGIMES, both, e2s, fit_title, legend, regime_colour, regime_label,
+};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 
@@ -123,7 +125,7 @@ pub fn draw_run(
     }
     panel.contact = run_contact(dir, &panel);
     let panels = vec![panel];
-    both(
+    Ok(both(
         dir,
         "deformed",
         (1000, 980),
@@ -132,7 +134,7 @@ pub fn draw_run(
             title,
             paper_law: false,
         },
-    )
+    )?)
 }
 
 /// $\Gamma_3$ of a run directory where it is a part of the bottom: from the run's
@@ -186,7 +188,7 @@ pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
     let cp = ctx.write("fig3_contact.csv", &contact_table(&[(g, &sc)]), &params)?;
     let np = ctx.write("fig3_nodes.csv", &nodes_table(&[(g, &sc)], 1), &params)?;
     let panels = vec![Panel::from_csv(&cp, &np, g, n)?];
-    both(
+    Ok(both(
         &ctx.figures,
         "fig3_deformed",
         (1000, 980),
@@ -197,7 +199,7 @@ pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
                 "Fig. 3: deformed body at t = T (true scale), forces on Γ3; h = k = 1/{n}"
             ),
         },
-    )
+    )?)
 }
 
 pub fn fig4_gs() -> [f64; 4] {
@@ -236,7 +238,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     for &g in &gs {
         panels.push(Panel::from_csv(&cp, &np, g, n / stride)?);
     }
-    both(
+    Ok(both(
         &ctx.figures,
         "fig4_several_g",
         (1000, 3760),
@@ -245,7 +247,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
             panels,
             title: format!("Fig. 4: several g, h = k = 1/{n} (mesh lines every {stride} cells)"),
         },
-    )
+    )?)
 }
 
 /// One panel's data, read back from the CSVs.

@@ -14,13 +14,13 @@
 //! ([`wedge_exponents`]); on uniform meshes the energy error then decays like
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
-use super::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::assembly::stiffness;
 use crate::linalg::Cholesky;
 use crate::mesh::Dofs;
 use crate::ordering::Ordering;
 use crate::output::csv::Table;
+use crate::output::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 
@@ -346,7 +346,7 @@ fn draw(
             (1.0, "slope -1 (smooth)".into()),
         ],
     };
-    both(&ctx.figures, "static_control", (900, 700), &fig)
+    Ok(both(&ctx.figures, "static_control", (900, 700), &fig)?)
 }
 
 impl Figure for StaticFig {

@@ -1,8 +1,8 @@
 //! The work–precision chart: error in energy norm against wall time for the
 //! configurations of the convergence study (`evhi bench` times them).
 
-use super::plot::{Figure, both, circle_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::output::plot::{Figure, both, circle_legend, e2s, legend};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -54,7 +54,7 @@ pub fn draw(ctx: &Ctx, path: &Path) -> Result<(), ExpError> {
         ],
         floor: mesh_floor(ctx),
     };
-    both(&ctx.figures, "work_precision", (1000, 750), &chart)
+    Ok(both(&ctx.figures, "work_precision", (1000, 750), &chart)?)
 }
 
 impl Figure for Chart {
@@ -129,7 +129,7 @@ impl Figure for Chart {
                 .label(format!(
                     "own error of the h = 1/512 mesh, about {f:.1} % (estimate)"
                 ))
-                .legend(move |xy| super::plot::dashed_legend(xy, 8, 6, grey));
+                .legend(move |xy| crate::output::plot::dashed_legend(xy, 8, 6, grey));
         }
         chart
             .draw_series(

@@ -65,3 +65,45 @@ impl Table {
         super::write_atomic(path, &out)
     }
 }
+
+/// Reads a CSV written by [`crate::experiments::Ctx::write`] or a run (comment lines
+/// skipped).
+pub fn read_csv(path: &Path) -> Result<DataFrame, super::FileError> {
+    let err = |e: PolarsError| super::FileError::Table {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    CsvReadOptions::default()
+        .with_parse_options(CsvParseOptions::default().with_comment_prefix(Some("#")))
+        .try_into_reader_with_file_path(Some(path.to_path_buf()))
+        .map_err(err)?
+        .finish()
+        .map_err(err)
+}
+
+/// A numeric column as `f64`.
+pub fn col_f64(df: &DataFrame, name: &str) -> Result<Vec<f64>, super::FileError> {
+    let err = |m: String| super::FileError::Table {
+        path: name.to_string(),
+        message: m,
+    };
+    let c = df.column(name).map_err(|e| err(e.to_string()))?;
+    let c = c.cast(&DataType::Float64).map_err(|e| err(e.to_string()))?;
+    Ok(c.f64()
+        .map_err(|e| err(e.to_string()))?
+        .into_no_null_iter()
+        .collect())
+}
+
+/// A string column.
+pub fn col_str(df: &DataFrame, name: &str) -> Result<Vec<String>, super::FileError> {
+    let err = |m: String| super::FileError::Table {
+        path: name.to_string(),
+        message: m,
+    };
+    let c = df.column(name).map_err(|e| err(e.to_string()))?;
+    let ca = c.str().map_err(|e| err(e.to_string()))?;
+    Ok((0..ca.len())
+        .map(|i| ca.get(i).unwrap_or("").to_string())
+        .collect())
+}

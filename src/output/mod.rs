@@ -5,9 +5,24 @@
 
 pub mod csv;
 pub mod markdown;
+pub mod plot;
 pub mod run;
 pub mod rundir;
 pub mod vtu;
+
+/// A table or figure file that could not be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum FileError {
+    #[error("i/o on {path}: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("table {path}: {message}")]
+    Table { path: String, message: String },
+    #[error("figure {path}: {message}")]
+    Plot { path: String, message: String },
+}
 
 use std::io::Write;
 use std::path::Path;

@@ -125,14 +125,14 @@ pub fn draw_split(
             })
             .collect(),
     };
-    both(
+    Ok(both(
         dir,
         stem,
         (1000, 1300),
         &Fig5Split {
             panels: [panel("at t = T", &et), panel("maximum over t", &em)],
         },
-    )
+    )?)
 }
 
 impl Figure for Fig5Split {

@@ -12,11 +12,11 @@
 //! the maximum over the time levels shared with the reference,
 //! $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$ (the norm of Corollary 4.1's left side).
 
-use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::element::strain_matrix;
 use crate::mesh::{Dofs, Interpolation, Mesh};
 use crate::output::csv::Table;
+use crate::output::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use crate::reduced::{Reduced, State};
 use crate::scenario::Scenario;
 use crate::scheme::{Discretisation, OrderingKind, Timings};

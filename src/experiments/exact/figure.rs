@@ -1,11 +1,9 @@
 //! The exact-solution study's figures, drawn from its CSV tables: the errors of every
 //! family against the truth, the Céa terms of (b), and the regimes (b) visits.
 
-use crate::experiments::plot::{
-    Figure, both, e2s, legend, regime_colour, regime_label, slope_guides,
-};
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::manufactured::run::REGIMES;
+use crate::output::plot::{Figure, both, e2s, legend, regime_colour, regime_label, slope_guides};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -363,7 +361,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
             Ok((r.to_string(), pts))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    both(
+    Ok(both(
         &ctx.figures,
         "exact_regimes",
         (1000, 600),
@@ -379,7 +377,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
                     .fold(1.0, f64::max),
             series,
         },
-    )
+    )?)
 }
 
 /// The observed constant of (4.24) over the $(h, k)$ grid: one panel per solution,
@@ -509,5 +507,10 @@ pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
             (format!("{}: LHS/(h² + k²), h = 1/n", label_of(s)), cells)
         })
         .collect();
-    both(&ctx.figures, "exact_grid", (1400, 640), &Grid { panels })
+    Ok(both(
+        &ctx.figures,
+        "exact_grid",
+        (1400, 640),
+        &Grid { panels },
+    )?)
 }

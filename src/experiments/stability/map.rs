@@ -16,8 +16,8 @@ const FAILED: RGBColor = RGBColor(213, 94, 0);
 const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
 /// The outcome of a cell whose uncertified solver let u_nu pass g (measured).
 const OVERSHOOTS_G: &str = "converged (overshoots g)";
-use crate::experiments::plot::{Figure, both, e2s};
 use crate::law::Law;
+use crate::output::plot::{Figure, both, e2s};
 use crate::step::Status;
 use crate::step::multistart::MultiStart;
 use plotters::prelude::*;
@@ -223,15 +223,15 @@ pub struct MapFigure {
 }
 
 fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
-    let df = crate::experiments::read_csv(path)?;
-    let solver = crate::experiments::col_str(&df, "solver")?;
+    let df = crate::output::csv::read_csv(path)?;
+    let solver = crate::output::csv::col_str(&df, "solver")?;
     let (k, c2, hmin) = (
-        crate::experiments::col_f64(&df, "k")?,
-        crate::experiments::col_f64(&df, "c2")?,
-        crate::experiments::col_f64(&df, "hessian_min")?,
+        crate::output::csv::col_f64(&df, "k")?,
+        crate::output::csv::col_f64(&df, "c2")?,
+        crate::output::csv::col_f64(&df, "hessian_min")?,
     );
-    let outcome = crate::experiments::col_str(&df, "outcome")?;
-    let iters = crate::experiments::col_f64(&df, "mean_iterations")?;
+    let outcome = crate::output::csv::col_str(&df, "outcome")?;
+    let iters = crate::output::csv::col_f64(&df, "mean_iterations")?;
     let cells = (0..solver.len())
         .map(|i| {
             (
@@ -244,7 +244,7 @@ fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             )
         })
         .collect();
-    both(
+    Ok(both(
         &ctx.figures,
         "stability_map",
         (1100, 1150),
@@ -254,7 +254,7 @@ fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
             row_desc: "softening slope c2".into(),
             row_label: |c| format!("-{c:.0e}"),
         },
-    )
+    )?)
 }
 
 impl Figure for MapFigure {

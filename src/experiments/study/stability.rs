@@ -209,7 +209,7 @@ pub(super) fn run(
         row_desc: "mesh: segments n".into(),
         row_label: |n| format!("{n:.0}"),
     };
-    crate::experiments::plot::both(&out.path(""), "stability", (1100, 1150), &fig)?;
+    crate::output::plot::both(&out.path(""), "stability", (1100, 1150), &fig)?;
     write_scenario(&out, &text, command)?;
     out.publish()?;
     Ok(md)

@@ -104,12 +104,12 @@ struct TimeFig {
     title: String,
 }
 
-impl crate::experiments::plot::Figure for TimeFig {
+impl crate::output::plot::Figure for TimeFig {
     fn draw<DB: plotters::prelude::DrawingBackend>(
         &self,
         root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        use crate::experiments::plot::{e2s, legend};
+        use crate::output::plot::{e2s, legend};
         use plotters::prelude::*;
         let pts: Vec<(f64, f64)> = self.series.iter().flat_map(|s| s.1.clone()).collect();
         let (x0, x1) = pts
@@ -213,5 +213,10 @@ fn draw_time(
         "time error of {} at n = {n} against N",
         rows.first().map_or("", |r| r.scenario.as_str())
     );
-    crate::experiments::plot::both(dir, "time_study", (900, 650), &TimeFig { series, title })
+    Ok(crate::output::plot::both(
+        dir,
+        "time_study",
+        (900, 650),
+        &TimeFig { series, title },
+    )?)
 }

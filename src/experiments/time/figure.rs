@@ -272,12 +272,12 @@ pub(super) fn draw_controls(ctx: &Ctx, path: &std::path::Path) -> Result<(), Exp
         }
         panels.push((title.to_string(), series));
     }
-    both(
+    Ok(both(
         &ctx.figures,
         "time_controls",
         (900, 700),
         &ControlFig { panels },
-    )
+    )?)
 }
 
 impl Figure for ControlFig {
@@ -295,8 +295,8 @@ impl Figure for ControlFig {
                 (a.min(p.1), b.max(p.1))
             });
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
-            let keys = super::super::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
-            let ykeys = super::super::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
+            let keys = crate::output::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
+            let ykeys = crate::output::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
             let mut chart = ChartBuilder::on(area)
                 .caption(
                     format!("Time error against k/tau: {title}"),

@@ -23,11 +23,11 @@
 //! rounding floors under the relaxed constant load ($\tau = 0.007$ at $T$) fell from
 //! $8\cdot10^{-10}$ to $8\cdot10^{-12}$.
 
-use super::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::history::History;
 use crate::norms::energy_norm;
 use crate::output::csv::Table;
+use crate::output::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use crate::scenario::Scenario;
 use crate::scheme::{Discretisation, Settings};
 use plotters::prelude::*;

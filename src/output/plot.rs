@@ -1,7 +1,7 @@
 //! Drawing helpers shared by the figures (plotters, with an embedded DejaVu Sans
 //! so that no system font is needed).
 
-use super::ExpError;
+use super::FileError as ExpError;
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
