@@ -86,7 +86,7 @@ fn main() -> ExitCode {
             &run_dir.canonicalize().unwrap_or_else(|_| run_dir.clone()),
         )
         .map_err(|e| e.to_string())
-        .and_then(|_lock| evhi::experiments::runplot::draw(&run_dir).map_err(|e| e.to_string()))
+        .and_then(|_lock| evhi::output::runplot::draw(&run_dir).map_err(|e| e.to_string()))
         .map_err(|e| format!("{}: {e}", run_dir.display()).into()),
     };
     match result {

@@ -256,7 +256,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         &h_s,
     )?;
     // The run's figures, drawn from the tables just written.
-    crate::experiments::runplot::draw(&out.path(""))?;
+    crate::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
         let t = &run.timings;

@@ -246,7 +246,7 @@ fn one(
         message: e.to_string(),
     };
     crate::output::run::write(&out, &scn, toml, res, rec, &prov, 0.0, &h_s).map_err(err)?;
-    super::runplot::draw(&out.path(""))?;
+    crate::output::runplot::draw(&out.path(""))?;
     out.publish().map_err(err)?;
     // Newton's work per step, without the timing columns of steps.csv.
     let t = crate::output::run::step_work(&res.records);

@@ -17,7 +17,6 @@ pub mod hypotheses;
 pub mod loads;
 pub mod paths;
 pub mod registry;
-pub mod runplot;
 pub use crate::output::csv::{col_f64, col_str, read_csv};
 pub mod scenes;
 pub mod singular;

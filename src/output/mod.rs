@@ -8,6 +8,8 @@ pub mod markdown;
 pub mod plot;
 pub mod run;
 pub mod rundir;
+pub mod runplot;
+pub mod scene;
 pub mod vtu;
 
 /// A table or figure file that could not be read or written.

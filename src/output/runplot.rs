@@ -3,7 +3,8 @@
 //! interface forces, in the style of Fig. 3) and `evolution` (the normal displacement
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
-use super::{ExpError, col_f64, col_str, read_csv};
+use super::FileError as ExpError;
+use super::csv::{col_f64, col_str, read_csv};
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use plotters::prelude::*;
@@ -153,7 +154,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         format!("{h}")
     };
     let deformed = || {
-        super::scenes::draw_run(
+        crate::output::scene::draw_run(
             dir,
             g,
             n / stride,
@@ -234,7 +235,7 @@ fn draw_evolution(
             ))
         })
         .collect::<Result<Vec<_>, ExpError>>()?;
-    Ok(both(
+    both(
         dir,
         "evolution",
         (1200, 1300),
@@ -244,7 +245,7 @@ fn draw_evolution(
             nodes,
             counts,
         },
-    )?)
+    )
 }
 
 /// One watched node: x, its (t, u_nu) and its (t, -sigma_nu).

@@ -1,0 +1,405 @@
+//! The picture of a solved scene: the deformed body at true scale with its mesh, and
+//! the interface forces on $\Gamma_3$ with each node coloured by its regime, drawn from
+//! the tables a run writes (`contact.csv`, `nodes.csv`, and `triangles.csv` for a
+//! mesh that is no lattice). `evhi solve` and `evhi plot` draw a run's `deformed`
+//! figure with it, and Figs. 3 and 4 of the paper's experiments their panels.
+
+use super::FileError as ExpError;
+use super::csv::{col_f64, col_str, read_csv};
+use crate::certificate::regime_order;
+use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
+use crate::scenario::Scenario;
+use plotters::prelude::*;
+
+/// The deformed body and interface forces of one run directory (`contact.csv` and
+/// `nodes.csv` as `evhi solve` writes them) into `dir/deformed.{png,svg}`.
+pub fn draw_run(
+    dir: &std::path::Path,
+    g: f64,
+    cells: usize,
+    title: String,
+) -> Result<(), ExpError> {
+    let mut panel = Panel::from_csv(&dir.join("contact.csv"), &dir.join("nodes.csv"), g, cells)?;
+    let tri = dir.join("triangles.csv");
+    if tri.exists() {
+        let t = read_csv(&tri)?;
+        let (a, b, c) = (col_f64(&t, "a")?, col_f64(&t, "b")?, col_f64(&t, "c")?);
+        let nodes = panel.x.len();
+        let mut list = Vec::with_capacity(a.len());
+        for i in 0..a.len() {
+            let raw = [a[i], b[i], c[i]];
+            if !raw
+                .iter()
+                .all(|&k| k >= 0.0 && k.fract() == 0.0 && k < nodes as f64)
+            {
+                return Err(ExpError::Table {
+                    path: tri.display().to_string(),
+                    message: format!(
+                        "row {i} holds {raw:?}, not three node numbers in 0..{nodes} (the \
+                         nodes of nodes.csv)"
+                    ),
+                });
+            }
+            list.push(raw.map(|x| x as usize));
+        }
+        panel.triangles = Some(list);
+    } else {
+        panel.check_lattice(&dir.join("nodes.csv"))?;
+    }
+    panel.contact = run_contact(dir, &panel);
+    let panels = vec![panel];
+    both(
+        dir,
+        "deformed",
+        (1000, 980),
+        &SceneFigure {
+            panels,
+            title,
+            paper_law: false,
+        },
+    )
+}
+
+/// $\Gamma_3$ of a run directory where it is a part of the bottom: from the run's
+/// `scenario.toml`, or where that does not read, the span of its contact nodes.
+fn run_contact(dir: &std::path::Path, panel: &Panel) -> Option<[f64; 2]> {
+    let from_file = std::fs::read_to_string(dir.join("scenario.toml"))
+        .ok()
+        .and_then(|text| Scenario::from_toml(&text, "scenario.toml").ok())
+        .map(|scn| scn.geometry.contact);
+    let span = || {
+        let lo = panel.cx.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = panel.cx.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        (lo < hi).then_some([lo, hi])
+    };
+    let contact = from_file.or_else(span)?;
+    let whole = contact[0] <= 0.0 && contact[1] >= panel.width();
+    (!whole).then_some(contact)
+}
+
+/// One panel's data, read back from the CSVs.
+pub struct Panel {
+    g: f64,
+    /// lattice cells per side in x
+    cells: usize,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    ux: Vec<f64>,
+    uy: Vec<f64>,
+    cx: Vec<f64>,
+    s1: Vec<f64>,
+    s2: Vec<f64>,
+    regime: Vec<String>,
+    u_nu: Vec<f64>,
+    /// A mesh that is no lattice (graded): its triangles, node indices into `x`.
+    triangles: Option<Vec<[usize; 3]>>,
+    /// $\Gamma_3$ as `[from, to]` on the bottom where it is not the whole bottom: the
+    /// layer and foundation are drawn under it only.
+    contact: Option<[f64; 2]>,
+}
+
+impl Panel {
+    /// The panel of limit `g` from a contact and a nodes table (rows of every `g`
+    /// when they have a `g` column), drawn as a lattice of `cells` cells across.
+    pub fn from_csv(
+        cp: &std::path::Path,
+        np: &std::path::Path,
+        g: f64,
+        cells: usize,
+    ) -> Result<Panel, ExpError> {
+        let c = read_csv(cp)?;
+        let nd = read_csv(np)?;
+        // A run directory's tables have no `g` column: every row is this panel's.
+        let g_col = |df: &polars::prelude::DataFrame| {
+            col_f64(df, "g").unwrap_or_else(|_| vec![g; df.height()])
+        };
+        let cg = g_col(&c);
+        let ng = g_col(&nd);
+        let pick = |v: Vec<f64>, gg: &[f64]| {
+            v.into_iter()
+                .zip(gg)
+                .filter(|(_, x)| **x == g)
+                .map(|(a, _)| a)
+                .collect::<Vec<_>>()
+        };
+        let regime = col_str(&c, "regime")?
+            .into_iter()
+            .zip(&cg)
+            .filter(|(_, x)| **x == g)
+            .map(|(a, _)| a)
+            .collect();
+        Ok(Panel {
+            g,
+            cells,
+            x: pick(col_f64(&nd, "x")?, &ng),
+            y: pick(col_f64(&nd, "y")?, &ng),
+            ux: pick(col_f64(&nd, "ux")?, &ng),
+            uy: pick(col_f64(&nd, "uy")?, &ng),
+            cx: pick(col_f64(&c, "x")?, &cg),
+            s1: pick(col_f64(&c, "sigma_nu1")?, &cg),
+            s2: pick(col_f64(&c, "sigma_nu2")?, &cg),
+            u_nu: pick(col_f64(&c, "u_nu")?, &cg),
+            regime,
+            triangles: None,
+            contact: None,
+        })
+    }
+}
+
+impl Panel {
+    /// Refuses nodes that are not the lattice of `cells + 1` columns the figure draws
+    /// (at least two rows, each column at one x, each row at one y): a nodes table cut
+    /// short, or a summary whose n does not match it, would be misdrawn or index past
+    /// the end.
+    fn check_lattice(&self, path: &std::path::Path) -> Result<(), ExpError> {
+        let (cols, nodes) = (self.cells + 1, self.x.len());
+        let rows = nodes / cols;
+        let lattice = nodes.is_multiple_of(cols)
+            && rows >= 2
+            && (0..nodes).all(|v| {
+                let (i, j) = (v % cols, v / cols);
+                self.x[v] == self.x[i] && self.y[v] == self.y[j * cols]
+            })
+            && (1..cols).all(|i| self.x[i] > self.x[i - 1])
+            && (1..rows).all(|j| self.y[j * cols] > self.y[(j - 1) * cols]);
+        if lattice {
+            Ok(())
+        } else {
+            Err(ExpError::Table {
+                path: path.display().to_string(),
+                message: format!(
+                    "its {nodes} node(s) are not a lattice of rows of {cols} (the n of \
+                     summary.csv, drawn every few cells); the table was not written by \
+                     this run"
+                ),
+            })
+        }
+    }
+
+    /// The rectangle's width and height: the lattice's extent.
+    fn width(&self) -> f64 {
+        self.x.iter().copied().fold(0.0, f64::max)
+    }
+    fn height(&self) -> f64 {
+        self.y.iter().copied().fold(0.0, f64::max)
+    }
+    /// The x span the mesh panel shows, and the y span it must show.
+    fn x_span(&self) -> f64 {
+        self.width() + 0.1
+    }
+    fn y_span(&self) -> f64 {
+        self.height() + 0.18
+    }
+}
+
+pub struct SceneFigure {
+    pub panels: Vec<Panel>,
+    pub title: String,
+    /// Label the branches with the paper's law (5.1); otherwise "branch b".
+    pub paper_law: bool,
+}
+
+impl Figure for SceneFigure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let root = fit_title(root, &self.title, 24)?;
+        let rows = root.split_evenly((self.panels.len(), 1));
+        for (p, area) in self.panels.iter().zip(rows.iter()) {
+            // The mesh panel tall enough to show x in [-0.05, W + 0.05] and y in
+            // [-0.16, H + 0.02] at true aspect (plus its caption and labels); the
+            // forces get the rest.
+            let (w, h) = area.dim_in_pixel();
+            let plot_w = w.saturating_sub(MESH_FRAME.0) as f64;
+            let need = (plot_w * p.y_span() / p.x_span()) as u32 + MESH_FRAME.1;
+            let (top, bottom) = area.split_vertically(need.min(h * 3 / 4));
+            draw_mesh(p, &top)?;
+            draw_forces(p, &bottom, self.paper_law)?;
+        }
+        Ok(())
+    }
+}
+
+/// The mesh panel's x span, the y span it must show, and its frame (pixels
+/// outside the plotting area: y labels and margins across; caption, x labels
+/// and margins down).
+const MESH_FRAME: (u32, u32) = (66, 92);
+
+fn draw_mesh<DB: DrawingBackend>(
+    p: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+) -> Result<(), String> {
+    let caption = format!(
+        "{}: deformed mesh (true scale); contact nodes: {}",
+        if p.g.is_finite() {
+            format!("g = {}", p.g)
+        } else {
+            "no limit".to_string()
+        },
+        regime_order(&p.regime)
+            .iter()
+            .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 18))
+        .margin(8)
+        .x_label_area_size(48)
+        .y_label_area_size(50)
+        // True aspect: as many metres per pixel down as across.
+        .build_cartesian_2d(-0.05..p.width() + 0.05, -0.16..-0.16 + aspect_span(p, area))
+        .map_err(e2s)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x [m]")
+        .y_desc("y [m]")
+        .label_style(("sans-serif", 16))
+        .draw()
+        .map_err(e2s)?;
+    // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g;
+    // none without a limit, the layer then fills the panel's foot), under Gamma_3 only.
+    let [left, right] = p.contact.unwrap_or([-0.05, p.width() + 0.05]);
+    let base = p.g.min(0.16);
+    if p.g.is_finite() {
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(left, -0.16), (right, -p.g)],
+                RGBColor(120, 120, 120).mix(0.5).filled(),
+            )))
+            .map_err(e2s)?;
+    }
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [
+                (left, if p.g.is_finite() { -p.g } else { -base }),
+                (right, 0.0),
+            ],
+            RGBColor(240, 200, 120).mix(0.4).filled(),
+        )))
+        .map_err(e2s)?;
+    let nx = p.cells;
+    let ny = (p.x.len() / (nx + 1)).saturating_sub(1);
+    let at = |i: usize, j: usize| {
+        let v = j * (nx + 1) + i;
+        (p.x[v] + p.ux[v], p.y[v] + p.uy[v])
+    };
+    let style = RGBColor(40, 40, 90).stroke_width(1);
+    let mut segs = vec![];
+    let moved = |v: usize| (p.x[v] + p.ux[v], p.y[v] + p.uy[v]);
+    for t in p.triangles.iter().flatten() {
+        for e in 0..3 {
+            segs.push([moved(t[e]), moved(t[(e + 1) % 3])]);
+        }
+    }
+    for j in (0..=ny).filter(|_| p.triangles.is_none()) {
+        for i in 0..=nx {
+            if i < nx {
+                segs.push([at(i, j), at(i + 1, j)]);
+            }
+            if j < ny {
+                segs.push([at(i, j), at(i, j + 1)]);
+            }
+            if i < nx && j < ny {
+                segs.push([at(i, j), at(i + 1, j + 1)]);
+            }
+        }
+    }
+    chart
+        .draw_series(
+            segs.into_iter()
+                .map(|s| PathElement::new(s.to_vec(), style)),
+        )
+        .map_err(e2s)?;
+    chart
+        .draw_series(
+            p.cx.iter()
+                .zip(&p.u_nu)
+                .zip(&p.regime)
+                .map(|((&x, &u), r)| Circle::new((x, -u), 3, regime_colour(r).filled())),
+        )
+        .map_err(e2s)?;
+    Ok(())
+}
+
+/// The y span that the area's plotting region shows at true aspect.
+fn aspect_span<DB: DrawingBackend>(
+    p: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+) -> f64 {
+    let (w, h) = area.dim_in_pixel();
+    let plot_w = w.saturating_sub(MESH_FRAME.0).max(1) as f64;
+    let plot_h = h.saturating_sub(MESH_FRAME.1).max(1) as f64;
+    (p.x_span() * plot_h / plot_w).max(p.y_span())
+}
+
+fn draw_forces<DB: DrawingBackend>(
+    p: &Panel,
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    paper_law: bool,
+) -> Result<(), String> {
+    let total: Vec<f64> = p.s1.iter().zip(&p.s2).map(|(a, b)| -(a + b)).collect();
+    let ymax = total.iter().fold(1.0f64, |a, &b| a.max(b)) * 1.1;
+    let mut chart = ChartBuilder::on(area)
+        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)", ("sans-serif", 17))
+        .margin(8)
+        .x_label_area_size(48)
+        .y_label_area_size(62)
+        .build_cartesian_2d(-0.05..p.width() + 0.05, 0.0..ymax)
+        .map_err(e2s)?;
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_desc("x [m]")
+        .y_desc("-σν [N/m]")
+        .label_style(("sans-serif", 16))
+        .draw()
+        .map_err(e2s)?;
+    let w = if p.cx.len() > 1 {
+        (p.cx[1] - p.cx[0]) * 0.35
+    } else {
+        0.01
+    };
+    for (k, &x) in p.cx.iter().enumerate() {
+        let a = -p.s1[k];
+        let b = -(p.s1[k] + p.s2[k]);
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x - w, 0.0), (x + w, a)],
+                regime_colour(&p.regime[k]).filled(),
+            )))
+            .map_err(e2s)?;
+        if b > a {
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x - w, a), (x + w, b)],
+                    RGBColor(120, 0, 0).filled(),
+                )))
+                .map_err(e2s)?;
+        }
+    }
+    for r in regime_order(&p.regime) {
+        {
+            let label = match (paper_law, r.as_str()) {
+                (true, _) | (false, "limit" | "no_contact") => regime_label(&r).to_string(),
+                _ => r.replace("branch", "branch "),
+            };
+            let colour = regime_colour(&r);
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (-10.0, -10.0),
+                    0,
+                    colour.filled(),
+                )))
+                .map_err(e2s)?
+                .label(label)
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 5), (x + 14, y + 5)], colour.filled())
+                });
+        }
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.85)?;
+    Ok(())
+}
