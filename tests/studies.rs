@@ -70,6 +70,44 @@ fn the_convergence_study_knows_the_ends_of_gamma_3() {
     assert!(md.contains("an end of Gamma_3 inside the bottom"), "{md}");
 }
 
+/// The convergence study says what it will cost before it starts (issue 41, item 15):
+/// on a 3 x 1 scene whose coarsest resolving level is 12, quick mode's reference is at
+/// n = 384, about 18 times the work of the paper's scene in the same mode, and the
+/// first line says so before any work (the run is stopped there).
+#[test]
+fn the_convergence_study_says_its_cost_first() {
+    use std::io::BufRead;
+    let dir = scratch("study-cost");
+    let scene = written(
+        dir.join("k3.toml"),
+        "name = \"k3\"\nT = 1.0\ng = 0.05\n[geometry]\nwidth = 3.0\nheight = 1.0\n\
+         [geometry.supports]\nleft = [{ from = 0.0, to = 0.5, kind = \"clamped\" }]\n\
+         [material]\nE = 1000.0\nkappa = 0.3\nalpha = 50.0\nbeta = 30.0\n\
+         [loads]\nf0 = [0.0, -4.0]\nf2 = [0.0, -20.0]\nhistory = { ramp = 0.3 }\n\
+         [law]\nbreakpoints = [0.0, 0.02, 0.04]\nslopes = [0.0, 400.0, -100.0, 300.0]\n",
+    );
+    let mut child = evhi()
+        .args(["study", "convergence", "--quick", "--scenario"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.join("conv"))
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufReader::new(child.stderr.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(
+        first.starts_with("study convergence (quick): uniform levels n = 12 to 96")
+            && first.contains("reference at n = 384 with at least 99330 unknowns and 384 step(s)")
+            && first.contains("about 18 times the work of the paper's scene"),
+        "{first}"
+    );
+}
+
 /// A smooth softening law on which the default Newton stalls (issue 41, item 5): the
 /// convergence study fails naming `--solver`, which the studies now take, and with
 /// `--solver newton-no-line-search` it runs; an uncertified solver is refused by name.

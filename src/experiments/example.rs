@@ -138,6 +138,7 @@ fn studies(
                 scenario: scenario.clone(),
                 quick: true,
                 solver: None,
+                announce: false,
                 out: scratch.join(convergence),
             }),
         ),

@@ -396,6 +396,7 @@ fn own_study_cantilever() {
             scenario,
             quick: true,
             solver: None,
+            announce: false,
             out,
         })
     });
@@ -559,6 +560,7 @@ fn own_study_is_table1() {
             scenario,
             quick: true,
             solver: None,
+            announce: false,
             out,
         })
     });

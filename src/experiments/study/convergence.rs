@@ -171,6 +171,45 @@ pub fn split_plan(n0: usize, quick: bool) -> crate::experiments::convergence::Pl
     }
 }
 
+/// What the study will cost, said before it starts: its levels and its reference (the
+/// graded family refined to `n_ref`, with at least the unknowns of the uniform mesh
+/// there), whose work (unknowns times steps) dominates, as a multiple of the same
+/// mode's reference on the paper's scene, which takes seconds.
+fn cost_notice(scn: &Scenario, plan: &graded::Plan, quick: bool) -> String {
+    let unknowns =
+        |n: usize, geo: &crate::geometry::Geometry| 2 * (n + 1) * (crate::mesh::rows(n, geo) + 1);
+    let steps = |n: usize| if scn.problem.viscous() { n } else { 1 };
+    let work = unknowns(plan.n_ref, &scn.geometry) * steps(plan.n_ref);
+    let paper = graded::plan(quick);
+    let paper_geo = crate::scenario::Scenario::load("literal")
+        .map(|p| p.geometry)
+        .unwrap_or_else(|_| scn.geometry.clone());
+    let paper_work = unknowns(paper.n_ref, &paper_geo) * paper.n_ref;
+    let levels = |v: &[usize]| match (v.first(), v.last()) {
+        (Some(a), Some(b)) => format!("{a} to {b}"),
+        _ => "none".into(),
+    };
+    let ratio = work as f64 / paper_work as f64;
+    let scale = if ratio > 2.0 {
+        format!(
+            "; about {ratio:.0} times the work of the paper's scene in this mode (which takes \
+             seconds): expect the time to grow in proportion"
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "study convergence ({}): uniform levels n = {}, graded n = {}, reference at n = {} \
+         with at least {} unknowns and {} step(s){scale}",
+        if quick { "quick" } else { "full" },
+        levels(&plan.uniform),
+        levels(&plan.graded),
+        plan.n_ref,
+        unknowns(plan.n_ref, &scn.geometry),
+        steps(plan.n_ref)
+    )
+}
+
 /// The split reference's own error in one family, in % like the errors: the finest
 /// level's error carried on to the reference at the family's smallest positive
 /// observed order, capped at 1 (the scheme's order in h and in k: a larger observed
@@ -254,6 +293,9 @@ pub(super) fn run(
         .into());
     }
     crate::scheme::check_memory(plan.n_ref, crate::mesh::rows(plan.n_ref, &scn.geometry))?;
+    if args.announce {
+        eprintln!("{}", cost_notice(&scn, &plan, args.quick));
+    }
     // The h and k parts apart only where there is a time error to part, and on the
     // reduced loop, which needs proportional damping (C = c G).
     let no_split = match scn.relaxation_time() {

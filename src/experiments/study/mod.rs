@@ -116,7 +116,9 @@ pub struct ConvergenceArgs {
     /// on three levels against 16 times (seconds); without it six uniform and five
     /// graded levels and a reference at 64 times, the split on six levels against 128
     /// times, Table 1's plan on the paper's scene (about 8 s there on a two-core
-    /// AMD EPYC: median of three whole runs, 7.7 to 8.8 s).
+    /// AMD EPYC: median of three whole runs, 7.7 to 8.8 s). Before any work the study
+    /// says what it will cost: its levels, its reference's size and steps, and how many
+    /// times the paper's scene's work in the same mode that is.
     #[arg(long)]
     pub quick: bool,
     /// The step solver of every run of the study (default newton), a certified one:
@@ -126,6 +128,10 @@ pub struct ConvergenceArgs {
     /// Output directory (created if missing).
     #[arg(long)]
     pub out: PathBuf,
+    /// Print the cost notice before any work (the command line does; a study run from
+    /// the library stays quiet).
+    #[arg(skip)]
+    pub announce: bool,
 }
 
 /// The registry entry of a study's `--solver` (newton when none is named), refused by
@@ -153,9 +159,12 @@ fn study_solver(
     Ok(entry)
 }
 
-pub fn run(study: Study) -> Result<(), Box<dyn std::error::Error>> {
+pub fn run(mut study: Study) -> Result<(), Box<dyn std::error::Error>> {
     let command =
         crate::output::run::one_line(&crate::output::run::quote_args(std::env::args().skip(1)));
+    if let Study::Convergence(args) = &mut study {
+        args.announce = true;
+    }
     eprint!("{}", run_as(study, &command)?);
     Ok(())
 }
