@@ -313,6 +313,7 @@ fn exact_solutions() {
             "exact_crime.csv",
             "exact_quadrature.csv",
             "exact_grid.csv",
+            "exact_quadrature_effect.csv",
         ],
         &[
             "exact_convergence",

@@ -209,6 +209,32 @@ pub fn run_rules(
     steps: usize,
     rules: &[Rule],
 ) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
+    run_rules_refined(sol, scn, n, steps, rules, 0)
+}
+
+/// [`run`] with every quadrature rule of the loads and of the error norms applied on
+/// the $4^{\rm refine}$ children of each triangle and $2^{\rm refine}$ parts of each
+/// contact segment (0: the study's rules): how much the reported errors owe to the
+/// quadrature.
+pub fn run_refined(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+    refine: usize,
+) -> Result<ExactRun, RunError> {
+    let (mut runs, _) = run_rules_refined(sol, scn, n, steps, &[Rule::Nodal], refine)?;
+    Ok(runs.remove(0))
+}
+
+fn run_rules_refined(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+    rules: &[Rule],
+    refine: usize,
+) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
     let clock = Instant::now();
     let steps = if sol.is_static() { 1 } else { steps };
     let mut disc = Discretisation::new(scn, n)?;
@@ -259,7 +285,7 @@ pub fn run_rules(
     // when the cuts, and so the points, are the same.
     let mut last: Option<(Vec<f64>, Vec<Point>)> = None;
     // A separable solution's points and shapes once; each step then scales them.
-    let mut separable = sol.separable().then(|| Separable::new(sol, &mesh));
+    let mut separable = sol.separable().then(|| Separable::new(sol, &mesh, refine));
     for step in 1..=steps {
         let t = if sol.is_static() {
             0.0
@@ -274,14 +300,14 @@ pub fn run_rules(
                 if !sol.is_static() {
                     cuts.extend(sol.cuts(t_prev));
                 }
-                let points = quadrature_points(sol, &mesh, &cuts, t, t_prev, last.take());
+                let points = quadrature_points(sol, &mesh, (&cuts, refine), t, t_prev, last.take());
                 let nodal = mesh.nodes.iter().map(|p| sol.u(p[0], p[1], t)).collect();
                 last = Some((cuts, points));
                 let points = &last.as_ref().expect("just set").1;
                 (points.as_slice(), nodal)
             }
         };
-        let f = load_from_points(&data, &mesh, &disc.dofs, points, t);
+        let f = load_from_points(&data, &mesh, &disc.dofs, points, (t, refine));
         let interp = p1_strains(&mesh, &bms, &nodal);
         let exact = measure_exact(
             &data,
@@ -388,12 +414,12 @@ fn count_regimes(states: &[ContactState], scn: &Scenario) -> [usize; 5] {
 fn quadrature_points(
     sol: Solution,
     mesh: &crate::mesh::Mesh,
-    cuts: &[f64],
+    (cuts, refine): (&[f64], usize),
     t: f64,
     t_prev: f64,
     last: Option<(Vec<f64>, Vec<Point>)>,
 ) -> Vec<Point> {
-    let mut points = point_set(mesh, cuts);
+    let mut points = point_set(mesh, cuts, refine);
     let reuse = last.filter(|(c, pts)| c.as_slice() == cuts && pts.len() == points.len());
     let half = points.len().div_ceil(2).max(1);
     std::thread::scope(|s| {
@@ -417,11 +443,11 @@ fn quadrature_points(
 }
 
 /// The quadrature points of `mesh` cut at `cuts`, their strains not yet set.
-fn point_set(mesh: &crate::mesh::Mesh, cuts: &[f64]) -> Vec<Point> {
+fn point_set(mesh: &crate::mesh::Mesh, cuts: &[f64], refine: usize) -> Vec<Point> {
     let mut points = Vec::with_capacity(7 * mesh.triangles.len());
     for (i, tri) in mesh.triangles.iter().enumerate() {
         let p = tri.map(|v| mesh.nodes[v]);
-        for (x, w) in crate::quadrature::triangle_points(p, cuts) {
+        for (x, w) in crate::quadrature::triangle_points_refined(p, cuts, refine) {
             points.push(Point {
                 tri: i,
                 x,
@@ -446,10 +472,10 @@ struct Separable {
 }
 
 impl Separable {
-    fn new(sol: Solution, mesh: &crate::mesh::Mesh) -> Separable {
+    fn new(sol: Solution, mesh: &crate::mesh::Mesh, refine: usize) -> Separable {
         // The cuts of t and of t_prev, as the general path lists them.
         let cuts = [sol.cuts(0.0), sol.cuts(0.0)].concat();
-        let points = point_set(mesh, &cuts);
+        let points = point_set(mesh, &cuts, refine);
         let mut grads = vec![[[0.0; 2]; 2]; points.len()];
         let half = points.len().div_ceil(2).max(1);
         std::thread::scope(|s| {
@@ -501,7 +527,7 @@ fn load_from_points(
     mesh: &crate::mesh::Mesh,
     dofs: &Dofs,
     points: &[Point],
-    t: f64,
+    (t, refine): (f64, usize),
 ) -> Vec<f64> {
     let mut out = vec![0.0; dofs.count];
     let mut s = vec![[0.0; 3]; mesh.triangles.len()];
@@ -512,7 +538,7 @@ fn load_from_points(
     for (tri, s) in mesh.triangles.iter().zip(&s) {
         super::add_element_load(mesh, dofs, tri, s, &mut out);
     }
-    super::add_contact_load(data, mesh, dofs, t, 0, &mut out);
+    super::add_contact_load(data, mesh, dofs, t, refine, &mut out);
     out
 }
 

@@ -296,3 +296,39 @@ fn exact_r_offnode_share() {
     assert_eq!(pct, ["1.44", "0.0712"]);
     assert_eq!(fix(100.0 * share[share.len() - 1], 3), "0.071");
 }
+
+#[test]
+fn exact_quadrature_effect() {
+    let r = rows("exact_quadrature_effect.csv");
+    let at = |n: &str| -> Vec<(String, f64)> {
+        r.iter()
+            .filter(|x| x["n"] == n)
+            .map(|x| (x["solution"].clone(), num(x, "rel_change")))
+            .collect()
+    };
+    let worst = |v: &[(String, f64)]| {
+        v.iter()
+            .cloned()
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap()
+    };
+    let (s8, w8) = worst(&at("8"));
+    assert_eq!(
+        (s8.as_str(), format!("{w8:.1e}")),
+        ("offnode", "1.2e-5".into())
+    );
+    let b8 = at("8").into_iter().find(|x| x.0 == "regimes").unwrap().1;
+    assert_eq!(format!("{b8:.1e}"), "1.0e-5");
+    assert_eq!(format!("{:.1e}", worst(&at("16")).1), "8.4e-7");
+    for x in &r {
+        if ["steady", "p1", "p1limit", "landing"].contains(&x["solution"].as_str()) {
+            assert!(num(x, "rel_change") < 1e-13, "{x:?}");
+        }
+        // No printed digit moves: four significant digits.
+        let (a, b) = (
+            num(x, "rel_err_max_percent"),
+            num(x, "rel_err_max_refined_percent"),
+        );
+        assert_eq!(sig(a, 4), sig(b, 4), "{x:?}");
+    }
+}

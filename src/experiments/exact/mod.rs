@@ -146,6 +146,7 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     write_crime(ctx, &fams, &study)?;
     let regimes = write_regimes(ctx, &fams, &study)?;
     write_quadrature(ctx, &scn)?;
+    write_quadrature_effect(ctx, &scn)?;
     let grid = write_grid(ctx, &grid)?;
     figure::draw_all(ctx, &conv, &cea, &regimes)?;
     figure::draw_grid(ctx, &grid)
@@ -414,6 +415,37 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         params()
     );
     ctx.write("exact_quadrature.csv", &t.table(), &params)?;
+    Ok(())
+}
+
+/// What the quadrature does to the reported errors: every solution on $h = k$ (the
+/// static one at $N = 1$) at the coarsest levels, run with the study's rules and with
+/// every rule of the loads and of the error norm refined once (each triangle into its
+/// 4 children, each contact segment into 2 halves).
+fn write_quadrature_effect(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
+    let levels: &[usize] = if ctx.quick { &[8] } else { &[8, 16] };
+    ctx.add_units(crate::manufactured::SOLUTIONS.len() * levels.len());
+    let mut t = Cols::default();
+    for sol in crate::manufactured::SOLUTIONS {
+        for &n in levels {
+            let steps = if sol.is_static() { 1 } else { n };
+            let plain = crate::manufactured::run::run_refined(sol, scn, n, steps, 0)?;
+            let fine = crate::manufactured::run::run_refined(sol, scn, n, steps, 1)?;
+            let (a, b) = (plain.rel_max(), fine.rel_max());
+            t.s("solution", sol.name());
+            t.u("n", n);
+            t.u("steps", steps);
+            t.f("rel_err_max_percent", 100.0 * a);
+            t.f("rel_err_max_refined_percent", 100.0 * b);
+            t.f("rel_change", (a - b).abs() / b);
+            ctx.log(&format!("exact quadrature effect {} n = {n}", sol.name()));
+        }
+    }
+    let params = format!(
+        "{}; every solution on h = k = 1/n (the static one at N = 1): rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E with the study's rules, and refined: the loads and the error norms with each rule on the 4 children of every triangle and the 2 halves of every contact segment; rel_change = |plain - refined| / refined",
+        params()
+    );
+    ctx.write("exact_quadrature_effect.csv", &t.table(), &params)?;
     Ok(())
 }
 
