@@ -169,3 +169,54 @@ fn every_study_takes_a_solver() {
     );
     assert!(!dir.join("time").exists());
 }
+
+/// The convergence study warns when grading gains nothing (issue 41, item 16): a body
+/// held by rollers whose top is clamped on [0.5, 1.5] under its own weight excites the
+/// clamp's ends (the only singular points) so weakly that the uniform family already
+/// converges at order 1; the graded family's last order is then no better, and the
+/// study says so on stderr and in convergence.md.
+#[test]
+fn the_convergence_study_warns_when_grading_gains_nothing() {
+    let dir = scratch("study-no-gain");
+    let scene = written(
+        dir.join("e.toml"),
+        "name = \"e\"\nT = 1.0\ng = 0.05\nproblem = \"steady\"\n[geometry]\nwidth = 2.0\n\
+         height = 1.0\n[geometry.supports]\nleft = \"rollers\"\nright = \"rollers\"\n\
+         top = [{ from = 0.0, to = 0.5, kind = \"rollers\" }, { from = 0.5, to = 1.5, kind = \
+         \"clamped\" }, { from = 1.5, to = 2.0, kind = \"rollers\" }]\n[material]\nE = 1000.0\n\
+         kappa = 0.3\n[loads]\nf0 = [0.0, -20.0]\nf2 = [0.0, 0.0]\n[law]\nbreakpoints = [0.0]\n\
+         slopes = [0.0, 500.0]\n",
+    );
+    let out = dir.join("conv");
+    let o = evhi()
+        .args(["study", "convergence", "--quick", "--scenario"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("warning: the graded family's last order") && err.contains("no better"),
+        "{err}"
+    );
+    let md = std::fs::read_to_string(out.join("convergence.md")).unwrap();
+    assert!(
+        md.contains("Warning: the graded family's last order"),
+        "{md}"
+    );
+    // And the numbers behind it: both families' last orders near 1, graded within
+    // 0.05 of uniform or below.
+    let t = Csv::read(out.join("convergence.csv"));
+    let (fam, order) = (t.column_str("family"), t.column_f64("order_dofs"));
+    let last = |f: &str| {
+        (0..fam.len())
+            .filter(|&i| fam[i] == f && order[i].is_finite())
+            .map(|i| order[i])
+            .next_back()
+            .unwrap()
+    };
+    let (g, u) = (last("graded"), last("uniform"));
+    assert!(g <= u + 0.05 && u > 0.95, "{g} {u}");
+}

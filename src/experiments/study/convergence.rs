@@ -614,10 +614,15 @@ pub(super) fn run(
     if let (Some(g), Some(u)) = (last_order("graded"), last_order("uniform"))
         && g <= u + 0.05
     {
+        let why = if u >= 0.95 {
+            "the uniform family is already near order 1, so the singular points are too weakly \
+             excited for grading to matter"
+        } else {
+            "a singular point it does not refine towards, or levels not yet asymptotic"
+        };
         let warning = format!(
             "the graded family's last order, {g:.3}, is no better than the uniform one's, {u:.3}: \
-             the grading gains nothing on these levels (a singular point it does not refine \
-             towards, or levels not yet asymptotic){finer}"
+             the grading gains nothing on these levels ({why}){finer}"
         );
         eprintln!("warning: {warning}");
         let _ = writeln!(md, "\nWarning: {warning}.");
