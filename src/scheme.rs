@@ -184,6 +184,29 @@ pub enum RunError {
         g: f64,
     },
     #[error(
+        "scenario `{scenario}`, step {step} (t = {t:e}): the solver `{solver}` solved the step's \
+         condensed problem (residual {residual:.1e}), but the displacement recovered from it \
+         misses the full system by {certificate:.1e} (tolerance {tol:.1e}). Without contact \
+         the load would move the contact nodes by up to {free:.3e}, {ratio:.1e} times g = \
+         {g:e}, and the displacement is the small difference between that response and the \
+         contact's, which double precision cannot resolve to the tolerance. The body is too \
+         long or too thin for its loads (a clamped strip's sag grows like its length to the \
+         fourth power over its thickness cubed): shorten or thicken it, stiffen the material \
+         or lower the loads"
+    )]
+    Cancellation {
+        scenario: String,
+        step: usize,
+        t: f64,
+        solver: String,
+        residual: f64,
+        certificate: f64,
+        tol: f64,
+        free: f64,
+        ratio: f64,
+        g: f64,
+    },
+    #[error(
         "{}. What may help: another step solver (`--solver proxgrad` and \
          `newton-no-line-search` certify too), a smaller k (more `--steps`), or, where the law \
          softens, a stiffer material or a milder softening",

@@ -220,3 +220,37 @@ fn the_convergence_study_warns_when_grading_gains_nothing() {
     let (g, u) = (last("graded"), last("uniform"));
     assert!(g <= u + 0.05 && u > 0.95, "{g} {u}");
 }
+
+/// A 64 x 1 strip clamped at both ends under the paper's loads (issue 41, item 6): its
+/// free sag is tens of thousands of times g, and the displacement recovered from a
+/// solved condensed step misses the full system by far more than the certificate
+/// allows. The run is refused with that cause, naming the free response against g, not
+/// with a solver failure and its advice to change solvers.
+#[test]
+fn a_strip_too_long_for_its_loads_is_refused_with_the_cause() {
+    let dir = scratch("strip");
+    let scene = written(
+        dir.join("inv.toml"),
+        "name = \"inv\"\nT = 1.0\ng = 0.1\n[geometry]\nwidth = 64.0\nheight = 1.0\n\
+         [geometry.supports]\nleft = \"clamped\"\nright = \"clamped\"\n[material]\nE = 1000.0\n\
+         kappa = 0.4\nalpha = 100.0\nbeta = 50.0\n[loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, -75.0]\n\
+         [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n",
+    );
+    let o = evhi()
+        .args(["solve", "--n", "64", "--steps", "16", "--scenario"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("Without contact the load would move the contact nodes by up to")
+            && err.contains("times g = 1e-1")
+            && err.contains("too long or too thin for its loads")
+            && !err.contains("another step solver"),
+        "{err}"
+    );
+    assert!(!dir.join("run").exists());
+}
