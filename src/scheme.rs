@@ -477,6 +477,27 @@ pub fn run_batch_states(
             let failed = rec.status != Status::Converged
                 || rec.certificate.max().is_nan()
                 || rec.certificate.max() > opt.certificate_tol;
+            let g = scns[i].g;
+            if failed && rec.status == Status::Converged && g.is_finite() {
+                // The step's free response K^{-1} b at the contact nodes (one solve, on
+                // the failure path only): does the recovery's cancellation explain it?
+                let free_u = op.chol.solve(&b[i]);
+                let free = op.cdofs.iter().fold(0.0f64, |m, &d| m.max(free_u[d].abs()));
+                if free > crate::reduced::CANCELLATION_RATIO * g.abs() {
+                    return Err(RunError::Cancellation {
+                        scenario: scns[i].name.clone(),
+                        step,
+                        t,
+                        solver: solvers[i].name().to_string(),
+                        residual: rec.solver_residual,
+                        certificate: rec.certificate.max(),
+                        tol: opt.certificate_tol,
+                        free,
+                        ratio: free / g.abs(),
+                        g,
+                    });
+                }
+            }
             if failed {
                 return Err(RunError::Step {
                     scenario: scns[i].name.clone(),

@@ -236,21 +236,33 @@ fn a_strip_too_long_for_its_loads_is_refused_with_the_cause() {
          kappa = 0.4\nalpha = 100.0\nbeta = 50.0\n[loads]\nf0 = [0.0, -5.0]\nf2 = [0.0, -75.0]\n\
          [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n",
     );
-    let o = evhi()
-        .args(["solve", "--n", "64", "--steps", "16", "--scenario"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("Without contact the load would move the contact nodes by up to")
-            && err.contains("times g = 1e-1")
-            && err.contains("too long or too thin for its loads")
-            && !err.contains("another step solver"),
-        "{err}"
-    );
-    assert!(!dir.join("run").exists());
+    // The default (reduced) loop and the general one.
+    for path in ["reduced", "general"] {
+        let o = evhi()
+            .args([
+                "solve",
+                "--n",
+                "64",
+                "--steps",
+                "16",
+                "--path",
+                path,
+                "--scenario",
+            ])
+            .arg(&scene)
+            .arg("--out")
+            .arg(dir.join(path))
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("Without contact the load would move the contact nodes by up to")
+                && err.contains("times g = 1e-1")
+                && err.contains("too long or too thin for its loads")
+                && !err.contains("another step solver"),
+            "{path}: {err}"
+        );
+        assert!(!dir.join(path).exists());
+    }
 }
