@@ -35,12 +35,6 @@ use crate::timing::timed;
 use faer::Mat;
 use std::time::Instant;
 
-/// How many times $g$ the load's free response at the contact nodes (without contact)
-/// must be before a failed certificate of a converged step is put down to the
-/// cancellation in recovering $u$ (see [`RunError::Cancellation`]); the 64 x 1 strip
-/// clamped at both ends under the paper's loads reaches $5.7\cdot10^4$.
-pub const CANCELLATION_RATIO: f64 = 1e4;
-
 /// Whether the scenario's damping is proportional on the assembled matrices:
 /// its relaxation time $c$ when $\max|A - cB| \le 10^{-12} \max|A|$.
 pub fn proportional(scn: &Scenario, disc: &Discretisation) -> Option<f64> {
@@ -382,7 +376,7 @@ impl<'d> Reduced<'d> {
             if failed
                 && info.status == Status::Converged
                 && scn.g.is_finite()
-                && free > CANCELLATION_RATIO * scn.g.abs()
+                && free > crate::scheme::CANCELLATION_RATIO * scn.g.abs()
             {
                 return Err(RunError::Cancellation {
                     scenario: scn.name.clone(),
