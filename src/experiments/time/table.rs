@@ -12,7 +12,7 @@ pub fn write_rows(
     label: &str,
 ) -> Result<std::path::PathBuf, ExpError> {
     let params = format!(
-        "fixed mesh n = 1/h = {}; k = T/N for N in {:?}; reference N_ref = {} on the same mesh; solver newton; \
+        "fixed mesh n = 1/h = {}; k = T/N for N in {:?}; reference N_ref = {} on the same mesh; solver {}; \
          errors in the energy norm relative to the reference: max over the level's times t_n of ||u_ref(t_n) - u_n||_E \
          / max there of ||u_ref(t_n)||_E, and at t = T; model_*: the scalar backward-Euler model of the layer \
          (tau = C/G of the row), same measure; t_of_err_max: the level's time where the error is largest; \
@@ -20,6 +20,7 @@ pub fn write_rows(
         plan.n,
         plan.levels,
         plan.n_ref,
+        plan.solver.name,
         if label == "variant" {
             "; variants: alpha and beta scaled by 0.1 and 10 (tau = C/G scaled, E kept; constant load), and figure with g = 1 (no node lands) under the constant load and the ramp to t = 1"
         } else {
