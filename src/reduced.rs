@@ -372,24 +372,15 @@ impl<'d> Reduced<'d> {
                 || certificate.max() > tol;
             // A converged condensed step whose full certificate fails, on a load whose
             // free response dwarfs g: the recovery's cancellation, said as such.
-            let free = crate::dense::inf_norm(&load.q) * st.y.abs().max(scn.history.phi(t).abs());
-            if failed
-                && info.status == Status::Converged
-                && scn.g.is_finite()
-                && free > crate::scheme::CANCELLATION_RATIO * scn.g.abs()
-            {
-                return Err(RunError::Cancellation {
-                    scenario: scn.name.clone(),
-                    step,
-                    t,
-                    solver: solver.name().to_string(),
-                    residual: info.residual,
-                    certificate: certificate.max(),
-                    tol,
-                    free,
-                    ratio: free / scn.g.abs(),
-                    g: scn.g,
-                });
+            if failed && info.status == Status::Converged {
+                let free =
+                    || crate::dense::inf_norm(&load.q) * st.y.abs().max(scn.history.phi(t).abs());
+                let failure = (step, t, solver.name(), info.residual);
+                if let Some(e) =
+                    crate::scheme::cancellation(scn, failure, certificate.max(), tol, free)
+                {
+                    return Err(e);
+                }
             }
             if failed {
                 return Err(RunError::Step {

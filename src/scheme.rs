@@ -483,25 +483,21 @@ pub fn run_batch_states(
             let failed = rec.status != Status::Converged
                 || rec.certificate.max().is_nan()
                 || rec.certificate.max() > opt.certificate_tol;
-            let g = scns[i].g;
-            if failed && rec.status == Status::Converged && g.is_finite() {
-                // The step's free response K^{-1} b at the contact nodes (one solve, on
-                // the failure path only): does the recovery's cancellation explain it?
-                let free_u = op.chol.solve(&b[i]);
-                let free = op.cdofs.iter().fold(0.0f64, |m, &d| m.max(free_u[d].abs()));
-                if free > CANCELLATION_RATIO * g.abs() {
-                    return Err(RunError::Cancellation {
-                        scenario: scns[i].name.clone(),
-                        step,
-                        t,
-                        solver: solvers[i].name().to_string(),
-                        residual: rec.solver_residual,
-                        certificate: rec.certificate.max(),
-                        tol: opt.certificate_tol,
-                        free,
-                        ratio: free / g.abs(),
-                        g,
-                    });
+            if failed && rec.status == Status::Converged {
+                // The step's free response K^{-1} b at the contact nodes (one solve).
+                let free = || {
+                    let free_u = op.chol.solve(&b[i]);
+                    op.cdofs.iter().fold(0.0f64, |m, &d| m.max(free_u[d].abs()))
+                };
+                let failure = (step, t, solvers[i].name(), rec.solver_residual);
+                if let Some(e) = cancellation(
+                    &scns[i],
+                    failure,
+                    rec.certificate.max(),
+                    opt.certificate_tol,
+                    free,
+                ) {
+                    return Err(e);
                 }
             }
             if failed {
@@ -543,6 +539,37 @@ pub fn run_batch_states(
             hessian_min: op.hessian_min,
         })
         .collect())
+}
+
+/// The error of a converged step whose full certificate `certificate` failed `tol`,
+/// when the step's free response at the contact nodes (`free`, computed here only)
+/// exceeds [`CANCELLATION_RATIO`] times a finite $g$: [`RunError::Cancellation`].
+/// `failure` = (step, $t$, solver, its residual). `None` otherwise: the failure is the
+/// solver's to report.
+pub(crate) fn cancellation(
+    scn: &Scenario,
+    (step, t, solver, residual): (usize, f64, &str, f64),
+    certificate: f64,
+    tol: f64,
+    free: impl FnOnce() -> f64,
+) -> Option<RunError> {
+    let g = scn.g;
+    if !g.is_finite() {
+        return None;
+    }
+    let free = free();
+    (free > CANCELLATION_RATIO * g.abs()).then(|| RunError::Cancellation {
+        scenario: scn.name.clone(),
+        step,
+        t,
+        solver: solver.to_string(),
+        residual,
+        certificate,
+        tol,
+        free,
+        ratio: free / g.abs(),
+        g,
+    })
 }
 
 /// Refuses a step whose contact values cannot be resolved against $g$ and the law's

@@ -98,9 +98,11 @@ impl Ctx {
         let path = self.data_path(file);
         table
             .write(&path, &self.provenance(experiment, params))
-            .map_err(|e| ExpError::Io {
-                path: path.display().to_string(),
-                source: e,
+            .map_err(|e| {
+                ExpError::File(crate::output::FileError::Io {
+                    path: path.display().to_string(),
+                    source: e,
+                })
             })?;
         self.render_book_table(file)?;
         Ok(path)
@@ -114,9 +116,11 @@ impl Ctx {
         };
         let (keys, cols) = (t.keys, t.cols);
         let path = self.data_path(file);
-        let text = std::fs::read_to_string(&path).map_err(|e| ExpError::Io {
-            path: path.display().to_string(),
-            source: e,
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            ExpError::File(crate::output::FileError::Io {
+                path: path.display().to_string(),
+                source: e,
+            })
         })?;
         let md = crate::output::markdown::table(&text, keys, cols);
         self.write_file(&path.with_extension("md"), md.as_bytes())
@@ -125,9 +129,11 @@ impl Ctx {
     /// Writes `bytes` to `path` atomically (a Markdown fragment, a report, a copied
     /// figure); the error names the path.
     pub fn write_file(&self, path: &Path, bytes: &[u8]) -> Result<(), ExpError> {
-        crate::output::write_atomic(path, bytes).map_err(|e| ExpError::Io {
-            path: path.display().to_string(),
-            source: e,
+        crate::output::write_atomic(path, bytes).map_err(|e| {
+            ExpError::File(crate::output::FileError::Io {
+                path: path.display().to_string(),
+                source: e,
+            })
         })
     }
 

@@ -30,9 +30,11 @@ pub const EXAMPLES: [(&str, &str, &str); 2] = [
 ];
 
 fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> ExpError + '_ {
-    move |source| ExpError::Io {
-        path: path.display().to_string(),
-        source,
+    move |source| {
+        ExpError::File(crate::output::FileError::Io {
+            path: path.display().to_string(),
+            source,
+        })
     }
 }
 
@@ -166,9 +168,11 @@ fn studies(
     ];
     for (study, stems, args) in runs {
         let command = format!("study {study} --scenario {path} --quick --out DIR");
-        let md = run_as(args, &command).map_err(|e| ExpError::Table {
-            path: format!("example_study_{study}.md (`evhi {command}`)"),
-            message: e.to_string(),
+        let md = run_as(args, &command).map_err(|e| {
+            ExpError::File(crate::output::FileError::Table {
+                path: format!("example_study_{study}.md (`evhi {command}`)"),
+                message: e.to_string(),
+            })
         })?;
         ctx.write_file(
             &ctx.data_path(&format!("example_study_{study}.md")),
@@ -176,9 +180,11 @@ fn studies(
         )?;
         for (ext, (stem, suffix)) in stems.iter().flat_map(|s| ["png", "svg"].map(|e| (e, *s))) {
             let from = scratch.join(study).join(format!("{stem}.{ext}"));
-            let bytes = std::fs::read(&from).map_err(|e| ExpError::Io {
-                path: from.display().to_string(),
-                source: e,
+            let bytes = std::fs::read(&from).map_err(|e| {
+                ExpError::File(crate::output::FileError::Io {
+                    path: from.display().to_string(),
+                    source: e,
+                })
             })?;
             ctx.write_file(
                 &ctx.figure_path(&format!("example_study_{study}{suffix}"), ext),
@@ -213,9 +219,11 @@ fn one(
     )?;
     // The run, written exactly as `evhi solve` writes it, in a scratch directory.
     let scratch = scratch.0.join(name);
-    let out = RunDir::open(&scratch).map_err(|e| ExpError::Table {
-        path: scratch.display().to_string(),
-        message: e.to_string(),
+    let out = RunDir::open(&scratch).map_err(|e| {
+        ExpError::File(crate::output::FileError::Table {
+            path: scratch.display().to_string(),
+            message: e.to_string(),
+        })
     })?;
     // As `evhi solve --n N --steps N --path general` solves it: the library's one
     // way to run a scene, so no wiring here to keep in step with the command.
@@ -242,9 +250,11 @@ fn one(
     );
     let h_s = crate::show::Smallness::of(&scn, n)
         .unwrap_or_else(|_| crate::show::Smallness::unknown(&scn, n));
-    let err = |e: crate::output::rundir::OutError| ExpError::Table {
-        path: scratch.display().to_string(),
-        message: e.to_string(),
+    let err = |e: crate::output::rundir::OutError| {
+        ExpError::File(crate::output::FileError::Table {
+            path: scratch.display().to_string(),
+            message: e.to_string(),
+        })
     };
     crate::output::run::write(&out, &scn, toml, res, rec, &prov, 0.0, &h_s).map_err(err)?;
     crate::output::runplot::draw(&out.path(""))?;
@@ -398,16 +408,8 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
 /// the middle node's stiffness with the free nodes condensed out and the limit nodes
 /// held: a finite jump, which the scheme can resolve only with steps shorter than the
 /// time in which the next nodes land.
-fn landing_jump(scn: &Scenario, n: usize, v: f64, at_limit: &[bool]) -> Result<f64, ExpError> {
-    let disc = crate::scheme::Discretisation::new(scn, n)?;
-    let red = crate::reduced::Reduced::new(
-        scn,
-        &disc,
-        crate::scheme::OrderingKind::NestedDissection,
-        false,
-        &mut crate::scheme::Timings::default(),
-    )?;
-    let mid = n / 2;
+fn landing_jump(red: &crate::reduced::Reduced, v: f64, at_limit: &[bool]) -> Result<f64, ExpError> {
+    let mid = red.disc.mesh.n / 2;
     let s = &red.s_b;
     let free: Vec<usize> = (0..s.nrows())
         .filter(|&i| i != mid && !at_limit.get(i).copied().unwrap_or(false))
@@ -421,7 +423,7 @@ fn landing_jump(scn: &Scenario, n: usize, v: f64, at_limit: &[bool]) -> Result<f
         })?
         .solve(&sfm);
     let s_eff = s[(mid, mid)] - sfm.dot(&x);
-    let w = disc.mesh.contact_weights()[mid];
+    let w = red.disc.mesh.contact_weights()[mid];
     Ok(red.c * v * s_eff / w)
 }
 // ANCHOR_END: landing_jump
@@ -437,9 +439,18 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         .map(|m| trace(scn, n, m * n))
         .collect::<Result<_, _>>()?;
     let mid = n / 2;
+    // The condensed operator of the mesh, once for every row.
+    let disc = crate::scheme::Discretisation::new(scn, n)?;
+    let red = crate::reduced::Reduced::new(
+        scn,
+        &disc,
+        crate::scheme::OrderingKind::NestedDissection,
+        false,
+        &mut crate::scheme::Timings::default(),
+    )?;
     let jumps: Vec<f64> = rows
         .iter()
-        .map(|r| landing_jump(scn, n, r.v_before, &r.at_limit_before))
+        .map(|r| landing_jump(&red, r.v_before, &r.at_limit_before))
         .collect::<Result<_, _>>()?;
     let side = |r: &Trace, i: usize| r.landings.get(i).copied().unwrap_or(f64::NAN);
     let after = |r: &Trace| r.mid_sigma_at(r.t_landing + 1.0 / r.steps as f64);

@@ -28,9 +28,11 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let m = -scn.law.curvature_min();
     let mut rows = vec![];
     for &n in &levels {
-        let trace_sq = crate::norms::trace_norm_sq(&scn, n).map_err(|message| ExpError::Table {
-            path: format!("{} (trace constant at n = {n})", ctx.experiment),
-            message,
+        let trace_sq = crate::norms::trace_norm_sq(&scn, n).map_err(|message| {
+            ExpError::File(crate::output::FileError::Table {
+                path: format!("{} (trace constant at n = {n})", ctx.experiment),
+                message,
+            })
         })?;
         rows.push((n, trace_sq.sqrt(), m * trace_sq));
     }

@@ -35,17 +35,9 @@ pub enum ExpError {
     Run(#[from] crate::scheme::RunError),
     #[error(transparent)]
     Input(#[from] crate::error::InputError),
+    /// A table or figure that could not be read or written.
     #[error(transparent)]
     File(#[from] crate::output::FileError),
-    #[error("i/o on {path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
-    #[error("table {path}: {message}")]
-    Table { path: String, message: String },
-    #[error("figure {path}: {message}")]
-    Plot { path: String, message: String },
     /// Where in a study or experiment the error arose (a family, a level).
     #[error("{context}: {source}")]
     At {

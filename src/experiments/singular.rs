@@ -144,9 +144,11 @@ fn energies(scns: &[Scenario], levels: &[usize], ctx: &Ctx) -> Result<Vec<Vec<f6
                 .map(|&c| dofs.of(c, 1).expect("contact nodes are free"))
                 .collect();
             let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
-            let chol = Cholesky::factor(&b, &order).map_err(|e| ExpError::Table {
-                path: "static_control".into(),
-                message: e.to_string(),
+            let chol = Cholesky::factor(&b, &order).map_err(|e| {
+                ExpError::File(crate::output::FileError::Table {
+                    path: "static_control".into(),
+                    message: e.to_string(),
+                })
             })?;
             for &i in group {
                 ctx.log(&format!("static control: {} n = {n}", scns[i].name));

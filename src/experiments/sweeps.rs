@@ -80,15 +80,19 @@ pub fn run(ctx: &Ctx, n: usize, machine: &str) -> Result<(), ExpError> {
     let disc = Discretisation::new(&scn, n)?;
     let k = scn.t_end / n as f64;
     let kmat = Pair::new(&disc.a, &disc.b)
-        .ok_or_else(|| ExpError::Table {
-            path: "bench_sweeps".into(),
-            message: "A and B do not share their pattern".into(),
+        .ok_or_else(|| {
+            ExpError::File(crate::output::FileError::Table {
+                path: "bench_sweeps".into(),
+                message: "A and B do not share their pattern".into(),
+            })
         })?
         .lin_comb(1.0, k);
     let b: Vec<f64> = disc.f.iter().map(|f| k * f).collect();
-    let fail = |e: String| ExpError::Table {
-        path: "bench_sweeps".into(),
-        message: e,
+    let fail = |e: String| {
+        ExpError::File(crate::output::FileError::Table {
+            path: "bench_sweeps".into(),
+            message: e,
+        })
     };
     let mut rows = vec![];
 

@@ -1,7 +1,7 @@
 //! Drawing helpers shared by the figures (plotters, with an embedded DejaVu Sans
 //! so that no system font is needed).
 
-use super::FileError as ExpError;
+use super::FileError;
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
@@ -186,13 +186,13 @@ pub fn both<F: Figure + Sync>(
     stem: &str,
     size: (u32, u32),
     fig: &F,
-) -> Result<(), ExpError> {
+) -> Result<(), FileError> {
     init_font();
-    std::fs::create_dir_all(dir).map_err(|e| ExpError::Io {
+    std::fs::create_dir_all(dir).map_err(|e| FileError::Io {
         path: dir.display().to_string(),
         source: e,
     })?;
-    let one = |ext: &str| -> Result<(), ExpError> {
+    let one = |ext: &str| -> Result<(), FileError> {
         let final_path = dir.join(format!("{stem}.{ext}"));
         let tmp = dir.join(format!(".{stem}.tmp-{}.{ext}", std::process::id()));
         let res = if ext == "png" {
@@ -210,12 +210,12 @@ pub fn both<F: Figure + Sync>(
         };
         if let Err(m) = res {
             let _ = std::fs::remove_file(&tmp);
-            return Err(ExpError::Plot {
+            return Err(FileError::Plot {
                 path: final_path.display().to_string(),
                 message: m,
             });
         }
-        std::fs::rename(&tmp, &final_path).map_err(|e| ExpError::Io {
+        std::fs::rename(&tmp, &final_path).map_err(|e| FileError::Io {
             path: final_path.display().to_string(),
             source: e,
         })

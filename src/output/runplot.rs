@@ -3,7 +3,7 @@
 //! interface forces, in the style of Fig. 3) and `evolution` (the normal displacement
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
-use super::FileError as ExpError;
+use super::FileError;
 use super::csv::{col_f64, col_str, read_csv};
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
@@ -26,14 +26,14 @@ const PLAUSIBLE: f64 = 1e100;
 /// Refuses a run table the figures would misdraw: missing, without a data row, a
 /// row of the wrong length, or a number that is not finite or beyond `PLAUSIBLE` in
 /// a numeric column; the error names the file, the line and the column.
-pub fn validate_tables(dir: &Path) -> Result<(), ExpError> {
+pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
     for (file, text_cols) in TABLES {
         let path = dir.join(file);
-        let err = |line: usize, message: String| ExpError::Table {
+        let err = |line: usize, message: String| FileError::Table {
             path: format!("{}:{line}", path.display()),
             message,
         };
-        let text = std::fs::read_to_string(&path).map_err(|e| ExpError::Io {
+        let text = std::fs::read_to_string(&path).map_err(|e| FileError::Io {
             path: path.display().to_string(),
             source: e,
         })?;
@@ -85,25 +85,25 @@ pub fn validate_tables(dir: &Path) -> Result<(), ExpError> {
 }
 
 /// Draws both figures of the run directory `dir` into it.
-pub fn draw(dir: &Path) -> Result<(), ExpError> {
+pub fn draw(dir: &Path) -> Result<(), FileError> {
     validate_tables(dir)?;
     let summary = read_csv(&dir.join("summary.csv"))?;
-    let first = |c: &str| -> Result<f64, ExpError> {
+    let first = |c: &str| -> Result<f64, FileError> {
         col_f64(&summary, c)?
             .first()
             .copied()
-            .ok_or_else(|| ExpError::Table {
+            .ok_or_else(|| FileError::Table {
                 path: dir.join("summary.csv").display().to_string(),
                 message: format!("no value in column {c}"),
             })
     };
-    let bad = |c: &str, v: f64, allowed: &str| ExpError::Table {
+    let bad = |c: &str, v: f64, allowed: &str| FileError::Table {
         path: dir.join("summary.csv").display().to_string(),
         message: format!(
             "column `{c}` holds `{v}`, not {allowed} (the table was not written by this run)"
         ),
     };
-    let count = |c: &str, max: f64| -> Result<usize, ExpError> {
+    let count = |c: &str, max: f64| -> Result<usize, FileError> {
         let v = first(c)?;
         if v >= 1.0 && v <= max && v.fract() == 0.0 {
             Ok(v as usize)
@@ -134,7 +134,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         let ny = (y.len() / cols.max(1)).saturating_sub(1) * stride;
         let written = crate::output::run::lattice_stride(n, ny.max(1));
         if cols < 2 || !n.is_multiple_of(cols - 1) || stride != written {
-            return Err(ExpError::Table {
+            return Err(FileError::Table {
                 path: dir.join("nodes.csv").display().to_string(),
                 message: format!(
                     "its {} node(s) are not a lattice of rows of {} (the n of summary.csv, \
@@ -178,7 +178,7 @@ pub fn draw(dir: &Path) -> Result<(), ExpError> {
         let deformed = s.spawn(deformed);
         let evolution = draw_evolution(dir, &scenario, (&h_text, steps, g));
         let deformed = deformed.join().unwrap_or_else(|_| {
-            Err(ExpError::Plot {
+            Err(FileError::Plot {
                 path: dir.join("deformed.png").display().to_string(),
                 message: "the drawing failed (panicked); the tables are not as a run writes them"
                     .into(),
@@ -194,7 +194,7 @@ fn draw_evolution(
     dir: &Path,
     scenario: &str,
     (h_text, steps, g): (&str, usize, f64),
-) -> Result<(), ExpError> {
+) -> Result<(), FileError> {
     let ev = read_csv(&dir.join("evolution.csv"))?;
     let (t, x, u, s1, s2) = (
         col_f64(&ev, "t")?,
@@ -234,7 +234,7 @@ fn draw_evolution(
                 tr.iter().copied().zip(col_f64(&rg, r)?).collect(),
             ))
         })
-        .collect::<Result<Vec<_>, ExpError>>()?;
+        .collect::<Result<Vec<_>, FileError>>()?;
     both(
         dir,
         "evolution",

@@ -4,7 +4,7 @@
 //! mesh that is no lattice). `evhi solve` and `evhi plot` draw a run's `deformed`
 //! figure with it, and Figs. 3 and 4 of the paper's experiments their panels.
 
-use super::FileError as ExpError;
+use super::FileError;
 use super::csv::{col_f64, col_str, read_csv};
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
@@ -18,7 +18,7 @@ pub fn draw_run(
     g: f64,
     cells: usize,
     title: String,
-) -> Result<(), ExpError> {
+) -> Result<(), FileError> {
     let mut panel = Panel::from_csv(&dir.join("contact.csv"), &dir.join("nodes.csv"), g, cells)?;
     let tri = dir.join("triangles.csv");
     if tri.exists() {
@@ -32,7 +32,7 @@ pub fn draw_run(
                 .iter()
                 .all(|&k| k >= 0.0 && k.fract() == 0.0 && k < nodes as f64)
             {
-                return Err(ExpError::Table {
+                return Err(FileError::Table {
                     path: tri.display().to_string(),
                     message: format!(
                         "row {i} holds {raw:?}, not three node numbers in 0..{nodes} (the \
@@ -106,7 +106,7 @@ impl Panel {
         np: &std::path::Path,
         g: f64,
         cells: usize,
-    ) -> Result<Panel, ExpError> {
+    ) -> Result<Panel, FileError> {
         let c = read_csv(cp)?;
         let nd = read_csv(np)?;
         // A run directory's tables have no `g` column: every row is this panel's.
@@ -151,7 +151,7 @@ impl Panel {
     /// (at least two rows, each column at one x, each row at one y): a nodes table cut
     /// short, or a summary whose n does not match it, would be misdrawn or index past
     /// the end.
-    fn check_lattice(&self, path: &std::path::Path) -> Result<(), ExpError> {
+    fn check_lattice(&self, path: &std::path::Path) -> Result<(), FileError> {
         let (cols, nodes) = (self.cells + 1, self.x.len());
         let rows = nodes / cols;
         let lattice = nodes.is_multiple_of(cols)
@@ -165,7 +165,7 @@ impl Panel {
         if lattice {
             Ok(())
         } else {
-            Err(ExpError::Table {
+            Err(FileError::Table {
                 path: path.display().to_string(),
                 message: format!(
                     "its {nodes} node(s) are not a lattice of rows of {cols} (the n of \

@@ -175,14 +175,14 @@ impl Accumulator {
     ) -> Result<LevelError, ExpError> {
         let agree = (self.e_t - self.e_t_reduced).abs() <= 1e-9 * self.u_t;
         if !self.e_t.is_finite() || !agree {
-            return Err(ExpError::Table {
+            return Err(ExpError::File(crate::output::FileError::Table {
                 path: format!("table1, scenario {scenario}"),
                 message: format!(
                     "h = 1/{n}, {steps} steps: the error at T is {:e} from the fields and {:e} \
                      from the reduced quantities (||u_ref(T)||_E = {:e})",
                     self.e_t, self.e_t_reduced, self.u_t
                 ),
-            });
+            }));
         }
         Ok(LevelError {
             family,

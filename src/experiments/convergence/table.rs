@@ -11,14 +11,14 @@ pub(super) fn check_base(ctx: &Ctx) -> Result<std::path::PathBuf, ExpError> {
     if base.exists() {
         Ok(base)
     } else {
-        Err(ExpError::Table {
+        Err(ExpError::File(crate::output::FileError::Table {
             path: base.display().to_string(),
             message: format!(
                 "missing: run `evhi reproduce table1{}` (with the same --data) before a finer \
                  reference",
                 if ctx.quick { " --quick" } else { "" }
             ),
-        })
+        }))
     }
 }
 
@@ -44,10 +44,10 @@ pub(super) fn write_shift(
             .collect())
     };
     if key(&old)? != key(&new)? {
-        return Err(ExpError::Table {
+        return Err(ExpError::File(crate::output::FileError::Table {
             path: base.display().to_string(),
             message: "its rows are not those of the finer reference's table (quick mode?)".into(),
-        });
+        }));
     }
     let col = |df: &polars::prelude::DataFrame, c: &str| col_f64(df, c);
     let (t0, t1) = (

@@ -524,10 +524,10 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
             let ps = contact_interp(&run.mesh, &ref_mesh, interp, &f.sigma);
             let e = meter.diff(&ref_mesh, &truth, &pu, &ps);
             if !e.iter().all(|x| x.is_finite()) {
-                failure = Some(ExpError::Table {
+                failure = Some(ExpError::File(crate::output::FileError::Table {
                     path: "table1_forensics".into(),
                     message: format!("non-finite error at h = 1/{n}, t = {j}/{n_ref}"),
-                });
+                }));
                 return;
             }
             if against_ref {
