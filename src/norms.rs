@@ -161,6 +161,36 @@ impl NormGeometry {
         out.gamma_sq = gamma_l2_sq(mesh, &nu);
         out
     }
+
+    /// The squared energy norm of `v` (as in [`Self::norms`]) split by region: a
+    /// triangle adds to `out[region(centroid)]`.
+    pub fn energy_by_region(
+        &self,
+        mesh: &crate::mesh::Mesh,
+        g: &crate::material::Isotropic,
+        v: &[[f64; 2]],
+        region: impl Fn([f64; 2]) -> usize,
+        out: &mut [f64],
+    ) {
+        for (tri, id) in &self.tris {
+            let shape = &self.shapes[*id];
+            let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
+            let mut c = [0.0; 2];
+            for (k, (dx, dy)) in tri.iter().zip(shape.dx.iter().zip(&shape.dy)) {
+                let val = v[*k];
+                ux[0] += dx * val[0];
+                ux[1] += dy * val[0];
+                uy[0] += dx * val[1];
+                uy[1] += dy * val[1];
+                c[0] += mesh.nodes[*k][0] / 3.0;
+                c[1] += mesh.nodes[*k][1] / 3.0;
+            }
+            let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
+            let tr = e11 + e22;
+            out[region(c)] += shape.half_area
+                * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma));
+        }
+    }
 }
 
 /// $\max_i |v_i|$ (`hypot`), with `hypot` taken only where $v_x^2 + v_y^2$ comes within

@@ -197,7 +197,11 @@ fn forensics_energy_rows_equal_table1() {
 fn graded_meshes() {
     snapshot_outputs(
         "graded",
-        &["graded_convergence.csv"],
+        &[
+            "graded_convergence.csv",
+            "graded_regions.csv",
+            "graded_corner_energy.csv",
+        ],
         &["graded_convergence"],
     );
 }

@@ -131,6 +131,57 @@ struct Row {
     inc_t: f64,
     inc_max: f64,
     t_inc_max: f64,
+    /// With a [`Split`]: the squared error at T by region (each group, then the rest)
+    /// over the reference's squared norm, and the level's longest edge at each
+    /// group's first point.
+    regions: Vec<f64>,
+    h_at: Vec<f64>,
+}
+
+/// Where [`compute`] measures the error apart: within `radius` of each group of
+/// points (a triangle by its centroid, the first group that claims it), and the rest.
+/// The reference's own energy within radii `radius`, `radius`/2, ... (`halvings`
+/// of them) of each group gives the strength of its singular field.
+pub struct Split<'a> {
+    pub groups: &'a [(&'a str, &'a [[f64; 2]], f64)],
+    pub radius: f64,
+    pub halvings: usize,
+}
+
+impl Split<'_> {
+    fn of(&self, radius: f64) -> impl Fn([f64; 2]) -> usize + '_ {
+        move |c: [f64; 2]| {
+            (self.groups.iter())
+                .position(|(_, pts, _)| {
+                    pts.iter()
+                        .any(|p| (c[0] - p[0]).hypot(c[1] - p[1]) < radius)
+                })
+                .unwrap_or(self.groups.len())
+        }
+    }
+}
+
+/// The longest edge of the triangles of `mesh` that have a vertex at `p`.
+fn edge_at(mesh: &Mesh, p: [f64; 2]) -> f64 {
+    let at = |k: usize| (mesh.nodes[k][0] - p[0]).hypot(mesh.nodes[k][1] - p[1]) < 1e-12;
+    (mesh.triangles.iter())
+        .filter(|t| t.iter().any(|&k| at(k)))
+        .flat_map(|t| {
+            (0..3).map(move |i| {
+                let (a, b) = (mesh.nodes[t[i]], mesh.nodes[t[(i + 1) % 3]]);
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+        })
+        .fold(f64::NAN, f64::max)
+}
+
+/// What [`compute`] returns: the table of `graded_convergence.csv`, the reference's
+/// unknowns, and with a [`Split`] the error by region (`graded_regions.csv`) and the
+/// reference's energy near each group (`graded_corner_energy.csv`).
+pub struct Graded {
+    pub table: Table,
+    pub ref_dofs: usize,
+    pub split: Option<(Table, Table)>,
 }
 
 /// The loads of the study (one batched run per mesh).
@@ -293,8 +344,9 @@ pub fn compute(
     families_in: &[(String, Vec<[f64; 2]>)],
     plan: &Plan,
     ref_points: &[[f64; 2]],
+    split: Option<&Split>,
     log: &dyn Fn(&str),
-) -> Result<(Table, usize), ExpError> {
+) -> Result<Graded, ExpError> {
     let geo = &scns[0].geometry;
     let t_end = scns[0].t_end;
     let levels_of = |f: usize| if f == 0 { &plan.uniform } else { &plan.graded };
@@ -393,6 +445,19 @@ pub fn compute(
                     .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
                     .collect();
                 let e = ref_geo.norms(&ref_mesh, &g, &diff).energy_sq;
+                let (regions, h_at) = match split {
+                    Some(sp) => {
+                        let mut r = vec![0.0; sp.groups.len() + 1];
+                        ref_geo.energy_by_region(&ref_mesh, &g, &diff, sp.of(sp.radius), &mut r);
+                        (
+                            r.iter().map(|x| x / ref_norms[i]).collect(),
+                            (sp.groups.iter())
+                                .map(|(_, pts, _)| edge_at(&lev.mesh, pts[0]))
+                                .collect(),
+                        )
+                    }
+                    None => (vec![], vec![]),
+                };
                 let (inc_t, inc_max, t_inc_max) = inc
                     .as_ref()
                     .map_or((f64::NAN, f64::NAN, f64::NAN), |v| v[i]);
@@ -407,6 +472,8 @@ pub fn compute(
                     inc_t,
                     inc_max,
                     t_inc_max,
+                    regions,
+                    h_at,
                 });
             }
         }
@@ -460,7 +527,130 @@ pub fn compute(
             "t_of_increment_max",
             rows.iter().map(|r| r.t_inc_max).collect(),
         );
-    Ok((t, ref_dofs.count))
+    let split = split.map(|sp| {
+        let regions = region_table(&rows, sp);
+        let corner = corner_table(sp, scns, &ref_mesh, &ref_geo, &g, &ref_fields, &ref_norms);
+        (regions, corner)
+    });
+    Ok(Graded {
+        table: t,
+        ref_dofs: ref_dofs.count,
+        split,
+    })
+}
+
+/// `graded_regions.csv`: per load, family and level, the error at T within the
+/// split's radius of each group and in the rest (percent of the reference's norm;
+/// their squares add up to `rel_err_T_percent`'s), the level's longest edge at the
+/// group, the order of each part in that edge (the rest's in $N^{-1/2}$), and the
+/// strength: the part over (edge)$^\lambda$ with the group's exponent $\lambda$, and the
+/// part's share of the squared error.
+fn region_table(rows: &[Row], sp: &Split) -> Table {
+    let mut t = Table::new()
+        .str("load", rows.iter().map(|r| r.load.clone()).collect())
+        .str("family", rows.iter().map(|r| r.family.clone()).collect())
+        .u64("n", rows.iter().map(|r| r.n as u64).collect())
+        .u64("dofs", rows.iter().map(|r| r.dofs as u64).collect());
+    let prev = |i: usize| -> Option<&Row> {
+        let p = &rows[i.checked_sub(1)?];
+        (p.load == rows[i].load && p.family == rows[i].family).then_some(p)
+    };
+    let total = |r: &Row| r.regions.iter().sum::<f64>();
+    for (gi, (name, _, lambda)) in sp.groups.iter().enumerate() {
+        let key = name.replace(' ', "_");
+        let err = |r: &Row| r.regions[gi].sqrt();
+        t = t
+            .f64(
+                &format!("h_{key}"),
+                rows.iter().map(|r| r.h_at[gi]).collect(),
+            )
+            .f64(
+                &format!("err_{key}_percent"),
+                rows.iter().map(|r| 100.0 * err(r)).collect(),
+            )
+            .f64(
+                &format!("order_{key}"),
+                (0..rows.len())
+                    .map(|i| {
+                        prev(i).map_or(f64::NAN, |p| {
+                            (err(&rows[i]) / err(p)).ln() / (rows[i].h_at[gi] / p.h_at[gi]).ln()
+                        })
+                    })
+                    .collect(),
+            )
+            .f64(
+                &format!("strength_{key}"),
+                rows.iter()
+                    .map(|r| err(r) / r.h_at[gi].powf(*lambda))
+                    .collect(),
+            )
+            .f64(
+                &format!("share_{key}"),
+                rows.iter().map(|r| r.regions[gi] / total(r)).collect(),
+            );
+    }
+    let rest = |r: &Row| r.regions[sp.groups.len()].sqrt();
+    t.f64(
+        "err_rest_percent",
+        rows.iter().map(|r| 100.0 * rest(r)).collect(),
+    )
+    .f64(
+        "order_rest_dofs",
+        (0..rows.len())
+            .map(|i| {
+                prev(i).map_or(f64::NAN, |p| {
+                    -2.0 * (rest(&rows[i]) / rest(p)).ln()
+                        / (rows[i].dofs as f64 / p.dofs as f64).ln()
+                })
+            })
+            .collect(),
+    )
+}
+
+/// `graded_corner_energy.csv`: the share of the reference's energy at T within
+/// $\rho$ of each group's points, for $\rho$ = radius, radius/2, ...; the local
+/// exponent $\ln(E_{2\rho}/E_\rho) / (2\ln 2)$, which tends to $\lambda$ when a field
+/// $r^\lambda$ holds the energy there (a smooth field gives 1); and the strength
+/// $\sqrt{E_\rho/E}/\rho^\lambda$, constant in that case.
+fn corner_table(
+    sp: &Split,
+    scns: &[Scenario],
+    mesh: &Mesh,
+    geo: &crate::norms::NormGeometry,
+    g: &crate::material::Isotropic,
+    fields: &[Vec<[f64; 2]>],
+    norms: &[f64],
+) -> Table {
+    let (mut load, mut group, mut rho, mut share, mut local, mut strength) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    for (i, scn) in scns.iter().enumerate() {
+        for (name, pts, lambda) in sp.groups {
+            let mut last = f64::NAN;
+            for h in 0..=sp.halvings {
+                let r = sp.radius / f64::powi(2.0, h as i32);
+                let mut e = [0.0; 2];
+                let inside = |c: [f64; 2]| {
+                    usize::from(!pts.iter().any(|p| (c[0] - p[0]).hypot(c[1] - p[1]) < r))
+                };
+                geo.energy_by_region(mesh, g, &fields[i], inside, &mut e);
+                let s = e[0] / norms[i];
+                load.push(scn.name.clone());
+                group.push(name.to_string());
+                rho.push(r);
+                share.push(s);
+                local.push((last / s).ln() / (2.0 * std::f64::consts::LN_2));
+                strength.push(s.sqrt() / r.powf(*lambda));
+                last = s;
+            }
+        }
+    }
+    Table::new()
+        .str("load", load)
+        .str("points", group)
+        .f64("rho", rho)
+        .f64("energy_share", share)
+        .f64("local_exponent", local)
+        .f64("strength", strength)
 }
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -474,12 +664,58 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         .map(|(f, p)| (f.to_string(), p.to_vec()))
         .collect();
     ctx.add_units(units(&plan, families.len()));
-    let (t, ref_dofs) = compute(&scns, &families, &plan, &SINGULAR, &|m| ctx.log(m))?;
+    // The exponents the static control names (`singular`): the top corner's real
+    // one, the clamp end's real part.
+    use super::singular::{Edge, clamp_end_exponent, wedge_exponents};
+    let kappa_m = 3.0 - 4.0 * scns[0].kappa;
+    let top = wedge_exponents(
+        std::f64::consts::FRAC_PI_2,
+        kappa_m,
+        [Edge::Clamped, Edge::Free],
+    );
+    let groups: [(&str, &[[f64; 2]], f64); 2] = [
+        ("top corners", &SINGULAR[2..], top[0]),
+        ("clamp ends", &SINGULAR[..2], clamp_end_exponent(kappa_m).0),
+    ];
+    let split = Split {
+        groups: &groups,
+        radius: 0.125,
+        halvings: 5,
+    };
+    let Graded {
+        table: t,
+        ref_dofs,
+        split: tables,
+    } = compute(&scns, &families, &plan, &SINGULAR, Some(&split), &|m| {
+        ctx.log(m)
+    })?;
     let params = format!(
         "newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n; graded: <= D min(1, max(r, D^(1/mu))^(1-mu)) with D = 2 sqrt2 / n, mu = {MU}, r = distance of the triangle's centroid to the nearest clamp end or top corner (family graded), clamp end only (clamp ends), top corner only (top corners); min_longest_edge = the shortest longest edge of the mesh; k = 1/n; reference: graded level {} ({} dofs), k = 1/{}; error: relative energy norm at t = T; order_dofs = -2 dln(err) / dln(dofs) (1 = order 1 in h for a uniform mesh); increment = ||u_n - u_2n||_E / ||u_2n||_E against the next level of the same family (no reference), at T and its maximum over t_j = j/n, with the t where it occurs; order_increment_dofs and order_increment_max_dofs from increment_T and increment_max",
         plan.n_ref, ref_dofs, plan.n_ref
     );
     let path = ctx.write("graded_convergence.csv", &t, &params)?;
+    if let Some((regions, corner)) = tables {
+        let exps = format!(
+            "exponents: top corners {:.6} (wedge pi/2, clamped-free), clamp ends {} (real part)",
+            groups[0].2, groups[1].2
+        );
+        ctx.write(
+            "graded_regions.csv",
+            &regions,
+            &format!(
+                "the error at T of graded_convergence.csv split by where it sits: within {} of the top corners (0,1), (2,1), within {} of the clamp ends (0,1/2), (2,1/2) (a triangle of the reference mesh by its centroid), and the rest; err_*_percent = 100 ||e||_E,region / ||u_ref||_E (their squares add up to rel_err_T_percent's); h_* = the level's longest edge at (0,1) resp. (0,1/2); order_* = dln(err) / dln(h_*); order_rest_dofs = -2 dln(err_rest) / dln(dofs); strength_* = (err_*_percent / 100) / h_*^lambda; share_* = err_*^2 / rel_err_T^2; {exps}",
+                split.radius, split.radius
+            ),
+        )?;
+        ctx.write(
+            "graded_corner_energy.csv",
+            &corner,
+            &format!(
+                "the reference of graded_convergence.csv (graded level {}, {} dofs) at T: energy_share = the share of its squared energy norm within rho of the two points (a triangle by its centroid); local_exponent = ln(share(2 rho) / share(rho)) / (2 ln 2), lambda where r^lambda holds the energy, 1 for a smooth field; strength = sqrt(share) / rho^lambda; {exps}",
+                plan.n_ref, ref_dofs
+            ),
+        )?;
+    }
     let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
     draw(
         &ctx.figures,

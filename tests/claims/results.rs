@@ -1288,3 +1288,123 @@ fn results_smooth_vs_paper() {
         ("0.77".into(), "1.02".into())
     );
 }
+
+/// A column of `graded_regions.csv` for a load and family, levels n = 8 ... 64.
+fn region(l: &str, f: &str, col: &str) -> Vec<f64> {
+    let keys = [("load", l), ("family", f)];
+    let n = super::column("graded_regions.csv", &keys, "n");
+    let v = super::column("graded_regions.csv", &keys, col);
+    [8.0, 16.0, 32.0, 64.0]
+        .iter()
+        .map(|m| v[n.iter().position(|x| x == m).expect("level")])
+        .collect()
+}
+
+/// A column of `graded_corner_energy.csv` for a load and a group of points, rho
+/// from 1/8 down.
+fn corner(l: &str, points: &str, col: &str) -> Vec<f64> {
+    super::column(
+        "graded_corner_energy.csv",
+        &[("load", l), ("points", points)],
+        col,
+    )
+}
+
+#[test]
+fn results_corner_local_exponents() {
+    // over the last three radii (1/64, 1/128, 1/256): as stated, and within 0.05 of the
+    // wedge's exponent at the top corners
+    let top = top_corner_exponent();
+    for (l, stated) in [
+        ("literal", ["0.639", "0.635", "0.628"]),
+        ("figure", ["0.601", "0.618", "0.621"]),
+    ] {
+        let e = corner(l, "top corners", "local_exponent");
+        assert_eq!(super::fixes(&e[3..], 3), stated, "{l}");
+        assert!(e[3..].iter().all(|x| (x - top).abs() < 0.05), "{l}: {e:?}");
+    }
+    let e = corner("literal", "clamp ends", "local_exponent");
+    assert_eq!(super::fixes(&e[3..], 3), ["0.520", "0.528", "0.525"]);
+}
+
+#[test]
+fn results_corner_strengths() {
+    // the range over every radius, and the top corners' lowest above the clamp ends' highest
+    for (l, top, ends) in [
+        ("literal", ["1.18", "1.22"], ["0.48", "0.52"]),
+        ("figure", ["1.03", "1.21"], ["0.78", "0.86"]),
+    ] {
+        let range = |v: Vec<f64>| {
+            assert_eq!(v.len(), 6, "{l}: six radii");
+            let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = v.iter().copied().fold(0.0, f64::max);
+            (lo, hi)
+        };
+        let t = range(corner(l, "top corners", "strength"));
+        let c = range(corner(l, "clamp ends", "strength"));
+        assert_eq!(super::fixes(&[t.0, t.1], 2), top, "{l}");
+        assert_eq!(super::fixes(&[c.0, c.1], 2), ends, "{l}");
+        assert!(t.0 > c.1, "{l}: {t:?} {c:?}");
+    }
+}
+
+#[test]
+fn results_clamp_ends_shares() {
+    for (l, stated, ends) in [
+        ("literal", ["26", "45", "63", "76"], "4"),
+        ("figure", ["26", "43", "61", "74"], "7"),
+    ] {
+        let s = region(l, "clamp ends", "share_top_corners");
+        let pct: Vec<f64> = s.iter().map(|x| 100.0 * x).collect();
+        assert_eq!(super::fixes(&pct, 0), stated, "{l}");
+        assert!(s.windows(2).all(|w| w[1] > w[0]), "{l}: grows {s:?}");
+        let c = region(l, "clamp ends", "share_clamp_ends");
+        assert_eq!(super::fix(100.0 * c[3], 0), ends, "{l}");
+        // the shares and the rest add up to 1
+        let r = region(l, "clamp ends", "err_rest_percent");
+        let t = region(l, "clamp ends", "err_top_corners_percent");
+        for i in 0..4 {
+            let total = (t[i] * t[i]) / s[i];
+            assert!(
+                ((r[i] * r[i]) / total + s[i] + c[i] - 1.0).abs() < 1e-9,
+                "{l}"
+            );
+        }
+    }
+}
+
+#[test]
+fn results_clamp_ends_parts() {
+    let top = top_corner_exponent();
+    for (l, stated, rest) in [
+        ("literal", ["0.25", "0.35", "0.52", "0.59"], "1.04"),
+        ("figure", ["0.23", "0.39", "0.53", "0.59"], "1.03"),
+    ] {
+        // the top corners' part: as stated, rising, below the wedge's exponent
+        let o = region(l, "clamp ends", "order_top_corners");
+        assert_eq!(super::fixes(&o, 2), stated, "{l}");
+        assert!(
+            o.windows(2).all(|w| w[1] > w[0]) && o[3] < top,
+            "{l}: {o:?}"
+        );
+        // the rest: about 1 at n = 64
+        let r = region(l, "clamp ends", "order_rest_dofs");
+        assert_eq!(super::fix(r[3], 2), rest, "{l}");
+    }
+    // the edge at the top corner: 0.18 at n = 8, 0.022 at n = 64, against the radius 1/8
+    let h = region("literal", "clamp ends", "h_top_corners");
+    assert_eq!(
+        [super::fix(h[0], 2), super::fix(h[3], 3)],
+        ["0.18", "0.022"]
+    );
+}
+
+#[test]
+fn results_top_corners_mirror() {
+    let s = region("literal", "top corners", "share_clamp_ends");
+    let pct: Vec<f64> = s.iter().map(|x| 100.0 * x).collect();
+    assert_eq!(super::fixes(&pct, 0), ["22", "45", "64", "80"]);
+    let o = region("literal", "top corners", "order_clamp_ends");
+    assert_eq!(super::fixes(&o, 2), ["0.11", "0.23", "0.31", "0.49"]);
+    assert!(o.windows(2).all(|w| w[1] > w[0]) && o[3] < clamp_end_exponent());
+}

@@ -334,11 +334,14 @@ pub(super) fn run(
     let out = RunDir::open(&args.out)?;
     let bar = super::bar(graded::units(&plan, families.len()) as u64);
     let ctx = study_ctx(&out, args.quick, &bar, command);
-    let (table, ref_dofs) = graded::compute(
+    let graded::Graded {
+        table, ref_dofs, ..
+    } = graded::compute(
         std::slice::from_ref(&scn),
         &families,
         &plan,
         &points,
+        None,
         &|m| ctx.log(m),
     )?;
     let unit = scn.geometry.width.min(scn.geometry.height);
