@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 use evhi::cli;
+use evhi::study;
 use evhi::scenario::Scenario;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -48,7 +49,7 @@ enum Command {
     /// scenarios only) or `stability` (which step solver fails where on the scenario's
     /// law, with H(s) and the step convexity).
     #[command(subcommand)]
-    Study(cli::study::Study),
+    Study(study::Study),
     /// List the built-in scenarios with their descriptions.
     Scenarios,
     /// Redraw a run directory's figures (deformed.png/svg, evolution.png/svg) from its CSVs.
@@ -80,7 +81,7 @@ fn main() -> ExitCode {
             Ok(())
         }
         Command::Show(args) => cli::show::run(args),
-        Command::Study(study) => cli::study::run(study),
+        Command::Study(which) => study::run(which),
         // `plot .` from inside a run directory: the lock goes beside it, by its name.
         Command::Plot { run_dir } => evhi::output::rundir::lock_run_dir(
             &run_dir.canonicalize().unwrap_or_else(|_| run_dir.clone()),

@@ -129,6 +129,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         reference: None,
         command: None,
         experiment: "bench",
+        book_table: crate::experiments::registry::book_table,
     };
     if args.from_csv {
         crate::experiments::workprec::paper_comparison(&ctx)?;

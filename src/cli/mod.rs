@@ -1,10 +1,8 @@
 //! The commands of the `evhi` binary, one room each: their arguments (clap) and
-//! what they do. `src/main.rs` only parses the command line and dispatches.
+//! what they do. `src/main.rs` only parses the command line and dispatches. `evhi
+//! study` has its own room, [`crate::study`], which the book's experiments use too.
 
 pub mod bench;
 pub mod reproduce;
 pub mod show;
 pub mod solve;
-/// `evhi study`: its room is [`crate::experiments::study`] (the studies are the
-/// experiments' computations on any scenario).
-pub use crate::experiments::study;

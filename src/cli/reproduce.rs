@@ -110,6 +110,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         reference: args.reference,
         command: None,
         experiment: "",
+        book_table: registry::book_table,
     };
     for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
         if dir.exists() && !dir.is_dir() {

@@ -121,7 +121,7 @@ fn studies(
     toml: &str,
     path: &str,
 ) -> Result<(), ExpError> {
-    use super::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
+    use crate::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
     // The studies read the scenario from a file: the compiled-in text, so that the
     // example runs from any working directory (the repository's path named in
     // `path` is what the summaries quote).
@@ -130,7 +130,7 @@ fn studies(
     let scenario = file.display().to_string();
     let scratch = scratch.0.join("studies");
     ctx.add_units(3);
-    let [convergence, time, stability] = super::study::STUDIES;
+    let [convergence, time, stability] = crate::study::STUDIES;
     // Each study's figures (stems in its directory) and the names they get here.
     let runs: [(&str, &[Stem], Study); 3] = [
         (

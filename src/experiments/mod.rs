@@ -7,7 +7,6 @@
 //! snapshot; the full mode is what `evhi reproduce` runs.
 
 pub mod convergence;
-pub mod ctx;
 pub mod exact;
 pub mod example;
 pub mod fig2;
@@ -21,40 +20,12 @@ pub use crate::output::csv::{col_f64, col_str, read_csv};
 pub mod scenes;
 pub mod singular;
 pub mod stability;
-pub mod study;
 pub mod sweeps;
 pub mod time;
 pub mod workprec;
 
-pub use ctx::Ctx;
+pub use crate::study::{Ctx, ExpError};
 
-/// An experiment's failure.
-#[derive(Debug, thiserror::Error)]
-pub enum ExpError {
-    #[error(transparent)]
-    Run(#[from] crate::scheme::RunError),
-    #[error(transparent)]
-    Input(#[from] crate::error::InputError),
-    /// A table or figure that could not be read or written.
-    #[error(transparent)]
-    File(#[from] crate::output::FileError),
-    /// Where in a study or experiment the error arose (a family, a level).
-    #[error("{context}: {source}")]
-    At {
-        context: String,
-        source: Box<ExpError>,
-    },
-}
-
-impl ExpError {
-    /// This error, said to have arisen at `context` (say, "graded family, level n = 32").
-    pub fn at(self, context: impl Into<String>) -> ExpError {
-        ExpError::At {
-            context: context.into(),
-            source: Box::new(self),
-        }
-    }
-}
 
 /// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'
 /// provenance names it.
@@ -62,6 +33,7 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
     let e = registry::experiment(name)?;
     let ctx = Ctx {
         experiment: e.name,
+        book_table: registry::book_table,
         ..ctx.clone()
     };
     (e.run)(&ctx)

@@ -364,7 +364,7 @@ fn own_scene_graded() {
 fn study_rows(
     file: &str,
     table: &str,
-    study: impl Fn(String, std::path::PathBuf) -> evhi::cli::study::Study,
+    study: impl Fn(String, std::path::PathBuf) -> evhi::study::Study,
 ) -> Vec<std::collections::HashMap<String, String>> {
     let out = std::env::temp_dir().join(format!(
         "evhi-claim-{}-{}-{}",
@@ -380,7 +380,7 @@ fn study_rows(
     } else {
         file.to_string()
     };
-    evhi::cli::study::run(study(scenario, out.clone())).unwrap();
+    evhi::study::run(study(scenario, out.clone())).unwrap();
     let text = std::fs::read_to_string(out.join(table)).unwrap();
     let _ = std::fs::remove_dir_all(&out);
     super::parse_rows(&text)
@@ -390,7 +390,7 @@ const CANTILEVER: &str = "data/scenarios/examples/cantilever.toml";
 
 #[test]
 fn own_study_cantilever() {
-    use evhi::cli::study::{ConvergenceArgs, Study};
+    use evhi::study::{ConvergenceArgs, Study};
     let rows = study_rows(CANTILEVER, "singular.csv", |scenario, out| {
         Study::Convergence(ConvergenceArgs {
             scenario,
@@ -424,7 +424,7 @@ fn own_study_cantilever() {
 /// Runs `evhi study time --quick` on the example `file` and returns its CSV rows by
 /// column name.
 fn time_study(file: &str) -> Vec<std::collections::HashMap<String, String>> {
-    use evhi::cli::study::{Study, TimeArgs};
+    use evhi::study::{Study, TimeArgs};
     study_rows(file, "time_study.csv", |scenario, out| {
         Study::Time(TimeArgs {
             scenario,
@@ -485,7 +485,7 @@ fn own_study_time_cantilever() {
 
 #[test]
 fn own_study_stability_cantilever() {
-    use evhi::cli::study::{StabilityArgs, Study};
+    use evhi::study::{StabilityArgs, Study};
     let rows = study_rows(CANTILEVER, "stability.csv", |scenario, out| {
         Study::Stability(StabilityArgs {
             scenario,
@@ -528,7 +528,7 @@ fn own_study_stability_cantilever() {
 /// `experiments::convergence::compute`.
 #[test]
 fn own_study_is_table1() {
-    use evhi::cli::study::{ConvergenceArgs, Study, split_plan};
+    use evhi::study::{ConvergenceArgs, Study, split_plan};
     let (full, table1_full) = (
         split_plan(4, false),
         evhi::experiments::convergence::plan(false),

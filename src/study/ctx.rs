@@ -1,7 +1,8 @@
 //! Where and how an experiment runs: its output directories, mode, progress bar
 //! and provenance, and how it writes a table (with its Markdown rendering when the
-//! book shows it). The dispatcher that runs an experiment by name is
-//! [`super::run`], reading [`super::registry`].
+//! book shows it). The book's experiments and the studies of `evhi study` both run
+//! in one; the dispatcher that runs an experiment by name fills in its name and the
+//! book's table layouts.
 
 use super::ExpError;
 use crate::output::csv::Table;
@@ -27,9 +28,18 @@ pub struct Ctx {
     /// The command named in the provenance lines, when it is not `evhi reproduce`
     /// (a study on a user's scenario).
     pub command: Option<String>,
-    /// The experiment running (set by [`super::run`] from the registry): its tables'
+    /// The experiment running (set by the dispatcher from the registry): its tables'
     /// provenance names it.
     pub experiment: &'static str,
+    /// The Markdown layout of a table the book shows, by file name: the key columns
+    /// repeated in every part and the most columns of one part; `None` for a table
+    /// the book does not show (no Markdown written).
+    pub book_table: fn(&str) -> Option<(usize, usize)>,
+}
+
+/// No table shown by the book: [`Ctx::book_table`] of a study or a test.
+pub fn no_book_table(_: &str) -> Option<(usize, usize)> {
+    None
 }
 
 impl Ctx {
@@ -45,6 +55,7 @@ impl Ctx {
             reference: None,
             command: None,
             experiment: "",
+            book_table: no_book_table,
         }
     }
 
@@ -81,7 +92,7 @@ impl Ctx {
     }
 
     /// Writes a table with its provenance, naming the running experiment (and, for a
-    /// table the book shows, its Markdown rendering, see [`super::registry::BookTable`]).
+    /// table the book shows, its Markdown rendering, see [`Ctx::book_table`]).
     pub fn write(&self, file: &str, table: &Table, params: &str) -> Result<PathBuf, ExpError> {
         self.write_as(file, table, self.experiment, params)
     }
@@ -109,12 +120,11 @@ impl Ctx {
     }
 
     /// Writes `data/<stem>.md`, the Markdown rendering of `data/<file>`, if the
-    /// book shows that table ([`super::registry::book_tables`]).
+    /// book shows that table ([`Ctx::book_table`]).
     pub fn render_book_table(&self, file: &str) -> Result<(), ExpError> {
-        let Some(t) = super::registry::book_tables().find(|t| t.file == file) else {
+        let Some((keys, cols)) = (self.book_table)(file) else {
             return Ok(());
         };
-        let (keys, cols) = (t.keys, t.cols);
         let path = self.data_path(file);
         let text = std::fs::read_to_string(&path).map_err(|e| {
             ExpError::File(crate::output::FileError::Io {

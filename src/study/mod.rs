@@ -16,7 +16,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
 mod convergence;
+pub mod ctx;
+mod error;
 mod stability;
+pub use ctx::Ctx;
+pub use error::ExpError;
 pub use convergence::split_plan;
 mod time;
 
@@ -235,8 +239,8 @@ pub(super) fn study_ctx(
     quick: bool,
     progress: &ProgressBar,
     command: &str,
-) -> crate::experiments::Ctx {
-    crate::experiments::Ctx {
+) -> Ctx {
+    Ctx {
         quick,
         data: out.path(""),
         figures: out.path(""),
@@ -245,6 +249,7 @@ pub(super) fn study_ctx(
         reference: None,
         command: Some(command.to_string()),
         experiment: "",
+        book_table: ctx::no_book_table,
     }
 }
 
