@@ -1,7 +1,7 @@
 //! The corner exponents of the static control, checked against classical values, and
 //! the control's observed orders against them.
 
-use evhi::experiments::singular::{Edge, clamp_end_exponent, wedge_exponents};
+use evhi::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use std::f64::consts::PI;
 
 #[test]

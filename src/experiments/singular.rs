@@ -15,6 +15,7 @@
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+pub use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use crate::assembly::stiffness;
 use crate::linalg::Cholesky;
 use crate::mesh::Dofs;
@@ -27,89 +28,6 @@ use plotters::prelude::*;
 /// The scenarios of the control: the paper's supports with both loads, and `smooth`.
 pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
 
-/// How one edge of a wedge is held.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Edge {
-    Clamped,
-    Free,
-}
-
-// ANCHOR: wedge
-/// The real $4\times4$ matrix of the edge conditions on the wedge $0 < \theta < \omega$
-/// for the Kolosov–Muskhelishvili potentials $\varphi = A z^\lambda$, $\psi = B z^\lambda$
-/// (unknowns $\operatorname{Re}A, \operatorname{Im}A, \operatorname{Re}B, \operatorname{Im}B$),
-/// real $\lambda$, with $\kappa_M = 3 - 4\kappa$ (plane strain, $\kappa$ the Poisson ratio). On a ray $\theta$:
-/// $2\mu(u_x + i u_y) = r^\lambda(\kappa_M A e^{i\lambda\theta} - \lambda\bar A e^{i(2-\lambda)\theta} - \bar B e^{-i\lambda\theta})$ and
-/// $\sigma_{\theta\theta} + i\sigma_{r\theta} = \lambda r^{\lambda-1}(\lambda A e^{i(\lambda-1)\theta} + \bar A e^{-i(\lambda-1)\theta} + B e^{i(\lambda+1)\theta})$.
-fn edge_matrix(lambda: f64, omega: f64, kappa_m: f64, edges: [Edge; 2]) -> nalgebra::Matrix4<f64> {
-    type C = nalgebra::Complex<f64>;
-    let e = |x: f64| C::new(x.cos(), x.sin());
-    let mut m = nalgebra::Matrix4::zeros();
-    for (row, (theta, edge)) in [(0.0, edges[0]), (omega, edges[1])].into_iter().enumerate() {
-        // The condition is linear in (A, conj A, B, conj B): coefficients (ca, cab, cb, cbb).
-        let (ca, cab, cb, cbb) = match edge {
-            Edge::Clamped => (
-                kappa_m * e(lambda * theta),
-                -lambda * e((2.0 - lambda) * theta),
-                C::new(0.0, 0.0),
-                -e(-lambda * theta),
-            ),
-            Edge::Free => (
-                lambda * e((lambda - 1.0) * theta),
-                e(-(lambda - 1.0) * theta),
-                e((lambda + 1.0) * theta),
-                C::new(0.0, 0.0),
-            ),
-        };
-        // x = a1 + i a2 enters as ca x + cab conj(x) = (ca + cab) a1 + i (ca - cab) a2.
-        let cols = [
-            ca + cab,
-            (ca - cab) * C::new(0.0, 1.0),
-            cb + cbb,
-            (cb - cbb) * C::new(0.0, 1.0),
-        ];
-        for (j, c) in cols.iter().enumerate() {
-            m[(2 * row, j)] = c.re;
-            m[(2 * row + 1, j)] = c.im;
-        }
-    }
-    m
-}
-
-/// The real exponents $\lambda \in (0, 1)$ of a wedge of opening $\omega$ with the given
-/// edges: the sign changes of the determinant on a fine grid, refined by bisection.
-/// A corner with no real root in $(0, 1)$ has either complex roots there (the clamp
-/// ending on a straight edge, [`clamp_end_exponent`]) or none below 1.
-pub fn wedge_exponents(omega: f64, kappa_m: f64, edges: [Edge; 2]) -> Vec<f64> {
-    let det = |l: f64| edge_matrix(l, omega, kappa_m, edges).determinant();
-    let grid: Vec<f64> = (1..1000).map(|i| i as f64 / 1000.0).collect();
-    let mut roots = vec![];
-    for w in grid.windows(2) {
-        let (mut a, mut b) = (w[0], w[1]);
-        if det(a).signum() == det(b).signum() {
-            continue;
-        }
-        for _ in 0..60 {
-            let c = 0.5 * (a + b);
-            if det(a).signum() == det(c).signum() {
-                a = c;
-            } else {
-                b = c;
-            }
-        }
-        roots.push(0.5 * (a + b));
-    }
-    roots
-}
-
-/// Where the clamp ends on a straight edge ($\omega = \pi$, clamped–free) the same
-/// equations reduce to $e^{-2i\pi\lambda} = -\kappa_M$, so
-/// $\lambda = \tfrac12 + i\,\ln\kappa_M/(2\pi)$: real part exactly $\tfrac12$, with a slow
-/// oscillation. Returns (real part, imaginary part).
-pub fn clamp_end_exponent(kappa_m: f64) -> (f64, f64) {
-    (0.5, kappa_m.ln() / (2.0 * std::f64::consts::PI))
-}
-// ANCHOR_END: wedge
 
 /// Per scenario and level: $\|u_h\|_E^2$. Scenarios on the same mesh with the same
 /// elasticity share each level's factorisation of $B$ (one factor, a solve per

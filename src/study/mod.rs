@@ -16,8 +16,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
 mod convergence;
+pub mod corners;
 pub mod ctx;
 mod error;
+pub mod graded;
+pub mod runs;
 mod stability;
 pub use ctx::Ctx;
 pub use error::ExpError;
