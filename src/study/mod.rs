@@ -20,6 +20,7 @@ pub mod corners;
 pub mod ctx;
 mod error;
 pub mod graded;
+pub mod map;
 pub mod runs;
 mod stability;
 pub use ctx::Ctx;

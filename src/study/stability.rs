@@ -1,7 +1,7 @@
 //! `evhi study stability`: where step solvers fail on the scenario's own law.
 
 use super::{bar, coarsest, write_scenario};
-use crate::experiments::stability::map::NAN_COLUMNS;
+use super::map::NAN_COLUMNS;
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
@@ -25,7 +25,7 @@ pub(super) fn run(
     args: super::StabilityArgs,
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    use crate::experiments::stability::map::{MapFigure, map_cell, solvers};
+    use super::map::{MapFigure, map_cell, solvers};
     let (scn, text) = Scenario::read(&args.scenario)?;
     let steady = scn.problem == crate::scenario::Problem::Steady;
     let multiples: &[usize] = if args.quick { &[1, 2] } else { &[1, 2, 4] };

@@ -1,7 +1,7 @@
 //! Towards the edges of the theory: one parameter at a time
 //! (`data/stability_sweeps.csv`).
 
-use super::map::map_cell;
+use crate::study::map::map_cell;
 use crate::experiments::{Ctx, ExpError};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;

@@ -1,0 +1,258 @@
+//! Where step solvers fail: one cell of a stability map (a solver on a scenario at a
+//! time step, with its outcome, iterations, certificate, the step's convexity and, for
+//! Newton, the spread of several starts), the solvers a map shows, and the map's
+//! figure. The book's map (`stability`) and `evhi study stability` draw theirs with it.
+
+use crate::scenario::Scenario;
+use crate::scheme::{self, Settings};
+
+/// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
+/// cell also says "fail").
+const CONVEX: RGBColor = RGBColor(86, 180, 233);
+const NOT_CONVEX: RGBColor = RGBColor(190, 225, 245);
+const SEVERAL: RGBColor = RGBColor(230, 159, 0);
+const FAILED: RGBColor = RGBColor(213, 94, 0);
+/// The penalty converged but let u_nu pass g (Okabe–Ito bluish green).
+const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
+/// The outcome of a cell whose uncertified solver let u_nu pass g (measured).
+const OVERSHOOTS_G: &str = "converged (overshoots g)";
+use crate::output::plot::{Figure, e2s};
+use crate::step::Status;
+use crate::step::multistart::MultiStart;
+use plotters::prelude::*;
+
+pub struct Cell {
+    pub solver: &'static str,
+    pub steps: usize,
+    pub c2: f64,
+    pub outcome: String,
+    pub failed_step: u64,
+    pub mean_iterations: f64,
+    pub certificate: f64,
+    pub hessian_min: f64,
+    pub spread: f64,
+}
+
+/// One cell: `scn` (whose softening slope is `c2`, recorded with the cell) run with
+/// `solver` at h = 1/n and `steps` steps.
+pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'static str) -> Cell {
+    let mut opt = Settings::new(n, steps);
+    let entry = crate::step::solver(solver).expect("the map's solvers are registered");
+    if !entry.certified {
+        // The penalty answer overshoots g by design: judge it by its own convergence.
+        opt.certificate_tol = f64::INFINITY;
+    }
+    let (res, spread) = if entry.name == crate::step::DEFAULT_SOLVER {
+        // Newton also from other starts: does the step have several solutions?
+        let mut s = MultiStart {
+            inner: entry.build(),
+            spread: 0.0,
+        };
+        let r = scheme::run(scn, &opt, &mut s, &mut |_, _, _| {});
+        (r, s.spread)
+    } else {
+        (
+            scheme::run(scn, &opt, entry.build().as_mut(), &mut |_, _, _| {}),
+            f64::NAN,
+        )
+    };
+    match res {
+        Ok(run) => Cell {
+            solver,
+            steps,
+            c2,
+            outcome: if spread > 1e-6 {
+                "several solutions".into()
+            } else if !entry.certified && crate::output::run::max_overshoot(&run.records) > 0.0 {
+                // Measured: some step's u_nu passed g beyond rounding.
+                OVERSHOOTS_G.into()
+            } else if !entry.certified && scn.g.is_finite() {
+                "converged (within g)".into()
+            } else if !entry.certified {
+                "converged (no limit)".into()
+            } else {
+                "certified".into()
+            },
+            failed_step: 0,
+            mean_iterations: run.records.iter().map(|r| r.iterations as f64).sum::<f64>()
+                / steps as f64,
+            certificate: run
+                .records
+                .iter()
+                .map(|r| r.certificate.max())
+                .fold(0.0, f64::max),
+            hessian_min: run.hessian_min,
+            spread,
+        },
+        Err(crate::scheme::RunError::Step {
+            step,
+            status,
+            residual,
+            ..
+        }) => Cell {
+            solver,
+            steps,
+            c2,
+            outcome: if status == Status::Converged {
+                "failed: certificate over tolerance".to_string()
+            } else {
+                format!("failed: {}", status.label())
+            },
+            failed_step: step as u64,
+            mean_iterations: f64::NAN,
+            certificate: residual,
+            hessian_min: f64::NAN,
+            spread,
+        },
+        Err(e) => Cell {
+            solver,
+            steps,
+            c2,
+            outcome: format!("error: {e}"),
+            failed_step: 0,
+            mean_iterations: f64::NAN,
+            certificate: f64::NAN,
+            hessian_min: f64::NAN,
+            spread,
+        },
+    }
+}
+
+/// What the NaN of a stability table means, column by column.
+pub const NAN_COLUMNS: &str = "NaN: multistart_spread for every solver but newton (only newton is \
+     restarted), mean_iterations where the run failed or did not start (hessian_min too, in \
+     the map's table), max_certificate_or_residual where it did not start";
+
+/// The map's solvers: the registry's entries marked `mapped`, in registry order.
+pub fn solvers() -> Vec<&'static str> {
+    crate::step::SOLVERS
+        .iter()
+        .filter(|e| e.mapped)
+        .map(|e| e.label)
+        .collect()
+}
+
+/// A map: per cell (solver, k, row value, outcome, mean iterations, hessian_min); the
+/// rows are the distinct row values ascending, labelled by `row_label`.
+pub struct MapFigure {
+    pub cells: Vec<(String, f64, f64, String, f64, f64)>,
+    pub title: String,
+    pub row_desc: String,
+    pub row_label: fn(f64) -> String,
+}
+
+impl Figure for MapFigure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let root = root.titled(&self.title, ("sans-serif", 19)).map_err(e2s)?;
+        let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
+        ks.sort_by(f64::total_cmp);
+        ks.dedup();
+        let mut cs: Vec<f64> = self.cells.iter().map(|c| c.2).collect();
+        cs.sort_by(f64::total_cmp);
+        cs.dedup();
+        let band = 100;
+        let (top, _legend_band) = root.split_vertically(root.dim_in_pixel().1 - band);
+        let mut solvers: Vec<&str> = vec![];
+        for c in &self.cells {
+            if !solvers.contains(&c.0.as_str()) {
+                solvers.push(&c.0);
+            }
+        }
+        let panels = top.split_evenly((solvers.len().div_ceil(2), 2));
+        for (solver, area) in solvers.iter().zip(panels.iter()) {
+            let mut chart = ChartBuilder::on(area)
+                .caption(*solver, ("sans-serif", 20))
+                .margin(10)
+                .x_label_area_size(45)
+                .y_label_area_size(70)
+                .build_cartesian_2d(-0.5..ks.len() as f64 - 0.5, -0.5..cs.len() as f64 - 0.5)
+                .map_err(e2s)?;
+            let (kl, cl, rl) = (ks.clone(), cs.clone(), self.row_label);
+            chart
+                .configure_mesh()
+                .disable_mesh()
+                .x_labels(ks.len())
+                .y_labels(cs.len())
+                .x_label_formatter(&move |x| {
+                    let i = x.round();
+                    if (x - i).abs() > 1e-9 || i < 0.0 {
+                        return String::new();
+                    }
+                    kl.get(i as usize)
+                        .map_or(String::new(), |k| format!("1/{}", (1.0 / k).round()))
+                })
+                .y_label_formatter(&move |y| {
+                    let i = y.round();
+                    if (y - i).abs() > 1e-9 || i < 0.0 {
+                        return String::new();
+                    }
+                    cl.get(i as usize).map_or(String::new(), |c| rl(*c))
+                })
+                .x_desc("time step k")
+                .y_desc(&self.row_desc)
+                .label_style(("sans-serif", 16))
+                .axis_desc_style(("sans-serif", 16))
+                .draw()
+                .map_err(e2s)?;
+            for c in self.cells.iter().filter(|c| c.0 == *solver) {
+                let x = ks.iter().position(|&k| k == c.1).unwrap_or(0) as f64;
+                let y = cs.iter().position(|&v| v == c.2).unwrap_or(0) as f64;
+                let colour = if c.3.starts_with("failed") || c.3.starts_with("error") {
+                    FAILED
+                } else if c.3 == "several solutions" {
+                    SEVERAL
+                } else if c.3 == OVERSHOOTS_G {
+                    OVERSHOOT
+                } else if c.5 > 0.0 {
+                    CONVEX
+                } else {
+                    NOT_CONVEX
+                };
+                chart
+                    .draw_series(std::iter::once(Rectangle::new(
+                        [(x - 0.46, y - 0.46), (x + 0.46, y + 0.46)],
+                        colour.filled(),
+                    )))
+                    .map_err(e2s)?;
+                let label = if c.4.is_finite() {
+                    format!("{:.1}", c.4)
+                } else {
+                    "fail".into()
+                };
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        label,
+                        (x - 0.25, y + 0.12),
+                        ("sans-serif", 16),
+                    )))
+                    .map_err(e2s)?;
+            }
+        }
+        let legend = [
+            (
+                "certified (penalty: never past g), every step convex",
+                CONVEX,
+            ),
+            (
+                "certified (penalty: never past g), steps not convex",
+                NOT_CONVEX,
+            ),
+            ("several solutions (multistart)", SEVERAL),
+            ("failed", FAILED),
+            ("penalty converged, u_nu past g (no certificate)", OVERSHOOT),
+        ];
+        // Legend rows of two entries under the panels.
+        let y0 = root.dim_in_pixel().1 as i32 - band as i32 + 8;
+        for (i, (text, colour)) in legend.iter().enumerate() {
+            let (x, y) = (20 + 540 * (i % 2) as i32, y0 + 30 * (i / 2) as i32);
+            root.draw(&Rectangle::new([(x, y), (x + 18, y + 18)], colour.filled()))
+                .map_err(e2s)?;
+            root.draw(&Text::new(*text, (x + 26, y + 1), ("sans-serif", 17)))
+                .map_err(e2s)?;
+        }
+        Ok(())
+    }
+}
