@@ -46,6 +46,6 @@ pub mod scenario;
 pub mod scheme;
 pub mod show;
 pub mod simulation;
-pub mod study;
 pub mod step;
+pub mod study;
 pub mod timing;

@@ -3,8 +3,8 @@
 
 use clap::{Parser, Subcommand};
 use evhi::cli;
-use evhi::study;
 use evhi::scenario::Scenario;
+use evhi::study;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

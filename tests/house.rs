@@ -191,14 +191,14 @@ fn no_solver_is_picked_by_index() {
 #[test]
 fn experiment_names_are_spelled_in_the_registry_only() {
     let other_meaning: [(&str, &str); 8] = [
-        ("src/cli/solve.rs", "graded"),           // the mesh kind of --mesh
-        ("src/study/mod.rs", "time"), // the study `evhi study time`
-        ("src/study/mod.rs", "stability"), // the study `evhi study stability`
-        ("src/study/convergence.rs", "graded"), // a mesh family's label
-        ("src/experiments/graded.rs", "graded"),  // a mesh family's label
+        ("src/cli/solve.rs", "graded"),          // the mesh kind of --mesh
+        ("src/study/mod.rs", "time"),            // the study `evhi study time`
+        ("src/study/mod.rs", "stability"),       // the study `evhi study stability`
+        ("src/study/convergence.rs", "graded"),  // a mesh family's label
+        ("src/experiments/graded.rs", "graded"), // a mesh family's label
         ("src/study/stability.rs", "stability"), // the study's figure stem
         ("src/experiments/forensics/table.rs", "time"), // a column: the reading's time norm
-        ("src/manufactured/run.rs", "exact"),     // a quadrature rule's name
+        ("src/manufactured/run.rs", "exact"),    // a quadrature rule's name
     ];
     let mut files = vec![];
     rust_files(&src(), &mut files);

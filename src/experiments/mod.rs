@@ -29,7 +29,6 @@ pub use crate::study::runs::{
 };
 pub use crate::study::{Ctx, ExpError};
 
-
 /// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'
 /// provenance names it.
 pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {

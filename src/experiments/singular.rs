@@ -15,7 +15,6 @@
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-pub use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use crate::assembly::stiffness;
 use crate::linalg::Cholesky;
 use crate::mesh::Dofs;
@@ -23,11 +22,11 @@ use crate::ordering::Ordering;
 use crate::output::csv::Table;
 use crate::output::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
 use crate::scenario::Scenario;
+pub use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use plotters::prelude::*;
 
 /// The scenarios of the control: the paper's supports with both loads, and `smooth`.
 pub const SCENARIOS: [&str; 3] = ["literal", "figure", "smooth"];
-
 
 /// Per scenario and level: $\|u_h\|_E^2$. Scenarios on the same mesh with the same
 /// elasticity share each level's factorisation of $B$ (one factor, a solve per

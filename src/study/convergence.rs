@@ -1,8 +1,8 @@
 //! `evhi study convergence`: the graded study on the scenario's own scene.
 
-use super::{coarsest, pct, study_ctx};
-use super::graded;
 use super::corners::{Edge, clamp_end_exponent, wedge_exponents};
+use super::graded;
+use super::{coarsest, pct, study_ctx};
 use crate::geometry::Hold;
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;

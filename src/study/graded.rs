@@ -13,11 +13,11 @@
 //! [`Split`], the error by region and the reference's energy near each group of points.
 
 use super::ExpError;
-use crate::output::csv::{col_f64, col_str, read_csv};
 use crate::bisection::{Forest, Leaves, centroid};
 use crate::geometry::Geometry;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
+use crate::output::csv::{col_f64, col_str, read_csv};
 use crate::output::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
 use crate::scenario::Scenario;
 use crate::scheme::Settings;

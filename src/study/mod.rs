@@ -23,9 +23,10 @@ pub mod graded;
 pub mod map;
 pub mod runs;
 mod stability;
+pub mod time_error;
+pub use convergence::split_plan;
 pub use ctx::Ctx;
 pub use error::ExpError;
-pub use convergence::split_plan;
 mod time;
 
 /// The studies of `evhi study` (the experiments' computations on any scenario), by
@@ -238,12 +239,7 @@ pub(super) fn bar(len: u64) -> ProgressBar {
 
 /// The experiments' context writing into the study's staged directory, its
 /// provenance naming the study's command line.
-pub(super) fn study_ctx(
-    out: &RunDir,
-    quick: bool,
-    progress: &ProgressBar,
-    command: &str,
-) -> Ctx {
+pub(super) fn study_ctx(out: &RunDir, quick: bool, progress: &ProgressBar, command: &str) -> Ctx {
     Ctx {
         quick,
         data: out.path(""),

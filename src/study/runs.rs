@@ -83,4 +83,3 @@ pub fn run_newton_batch_states(
         observe,
     )?)
 }
-

@@ -1,7 +1,7 @@
 //! `evhi study stability`: where step solvers fail on the scenario's own law.
 
-use super::{bar, coarsest, write_scenario};
 use super::map::NAN_COLUMNS;
+use super::{bar, coarsest, write_scenario};
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;

@@ -9,7 +9,7 @@ pub(super) fn run(
     args: super::TimeArgs,
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    use crate::experiments::time;
+    use super::time_error as time;
     let (scn, text) = Scenario::read(&args.scenario)?;
     if scn.problem != crate::scenario::Problem::Viscoelastic {
         return Err(crate::error::InputError::field(
@@ -176,11 +176,11 @@ impl crate::output::plot::Figure for TimeFig {
 
 fn draw_time(
     dir: &std::path::Path,
-    rows: &[crate::experiments::time::Row],
+    rows: &[super::time_error::Row],
     n: usize,
 ) -> Result<(), crate::experiments::ExpError> {
     use plotters::style::RGBColor;
-    let pick = |f: &dyn Fn(&crate::experiments::time::Row) -> f64| -> Vec<(f64, f64)> {
+    let pick = |f: &dyn Fn(&super::time_error::Row) -> f64| -> Vec<(f64, f64)> {
         rows.iter()
             .map(|r| (r.steps as f64, 100.0 * f(r)))
             .filter(|p| p.1.is_finite() && p.1 > 0.0)
@@ -194,14 +194,10 @@ fn draw_time(
     for (label, f, c) in [
         (
             "model, max over t",
-            (|r: &crate::experiments::time::Row| r.model_max) as fn(&_) -> f64,
+            (|r: &super::time_error::Row| r.model_max) as fn(&_) -> f64,
             blue,
         ),
-        (
-            "model, at T",
-            |r: &crate::experiments::time::Row| r.model_t,
-            red,
-        ),
+        ("model, at T", |r: &super::time_error::Row| r.model_t, red),
     ] {
         let p = pick(&f);
         if !p.is_empty() {

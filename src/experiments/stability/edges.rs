@@ -1,10 +1,10 @@
 //! Towards the edges of the theory: one parameter at a time
 //! (`data/stability_sweeps.csv`).
 
-use crate::study::map::map_cell;
 use crate::experiments::{Ctx, ExpError};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
+use crate::study::map::map_cell;
 
 /// One-parameter sweeps towards the edges of the theory: Young's modulus against the
 /// smallness condition $\beta > m\|\iota\|^2$, the layer thickness $g \to 0$ and the
