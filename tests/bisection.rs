@@ -2,9 +2,10 @@
 //! and a graded family that is finer near the singular points.
 
 use evhi::bisection::{Forest, Leaves};
-use evhi::experiments::graded::{SINGULAR, graded_size};
+use evhi::experiments::graded::SINGULAR;
 use evhi::geometry::Geometry;
 use evhi::mesh::Mesh;
+use evhi::study::graded::graded_size;
 use std::collections::HashMap;
 
 /// Every edge lies in two triangles, or in one on the boundary of (0,2) x (0,1);
