@@ -161,10 +161,10 @@ fn resolved_word(e: f64, r: f64, threshold: f64) -> &'static str {
 
 /// The plan of the h, k and h = k split on uniform meshes, the reference four times
 /// finer than the finest level in both modes: on the paper's scene (coarsest n 4)
-/// the full plan is Table 1's ([`crate::experiments::convergence::plan`]).
-pub fn split_plan(n0: usize, quick: bool) -> crate::experiments::convergence::Plan {
+/// the full plan is Table 1's ([`super::split::plan`]).
+pub fn split_plan(n0: usize, quick: bool) -> super::split::Plan {
     let levels = if quick { 3 } else { 6 };
-    crate::experiments::convergence::Plan {
+    super::split::Plan {
         levels: (0..levels).map(|j| n0 << j).collect(),
         n_ref: n0 << (levels + 1),
         solver: crate::step::DEFAULT_SOLVER_ENTRY,
@@ -233,7 +233,7 @@ pub(super) fn run(
     args: super::ConvergenceArgs,
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    use crate::experiments::convergence as split;
+    use super::split;
     let (scn, text) = Scenario::read(&args.scenario)?;
     let solver = super::study_solver(args.solver.as_deref())?;
     // Every mesh of the study comes from bisection of the diagonal cut, as a graded
@@ -315,7 +315,7 @@ pub(super) fn run(
         ),
     };
     let viscous = no_split.is_none();
-    let split_plan = crate::experiments::convergence::Plan {
+    let split_plan = super::split::Plan {
         solver,
         ..split_plan(n0, args.quick)
     };
@@ -357,7 +357,7 @@ pub(super) fn run(
                 &split_plan,
                 &ctx,
                 &regions,
-                false,
+                None,
             )?
             .0,
         )
@@ -432,9 +432,9 @@ pub(super) fn run(
         );
     out.write_table("singular.csv", &sing_table, &lines)?;
     // The Markdown summary, read back from the table just written.
-    let df = crate::experiments::read_csv(&out.path("convergence.csv"))?;
-    let fam = crate::experiments::col_str(&df, "family")?;
-    let col = |c: &str| crate::experiments::col_f64(&df, c);
+    let df = crate::output::csv::read_csv(&out.path("convergence.csv"))?;
+    let fam = crate::output::csv::col_str(&df, "family")?;
+    let col = |c: &str| crate::output::csv::col_f64(&df, c);
     let (n, dofs, err, order, inc, order_inc, inc_max, t_max) = (
         col("n")?,
         col("dofs")?,
@@ -667,9 +667,9 @@ pub(super) fn run(
     }
     if let Some(t) = &split_table {
         out.write_table("split.csv", t, &split_lines(&command, &scn, &split_plan))?;
-        let df = crate::experiments::read_csv(&out.path("split.csv"))?;
-        let f = crate::experiments::col_str(&df, "family")?;
-        let col = |c: &str| crate::experiments::col_f64(&df, c);
+        let df = crate::output::csv::read_csv(&out.path("split.csv"))?;
+        let f = crate::output::csv::col_str(&df, "family")?;
+        let col = |c: &str| crate::output::csv::col_f64(&df, c);
         let (sn, st, et, ot, em, om) = (
             col("n")?,
             col("steps")?,
@@ -776,11 +776,7 @@ pub(super) fn run(
 }
 
 /// The provenance lines of `split.csv`.
-fn split_lines(
-    command: &str,
-    scn: &Scenario,
-    plan: &crate::experiments::convergence::Plan,
-) -> Vec<String> {
+fn split_lines(command: &str, scn: &Scenario, plan: &super::split::Plan) -> Vec<String> {
     vec![
         format!(
             "produced by evhi {} `evhi {}`",

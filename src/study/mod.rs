@@ -6,7 +6,7 @@
 //! reference-free increments to the next level with their fitted exponents, errors
 //! against a finer graded reference, and the corner exponents the supports predict;
 //! beside them Table 1's $h = k$, $h$ and $k$ families on uniform meshes
-//! ([`crate::experiments::convergence::compute`]). `time` and `stability` are the
+//! ([`split::compute`]). `time` and `stability` are the
 //! time study and the stability map of the same chapters on the scenario's history
 //! and law.
 
@@ -22,6 +22,7 @@ mod error;
 pub mod graded;
 pub mod map;
 pub mod runs;
+pub mod split;
 mod stability;
 pub mod time_error;
 pub use convergence::split_plan;

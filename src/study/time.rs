@@ -178,7 +178,7 @@ fn draw_time(
     dir: &std::path::Path,
     rows: &[super::time_error::Row],
     n: usize,
-) -> Result<(), crate::experiments::ExpError> {
+) -> Result<(), super::ExpError> {
     use plotters::style::RGBColor;
     let pick = |f: &dyn Fn(&super::time_error::Row) -> f64| -> Vec<(f64, f64)> {
         rows.iter()

@@ -1,17 +1,18 @@
-//! Fig. 5 and its split into the h and k parts, drawn from `data/table1.csv`.
+//! The log–log panel of Fig. 5, and the error split into its h and k parts drawn
+//! from a table of [`super::compute`].
 
 #[allow(unused_imports)]
 use super::*;
 
 /// A plotted series: label, points, colour, and whether it is the second
 /// (dashed, crosses) series of its scenario.
-type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
+pub type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
 
 /// One log–log panel of Fig. 5.
-struct Fig5 {
-    title: String,
-    x_desc: String,
-    series: Vec<Series>,
+pub struct Fig5 {
+    pub title: String,
+    pub x_desc: String,
+    pub series: Vec<Series>,
 }
 
 /// The error split: the h part and the k part, at t = T and over time.
@@ -19,74 +20,12 @@ struct Fig5Split {
     panels: [Fig5; 2],
 }
 
-/// Okabe–Ito colours (safe for colour-blind readers), in [`SCENARIOS`] order.
-const COLOURS: [RGBColor; 3] = [
+/// Okabe–Ito colours (safe for colour-blind readers), one per scenario in order.
+pub const COLOURS: [RGBColor; 3] = [
     RGBColor(0, 114, 178),
     RGBColor(213, 94, 0),
     RGBColor(0, 158, 115),
 ];
-
-pub(super) fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
-    let df = read_csv(path)?;
-    let (sc, fam) = (col_str(&df, "scenario")?, col_str(&df, "family")?);
-    let (n, steps) = (col_f64(&df, "n")?, col_f64(&df, "steps")?);
-    let (hk, et, em, pp) = (
-        col_f64(&df, "h_plus_k")?,
-        col_f64(&df, "rel_err_T_percent")?,
-        col_f64(&df, "rel_err_max_percent")?,
-        col_f64(&df, "paper_percent")?,
-    );
-    // x: h + k for the h = k family; the varying h = 1/n or k = 1/N for the split.
-    let x_of = |i: usize| match fam[i].as_str() {
-        "h" => 1.0 / n[i],
-        "k" => 1.0 / steps[i],
-        _ => hk[i],
-    };
-    let pick = |s: &str, f: &str, v: &[f64]| -> Vec<(f64, f64)> {
-        (0..sc.len())
-            .filter(|&i| sc[i] == s && fam[i] == f && v[i].is_finite())
-            .map(|i| (x_of(i), v[i]))
-            .collect()
-    };
-    let mut main = vec![(
-        "paper, Table 1".to_string(),
-        pick("literal", "h=k", &pp),
-        BLACK,
-        false,
-    )];
-    for (name, colour) in SCENARIOS.iter().zip(COLOURS) {
-        main.push((
-            format!("{name}, t = T"),
-            pick(name, "h=k", &et),
-            colour,
-            false,
-        ));
-        main.push((
-            format!("{name}, max over t"),
-            pick(name, "h=k", &em),
-            colour,
-            true,
-        ));
-    }
-    both(
-        &ctx.figures,
-        "fig5_errors",
-        (1000, 750),
-        &Fig5 {
-            title: "Fig. 5: relative error in energy norm, h = k".into(),
-            x_desc: "h + k".into(),
-            series: main,
-        },
-    )?;
-    let names = SCENARIOS.map(str::to_string);
-    draw_split(
-        &ctx.figures,
-        "fig5_split",
-        path,
-        &names,
-        "h (h part, k as the reference's) or k (k part, h as the reference's)",
-    )
-}
 
 /// The error split of the table at `path` (of [`compute`]) for `scenarios`, into
 /// `dir` as `stem`.png and .svg: the h part ($x = 1/n$) and the k part ($x = 1/N$), at
