@@ -21,6 +21,7 @@
 //! [`step`] (per-step solvers) → [`certificate`] → [`output`].
 
 pub mod assembly;
+pub mod bench;
 pub mod bisection;
 pub mod certificate;
 pub mod cli;

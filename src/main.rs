@@ -36,7 +36,7 @@ enum Command {
     /// Recompute the paper's figures and tables (Figs. 2-5, Table 1) and the studies
     /// beyond it: CSV into data/, PNG and SVG into figures/. With no name, all run
     /// (the experiments are listed under NAMES).
-    Reproduce(cli::reproduce::ReproduceArgs),
+    Reproduce(evhi::experiments::reproduce::ReproduceArgs),
     /// Time every phase at several levels (each run in a fresh process, medians of
     /// --repeat runs), compare the step solvers, and write data/bench.csv,
     /// data/bench_solvers.csv and the work-precision chart figures/work_precision.png.
@@ -68,7 +68,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Solve(args) => cli::solve::run(args),
-        Command::Reproduce(args) => cli::reproduce::run(args),
+        Command::Reproduce(args) => evhi::experiments::reproduce::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Scenarios => {
             for (name, text) in evhi::scenario::BUILTIN {

@@ -27,8 +27,9 @@ pub struct BenchArgs {
     #[arg(long, default_value = "figures")]
     pub figures: PathBuf,
     /// Measure nothing: rebuild the derived table (bench_vs_paper.csv), the
-    /// work-precision chart and the Markdown renderings of every table the book
-    /// shows from the CSV files already in --data.
+    /// work-precision chart and the Markdown renderings of the bench's tables the
+    /// book shows from the CSV files already in --data (`reproduce` renders the
+    /// experiments').
     #[arg(long)]
     pub from_csv: bool,
     /// Only the sweep study: faer's solve against ours with the ordering, threads,
@@ -92,25 +93,22 @@ fn child_run(
     solve_into(&dir, n, steps, solver, path)?;
     // Both files through the project's own CSV reader (polars); string columns are skipped.
     use crate::output::csv::{col_f64, read_csv};
-    let read =
-        || -> Result<std::collections::HashMap<String, f64>, crate::experiments::ExpError> {
-            let summary = read_csv(&dir.join("summary.csv"))?;
-            let mut row: std::collections::HashMap<String, f64> = summary
-                .get_column_names()
-                .iter()
-                .filter_map(|name| {
-                    Some((name.to_string(), *col_f64(&summary, name).ok()?.first()?))
-                })
-                .collect();
-            let steps_df = read_csv(&dir.join("steps.csv"))?;
-            for (col, total) in [
-                ("iterations", "iterations_total"),
-                ("inner_iterations", "inner_iterations_total"),
-            ] {
-                row.insert(total.into(), col_f64(&steps_df, col)?.iter().sum());
-            }
-            Ok(row)
-        };
+    let read = || -> Result<std::collections::HashMap<String, f64>, crate::study::ExpError> {
+        let summary = read_csv(&dir.join("summary.csv"))?;
+        let mut row: std::collections::HashMap<String, f64> = summary
+            .get_column_names()
+            .iter()
+            .filter_map(|name| Some((name.to_string(), *col_f64(&summary, name).ok()?.first()?)))
+            .collect();
+        let steps_df = read_csv(&dir.join("steps.csv"))?;
+        for (col, total) in [
+            ("iterations", "iterations_total"),
+            ("inner_iterations", "inner_iterations_total"),
+        ] {
+            row.insert(total.into(), col_f64(&steps_df, col)?.iter().sum());
+        }
+        Ok(row)
+    };
     let row = read().map_err(|e| e.to_string());
     let _ = std::fs::remove_dir_all(&dir);
     row
@@ -118,8 +116,8 @@ fn child_run(
 
 /// Runs the benchmark and writes its tables and chart.
 pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::experiments::Ctx;
     use crate::output::csv::Table;
+    use crate::study::Ctx;
     let ctx = Ctx {
         quick: false,
         data: args.data.clone(),
@@ -129,12 +127,12 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         reference: None,
         command: None,
         experiment: "bench",
-        book_table: crate::experiments::registry::book_table,
+        book_table: crate::bench::book_table,
     };
     if args.from_csv {
-        crate::experiments::workprec::paper_comparison(&ctx)?;
-        crate::experiments::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
-        for t in crate::experiments::registry::book_tables() {
+        crate::bench::workprec::paper_comparison(&ctx)?;
+        crate::bench::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
+        for t in &crate::bench::TABLES {
             ctx.render_book_table(t.file)?;
         }
         return Ok(());
@@ -142,7 +140,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     let machine = machine();
     eprintln!("bench on {machine}");
     if args.sweeps {
-        crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+        crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
         return Ok(());
     }
     if args.scipy {
@@ -196,7 +194,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         args.repeat
     );
     ctx.write_as("bench.csv", &t, "bench", &params)?;
-    crate::experiments::workprec::paper_comparison(&ctx)?;
+    crate::bench::workprec::paper_comparison(&ctx)?;
     // Step solvers compared on the same runs.
     let mut rows = vec![];
     for &n in &args.solver_levels {
@@ -272,8 +270,8 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         .f64("rel_err_T_percent", wp.iter().map(|r| r.4).collect())
         .f64("rel_err_max_percent", wp.iter().map(|r| r.5).collect());
     let path = ctx.write_as("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
-    crate::experiments::workprec::draw(&ctx, &path)?;
-    crate::experiments::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+    crate::bench::workprec::draw(&ctx, &path)?;
+    crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
     Ok(())
 }
 
@@ -323,7 +321,7 @@ fn scipy_run(
 /// Our two time loops beside the SciPy implementation, run by run in turn:
 /// `data/bench_scipy.csv`.
 fn scipy(
-    ctx: &crate::experiments::Ctx,
+    ctx: &crate::study::Ctx,
     args: &BenchArgs,
     machine: &str,
 ) -> Result<(), Box<dyn std::error::Error>> {

@@ -16,13 +16,12 @@ pub mod hypotheses;
 pub mod loads;
 pub mod paths;
 pub mod registry;
+pub mod reproduce;
 pub use crate::output::csv::{col_f64, col_str, read_csv};
 pub mod scenes;
 pub mod singular;
 pub mod stability;
-pub mod sweeps;
 pub mod time;
-pub mod workprec;
 
 pub use crate::study::runs::{
     run_batch_with, run_newton, run_newton_batch, run_newton_batch_states, run_newton_batch_with,

@@ -5,6 +5,8 @@
 //! and the provenance lines of every table all read it.
 
 use super::{Ctx, ExpError};
+pub use crate::output::markdown::BookTable;
+use crate::output::markdown::book_table as table;
 
 /// One experiment.
 pub struct Experiment {
@@ -25,34 +27,12 @@ pub struct Experiment {
     pub tables: &'static [BookTable],
 }
 
-/// A table the book shows, as a Markdown rendering beside its CSV: the file, the key
-/// columns repeated in every part, and the most columns of one part (so a part fits
-/// the page).
-pub struct BookTable {
-    pub file: &'static str,
-    pub keys: usize,
-    pub cols: usize,
-}
-
-const fn table(file: &'static str, keys: usize, cols: usize) -> BookTable {
-    BookTable { file, keys, cols }
-}
-
-/// The tables of `evhi bench` the book shows.
-pub const BENCH_TABLES: [BookTable; 5] = [
-    table("bench_scipy.csv", 1, 5),
-    table("bench.csv", 3, 6),
-    table("bench_sweeps.csv", 1, 5),
-    table("bench_vs_paper.csv", 1, 6),
-    table("bench_solvers.csv", 2, 6),
-];
-
 /// Every table the book shows: the experiments' and the bench's.
 pub fn book_tables() -> impl Iterator<Item = &'static BookTable> {
     EXPERIMENTS
         .iter()
         .flat_map(|e| e.tables.iter())
-        .chain(BENCH_TABLES.iter())
+        .chain(crate::bench::TABLES.iter())
 }
 
 /// The Markdown layout (key columns, most columns of a part) of `file` if the book

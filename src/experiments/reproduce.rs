@@ -1,5 +1,6 @@
 //! `evhi reproduce`: the experiments on a pool of workers (one per core by default),
-//! the costliest first, one progress bar each.
+//! the costliest first, one progress bar each. The book's command, so it lives with
+//! the experiments rather than with the product's commands in [`crate::cli`].
 
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -9,7 +10,7 @@ use std::time::Instant;
 pub struct ReproduceArgs {
     /// Experiments to run (default: all; each listed below). `paper` stands for the
     /// paper's own set: its hypotheses, Figs. 2-4, the search for the `figure` loads and Table 1.
-    #[arg(value_parser = clap::builder::PossibleValuesParser::new(crate::experiments::registry::values()))]
+    #[arg(value_parser = clap::builder::PossibleValuesParser::new(super::registry::values()))]
     pub names: Vec<String>,
     /// Coarse levels only (seconds; what the tests snapshot).
     #[arg(long)]
@@ -51,7 +52,7 @@ pub struct ReproduceArgs {
 
 /// Runs the named experiments (all by default).
 pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::experiments::{Ctx, registry, run};
+    use super::{Ctx, registry, run};
     let all = registry::names();
     // Everything that can be refused is refused before a directory is made.
     let jobs = match args.jobs {
@@ -290,7 +291,7 @@ fn quick_or(quick: bool, dir: &str) -> PathBuf {
 /// The paper's own experiments: its hypotheses, Figs. 2-4 and Table 1 (the registry's
 /// `paper` entries).
 pub fn paper_set() -> Vec<&'static str> {
-    crate::experiments::registry::EXPERIMENTS
+    super::registry::EXPERIMENTS
         .iter()
         .filter(|e| e.paper)
         .map(|e| e.name)
@@ -309,7 +310,7 @@ pub const LOCAL_TIMES: &str = "local/reproduce_times.csv";
 /// the set, each experiment's time with the others of its set running beside it
 /// (`jobs` at once), and the set's total.
 fn record_times(
-    ctx: &crate::experiments::Ctx,
+    ctx: &super::Ctx,
     file: &str,
     set: &str,
     results: &[(String, f64, Result<(), String>)],

@@ -3,13 +3,13 @@
 //! timed for faer's own solve and for ours with the ordering, threads, prefetch and
 //! number of columns varied, beside the machine's streaming bandwidth.
 
-use super::{Ctx, ExpError};
 use crate::assembly::Pair;
 use crate::linalg::Cholesky;
 use crate::ordering::Ordering;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::Discretisation;
+use crate::study::{Ctx, ExpError};
 use crate::timing::median;
 use faer::linalg::solvers::SolveCore;
 use std::time::Instant;

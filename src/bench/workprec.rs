@@ -1,8 +1,9 @@
 //! The work–precision chart: error in energy norm against wall time for the
 //! configurations of the convergence study (`evhi bench` times them).
 
-use super::{Ctx, ExpError, col_f64, col_str, read_csv};
+use crate::output::csv::{col_f64, col_str, read_csv};
 use crate::output::plot::{Figure, both, circle_legend, e2s, legend};
+use crate::study::{Ctx, ExpError};
 use plotters::prelude::*;
 use std::path::Path;
 
