@@ -132,6 +132,19 @@ fn number(cell: &str, integer: bool) -> String {
     }
 }
 
+/// A table the book shows, as a Markdown rendering beside its CSV: the file, the key
+/// columns repeated in every part, and the most columns of one part (so a part fits
+/// the page).
+pub struct BookTable {
+    pub file: &'static str,
+    pub keys: usize,
+    pub cols: usize,
+}
+
+pub const fn book_table(file: &'static str, keys: usize, cols: usize) -> BookTable {
+    BookTable { file, keys, cols }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -176,17 +189,4 @@ mod tests {
     fn quoted_commas_stay_in_their_cell() {
         assert_eq!(split("1,\"a, b\",2"), vec!["1", "a, b", "2"]);
     }
-}
-
-/// A table the book shows, as a Markdown rendering beside its CSV: the file, the key
-/// columns repeated in every part, and the most columns of one part (so a part fits
-/// the page).
-pub struct BookTable {
-    pub file: &'static str,
-    pub keys: usize,
-    pub cols: usize,
-}
-
-pub const fn book_table(file: &'static str, keys: usize, cols: usize) -> BookTable {
-    BookTable { file, keys, cols }
 }
