@@ -27,6 +27,7 @@ pub mod certificate;
 pub mod cli;
 pub mod condense;
 pub mod dense;
+pub mod diagnostics;
 pub mod element;
 pub mod error;
 pub mod experiments;

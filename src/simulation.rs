@@ -314,6 +314,27 @@ impl Simulation {
         self.reduced
     }
 
+    /// [`Simulation::solve`], with the smallness check H(s) of
+    /// [`crate::show::Smallness::of`] on a second thread: it factorises a matrix of its
+    /// own, on the second core while the run goes (the reduced loop keeps one core
+    /// busy). The check's error says why it could not be computed.
+    pub fn solve_checking_smallness(
+        &self,
+        observer: &mut dyn Observer,
+    ) -> (
+        Result<Solution, RunError>,
+        Result<crate::show::Smallness, String>,
+    ) {
+        std::thread::scope(|s| {
+            let h_s = s.spawn(|| crate::show::Smallness::of(&self.scenario, self.settings.n));
+            let run = self.solve(observer);
+            let h_s = h_s
+                .join()
+                .unwrap_or_else(|_| Err("the smallness check panicked".to_string()));
+            (run, h_s)
+        })
+    }
+
     /// Runs the time loop, telling `observer` of each step. A step whose solver fails or
     /// whose certificate exceeds the tolerance stops the run with an error naming the
     /// step and its residual.

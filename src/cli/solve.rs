@@ -1,6 +1,7 @@
 //! `evhi solve`: one scenario, written as a self-describing run directory.
 
 use crate::certificate::ContactState;
+use crate::diagnostics;
 use crate::output::run::{Provenance, Recorder, Recording};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
@@ -141,29 +142,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(t_r) => scn.with_ramp(t_r)?,
         None => scn,
     };
-    let hyp = scn.time_hypotheses();
-    let failures = hyp.failures();
-    // H(f) and H(0) at t = 0 are about the evolution's start; a steady or elastic
-    // problem has no initial layer for them to govern.
-    if !failures.is_empty() && scn.problem == crate::scenario::Problem::Viscoelastic {
-        eprintln!(
-            "warning: scenario `{}` (load history: {}) breaks the paper's hypotheses at t = 0: {}. \
-             The error bounds assume them (the book, chapter \"Time\"); solving anyway.",
-            scn.name,
-            scn.history,
-            failures.join("; ")
-        );
-    }
     let sim = Simulation::new(scn, settings(&args))?;
-    let scn = sim.scenario();
-    let entry = sim.solver();
-    if !entry.certified {
-        eprintln!(
-            "note: solver `{}` ({}) is not certified; steps.csv still records each step's \
-             certificate, its distance from the exact step",
-            entry.name, entry.about
-        );
-    }
+    let (scn, entry) = (sim.scenario(), sim.solver());
+    diagnostics::before(scn, entry)
+        .iter()
+        .for_each(|l| eprintln!("{l}"));
     let (mesh, steps) = (sim.mesh().clone(), sim.steps());
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
@@ -179,113 +162,38 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         started: Instant::now(),
         steps: steps as u64,
     };
-    // The smallness check H(s) factorises a matrix of its own: on the second core
-    // while the run goes (the reduced loop keeps one core busy).
-    let (run, h_s) = std::thread::scope(|s| {
-        let h_s = s.spawn(|| crate::show::Smallness::of(scn, args.n));
-        let run = sim.solve(&mut cli);
-        let h_s = h_s
-            .join()
-            .unwrap_or_else(|_| Err("the smallness check panicked".to_string()));
-        (run, h_s)
-    });
+    let (solution, h_s) = sim.solve_checking_smallness(&mut cli);
     let Progress { recording, bar, .. } = cli;
-    let recorder = recording.recorder;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    let solution = run?;
-    let run = &solution.run;
-    if let Some(f) = &solution.fallback {
-        eprintln!(
-            "note: the default solver stalled ({}); the run was solved again with `{}`, which \
-             certified every step (summary.csv's solver column names it)",
-            f.stalled, f.solver
-        );
-    }
-    let h_s = h_s.unwrap_or_else(|e| {
-        eprintln!("warning: the trace constant could not be computed ({e}); H(s) is unchecked");
-        crate::show::Smallness::unknown(scn, args.n)
-    });
-    if h_s.rhs() >= h_s.beta_b {
-        eprintln!(
-            "warning: the smallness condition H(s) fails: beta_B = {:.4e} <= m ||iota_h||^2 = \
-             {:.4e} * {:.4e} (n = {}); the paper's existence and error theory assume it. \
-             Certified steps still solve the discrete problem.",
-            h_s.beta_b, h_s.m, h_s.trace_sq, h_s.n
-        );
-    }
-    for (at, jump) in scn.law.down_jumps() {
-        eprintln!(
-            "warning: H(j) fails: p jumps down by {:e} at s = {at:e}, so no finite m makes j relaxed \
-             monotone; the paper's theory does not cover this law",
-            -jump
-        );
-    }
-    if !entry.certified {
-        let over = crate::output::run::max_overshoot(&run.records);
-        eprintln!(
-            "note: solver `{}` let u_nu exceed g by up to {over:.3e} g (max_overshoot_over_g in \
-             summary.csv); the exact bound has none",
-            entry.name
-        );
-    }
-    if run.hessian_min <= 0.0 {
-        eprintln!(
-            "warning: the step problem is not convex: its smallest possible curvature is {:.3e} \
-             (every node on the steepest softening branch). A certified step is then a stationary \
-             point, not necessarily the minimiser the scheme asks for; a smaller k, a stiffer \
-             material or a milder softening restores convexity (see the book, \"Beyond the paper\").",
-            run.hessian_min
-        );
-    }
+    let solution = solution?;
+    let (lines, h_s) = diagnostics::after(scn, entry, &solution, args.n, h_s);
+    lines.iter().for_each(|l| eprintln!("{l}"));
     let t_out = Instant::now();
     let prov = Provenance::of(
         &sim,
         &solution,
         crate::output::run::quote_args(std::env::args().skip(1)),
     );
+    let run = &solution.run;
+    let seconds = wall.elapsed().as_secs_f64();
     crate::output::run::write(
         &out,
         scn,
         &toml,
         run,
-        recorder,
+        recording.recorder,
         &prov,
-        wall.elapsed().as_secs_f64(),
+        seconds,
         &h_s,
     )?;
     // The run's figures, drawn from the tables just written.
     crate::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
-        let t = &run.timings;
-        eprintln!(
-            "timings (s): assembly {:.4}  factorisation {:.4}  condensation {:.4}  steps {:.4} \
-             (step solver {:.4}, certificates {:.4})  output {:.4}  total {:.4}",
-            t.assembly,
-            t.factorisation,
-            t.condensation,
-            t.steps,
-            t.step_solver,
-            t.certificates,
-            t_out.elapsed().as_secs_f64(),
-            wall.elapsed().as_secs_f64()
-        );
-        eprintln!(
-            "dofs {}  contact nodes {}  nnz(L) {} ({}, {} sweep thread(s))",
-            run.dofs,
-            run.contact.len(),
-            run.nnz_l,
-            sim.ordering().name(),
-            run.sweep_threads
-        );
-        eprintln!(
-            "one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB",
-            t.one_solve,
-            t.floor_ratio(run.steps),
-            crate::output::run::peak_rss_mb()
-        );
+        let (output, total) = (t_out.elapsed(), wall.elapsed());
+        eprint!("{}", crate::output::run::timings(&sim, run, output, total));
     }
     Ok(())
 }

@@ -555,3 +555,37 @@ pub fn step_work(r: &[crate::scheme::StepRecord]) -> Table {
             r.iter().map(|s| s.certificate.max()).collect(),
         )
 }
+
+/// The `--timings` report of a solve: the phases, the sizes, the cost of one solve
+/// against the run and the peak memory; `output` and `total` are the seconds spent
+/// writing the run directory and in all.
+pub fn timings(
+    sim: &crate::simulation::Simulation,
+    run: &crate::scheme::Run,
+    output: std::time::Duration,
+    total: std::time::Duration,
+) -> String {
+    let t = &run.timings;
+    format!(
+        "timings (s): assembly {:.4}  factorisation {:.4}  condensation {:.4}  steps {:.4} \
+         (step solver {:.4}, certificates {:.4})  output {:.4}  total {:.4}\n\
+         dofs {}  contact nodes {}  nnz(L) {} ({}, {} sweep thread(s))\n\
+         one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB\n",
+        t.assembly,
+        t.factorisation,
+        t.condensation,
+        t.steps,
+        t.step_solver,
+        t.certificates,
+        output.as_secs_f64(),
+        total.as_secs_f64(),
+        run.dofs,
+        run.contact.len(),
+        run.nnz_l,
+        sim.ordering().name(),
+        run.sweep_threads,
+        t.one_solve,
+        t.floor_ratio(run.steps),
+        peak_rss_mb()
+    )
+}
