@@ -117,3 +117,13 @@ pub enum FactorError {
     #[error("sparse factorisation failed: {0}")]
     Other(String),
 }
+
+/// A load component or coefficient: finite and at most [`MAX_MAGNITUDE`] in size.
+pub fn finite(field: &str, v: f64) -> Result<f64, InputError> {
+    bounded(field, v, MAX_MAGNITUDE)
+}
+
+/// A modulus or a viscosity: between [`MIN_MAGNITUDE`] and [`MAX_MAGNITUDE`].
+pub fn positive(field: &str, v: f64) -> Result<f64, InputError> {
+    in_range(field, v, MIN_MAGNITUDE, MAX_MAGNITUDE)
+}

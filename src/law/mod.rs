@@ -27,6 +27,7 @@
 //! directory changes but the scenario's law table.
 
 pub mod affine;
+pub mod file;
 pub mod softening;
 
 pub use affine::{Affine, ConvexRun, paper_law};

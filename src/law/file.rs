@@ -1,0 +1,115 @@
+//! The `[law]` table of a scenario file: each family's fields, read and checked.
+//! A new family adds its fields and its arm here and its own module beside.
+
+use crate::error::{InputError, MIN_MAGNITUDE, bounded, in_range};
+use crate::law::Law;
+use serde::Deserialize;
+
+/// Bound on the law's slopes: beyond it the contact terms dwarf the body's stiffness
+/// by so much that the step loses the digits its certificate asks for (measured with
+/// the paper's material by `tests/extremes.rs`: 1e12 fails, 1e9 passes).
+pub const MAX_LAW: f64 = 1e9;
+
+/// Bound on the law's jumps and `p_left` (pressures): measured the same way, a
+/// jump of -1e9 leaves a certificate of 5e-10, -1e6 passes.
+pub const MAX_LAW_VALUE: f64 = 1e6;
+
+/// The `[law]` table: `kind = "piecewise"` (the default: `breakpoints`, `slopes`,
+/// optional `jumps` and `p_left`) or `kind = "softening"` (`stiffness`, `length`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawLaw {
+    #[serde(default)]
+    pub(crate) kind: Option<String>,
+    #[serde(default)]
+    pub(crate) breakpoints: Option<Vec<f64>>,
+    #[serde(default)]
+    pub(crate) slopes: Option<Vec<f64>>,
+    #[serde(default)]
+    pub(crate) jumps: Option<Vec<f64>>,
+    #[serde(default)]
+    pub(crate) p_left: Option<f64>,
+    #[serde(default)]
+    pub(crate) stiffness: Option<f64>,
+    #[serde(default)]
+    pub(crate) length: Option<f64>,
+}
+
+/// The law of a `[law]` table: each family's fields checked, the other family's
+/// refused by name. Magnitudes are bounded where a double-precision solve can
+/// certify them (the law itself accepts any finite values: the penalty method builds
+/// steeper ones internally).
+pub(crate) fn law_from(raw: &RawLaw) -> Result<Law, InputError> {
+    let kind = raw.kind.as_deref().unwrap_or("piecewise");
+    let given = [
+        ("breakpoints", raw.breakpoints.is_some()),
+        ("slopes", raw.slopes.is_some()),
+        ("jumps", raw.jumps.is_some()),
+        ("p_left", raw.p_left.is_some()),
+        ("stiffness", raw.stiffness.is_some()),
+        ("length", raw.length.is_some()),
+    ];
+    let refuse = |fields: &[&str], takes: &str| -> Result<(), InputError> {
+        match given.iter().find(|(f, on)| *on && fields.contains(f)) {
+            Some((f, _)) => Err(InputError::field(
+                format!("law.{f}"),
+                "a value",
+                format!("nothing: a law of kind \"{kind}\" takes {takes}"),
+            )),
+            None => Ok(()),
+        }
+    };
+    match kind {
+        "piecewise" => {
+            refuse(
+                &["stiffness", "length"],
+                "breakpoints, slopes, jumps and p_left",
+            )?;
+            let breakpoints = raw.breakpoints.clone().ok_or_else(|| {
+                InputError::field("law.breakpoints", "nothing", "a list of breakpoints")
+            })?;
+            let slopes = raw.slopes.clone().ok_or_else(|| {
+                InputError::field("law.slopes", "nothing", "a list of slopes, one per branch")
+            })?;
+            for (i, &s) in breakpoints.iter().enumerate() {
+                bounded(&format!("law.breakpoints[{i}]"), s, 1e6)?;
+            }
+            for (i, &c) in slopes.iter().enumerate() {
+                bounded(&format!("law.slopes[{i}]"), c, MAX_LAW)?;
+            }
+            for (i, &d) in raw.jumps.iter().flatten().enumerate() {
+                bounded(&format!("law.jumps[{i}]"), d, MAX_LAW_VALUE)?;
+            }
+            let p_left = raw.p_left.unwrap_or(0.0);
+            bounded("law.p_left", p_left, MAX_LAW_VALUE)?;
+            let jumps = raw
+                .jumps
+                .clone()
+                .unwrap_or_else(|| vec![0.0; breakpoints.len()]);
+            Law::new(&breakpoints, &slopes, &jumps, p_left)
+        }
+        "softening" => {
+            refuse(
+                &["breakpoints", "slopes", "jumps", "p_left"],
+                "stiffness and length",
+            )?;
+            let c = raw.stiffness.ok_or_else(|| {
+                InputError::field("law.stiffness", "nothing", "c > 0 in p(s) = c s exp(-s/a)")
+            })?;
+            let a = raw.length.ok_or_else(|| {
+                InputError::field("law.length", "nothing", "a > 0 in p(s) = c s exp(-s/a)")
+            })?;
+            bounded("law.stiffness", c, MAX_LAW)?;
+            // As small as g may be, and no smaller: below it (1e-310 was accepted) the
+            // law's scale leaves what a solve can resolve, and Newton ran out of
+            // iterations without naming the key.
+            in_range("law.length", a, MIN_MAGNITUDE, 1e6)?;
+            Ok(Law::Softening(crate::law::Softening::new(c, a)?))
+        }
+        other => Err(InputError::field(
+            "law.kind",
+            other,
+            "\"piecewise\" (breakpoints, slopes, jumps, p_left) or \"softening\" (stiffness, length)",
+        )),
+    }
+}

@@ -1,0 +1,511 @@
+//! Scenarios: the data of one contact problem, read from TOML and validated.
+//!
+//! Every field is checked; a bad value is rejected with the field's name, the
+//! value and what is allowed, and unknown keys are errors. This module holds the
+//! validated model; the file format (the raw TOML tables and their refusals) is
+//! [`file`], the law's table is read in the law's room ([`crate::law::file`]) and the
+//! material's in the material's ([`crate::material`]).
+
+mod file;
+use file::{check_traction, limit};
+
+use crate::error::{InputError, finite, positive};
+use crate::geometry::{Geometry, Side, Traction};
+use crate::history::History;
+use crate::law::Law;
+pub use crate::law::file::{MAX_LAW, MAX_LAW_VALUE};
+use crate::material::Isotropic;
+pub use crate::material::MaterialForm;
+use crate::material::poisson;
+use crate::mesh::{Mesh, Pattern};
+use std::path::Path;
+
+/// What is solved: the paper's viscoelastic evolution, an elastic body (no
+/// viscosity: each time step the static hemivariational inequality with the loads
+/// at $t_n$), or one steady solve at $t = T$.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Problem {
+    #[default]
+    Viscoelastic,
+    Elastic,
+    Steady,
+}
+
+impl Problem {
+    pub fn name(self) -> &'static str {
+        match self {
+            Problem::Viscoelastic => "viscoelastic",
+            Problem::Elastic => "elastic",
+            Problem::Steady => "steady",
+        }
+    }
+    /// Whether the body has a viscosity.
+    pub fn viscous(self) -> bool {
+        self == Problem::Viscoelastic
+    }
+}
+
+/// A validated scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scenario {
+    pub name: String,
+    pub description: String,
+    /// Final time $T$.
+    pub t_end: f64,
+    /// Unilateral limit $g > 0$ ($+\infty$: no limit, `g = "none"`).
+    pub g: f64,
+    /// What is solved (the paper's viscoelastic evolution by default).
+    pub problem: Problem,
+    /// Young's modulus $E$, Poisson's ratio $\kappa$: the plane-strain constants the
+    /// solver uses, converted from the file's form where it gave another.
+    pub e: f64,
+    pub kappa: f64,
+    /// How the file gave the elasticity (plane strain by `E`, `kappa` unless it says
+    /// otherwise), so that outputs can say when `e` and `kappa` are converted.
+    pub material_form: MaterialForm,
+    /// Viscosity constants $\alpha$, $\beta$ (both 0 for an elastic or steady problem).
+    pub alpha: f64,
+    pub beta: f64,
+    /// Constant volume force $f_0$ and top traction $f_2$ (the paper's, on the whole top).
+    pub f0: [f64; 2],
+    pub f2: [f64; 2],
+    /// Further tractions on segments of the sides (`[[loads.traction]]`).
+    pub tractions: Vec<Traction>,
+    /// $a$ in the volume force $f_0 (1 + a \cos \pi x)$ (0: constant, the paper's case).
+    pub f0_modulation: f64,
+    /// The load history: $f(t) = \varphi(t)\,(f_0, f_2)$.
+    pub history: History,
+    pub law: Law,
+    /// The rectangle, its supports and $\Gamma_3$.
+    pub geometry: Geometry,
+    /// How the mesh cuts its cells (the paper's diagonal unless a study varies it).
+    pub pattern: Pattern,
+}
+
+/// The data's hypotheses at $t = 0$: see [`Scenario::time_hypotheses`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeHypotheses {
+    /// $\varphi(0)$.
+    pub phi0: f64,
+    /// $f_2(0) = 0$: every traction vanishes at $t = 0$.
+    pub f2_zero: bool,
+    /// The key of the first traction that does not (`loads.f2` or a
+    /// `loads.traction[i]`).
+    pub traction_at_0: Option<String>,
+    /// $f_0(0) \in V$.
+    pub f0_in_v: bool,
+    /// $0 \in \partial_{Cl} j(0)$.
+    pub zero_in_clarke: bool,
+}
+
+impl TimeHypotheses {
+    /// H(f) at $t = 0$: $f_0(0) \in V$ and $f_2(0) = 0$.
+    pub fn h_f(&self) -> bool {
+        self.f0_in_v && self.f2_zero
+    }
+    /// H(0)'s compatibility condition at $u_0 = 0$.
+    pub fn h_0(&self) -> bool {
+        self.h_f() && self.zero_in_clarke
+    }
+    /// What fails, in words (empty when both hold).
+    pub fn failures(&self) -> Vec<String> {
+        let mut out = vec![];
+        if !self.f2_zero {
+            out.push(format!(
+                "the traction `{}` is not zero at t = 0 (phi(0) = {}) (H(f))",
+                self.traction_at_0.as_deref().unwrap_or("loads.f2"),
+                self.phi0
+            ));
+        }
+        if !self.f0_in_v {
+            out.push(format!(
+                "the body force `loads.f0` does not vanish on the supports at t = 0 (phi(0) = \
+                 {}), so f0(0) is not in V (H(f))",
+                self.phi0
+            ));
+        }
+        if !self.zero_in_clarke {
+            out.push("0 is not in the Clarke subdifferential of j at 0 (H(0))".into());
+        }
+        out
+    }
+}
+
+/// The scenarios shipped in `data/scenarios/`, compiled in.
+pub const BUILTIN: [(&str, &str); 4] = [
+    ("literal", include_str!("../../data/scenarios/literal.toml")),
+    ("figure", include_str!("../../data/scenarios/figure.toml")),
+    ("smooth", include_str!("../../data/scenarios/smooth.toml")),
+    (
+        "nonproportional",
+        include_str!("../../data/scenarios/nonproportional.toml"),
+    ),
+];
+
+/// Scenario files are a few hundred bytes; anything this large is a mistake.
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
+/// The smallest largest load component a scenario may have, unless all are zero:
+/// squares of displacements of that order stay some 200 orders of magnitude above
+/// the smallest normal double (`Scenario::check_load_scale`).
+pub const MIN_LOAD_SCALE: f64 = 1e-100;
+
+impl Scenario {
+    /// Parses and validates TOML text; `source` names it in errors.
+    pub fn from_toml(text: &str, source: &str) -> Result<Scenario, InputError> {
+        file::parse(text, source)
+    }
+
+    /// A built-in scenario by name, or a TOML file by path.
+    pub fn load(name_or_path: &str) -> Result<Scenario, InputError> {
+        Scenario::read(name_or_path).map(|(scn, _)| scn)
+    }
+
+    /// [`Scenario::load`] with the text it was read from: a run writes that text, so
+    /// the file is read once (an edit or a move during the run cannot change or lose
+    /// what the run records).
+    pub fn read(name_or_path: &str) -> Result<(Scenario, String), InputError> {
+        if let Some((_, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
+            return Ok((Scenario::from_toml(text, name_or_path)?, text.to_string()));
+        }
+        let path = Path::new(name_or_path);
+        if path.extension().is_some_and(|e| e == "toml") || path.exists() {
+            let read_err = |e: std::io::Error| InputError::Parse {
+                source_name: name_or_path.to_string(),
+                message: e.to_string(),
+            };
+            // A regular file only (a FIFO would block, /dev/zero never end), and never
+            // more than the cap read, whatever size the file reports.
+            let meta = std::fs::metadata(path).map_err(read_err)?;
+            if !meta.is_file() {
+                return Err(InputError::field(
+                    "scenario",
+                    name_or_path,
+                    "a regular TOML file (not a directory, device or pipe)",
+                ));
+            }
+            let too_big = |size: String| {
+                InputError::field(
+                    "scenario",
+                    format!("{name_or_path} ({size} bytes)"),
+                    format!("a scenario file of at most {MAX_FILE_BYTES} bytes"),
+                )
+            };
+            if meta.len() > MAX_FILE_BYTES {
+                return Err(too_big(meta.len().to_string()));
+            }
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(
+                &mut std::io::Read::take(
+                    std::fs::File::open(path).map_err(read_err)?,
+                    MAX_FILE_BYTES + 1,
+                ),
+                &mut bytes,
+            )
+            .map_err(read_err)?;
+            if bytes.len() as u64 > MAX_FILE_BYTES {
+                return Err(too_big(format!("more than {MAX_FILE_BYTES}")));
+            }
+            let text = String::from_utf8(bytes).map_err(|e| InputError::Parse {
+                source_name: name_or_path.to_string(),
+                message: format!("not UTF-8 text: {e}"),
+            })?;
+            return Ok((Scenario::from_toml(&text, name_or_path)?, text));
+        }
+        Err(InputError::field(
+            "scenario",
+            name_or_path,
+            format!(
+                "a built-in name ({}) or a path to a .toml file",
+                BUILTIN.map(|b| b.0).join(", ")
+            ),
+        ))
+    }
+
+    /// Refuses loads that are not all zero but whose largest component is below
+    /// [`MIN_LOAD_SCALE`]: the displacements they cause have squares that underflow
+    /// double precision, so no step could be certified (they used to fail at the
+    /// first step with a certificate of order one).
+    fn check_load_scale(&self) -> Result<(), InputError> {
+        let largest = [self.f0, self.f2]
+            .into_iter()
+            .chain(self.tractions.iter().map(|t| t.f))
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        if largest > 0.0 && largest < MIN_LOAD_SCALE {
+            return Err(InputError::field(
+                "[loads]",
+                format!("loads whose largest component is {largest:e}"),
+                format!(
+                    "loads that are all zero or whose largest component is at least \
+                     {MIN_LOAD_SCALE:e}: smaller ones cause displacements whose squares \
+                     underflow double precision, so no step can be certified; scale the \
+                     loads up (and g and the law's breakpoints with them)"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The same scenario as another problem: an elastic or steady one drops the
+    /// viscosity (the data of a viscoelastic problem otherwise unchanged); a
+    /// viscoelastic one needs a viscosity, so it is refused from a problem without.
+    pub fn with_problem(mut self, problem: Problem) -> Result<Self, InputError> {
+        if problem.viscous() && !self.problem.viscous() {
+            return Err(InputError::field(
+                "problem",
+                problem.name(),
+                format!(
+                    "\"elastic\" or \"steady\" for scenario `{}`, which has no viscosity \
+                     (give alpha and beta in its file for a viscoelastic problem)",
+                    self.name
+                ),
+            ));
+        }
+        if !problem.viscous() {
+            (self.alpha, self.beta) = (0.0, 0.0);
+        }
+        self.problem = problem;
+        Ok(self)
+    }
+
+    /// Overrides $g$ (validated).
+    pub fn with_g(mut self, g: f64) -> Result<Self, InputError> {
+        self.g = limit("g", g)?;
+        Ok(self)
+    }
+
+    /// Overrides the loads (validated).
+    pub fn with_loads(
+        mut self,
+        f0: Option<[f64; 2]>,
+        f2: Option<[f64; 2]>,
+    ) -> Result<Self, InputError> {
+        for (name, v) in [("f0", f0), ("f2", f2)] {
+            if let Some(v) = v {
+                for (c, x) in v.iter().enumerate() {
+                    finite(&format!("{name}[{c}]"), *x)?;
+                }
+            }
+        }
+        if let Some(v) = f0 {
+            self.f0 = v;
+        }
+        if let Some(v) = f2 {
+            check_traction(
+                &self.geometry,
+                &Traction {
+                    side: Side::Top,
+                    from: 0.0,
+                    to: self.geometry.width,
+                    f: v,
+                    field: "f2".into(),
+                },
+            )?;
+            self.f2 = v;
+        }
+        self.check_load_scale()?;
+        Ok(self)
+    }
+
+    /// Overrides the load history with a ramp $\varphi(t) = \min(t/t_r, 1)$ (validated).
+    pub fn with_ramp(mut self, t_r: f64) -> Result<Self, InputError> {
+        crate::history::check_ramp("ramp", t_r, self.t_end)?;
+        self.history = History::Ramp { t_r };
+        Ok(self)
+    }
+
+    /// Overrides the load history (validated).
+    pub fn with_history(mut self, history: History) -> Result<Self, InputError> {
+        history.validate("loads.history", self.t_end)?;
+        self.history = history;
+        Ok(self)
+    }
+
+    // ANCHOR: time_hypotheses
+    /// The paper's hypotheses on the data at $t = 0$ (§4 H(f), §2 H(0) with $u_0 = 0$).
+    ///
+    /// With $f(0) = \varphi(0)(f_0, f_2)$: H(f) asks $f_2(0) = 0$ and $f_0(0) \in V$, i.e.
+    /// $f_0(0)$ vanishes wherever a displacement component is prescribed. H(0) asks for
+    /// $\xi_0 \in \partial_{Cl} J(0)$ and $\eta_0 \in \partial\Phi(0)$ with
+    /// $\iota^*\xi_0 + \eta_0 - f(0) \in V$; since $g > 0$, $\partial\Phi(0) = \{0\}$, and a
+    /// nonzero $\xi_0$ is a functional on $\Gamma_3$ that no element of $V$ represents,
+    /// so it holds exactly when H(f)'s two conditions hold and $0 \in \partial_{Cl} j(0)$.
+    pub fn time_hypotheses(&self) -> TimeHypotheses {
+        let phi0 = self.history.phi(0.0);
+        let traction_at_0 = self
+            .tractions()
+            .into_iter()
+            .find(|t| t.f.iter().any(|&c| phi0 * c != 0.0))
+            .map(|t| t.field);
+        let f2_zero = traction_at_0.is_none();
+        // The body force is smooth in x; it lies in V when it vanishes on the
+        // components each support holds: sampled at each held segment's ends and middle
+        // (the force varies only with x, so on a side it is constant and on the top or
+        // bottom it vanishes on a segment only if its factor does).
+        let shape = |x: f64| 1.0 + self.f0_modulation * (std::f64::consts::PI * x).cos();
+        let f0_in_v = self.geometry.supports.iter().all(|s| {
+            let fixed = s.hold.fixes(s.side);
+            [s.from, 0.5 * (s.from + s.to), s.to].iter().all(|&a| {
+                let x = match s.side {
+                    Side::Left => 0.0,
+                    Side::Right => self.geometry.width,
+                    Side::Bottom | Side::Top => a,
+                };
+                (0..2).all(|c| !fixed[c] || phi0 * self.f0[c] * shape(x) == 0.0)
+            })
+        });
+        let zero_in_clarke = {
+            let d = self.law.clarke(0.0);
+            d.lo <= 0.0 && 0.0 <= d.hi
+        };
+        TimeHypotheses {
+            phi0,
+            f2_zero,
+            traction_at_0,
+            f0_in_v,
+            zero_in_clarke,
+        }
+    }
+    // ANCHOR_END: time_hypotheses
+
+    /// Whether `other` gives the same step matrix $A + kB$ for every $n$ and $N$:
+    /// the same geometry, material and final time.
+    pub fn same_operator(&self, other: &Scenario) -> bool {
+        self.geometry == other.geometry
+            && self.pattern == other.pattern
+            && [self.e, self.kappa, self.alpha, self.beta, self.t_end]
+                == [other.e, other.kappa, other.alpha, other.beta, other.t_end]
+    }
+
+    /// The mesh with $n$ segments on the bottom and this scenario's geometry and
+    /// pattern; every traction's ends must be nodes too.
+    pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
+        let mesh = Mesh::build(n, &self.geometry, self.pattern)?;
+        self.check_traction_ends(n)?;
+        Ok(mesh)
+    }
+
+    /// Refuses a level `n` whose structured grid would not resolve this scene (its
+    /// supports', tractions' and $\Gamma_3$'s ends on grid lines, cells near squares),
+    /// without building the mesh.
+    pub fn check_grid(&self, n: usize) -> Result<(), InputError> {
+        crate::mesh::check_grid(n, &self.geometry)?;
+        self.check_traction_ends(n)
+    }
+
+    /// Refuses a traction whose ends are not nodes of the structured mesh of level `n`.
+    fn check_traction_ends(&self, n: usize) -> Result<(), InputError> {
+        let [dx, dy] = crate::mesh::spacing(n, &self.geometry);
+        for t in &self.tractions {
+            let d = if t.side.normal() == 0 { dy } else { dx };
+            crate::mesh::check_ends(&t.field, t.side, [t.from, t.to], d, n)?;
+        }
+        Ok(())
+    }
+
+    /// The mesh of level $n$ graded towards the scene's singular points with exponent
+    /// `mu` ([`crate::bisection::graded_mesh_resolving`]). Bisection starts from the
+    /// coarsest grid whose nodes hold every end of the supports, the tractions and
+    /// $\Gamma_3$ (a grid of 4, 8, 16, … segments where one does, else of any multiple of
+    /// 4 up to $n$), so those ends are nodes of the graded mesh; the mesh built is then
+    /// checked for each of them, and an end it misses is refused by its key. The graded
+    /// mesh cuts the cells by the paper's diagonal only.
+    pub fn graded_mesh(&self, n: usize, mu: f64) -> Result<Mesh, InputError> {
+        if self.pattern != Pattern::Diagonal {
+            return Err(InputError::field(
+                "geometry.pattern",
+                self.pattern.name(),
+                "\"diagonal\" with a graded mesh (bisection starts from the paper's diagonal cut)",
+            ));
+        }
+        // The uniform level's checks, without building it (graded_mesh_resolving builds it).
+        self.check_grid(n)?;
+        let mesh = crate::bisection::graded_mesh_resolving(&self.geometry, n, mu, &|n0| {
+            self.check_traction_ends(n0)
+        })?;
+        self.check_ends_on(&mesh)?;
+        Ok(mesh)
+    }
+
+    /// Refuses `mesh` for this scene, by the key of the first end of a support, a
+    /// traction or $\Gamma_3$ that is not one of its boundary nodes (where that load
+    /// or support would act on a shifted segment).
+    pub fn check_ends_on(&self, mesh: &Mesh) -> Result<(), InputError> {
+        let geo = &self.geometry;
+        let supports = geo
+            .supports
+            .iter()
+            .map(|s| (s.field.as_str(), s.side, [s.from, s.to]));
+        let tractions = self
+            .tractions
+            .iter()
+            .map(|t| (t.field.as_str(), t.side, [t.from, t.to]));
+        let contact = std::iter::once(("geometry.contact", Side::Bottom, geo.contact));
+        for (field, side, ends) in supports.chain(tractions).chain(contact) {
+            mesh.check_nodes_at(field, side, ends)?;
+        }
+        Ok(())
+    }
+
+    /// Every traction: the paper's $f_2$ on the whole top, then the file's others.
+    pub fn tractions(&self) -> Vec<Traction> {
+        let mut out = vec![Traction {
+            side: Side::Top,
+            from: 0.0,
+            to: self.geometry.width,
+            f: self.f2,
+            field: "loads.f2".into(),
+        }];
+        out.extend(self.tractions.iter().cloned());
+        out
+    }
+
+    /// The load vector of this scenario's loads on `mesh` (see [`crate::assembly::load`]).
+    pub fn load_vector(&self, mesh: &Mesh, dofs: &crate::mesh::Dofs) -> Vec<f64> {
+        crate::assembly::load(mesh, dofs, self.f0, &self.tractions(), self.f0_modulation)
+    }
+
+    /// The same scenario on meshes of another pattern.
+    pub fn with_pattern(mut self, pattern: Pattern) -> Self {
+        self.pattern = pattern;
+        self
+    }
+
+    /// Replaces the elasticity constants (validated like the file's) by plane-strain
+    /// ones, solved as given.
+    pub fn with_elasticity(mut self, e: f64, kappa: f64) -> Result<Self, InputError> {
+        self.e = positive("material.E", e)?;
+        self.kappa = poisson("material.kappa", kappa)?;
+        self.material_form = MaterialForm::PlaneStrain;
+        Ok(self)
+    }
+
+    pub fn elasticity(&self) -> Isotropic {
+        Isotropic::elasticity(self.e, self.kappa)
+    }
+    pub fn viscosity(&self) -> Isotropic {
+        Isotropic::viscosity(self.alpha, self.beta)
+    }
+
+    /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like
+    /// coefficients in the same ratio), else `None`. The ratio is taken on the second
+    /// coefficients, positive for both tensors, and the first ones compared by cross
+    /// multiplication: a first coefficient of zero (Poisson ratio 0) is then no
+    /// division by zero, and proportional only when the other tensor's is zero too.
+    pub fn relaxation_time(&self) -> Option<f64> {
+        let (g, c) = (self.elasticity(), self.viscosity());
+        if !self.problem.viscous() {
+            return Some(0.0);
+        }
+        let tb = c.b / g.b;
+        let gap = (c.a - tb * g.a).abs();
+        if !(tb > 0.0 && tb.is_finite() && gap <= 1e-12 * c.a.abs().max(c.b.abs())) {
+            return None;
+        }
+        // The first coefficients' ratio where it exists: the value every run so far
+        // has used, to the bit.
+        let ta = c.a / g.a;
+        Some(if ta > 0.0 && ta.is_finite() { ta } else { tb })
+    }
+}
