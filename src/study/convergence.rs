@@ -236,95 +236,12 @@ pub(super) fn run(
     use super::split;
     let (scn, text) = Scenario::read(&args.scenario)?;
     let solver = super::study_solver(args.solver.as_deref())?;
-    // Every mesh of the study comes from bisection of the diagonal cut, as a graded
-    // `solve` does: another pattern would be ignored (or fail late), so it is refused.
-    if scn.pattern != crate::mesh::Pattern::Diagonal {
-        return Err(crate::error::InputError::field(
-            "geometry.pattern",
-            scn.pattern.name(),
-            "\"diagonal\" for the convergence study (its uniform and graded meshes come \
-             from newest-vertex bisection of the paper's diagonal cut)",
-        )
-        .into());
-    }
-    // The split's uniform levels and its reference are structured meshes: each must
-    // resolve the scene (the bisection families nest by construction).
-    let split_multiples: Vec<usize> = if scn.problem.viscous() && scn.relaxation_time().is_some() {
-        let k = if args.quick { 3 } else { 6 };
-        (0..k).map(|j| 1 << j).chain([1 << (k + 1)]).collect()
-    } else {
-        vec![1]
-    };
-    let n0 = coarsest(&scn, &split_multiples, 4)?;
-    let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
-    let plan = if args.quick {
-        graded::Plan {
-            uniform: levels(4),
-            graded: levels(4),
-            n_ref: n0 * 32,
-            solver,
-        }
-    } else {
-        graded::Plan {
-            uniform: levels(6),
-            graded: levels(5),
-            n_ref: n0 * 64,
-            solver,
-        }
-    };
-    // The reference is the graded family refined to n_ref, at least the unknowns of
-    // the uniform mesh there: refused by name before any work if it cannot be built
-    // (it used to refine until an allocation failed).
-    let most = crate::mesh::MAX_N;
-    if plan.n_ref > most {
-        let ratio = plan.n_ref / n0;
-        return Err(crate::error::InputError::field(
-            "scenario",
-            &args.scenario,
-            format!(
-                "a scene the study can afford: the coarsest mesh that resolves this one has \
-                 n = {n0}, so the reference would be at n = {} ({ratio} times that), beyond \
-                 the {most} a mesh may have; put the ends of its supports, tractions and \
-                 Gamma_3 on the grid of n = {} or coarser",
-                plan.n_ref,
-                most / ratio
-            ),
-        )
-        .into());
-    }
-    crate::scheme::check_memory(plan.n_ref, crate::mesh::rows(plan.n_ref, &scn.geometry))?;
-    if args.announce {
-        eprintln!("{}", cost_notice(&scn, &plan, args.quick));
-    }
-    // The h and k parts apart only where there is a time error to part, and on the
-    // reduced loop, which needs proportional damping (C = c G).
-    let no_split = match scn.relaxation_time() {
-        _ if scn.problem == crate::scenario::Problem::Steady => Some(
-            "the problem is steady (one solve at T), so there is no time error to part".to_string(),
-        ),
-        _ if scn.problem == crate::scenario::Problem::Elastic => Some(
-            "the problem is elastic (each step is the static problem with f(t_n)), so there is no time \
-             error to part"
-                .to_string(),
-        ),
-        Some(_) => None,
-        None => Some(
-            "the damping is not proportional (C is not a multiple of G), and the split runs on the reduced \
-             time loop, which needs it; the h = k families above carry both parts"
-                .to_string(),
-        ),
-    };
+    let Plans {
+        plan,
+        split_plan,
+        no_split,
+    } = plans(&scn, &args, solver)?;
     let viscous = no_split.is_none();
-    let split_plan = super::split::Plan {
-        solver,
-        ..split_plan(n0, args.quick)
-    };
-    if viscous {
-        crate::scheme::check_memory(
-            split_plan.n_ref,
-            crate::mesh::rows(split_plan.n_ref, &scn.geometry),
-        )?;
-    }
     let sing = scn.geometry.singularities();
     let points = scn.geometry.singular_points();
     let mut families = vec![("uniform".to_string(), vec![])];
@@ -366,6 +283,153 @@ pub(super) fn run(
     };
     bar.finish_and_clear();
     let command = command.to_string();
+    let lines = provenance_lines(&scn, &command, &plan, &families, ref_dofs);
+    out.write_table("convergence.csv", &table, &lines)?;
+    let sing_table = singular_table(&scn, &sing);
+    out.write_table("singular.csv", &sing_table, &lines)?;
+    let mut md = graded_report(&out, &scn, args.quick, &lines, &families, &plan, &sing)?;
+    match &split_table {
+        Some(t) => split_report(&out, &mut md, &command, &scn, &split_plan, t)?,
+        None => {
+            let _ = writeln!(
+                md,
+                "\nNo h and k parts: {}.",
+                no_split.as_deref().unwrap_or("")
+            );
+        }
+    }
+    out.write("convergence.md", md.as_bytes())?;
+    super::write_scenario(&out, &text, &command)?;
+    graded::draw(
+        &out.path(""),
+        "convergence",
+        &out.path("convergence.csv"),
+        std::slice::from_ref(&scn.name),
+        &families.iter().map(|f| f.0.clone()).collect::<Vec<_>>(),
+    )?;
+    out.publish()?;
+    Ok(md)
+}
+
+/// The plans of the study: the graded families' and, where the time error can be parted
+/// (a viscoelastic scene with proportional damping), the split's; `no_split` says why
+/// not otherwise. Refuses a scene the study cannot mesh or afford before any work.
+struct Plans {
+    plan: graded::Plan,
+    split_plan: super::split::Plan,
+    no_split: Option<String>,
+}
+
+fn plans(
+    scn: &Scenario,
+    args: &super::ConvergenceArgs,
+    solver: &'static crate::step::SolverEntry,
+) -> Result<Plans, Box<dyn std::error::Error>> {
+    // Every mesh of the study comes from bisection of the diagonal cut, as a graded
+    // `solve` does: another pattern would be ignored (or fail late), so it is refused.
+    if scn.pattern != crate::mesh::Pattern::Diagonal {
+        return Err(crate::error::InputError::field(
+            "geometry.pattern",
+            scn.pattern.name(),
+            "\"diagonal\" for the convergence study (its uniform and graded meshes come \
+             from newest-vertex bisection of the paper's diagonal cut)",
+        )
+        .into());
+    }
+    // The split's uniform levels and its reference are structured meshes: each must
+    // resolve the scene (the bisection families nest by construction).
+    let split_multiples: Vec<usize> = if scn.problem.viscous() && scn.relaxation_time().is_some() {
+        let k = if args.quick { 3 } else { 6 };
+        (0..k).map(|j| 1 << j).chain([1 << (k + 1)]).collect()
+    } else {
+        vec![1]
+    };
+    let n0 = coarsest(scn, &split_multiples, 4)?;
+    let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
+    let plan = if args.quick {
+        graded::Plan {
+            uniform: levels(4),
+            graded: levels(4),
+            n_ref: n0 * 32,
+            solver,
+        }
+    } else {
+        graded::Plan {
+            uniform: levels(6),
+            graded: levels(5),
+            n_ref: n0 * 64,
+            solver,
+        }
+    };
+    // The reference is the graded family refined to n_ref, at least the unknowns of
+    // the uniform mesh there: refused by name before any work if it cannot be built
+    // (it used to refine until an allocation failed).
+    let most = crate::mesh::MAX_N;
+    if plan.n_ref > most {
+        let ratio = plan.n_ref / n0;
+        return Err(crate::error::InputError::field(
+            "scenario",
+            &args.scenario,
+            format!(
+                "a scene the study can afford: the coarsest mesh that resolves this one has \
+                 n = {n0}, so the reference would be at n = {} ({ratio} times that), beyond \
+                 the {most} a mesh may have; put the ends of its supports, tractions and \
+                 Gamma_3 on the grid of n = {} or coarser",
+                plan.n_ref,
+                most / ratio
+            ),
+        )
+        .into());
+    }
+    crate::scheme::check_memory(plan.n_ref, crate::mesh::rows(plan.n_ref, &scn.geometry))?;
+    if args.announce {
+        eprintln!("{}", cost_notice(scn, &plan, args.quick));
+    }
+    // The h and k parts apart only where there is a time error to part, and on the
+    // reduced loop, which needs proportional damping (C = c G).
+    let no_split = match scn.relaxation_time() {
+        _ if scn.problem == crate::scenario::Problem::Steady => Some(
+            "the problem is steady (one solve at T), so there is no time error to part".to_string(),
+        ),
+        _ if scn.problem == crate::scenario::Problem::Elastic => Some(
+            "the problem is elastic (each step is the static problem with f(t_n)), so there is no time \
+             error to part"
+                .to_string(),
+        ),
+        Some(_) => None,
+        None => Some(
+            "the damping is not proportional (C is not a multiple of G), and the split runs on the reduced \
+             time loop, which needs it; the h = k families above carry both parts"
+                .to_string(),
+        ),
+    };
+    let viscous = no_split.is_none();
+    let split_plan = super::split::Plan {
+        solver,
+        ..split_plan(n0, args.quick)
+    };
+    if viscous {
+        crate::scheme::check_memory(
+            split_plan.n_ref,
+            crate::mesh::rows(split_plan.n_ref, &scn.geometry),
+        )?;
+    }
+    Ok(Plans {
+        plan,
+        split_plan,
+        no_split,
+    })
+}
+
+/// The `#` lines of `convergence.csv` and `singular.csv`: the command, the scene, the
+/// families, the levels, the reference and what the columns mean.
+fn provenance_lines(
+    scn: &Scenario,
+    command: &str,
+    plan: &graded::Plan,
+    families: &[(String, Vec<[f64; 2]>)],
+    ref_dofs: usize,
+) -> Vec<String> {
     let steps_word = match scn.problem {
         crate::scenario::Problem::Steady => "one step (steady)".to_string(),
         crate::scenario::Problem::Elastic => {
@@ -378,7 +442,7 @@ pub(super) fn run(
     let header = format!(
         "produced by evhi {} `evhi {}`\n# scenario {} ({}); families: {}; levels uniform {:?}{}; {steps_word}; reference: the {} family refined to n = {} ({} unknowns), {}; {}errors and increments relative, energy norm; orders: observed between a level and the previous one of its family, in N_dof^(-1/2) (1 = order 1 in h on a uniform mesh); NaN: the first level's orders and the last level's increments (nothing to compare with)",
         env!("CARGO_PKG_VERSION"),
-        crate::output::run::one_line(&command),
+        crate::output::run::one_line(command),
         scn.name,
         scn.problem.name(),
         families
@@ -407,10 +471,14 @@ pub(super) fn run(
             String::new()
         }
     );
-    let lines: Vec<String> = header.split("\n# ").map(str::to_string).collect();
-    out.write_table("convergence.csv", &table, &lines)?;
+    header.split("\n# ").map(str::to_string).collect()
+}
+
+/// `singular.csv`: each singular point of the scene, its kind and the exponent it
+/// predicts.
+fn singular_table(scn: &Scenario, sing: &[crate::geometry::Singularity]) -> Table {
     let kappa = scn.kappa;
-    let sing_table = Table::new()
+    Table::new()
         .f64("x", sing.iter().map(|s| s.point[0]).collect())
         .f64("y", sing.iter().map(|s| s.point[1]).collect())
         .str(
@@ -429,8 +497,23 @@ pub(super) fn run(
         .f64(
             "predicted_exponent",
             sing.iter().map(|s| predicted(s, kappa)).collect(),
-        );
-    out.write_table("singular.csv", &sing_table, &lines)?;
+        )
+}
+
+/// The Markdown summary of the graded study, read back from `convergence.csv` as
+/// written: the table with what is resolved, the fitted exponents, the reference's own
+/// error, the asymptotics against the corner exponents, a graded family that gains
+/// nothing (also a warning on stderr), and the singular points.
+fn graded_report(
+    out: &RunDir,
+    scn: &Scenario,
+    quick: bool,
+    lines: &[String],
+    families: &[(String, Vec<[f64; 2]>)],
+    plan: &graded::Plan,
+    sing: &[crate::geometry::Singularity],
+) -> Result<String, Box<dyn std::error::Error>> {
+    let kappa = scn.kappa;
     // The Markdown summary, read back from the table just written.
     let df = crate::output::csv::read_csv(&out.path("convergence.csv"))?;
     let fam = crate::output::csv::col_str(&df, "family")?;
@@ -459,7 +542,7 @@ pub(super) fn run(
         md,
         "# Convergence of `{}` ({})\n\n{}\n\n{}\n\n| family | n | unknowns | error at T, % | order | resolved | increment at T, % | order | max increment over t, % | at t |\n|---|---|---|---|---|---|---|---|---|---|",
         scn.name,
-        if args.quick { "quick" } else { "full" },
+        if quick { "quick" } else { "full" },
         lines.join(". "),
         if scn.problem.viscous() {
             MAX_INCREMENT
@@ -488,7 +571,7 @@ pub(super) fn run(
         "\nFitted exponents (least squares of -2 ln v against ln N_dof over each family's levels; none \
          for the max increment over t, see above):\n"
     );
-    for (f, _) in &families {
+    for (f, _) in families {
         let rows: Vec<usize> = (0..fam.len()).filter(|&i| fam[i] == *f).collect();
         let pick = |v: &[f64]| rows.iter().map(|&i| v[i]).collect::<Vec<_>>();
         let d = pick(&dofs);
@@ -551,7 +634,7 @@ pub(super) fn run(
         .join(", ");
     let trend = uniform_trend(last, expected);
     let latest = last.last().copied().unwrap_or(f64::NAN);
-    let finer = if args.quick {
+    let finer = if quick {
         " (the full run, without --quick, goes two levels finer)"
     } else {
         ""
@@ -641,7 +724,7 @@ pub(super) fn run(
             "- none: the supports leave no corner singularity, so order 1 is expected on uniform meshes"
         );
     }
-    for s in &sing {
+    for s in sing {
         let [a, b] = holds_named(s, &scn.geometry);
         if s.contact_end {
             let _ = writeln!(
@@ -665,114 +748,110 @@ pub(super) fn run(
             predicted(s, kappa)
         );
     }
-    if let Some(t) = &split_table {
-        out.write_table("split.csv", t, &split_lines(&command, &scn, &split_plan))?;
-        let df = crate::output::csv::read_csv(&out.path("split.csv"))?;
-        let f = crate::output::csv::col_str(&df, "family")?;
-        let col = |c: &str| crate::output::csv::col_f64(&df, c);
-        let (sn, st, et, ot, em, om) = (
-            col("n")?,
-            col("steps")?,
-            col("rel_err_T_percent")?,
-            col("order_T")?,
-            col("rel_err_max_percent")?,
-            col("order_max")?,
-        );
-        // The reference's own error per family and measure (at T, max over t).
-        let families: Vec<String> = {
-            let mut v: Vec<String> = vec![];
-            for x in &f {
-                if !v.contains(x) {
-                    v.push(x.clone());
-                }
+    Ok(md)
+}
+
+/// The h and k parts: writes `split.csv` and its figure, and adds their table and the
+/// reference's own error per family to the summary `md`.
+fn split_report(
+    out: &RunDir,
+    md: &mut String,
+    command: &str,
+    scn: &Scenario,
+    split_plan: &super::split::Plan,
+    t: &Table,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use super::split;
+    out.write_table("split.csv", t, &split_lines(command, scn, split_plan))?;
+    let df = crate::output::csv::read_csv(&out.path("split.csv"))?;
+    let f = crate::output::csv::col_str(&df, "family")?;
+    let col = |c: &str| crate::output::csv::col_f64(&df, c);
+    let (sn, st, et, ot, em, om) = (
+        col("n")?,
+        col("steps")?,
+        col("rel_err_T_percent")?,
+        col("order_T")?,
+        col("rel_err_max_percent")?,
+        col("order_max")?,
+    );
+    // The reference's own error per family and measure (at T, max over t).
+    let families: Vec<String> = {
+        let mut v: Vec<String> = vec![];
+        for x in &f {
+            if !v.contains(x) {
+                v.push(x.clone());
             }
-            v
-        };
-        let estimate = |family: &str, e: &[f64], o: &[f64]| {
-            let rows: Vec<usize> = (0..f.len()).filter(|&i| f[i] == family).collect();
-            let pick = |v: &[f64]| rows.iter().map(|&i| v[i]).collect::<Vec<_>>();
-            let param = if family == "k" { pick(&st) } else { pick(&sn) };
-            split_reference_error(&pick(e), &pick(o), &param, split_plan.n_ref as f64)
-        };
-        let est: Vec<(String, f64, f64)> = families
-            .iter()
-            .map(|fam| {
-                (
-                    fam.clone(),
-                    estimate(fam, &et, &ot),
-                    estimate(fam, &em, &om),
-                )
-            })
-            .collect();
-        let flag = |family: &str, e: f64, which: usize| {
-            let r = est
-                .iter()
-                .find(|x| x.0 == family)
-                .map_or(f64::NAN, |x| if which == 0 { x.1 } else { x.2 });
-            resolved_word(e, r, RESOLVED_ANY)
-        };
-        let _ = writeln!(
-            md,
-            "\n**The h and k parts (uniform structured meshes).** {}\n\n| family | n | steps | error at T, % | order | resolved | max over t, % | order | resolved |\n|---|---|---|---|---|---|---|---|---|",
-            split_lines(&command, &scn, &split_plan)[1]
-        );
-        for i in 0..f.len() {
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {} | {:.3} | {} | {} | {:.3} | {} |",
-                f[i],
-                sn[i],
-                st[i],
-                pct(et[i]),
-                ot[i],
-                flag(&f[i], et[i], 0),
-                pct(em[i]),
-                om[i],
-                flag(&f[i], em[i], 1)
-            );
         }
+        v
+    };
+    let estimate = |family: &str, e: &[f64], o: &[f64]| {
+        let rows: Vec<usize> = (0..f.len()).filter(|&i| f[i] == family).collect();
+        let pick = |v: &[f64]| rows.iter().map(|&i| v[i]).collect::<Vec<_>>();
+        let param = if family == "k" { pick(&st) } else { pick(&sn) };
+        split_reference_error(&pick(e), &pick(o), &param, split_plan.n_ref as f64)
+    };
+    let est: Vec<(String, f64, f64)> = families
+        .iter()
+        .map(|fam| {
+            (
+                fam.clone(),
+                estimate(fam, &et, &ot),
+                estimate(fam, &em, &om),
+            )
+        })
+        .collect();
+    let flag = |family: &str, e: f64, which: usize| {
+        let r = est
+            .iter()
+            .find(|x| x.0 == family)
+            .map_or(f64::NAN, |x| if which == 0 { x.1 } else { x.2 });
+        resolved_word(e, r, RESOLVED_ANY)
+    };
+    let _ = writeln!(
+        md,
+        "\n**The h and k parts (uniform structured meshes).** {}\n\n| family | n | steps | error at T, % | order | resolved | max over t, % | order | resolved |\n|---|---|---|---|---|---|---|---|---|",
+        split_lines(command, scn, split_plan)[1]
+    );
+    for i in 0..f.len() {
         let _ = writeln!(
             md,
-            "\nThe reference here is only four times finer than the finest level, so its own error is a \
-             large part of the finest errors and inflates the finest orders. Its error, roughly, in each \
-             family: the finest level's error carried on to n (or, for k, N) = {} at the family's smallest \
-             positive observed order, capped at 1, the scheme's order in h and in k (the estimate errs large \
-             unless the true order is lower still, as where the orders still fall): {}. The errors of the levels and of the reference are not \
-             assumed to add in quadrature (the time errors subtract): a row whose error is below {RESOLVED_ANY} \
-             times this is marked not resolved, since the reference's error may then move it by more than 10 %, \
-             and its order is not a rate. The graded study above measures the orders without a reference: its \
-             increments need none.",
-            split_plan.n_ref,
-            est.iter()
-                .map(|(fam, t, m)| format!("{fam} {} % at T, {} % max over t", pct(*t), pct(*m)))
-                .collect::<Vec<_>>()
-                .join("; ")
-        );
-        split::draw_split(
-            &out.path(""),
-            "split",
-            &out.path("split.csv"),
-            std::slice::from_ref(&scn.name),
-            "1/n (h part: h = W/(2n), k of the reference) or 1/N (k part: k = T/N, h of the reference)",
-        )?;
-    } else {
-        let _ = writeln!(
-            md,
-            "\nNo h and k parts: {}.",
-            no_split.as_deref().unwrap_or("")
+            "| {} | {} | {} | {} | {:.3} | {} | {} | {:.3} | {} |",
+            f[i],
+            sn[i],
+            st[i],
+            pct(et[i]),
+            ot[i],
+            flag(&f[i], et[i], 0),
+            pct(em[i]),
+            om[i],
+            flag(&f[i], em[i], 1)
         );
     }
-    out.write("convergence.md", md.as_bytes())?;
-    super::write_scenario(&out, &text, &command)?;
-    graded::draw(
+    let _ = writeln!(
+        md,
+        "\nThe reference here is only four times finer than the finest level, so its own error is a \
+         large part of the finest errors and inflates the finest orders. Its error, roughly, in each \
+         family: the finest level's error carried on to n (or, for k, N) = {} at the family's smallest \
+         positive observed order, capped at 1, the scheme's order in h and in k (the estimate errs large \
+         unless the true order is lower still, as where the orders still fall): {}. The errors of the levels and of the reference are not \
+         assumed to add in quadrature (the time errors subtract): a row whose error is below {RESOLVED_ANY} \
+         times this is marked not resolved, since the reference's error may then move it by more than 10 %, \
+         and its order is not a rate. The graded study above measures the orders without a reference: its \
+         increments need none.",
+        split_plan.n_ref,
+        est.iter()
+            .map(|(fam, t, m)| format!("{fam} {} % at T, {} % max over t", pct(*t), pct(*m)))
+            .collect::<Vec<_>>()
+            .join("; ")
+    );
+    split::draw_split(
         &out.path(""),
-        "convergence",
-        &out.path("convergence.csv"),
+        "split",
+        &out.path("split.csv"),
         std::slice::from_ref(&scn.name),
-        &families.iter().map(|f| f.0.clone()).collect::<Vec<_>>(),
+        "1/n (h part: h = W/(2n), k of the reference) or 1/N (k part: k = T/N, h of the reference)",
     )?;
-    out.publish()?;
-    Ok(md)
+    Ok(())
 }
 
 /// The provenance lines of `split.csv`.
