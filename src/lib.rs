@@ -18,7 +18,16 @@
 //!
 //! Data flows one way: [`scenario`] → [`mesh`] → [`assembly`] (with [`element`],
 //! [`material`]) → [`linalg`] and [`condense`] → [`scheme`] (time loop) →
-//! [`step`] (per-step solvers) → [`certificate`] → [`output`].
+//! [`step`] (per-step solvers) → [`certificate`] → [`output`]. [`diagnostics`] says
+//! which of the paper's hypotheses a solve breaks.
+//!
+//! Above the solver, each user of it has a room: [`cli`] (the commands `solve`,
+//! `show`, `plot`, `bench`), [`study`] (the studies of `evhi study` on any scenario,
+//! and the computations the book's experiments share with them: graded families,
+//! Table 1's families, the time error, stability maps, corner exponents), [`bench`](mod@bench)
+//! (the bench's own measurements) and, on top, [`experiments`] (one module per
+//! experiment of the book, and `evhi reproduce`, which runs them). A room imports
+//! only from rooms below it.
 
 pub mod assembly;
 pub mod bench;
