@@ -456,12 +456,10 @@ fn the_time_loop_follows_the_damping() {
     ] {
         let dir = scratch(&format!("path-{scenario}"));
         succeed(&mut solve(scenario, "--n 8 --steps 8", &dir));
-        let summary = Csv::read(dir.join("summary.csv"));
-        assert_eq!(summary.column_str("path"), vec![path]);
-        let steps = Csv::read(dir.join("steps.csv"));
-        let check = steps.column_str("check");
+        assert_eq!(summary(&dir).path, path);
+        let check: Vec<String> = steps(&dir).into_iter().map(|s| s.check).collect();
         assert_eq!(check.len(), 8);
-        assert_eq!([check[0], check[7]], checks, "{scenario}");
+        assert_eq!([check[0].as_str(), check[7].as_str()], checks, "{scenario}");
     }
     let dir = scratch("path-refused");
     let words = "--n 8 --steps 4 --path reduced";
@@ -1232,8 +1230,7 @@ fn the_audits_smaller_messages_say_what_holds() {
     assert!(!shown.contains("H(j): constant m"), "{shown}");
     let run = dir.join("cantilever");
     succeed(&mut solve(CANTILEVER, "--n 8 --steps 2", &run));
-    let summary = Csv::read(run.join("summary.csv"));
-    assert_eq!(summary.get(0, "m_trace_norm_sq"), "NaN");
+    assert!(summary(&run).m_trace_norm_sq.is_nan());
 }
 
 /// What the second audit found in the studies and `reproduce`, each refused by name
@@ -1442,8 +1439,7 @@ fn the_run_directory_holds_what_the_book_says() {
     let wide = format!("{}\n[geometry]\nwidth = 4.0\n", read(FIGURE));
     let (o, out) = solve_text(&dir, "wide", &wide, &["--n", "16", "--steps", "2"]);
     ok(&o);
-    let summary = Csv::read(out.join("summary.csv"));
-    assert_eq!(summary.column_f64("h"), vec![4.0 / 32.0]);
+    assert_eq!(summary(&out).h, 4.0 / 32.0);
 
     let out = dir.join("n100");
     succeed(&mut solve("figure", "--n 100 --steps 2", &out));

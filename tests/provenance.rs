@@ -82,15 +82,16 @@ fn summary_records_the_material_the_solver_used_after_the_old_columns() {
         let scn = evhi::scenario::Scenario::from_toml(&text, name).unwrap();
         let (o, run) = solve_text(&dir, name, &text, &["--n", "8", "--steps", "2"]);
         ok(&o);
-        let s = Csv::read(run.join("summary.csv"));
-        for (col, want) in [
-            ("E", scn.e),
-            ("kappa", scn.kappa),
-            ("alpha", scn.alpha),
-            ("beta", scn.beta),
+        let row = common::summary(&run);
+        for (col, got, want) in [
+            ("E", row.e, scn.e),
+            ("kappa", row.kappa, scn.kappa),
+            ("alpha", row.alpha, scn.alpha),
+            ("beta", row.beta, scn.beta),
         ] {
-            assert_eq!(s.f64(0, col), want, "{name}: {col}");
+            assert_eq!(got, want, "{name}: {col}");
         }
+        let s = Csv::read(run.join("summary.csv"));
         // Appended: the columns before them keep their places, `version` last of them.
         let tail: Vec<&str> = s
             .header
@@ -111,9 +112,9 @@ fn summary_records_the_material_the_solver_used_after_the_old_columns() {
         .replace("g = 0.1", "g = 0.1\nproblem = \"elastic\"");
     let (o, run) = solve_text(&dir, "elastic", &elastic, &["--n", "8", "--steps", "2"]);
     ok(&o);
-    let s = Csv::read(run.join("summary.csv"));
-    assert_eq!((s.f64(0, "alpha"), s.f64(0, "beta")), (0.0, 0.0));
-    assert_eq!((s.f64(0, "E"), s.f64(0, "kappa")), (1000.0, 0.4));
+    let s = common::summary(&run);
+    assert_eq!((s.alpha, s.beta), (0.0, 0.0));
+    assert_eq!((s.e, s.kappa), (1000.0, 0.4));
 }
 
 /// `figure`'s load as a `[[loads.traction]]` on the whole top with `f2 = (0, 0)`:
@@ -137,16 +138,13 @@ fn the_same_load_as_f2_or_as_a_traction_solves_alike_and_each_header_names_it() 
     ok(&o);
     let (o, traction_run) = solve_text(&dir, "traction", &scene(AS_TRACTION), &words);
     ok(&o);
-    let (a, b) = (
-        Csv::read(f2_run.join("summary.csv")),
-        Csv::read(traction_run.join("summary.csv")),
-    );
-    let (ea, eb) = (a.f64(0, "energy_norm_T"), b.f64(0, "energy_norm_T"));
+    let (a, b) = (common::summary(&f2_run), common::summary(&traction_run));
+    let (ea, eb) = (a.energy_norm_t, b.energy_norm_t);
     assert!(
         ea > 0.0 && (ea - eb).abs() <= 1e-12 * ea,
         "{ea} against {eb}"
     );
-    assert_eq!(a.get(0, "path"), b.get(0, "path"));
+    assert_eq!(a.path, b.path);
     // The results agree; the headers differ, each naming the load it was given.
     let (la, lb) = (
         data_line(&f2_run, "summary.csv"),
@@ -173,8 +171,8 @@ fn the_same_load_as_f2_or_as_a_traction_solves_alike_and_each_header_names_it() 
         assert_eq!(data_line(&traction_run, f), lb, "{f}");
     }
     // summary.csv counts the further tractions.
-    assert_eq!(a.get(0, "tractions"), "0");
-    assert_eq!(b.get(0, "tractions"), "1");
+    assert_eq!(a.tractions, 0);
+    assert_eq!(b.tractions, 1);
 }
 
 /// The `#` line names the material the solver used, and for a plane-stress file the

@@ -91,22 +91,22 @@ fn child_run(
         std::process::id()
     ));
     solve_into(&dir, n, steps, solver, path)?;
-    // Both files through the project's own CSV reader (polars); string columns are skipped.
-    use crate::output::csv::{col_f64, read_csv};
-    let read = || -> Result<std::collections::HashMap<String, f64>, crate::study::ExpError> {
-        let summary = read_csv(&dir.join("summary.csv"))?;
-        let mut row: std::collections::HashMap<String, f64> = summary
-            .get_column_names()
-            .iter()
-            .filter_map(|name| Some((name.to_string(), *col_f64(&summary, name).ok()?.first()?)))
+    // Both files through their row types (the project's own CSV reader, polars); string
+    // columns are skipped.
+    use crate::output::rows::{StepRow, SummaryRow};
+    let read = || -> Result<std::collections::HashMap<String, f64>, crate::output::FileError> {
+        let summary = SummaryRow::read(&dir.join("summary.csv"))?;
+        let mut row: std::collections::HashMap<String, f64> = (summary.first().iter())
+            .flat_map(|s| s.numbers())
+            .map(|(name, x)| (name.to_string(), x))
             .collect();
-        let steps_df = read_csv(&dir.join("steps.csv"))?;
-        for (col, total) in [
-            ("iterations", "iterations_total"),
-            ("inner_iterations", "inner_iterations_total"),
-        ] {
-            row.insert(total.into(), col_f64(&steps_df, col)?.iter().sum());
-        }
+        let steps = StepRow::read(&dir.join("steps.csv"))?;
+        let total = |f: fn(&StepRow) -> u64| steps.iter().map(|s| f(s) as f64).sum::<f64>();
+        row.insert("iterations_total".into(), total(|s| s.iterations));
+        row.insert(
+            "inner_iterations_total".into(),
+            total(|s| s.inner_iterations),
+        );
         Ok(row)
     };
     let row = read().map_err(|e| e.to_string());

@@ -33,6 +33,12 @@ impl Table {
         self
     }
 
+    /// The table's first `k` columns.
+    pub fn first(mut self, k: usize) -> Self {
+        self.cols.truncate(k);
+        self
+    }
+
     /// The table as a polars frame.
     pub fn frame(&self) -> PolarsResult<DataFrame> {
         let cols = self
@@ -95,13 +101,15 @@ pub fn col_f64(df: &DataFrame, name: &str) -> Result<Vec<f64>, super::FileError>
         .collect())
 }
 
-/// A string column.
+/// A column as text.
 pub fn col_str(df: &DataFrame, name: &str) -> Result<Vec<String>, super::FileError> {
     let err = |m: String| super::FileError::Table {
         path: name.to_string(),
         message: m,
     };
+    // As text whatever the reader inferred (`true`, `false` come back as booleans).
     let c = df.column(name).map_err(|e| err(e.to_string()))?;
+    let c = c.cast(&DataType::String).map_err(|e| err(e.to_string()))?;
     let ca = c.str().map_err(|e| err(e.to_string()))?;
     Ok((0..ca.len())
         .map(|i| ca.get(i).unwrap_or("").to_string())

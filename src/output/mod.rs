@@ -6,6 +6,7 @@
 pub mod csv;
 pub mod markdown;
 pub mod plot;
+pub mod rows;
 pub mod run;
 pub mod rundir;
 pub mod runplot;

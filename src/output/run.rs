@@ -5,6 +5,7 @@
 //! with the same two provenance lines.
 
 use super::csv::Table;
+use super::rows::{ContactRow, StepRow, SummaryRow};
 use super::rundir::{OutError, RunDir};
 use super::vtu;
 use crate::certificate::ContactState;
@@ -307,106 +308,68 @@ pub fn write(
     }
     let mesh = &*run.mesh;
     let dofs = Dofs::new(mesh, true);
-    let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
-    let c = &run.contact;
-    let contact = Table::new()
-        .f64("x", x)
-        .f64("u_nu", c.iter().map(|s| s.u_nu).collect())
-        .f64("sigma_nu1", c.iter().map(|s| s.sigma_nu1).collect())
-        .f64("sigma_nu2", c.iter().map(|s| s.sigma_nu2).collect())
-        .str(
-            "regime",
-            c.iter().map(|s| s.regime(&scn.law, scn.g)).collect(),
-        );
-    out.write_table("contact.csv", &contact, &header)?;
+    let contact: Vec<ContactRow> = (mesh.contact.iter().zip(&run.contact))
+        .map(|(&v, s)| ContactRow {
+            x: mesh.nodes[v][0],
+            u_nu: s.u_nu,
+            sigma_nu1: s.sigma_nu1,
+            sigma_nu2: s.sigma_nu2,
+            regime: s.regime(&scn.law, scn.g),
+        })
+        .collect();
+    out.write_table("contact.csv", &ContactRow::table(&contact), &header)?;
     let r = &run.records;
-    let steps = step_work(r)
-        .f64(
-            "stationarity",
-            r.iter().map(|s| s.certificate.stationarity).collect(),
-        )
-        .f64(
-            "feasibility",
-            r.iter().map(|s| s.certificate.feasibility).collect(),
-        )
-        .f64(
-            "complementarity",
-            r.iter().map(|s| s.certificate.complementarity).collect(),
-        )
-        .f64("energy_norm", r.iter().map(|s| s.energy_norm).collect())
-        .f64("time_s", r.iter().map(|s| s.time_s).collect())
-        .str(
-            "check",
-            r.iter().map(|s| s.check.name().to_string()).collect(),
-        );
-    out.write_table("steps.csv", &steps, &header)?;
+    out.write_table("steps.csv", &StepRow::table(&step_rows(r)), &header)?;
     let max_cert = r.iter().map(|s| s.certificate.max()).fold(0.0, f64::max);
     let iters: usize = r.iter().map(|s| s.iterations).sum();
     let t = &run.timings;
-    let summary = Table::new()
-        .u64("n", vec![run.n as u64])
-        .u64("steps", vec![run.steps as u64])
-        .u64("dofs", vec![run.dofs as u64])
-        .f64(
-            "energy_norm_T",
-            vec![r.last().map_or(0.0, |s| s.energy_norm)],
-        )
-        .f64("max_certificate", vec![max_cert])
-        .f64("wall_s", vec![wall_s])
-        .f64("max_overshoot_over_g", vec![max_overshoot(r)])
-        .str("scenario", vec![scn.name.clone()])
-        .str("solver", vec![prov.solver.clone()])
-        .f64("h", vec![run.mesh.h()])
-        .f64("k", vec![scn.t_end / run.steps as f64])
-        .f64("g", vec![scn.g])
-        .f64("f0_x", vec![scn.f0[0]])
-        .f64("f0_y", vec![scn.f0[1]])
-        .f64("f2_x", vec![scn.f2[0]])
-        .f64("f2_y", vec![scn.f2[1]])
-        .str("load_history", vec![scn.history.to_string()])
-        .str(
-            "compatible_data",
-            vec![scn.time_hypotheses().h_0().to_string()],
-        )
-        .f64("mean_iterations", vec![iters as f64 / run.steps as f64])
-        .f64("step_curvature_min", vec![run.hessian_min])
-        .f64("beta_B", vec![h_s.beta_b])
-        // NaN where H(j) fails (a downward jump): there is no finite m, as the
-        // stability study writes it.
-        .f64(
-            "m_trace_norm_sq",
-            vec![if scn.law.down_jumps().is_empty() {
-                h_s.rhs()
-            } else {
-                f64::NAN
-            }],
-        )
-        .f64("assembly_s", vec![t.assembly])
-        .f64("factorisation_s", vec![t.factorisation])
-        .f64("condensation_s", vec![t.condensation])
-        .f64("steps_s", vec![t.steps])
-        .u64("nnz_l", vec![run.nnz_l as u64])
-        .f64("one_solve_s", vec![t.one_solve])
-        .f64("floor_ratio", vec![t.floor_ratio(run.steps)])
-        .f64("peak_rss_mb", vec![peak_rss_mb()])
-        .str("ordering", vec![prov.ordering.clone()])
-        .str("path", vec![prov.path.clone()])
-        .str("mesh", vec![prov.mesh.clone()])
-        .u64("sweep_threads", vec![run.sweep_threads as u64])
-        .str(
-            "version",
-            vec![format!("evhi {}", env!("CARGO_PKG_VERSION"))],
-        )
-        // Appended after the columns above, so that readers by position keep
-        // working: the material the solver used (plane strain, converted where the
-        // file gave plane stress or Lame constants) and the number of the file's
-        // further tractions (the `#` lines name each).
-        .f64("E", vec![scn.e])
-        .f64("kappa", vec![scn.kappa])
-        .f64("alpha", vec![scn.alpha])
-        .f64("beta", vec![scn.beta])
-        .u64("tractions", vec![scn.tractions.len() as u64]);
-    out.write_table("summary.csv", &summary, &header)?;
+    let summary = SummaryRow {
+        n: run.n as u64,
+        steps: run.steps as u64,
+        dofs: run.dofs as u64,
+        energy_norm_t: r.last().map_or(0.0, |s| s.energy_norm),
+        max_certificate: max_cert,
+        wall_s,
+        max_overshoot_over_g: max_overshoot(r),
+        scenario: scn.name.clone(),
+        solver: prov.solver.clone(),
+        h: run.mesh.h(),
+        k: scn.t_end / run.steps as f64,
+        g: scn.g,
+        f0_x: scn.f0[0],
+        f0_y: scn.f0[1],
+        f2_x: scn.f2[0],
+        f2_y: scn.f2[1],
+        load_history: scn.history.to_string(),
+        compatible_data: scn.time_hypotheses().h_0().to_string(),
+        mean_iterations: iters as f64 / run.steps as f64,
+        step_curvature_min: run.hessian_min,
+        beta_b: h_s.beta_b,
+        m_trace_norm_sq: if scn.law.down_jumps().is_empty() {
+            h_s.rhs()
+        } else {
+            f64::NAN
+        },
+        assembly_s: t.assembly,
+        factorisation_s: t.factorisation,
+        condensation_s: t.condensation,
+        steps_s: t.steps,
+        nnz_l: run.nnz_l as u64,
+        one_solve_s: t.one_solve,
+        floor_ratio: t.floor_ratio(run.steps),
+        peak_rss_mb: peak_rss_mb(),
+        ordering: prov.ordering.clone(),
+        path: prov.path.clone(),
+        mesh: prov.mesh.clone(),
+        sweep_threads: run.sweep_threads as u64,
+        version: format!("evhi {}", env!("CARGO_PKG_VERSION")),
+        e: scn.e,
+        kappa: scn.kappa,
+        alpha: scn.alpha,
+        beta: scn.beta,
+        tractions: scn.tractions.len() as u64,
+    };
+    out.write_table("summary.csv", &SummaryRow::table(&[summary]), &header)?;
     let disp = dofs.expand(&run.u);
     let codes: Vec<i32> = run
         .contact
@@ -532,28 +495,30 @@ pub fn max_overshoot(records: &[crate::scheme::StepRecord]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The rows of `steps.csv`, one per step record.
+pub fn step_rows(r: &[crate::scheme::StepRecord]) -> Vec<StepRow> {
+    r.iter()
+        .map(|s| StepRow {
+            step: s.step as u64,
+            t: s.t,
+            iterations: s.iterations as u64,
+            inner_iterations: s.inner_iterations as u64,
+            solver_residual: s.solver_residual,
+            certificate: s.certificate.max(),
+            stationarity: s.certificate.stationarity,
+            feasibility: s.certificate.feasibility,
+            complementarity: s.certificate.complementarity,
+            energy_norm: s.energy_norm,
+            time_s: s.time_s,
+            check: s.check.name().to_string(),
+        })
+        .collect()
+}
+
 /// The work of each step: its number and time, the solver's iterations and residual,
 /// and its certificate (the first columns of `steps.csv`, without timings).
 pub fn step_work(r: &[crate::scheme::StepRecord]) -> Table {
-    Table::new()
-        .u64("step", r.iter().map(|s| s.step as u64).collect())
-        .f64("t", r.iter().map(|s| s.t).collect())
-        .u64(
-            "iterations",
-            r.iter().map(|s| s.iterations as u64).collect(),
-        )
-        .u64(
-            "inner_iterations",
-            r.iter().map(|s| s.inner_iterations as u64).collect(),
-        )
-        .f64(
-            "solver_residual",
-            r.iter().map(|s| s.solver_residual).collect(),
-        )
-        .f64(
-            "certificate",
-            r.iter().map(|s| s.certificate.max()).collect(),
-        )
+    StepRow::table(&step_rows(r)).first(StepRow::WORK)
 }
 
 /// The `--timings` report of a solve: the phases, the sizes, the cost of one solve

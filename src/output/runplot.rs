@@ -4,7 +4,8 @@
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
 use super::FileError;
-use super::csv::{col_f64, col_str, read_csv};
+use super::csv::{col_f64, read_csv};
+use super::rows::SummaryRow;
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use plotters::prelude::*;
@@ -87,40 +88,37 @@ pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
 /// Draws both figures of the run directory `dir` into it.
 pub fn draw(dir: &Path) -> Result<(), FileError> {
     validate_tables(dir)?;
-    let summary = read_csv(&dir.join("summary.csv"))?;
-    let first = |c: &str| -> Result<f64, FileError> {
-        col_f64(&summary, c)?
-            .first()
-            .copied()
-            .ok_or_else(|| FileError::Table {
-                path: dir.join("summary.csv").display().to_string(),
-                message: format!("no value in column {c}"),
-            })
-    };
+    let summary_path = dir.join("summary.csv");
+    let summary = SummaryRow::read(&summary_path)?
+        .into_iter()
+        .next()
+        .ok_or_else(|| FileError::Table {
+            path: summary_path.display().to_string(),
+            message: "no row".into(),
+        })?;
     let bad = |c: &str, v: f64, allowed: &str| FileError::Table {
-        path: dir.join("summary.csv").display().to_string(),
+        path: summary_path.display().to_string(),
         message: format!(
             "column `{c}` holds `{v}`, not {allowed} (the table was not written by this run)"
         ),
     };
-    let count = |c: &str, max: f64| -> Result<usize, FileError> {
-        let v = first(c)?;
-        if v >= 1.0 && v <= max && v.fract() == 0.0 {
+    let count = |c: &str, v: u64, max: f64| -> Result<usize, FileError> {
+        if v >= 1 && v as f64 <= max {
             Ok(v as usize)
         } else {
-            Err(bad(c, v, &format!("an integer in [1, {max}]")))
+            Err(bad(c, v as f64, &format!("an integer in [1, {max}]")))
         }
     };
-    let (n, steps) = (count("n", crate::mesh::MAX_N as f64)?, count("steps", 1e6)?);
+    let (n, steps) = (
+        count("n", summary.n, crate::mesh::MAX_N as f64)?,
+        count("steps", summary.steps, 1e6)?,
+    );
     // g is positive, `inf` for a scene without a limit.
-    let g = first("g")?;
+    let g = summary.g;
     if g.is_nan() || g <= 0.0 {
         return Err(bad("g", g, "a positive number (inf for no limit)"));
     }
-    let scenario = col_str(&summary, "scenario")?
-        .first()
-        .cloned()
-        .unwrap_or_default();
+    let scenario = summary.scenario.clone();
     // A uniform run's nodes are a lattice every few cells (its first row says how
     // many columns); a graded run's are every node, drawn by its triangles.
     let stride = if dir.join("triangles.csv").exists() {
@@ -147,7 +145,7 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
         stride
     };
     // h as the summary gives it: 1/n on the paper's rectangle, W/(2n) on another.
-    let h = first("h")?;
+    let h = summary.h;
     let h_text = if (h * n as f64 - 1.0).abs() < 1e-12 {
         format!("1/{n}")
     } else {

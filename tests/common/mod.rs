@@ -271,3 +271,23 @@ impl Csv {
             .collect()
     }
 }
+
+/// The one row of a run's `summary.csv`, typed as the run wrote it.
+pub fn summary(run: &Path) -> evhi::output::rows::SummaryRow {
+    let mut rows = evhi::output::rows::SummaryRow::read(&run.join("summary.csv"))
+        .unwrap_or_else(|e| panic!("{}: {e}", run.display()));
+    assert_eq!(rows.len(), 1, "{}: one row", run.display());
+    rows.remove(0)
+}
+
+/// The rows of a run's `steps.csv`, typed.
+pub fn steps(run: &Path) -> Vec<evhi::output::rows::StepRow> {
+    evhi::output::rows::StepRow::read(&run.join("steps.csv"))
+        .unwrap_or_else(|e| panic!("{}: {e}", run.display()))
+}
+
+/// The rows of a run's `contact.csv`, typed.
+pub fn contact(run: &Path) -> Vec<evhi::output::rows::ContactRow> {
+    evhi::output::rows::ContactRow::read(&run.join("contact.csv"))
+        .unwrap_or_else(|e| panic!("{}: {e}", run.display()))
+}
