@@ -265,3 +265,11 @@ pub fn lin_comb(a: f64, x: &SpMat, b: f64, y: &SpMat) -> SpMat {
     }
     SparseColMat::try_new_from_triplets(x.nrows(), x.ncols(), &trip).expect("same shape")
 }
+
+/// A scenario's load vector.
+impl crate::scenario::Scenario {
+    /// The load vector of this scenario's loads on `mesh` (see [`crate::assembly::load`]).
+    pub fn load_vector(&self, mesh: &Mesh, dofs: &crate::mesh::Dofs) -> Vec<f64> {
+        crate::assembly::load(mesh, dofs, self.f0, &self.tractions(), self.f0_modulation)
+    }
+}

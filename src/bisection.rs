@@ -518,3 +518,30 @@ pub fn cell_diagonal(geo: &Geometry, n: usize) -> f64 {
         dx.hypot(geo.height / ny as f64)
     }
 }
+
+/// A scenario's graded meshes.
+impl crate::scenario::Scenario {
+    /// The mesh of level $n$ graded towards the scene's singular points with exponent
+    /// `mu` ([`crate::bisection::graded_mesh_resolving`]). Bisection starts from the
+    /// coarsest grid whose nodes hold every end of the supports, the tractions and
+    /// $\Gamma_3$ (a grid of 4, 8, 16, … segments where one does, else of any multiple of
+    /// 4 up to $n$), so those ends are nodes of the graded mesh; the mesh built is then
+    /// checked for each of them, and an end it misses is refused by its key. The graded
+    /// mesh cuts the cells by the paper's diagonal only.
+    pub fn graded_mesh(&self, n: usize, mu: f64) -> Result<Mesh, InputError> {
+        if self.pattern != Pattern::Diagonal {
+            return Err(InputError::field(
+                "geometry.pattern",
+                self.pattern.name(),
+                "\"diagonal\" with a graded mesh (bisection starts from the paper's diagonal cut)",
+            ));
+        }
+        // The uniform level's checks, without building it (graded_mesh_resolving builds it).
+        self.check_grid(n)?;
+        let mesh = crate::bisection::graded_mesh_resolving(&self.geometry, n, mu, &|n0| {
+            self.check_traction_ends(n0)
+        })?;
+        self.check_ends_on(&mesh)?;
+        Ok(mesh)
+    }
+}

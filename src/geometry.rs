@@ -649,3 +649,31 @@ fn side_segments(side: Side, v: &toml::Value) -> Result<Vec<Segment>, InputError
         )),
     }
 }
+
+/// How each square cell is cut into triangles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pattern {
+    /// The paper's: one diagonal, lower-left to upper-right.
+    #[default]
+    Diagonal,
+    /// One diagonal, lower-right to upper-left.
+    Antidiagonal,
+    /// Both diagonals: a node at each cell's centre and four triangles per cell.
+    /// The centre nodes are numbered after the grid nodes, cell by cell.
+    CrissCross,
+    /// Not a grid: a mesh of newest-vertex bisection ([`crate::bisection`]), whose
+    /// contact segments may differ in length.
+    Bisected,
+}
+
+impl Pattern {
+    /// The name used in scenario files (`geometry.pattern`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Pattern::Diagonal => "diagonal",
+            Pattern::Antidiagonal => "antidiagonal",
+            Pattern::CrissCross => "crisscross",
+            Pattern::Bisected => "bisected",
+        }
+    }
+}

@@ -9,33 +9,7 @@
 use crate::error::InputError;
 use crate::geometry::{Geometry, Side};
 
-/// How each square cell is cut into triangles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Pattern {
-    /// The paper's: one diagonal, lower-left to upper-right.
-    #[default]
-    Diagonal,
-    /// One diagonal, lower-right to upper-left.
-    Antidiagonal,
-    /// Both diagonals: a node at each cell's centre and four triangles per cell.
-    /// The centre nodes are numbered after the grid nodes, cell by cell.
-    CrissCross,
-    /// Not a grid: a mesh of newest-vertex bisection ([`crate::bisection`]), whose
-    /// contact segments may differ in length.
-    Bisected,
-}
-
-impl Pattern {
-    /// The name used in scenario files (`geometry.pattern`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Pattern::Diagonal => "diagonal",
-            Pattern::Antidiagonal => "antidiagonal",
-            Pattern::CrissCross => "crisscross",
-            Pattern::Bisected => "bisected",
-        }
-    }
-}
+pub use crate::geometry::Pattern;
 
 #[derive(Debug, Clone)]
 pub struct Mesh {
@@ -633,5 +607,55 @@ impl Interpolation {
                 v
             })
             .collect()
+    }
+}
+
+/// A scenario's structured meshes and the checks that its supports, tractions and
+/// $\Gamma_3$ end on nodes.
+impl crate::scenario::Scenario {
+    /// The mesh with $n$ segments on the bottom and this scenario's geometry and
+    /// pattern; every traction's ends must be nodes too.
+    pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
+        let mesh = Mesh::build(n, &self.geometry, self.pattern)?;
+        self.check_traction_ends(n)?;
+        Ok(mesh)
+    }
+
+    /// Refuses a level `n` whose structured grid would not resolve this scene (its
+    /// supports', tractions' and $\Gamma_3$'s ends on grid lines, cells near squares),
+    /// without building the mesh.
+    pub fn check_grid(&self, n: usize) -> Result<(), InputError> {
+        crate::mesh::check_grid(n, &self.geometry)?;
+        self.check_traction_ends(n)
+    }
+
+    /// Refuses a traction whose ends are not nodes of the structured mesh of level `n`.
+    pub(crate) fn check_traction_ends(&self, n: usize) -> Result<(), InputError> {
+        let [dx, dy] = crate::mesh::spacing(n, &self.geometry);
+        for t in &self.tractions {
+            let d = if t.side.normal() == 0 { dy } else { dx };
+            crate::mesh::check_ends(&t.field, t.side, [t.from, t.to], d, n)?;
+        }
+        Ok(())
+    }
+
+    /// Refuses `mesh` for this scene, by the key of the first end of a support, a
+    /// traction or $\Gamma_3$ that is not one of its boundary nodes (where that load
+    /// or support would act on a shifted segment).
+    pub fn check_ends_on(&self, mesh: &Mesh) -> Result<(), InputError> {
+        let geo = &self.geometry;
+        let supports = geo
+            .supports
+            .iter()
+            .map(|s| (s.field.as_str(), s.side, [s.from, s.to]));
+        let tractions = self
+            .tractions
+            .iter()
+            .map(|t| (t.field.as_str(), t.side, [t.from, t.to]));
+        let contact = std::iter::once(("geometry.contact", Side::Bottom, geo.contact));
+        for (field, side, ends) in supports.chain(tractions).chain(contact) {
+            mesh.check_nodes_at(field, side, ends)?;
+        }
+        Ok(())
     }
 }

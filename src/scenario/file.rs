@@ -4,11 +4,11 @@
 
 use super::{Problem, Scenario};
 use crate::error::{InputError, bounded, finite, in_range, positive};
+use crate::geometry::Pattern;
 use crate::geometry::{Geometry, Hold, Side, Traction};
 use crate::history::History;
 use crate::law::file::{RawLaw, law_from};
 use crate::material::{RawMaterial, elasticity_from};
-use crate::mesh::Pattern;
 use serde::Deserialize;
 
 /// Parses and validates TOML text; `source` names it in errors.

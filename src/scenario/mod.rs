@@ -4,12 +4,16 @@
 //! value and what is allowed, and unknown keys are errors. This module holds the
 //! validated model; the file format (the raw TOML tables and their refusals) is
 //! [`file`], the law's table is read in the law's room ([`crate::law::file`]) and the
-//! material's in the material's ([`crate::material`]).
+//! material's in the material's ([`crate::material`]). A scenario's meshes are built in
+//! the mesh's rooms (`Scenario::mesh` and its checks in [`crate::mesh`],
+//! `Scenario::graded_mesh` in [`crate::bisection`]) and its load vector in
+//! [`crate::assembly`]; this module imports none of them.
 
 mod file;
 use file::{check_traction, limit};
 
 use crate::error::{InputError, finite, positive};
+use crate::geometry::Pattern;
 use crate::geometry::{Geometry, Side, Traction};
 use crate::history::History;
 use crate::law::Law;
@@ -17,7 +21,6 @@ pub use crate::law::file::{MAX_LAW, MAX_LAW_VALUE};
 use crate::material::Isotropic;
 pub use crate::material::MaterialForm;
 use crate::material::poisson;
-use crate::mesh::{Mesh, Pattern};
 use std::path::Path;
 
 /// What is solved: the paper's viscoelastic evolution, an elastic body (no
@@ -378,76 +381,6 @@ impl Scenario {
                 == [other.e, other.kappa, other.alpha, other.beta, other.t_end]
     }
 
-    /// The mesh with $n$ segments on the bottom and this scenario's geometry and
-    /// pattern; every traction's ends must be nodes too.
-    pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
-        let mesh = Mesh::build(n, &self.geometry, self.pattern)?;
-        self.check_traction_ends(n)?;
-        Ok(mesh)
-    }
-
-    /// Refuses a level `n` whose structured grid would not resolve this scene (its
-    /// supports', tractions' and $\Gamma_3$'s ends on grid lines, cells near squares),
-    /// without building the mesh.
-    pub fn check_grid(&self, n: usize) -> Result<(), InputError> {
-        crate::mesh::check_grid(n, &self.geometry)?;
-        self.check_traction_ends(n)
-    }
-
-    /// Refuses a traction whose ends are not nodes of the structured mesh of level `n`.
-    fn check_traction_ends(&self, n: usize) -> Result<(), InputError> {
-        let [dx, dy] = crate::mesh::spacing(n, &self.geometry);
-        for t in &self.tractions {
-            let d = if t.side.normal() == 0 { dy } else { dx };
-            crate::mesh::check_ends(&t.field, t.side, [t.from, t.to], d, n)?;
-        }
-        Ok(())
-    }
-
-    /// The mesh of level $n$ graded towards the scene's singular points with exponent
-    /// `mu` ([`crate::bisection::graded_mesh_resolving`]). Bisection starts from the
-    /// coarsest grid whose nodes hold every end of the supports, the tractions and
-    /// $\Gamma_3$ (a grid of 4, 8, 16, … segments where one does, else of any multiple of
-    /// 4 up to $n$), so those ends are nodes of the graded mesh; the mesh built is then
-    /// checked for each of them, and an end it misses is refused by its key. The graded
-    /// mesh cuts the cells by the paper's diagonal only.
-    pub fn graded_mesh(&self, n: usize, mu: f64) -> Result<Mesh, InputError> {
-        if self.pattern != Pattern::Diagonal {
-            return Err(InputError::field(
-                "geometry.pattern",
-                self.pattern.name(),
-                "\"diagonal\" with a graded mesh (bisection starts from the paper's diagonal cut)",
-            ));
-        }
-        // The uniform level's checks, without building it (graded_mesh_resolving builds it).
-        self.check_grid(n)?;
-        let mesh = crate::bisection::graded_mesh_resolving(&self.geometry, n, mu, &|n0| {
-            self.check_traction_ends(n0)
-        })?;
-        self.check_ends_on(&mesh)?;
-        Ok(mesh)
-    }
-
-    /// Refuses `mesh` for this scene, by the key of the first end of a support, a
-    /// traction or $\Gamma_3$ that is not one of its boundary nodes (where that load
-    /// or support would act on a shifted segment).
-    pub fn check_ends_on(&self, mesh: &Mesh) -> Result<(), InputError> {
-        let geo = &self.geometry;
-        let supports = geo
-            .supports
-            .iter()
-            .map(|s| (s.field.as_str(), s.side, [s.from, s.to]));
-        let tractions = self
-            .tractions
-            .iter()
-            .map(|t| (t.field.as_str(), t.side, [t.from, t.to]));
-        let contact = std::iter::once(("geometry.contact", Side::Bottom, geo.contact));
-        for (field, side, ends) in supports.chain(tractions).chain(contact) {
-            mesh.check_nodes_at(field, side, ends)?;
-        }
-        Ok(())
-    }
-
     /// Every traction: the paper's $f_2$ on the whole top, then the file's others.
     pub fn tractions(&self) -> Vec<Traction> {
         let mut out = vec![Traction {
@@ -459,11 +392,6 @@ impl Scenario {
         }];
         out.extend(self.tractions.iter().cloned());
         out
-    }
-
-    /// The load vector of this scenario's loads on `mesh` (see [`crate::assembly::load`]).
-    pub fn load_vector(&self, mesh: &Mesh, dofs: &crate::mesh::Dofs) -> Vec<f64> {
-        crate::assembly::load(mesh, dofs, self.f0, &self.tractions(), self.f0_modulation)
     }
 
     /// The same scenario on meshes of another pattern.
