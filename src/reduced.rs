@@ -470,20 +470,15 @@ pub fn run(
             }
         },
     )?;
-    Ok(Run {
-        n: opt.n,
-        steps: opt.steps,
-        k: scn.t_end / opt.steps as f64,
-        h: disc.mesh.h(),
-        mesh: disc.mesh.clone(),
-        dofs: disc.dofs.count,
-        nnz_l: op.chol.nnz_l(),
-        sweep_threads: if op.chol.is_parallel() { 2 } else { 1 },
+    Ok(Run::finished(
+        opt,
+        &disc,
+        scn.t_end,
+        (op.chol.nnz_l(), if op.chol.is_parallel() { 2 } else { 1 }),
         u,
-        records: march.records,
+        march.records,
         contact,
         timings,
-        s_eigen: march.s_eigen,
-        hessian_min: march.hessian_min,
-    })
+        (march.s_eigen, march.hessian_min),
+    ))
 }

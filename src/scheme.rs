@@ -156,6 +156,42 @@ pub struct Run {
     pub hessian_min: f64,
 }
 
+impl Run {
+    /// A finished run, the one place a [`Run`] is built (both time loops end here): its
+    /// sizes from the settings and the discretisation ($k = T/N$), its factorisation's
+    /// fill and sweep threads, the field and contact states at $T$, every step's record,
+    /// the timings, and the extreme eigenvalues of $S$ with the smallest step curvature.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn finished(
+        opt: &Settings,
+        disc: &Discretisation,
+        t_end: f64,
+        (nnz_l, sweep_threads): (usize, usize),
+        u: Vec<f64>,
+        records: Vec<StepRecord>,
+        contact: Vec<ContactState>,
+        timings: Timings,
+        (s_eigen, hessian_min): ((f64, f64), f64),
+    ) -> Run {
+        Run {
+            n: opt.n,
+            steps: opt.steps,
+            k: t_end / opt.steps as f64,
+            h: disc.mesh.h(),
+            mesh: disc.mesh.clone(),
+            dofs: disc.dofs.count,
+            nnz_l,
+            sweep_threads,
+            u,
+            records,
+            contact,
+            timings,
+            s_eigen,
+            hessian_min,
+        }
+    }
+}
+
 /// How many times $g$ the load's free response at the contact nodes (without contact)
 /// must be before a failed certificate of a converged step is put down to the
 /// cancellation in recovering $u$ (see [`RunError::Cancellation`]); the 64 x 1 strip
@@ -520,23 +556,19 @@ pub fn run_batch_states(
     }
     timings.steps = clock.elapsed().as_secs_f64();
     // ANCHOR_END: time_loop
-    let mesh = disc.mesh.clone();
     Ok((u.into_iter().zip(records).zip(contact))
-        .map(|((u, records), contact)| Run {
-            n: opt.n,
-            steps: opt.steps,
-            k,
-            h: disc.mesh.h(),
-            mesh: mesh.clone(),
-            dofs: disc.dofs.count,
-            nnz_l: op.chol.nnz_l(),
-            sweep_threads: op.threads,
-            u,
-            records,
-            contact,
-            timings: timings.clone(),
-            s_eigen: (op.lambda_min, op.lambda_max),
-            hessian_min: op.hessian_min,
+        .map(|((u, records), contact)| {
+            Run::finished(
+                opt,
+                &disc,
+                scn.t_end,
+                (op.chol.nnz_l(), op.threads),
+                u,
+                records,
+                contact,
+                timings.clone(),
+                ((op.lambda_min, op.lambda_max), op.hessian_min),
+            )
         })
         .collect())
 }
