@@ -1,6 +1,8 @@
 //! Newest-vertex bisection: conforming, nested meshes whose P1 spaces embed exactly,
 //! and a graded family that is finer near the singular points.
 
+mod common;
+
 use evhi::bisection::{Forest, Leaves};
 use evhi::experiments::graded::SINGULAR;
 use evhi::geometry::Geometry;
@@ -153,15 +155,15 @@ fn the_scheme_runs_on_bisected_meshes() {
         mesh: Some(Arc::new(mesh.clone())),
         ..Settings::new(16, 16)
     };
-    let run = evhi::experiments::run_newton_batch_with(
-        std::slice::from_ref(&scn),
+    let run = evhi::scheme::run(
+        &scn,
         &opt,
-        &mut |_, _, _, _| {},
+        &mut evhi::step::newton::Newton::default(),
+        &mut |_, _, _| {},
     )
-    .unwrap()
-    .remove(0);
+    .unwrap();
     assert_eq!(run.dofs, evhi::mesh::Dofs::new(&mesh, true).count);
-    let paper = evhi::experiments::run_newton(&scn, 16, 16).unwrap();
+    let paper = common::run_newton(&scn, 16, 16).unwrap();
     assert_eq!(run.dofs, paper.dofs);
     let (a, b) = (
         run.records.last().unwrap().energy_norm,

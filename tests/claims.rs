@@ -900,7 +900,7 @@ fn results_static_literal_closer() {
 fn results_smooth_every_regime() {
     // Not stored in data/: recomputed (h = k = 1/64, a fraction of a second).
     let scn = evhi::scenario::Scenario::load("smooth").unwrap();
-    let run = evhi::experiments::run_newton(&scn, 64, 64).unwrap();
+    let run = common::run_newton(&scn, 64, 64).unwrap();
     let seen: BTreeSet<String> = run
         .contact
         .iter()

@@ -4,7 +4,8 @@
 //! displacements too large against g for double precision). Nothing in between (a
 //! late failure, a NaN, an uncertified step).
 
-use evhi::experiments::run_newton;
+mod common;
+use common::run_newton;
 use evhi::scenario::Scenario;
 
 /// `figure` with one field replaced: (TOML path, text of the scenario).

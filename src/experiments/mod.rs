@@ -23,9 +23,7 @@ pub mod singular;
 pub mod stability;
 pub mod time;
 
-pub use crate::study::runs::{
-    run_batch_with, run_newton, run_newton_batch, run_newton_batch_states, run_newton_batch_with,
-};
+pub(crate) use crate::study::runs::{run_newton, run_newton_batch, run_newton_batch_states};
 pub use crate::study::{Ctx, ExpError};
 
 /// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'

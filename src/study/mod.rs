@@ -21,7 +21,7 @@ pub mod ctx;
 mod error;
 pub mod graded;
 pub mod map;
-pub mod runs;
+pub(crate) mod runs;
 pub mod split;
 mod stability;
 pub mod time_error;

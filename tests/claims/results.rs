@@ -221,7 +221,7 @@ fn results_same_time_level() {
     // falls at T as well.
     for scn in ["literal", "figure"] {
         let s = evhi::scenario::Scenario::load(scn).unwrap();
-        let run = evhi::experiments::run_newton(&s, 32, 128).unwrap();
+        let run = super::common::run_newton(&s, 32, 128).unwrap();
         let e: Vec<f64> = run.records.iter().map(|r| r.energy_norm).collect();
         assert_eq!(e.len(), 128);
         assert!(e.windows(2).all(|w| w[1] > w[0]), "{scn}: {e:?}");

@@ -291,3 +291,18 @@ pub fn contact(run: &Path) -> Vec<evhi::output::rows::ContactRow> {
     evhi::output::rows::ContactRow::read(&run.join("contact.csv"))
         .unwrap_or_else(|e| panic!("{}: {e}", run.display()))
 }
+
+/// The general time loop with Newton on `n` segments and `steps` steps, no observer
+/// (the plain run the tests compare against).
+pub fn run_newton(
+    scn: &evhi::scenario::Scenario,
+    n: usize,
+    steps: usize,
+) -> Result<evhi::scheme::Run, evhi::scheme::RunError> {
+    evhi::scheme::run(
+        scn,
+        &evhi::scheme::Settings::new(n, steps),
+        &mut evhi::step::newton::Newton::default(),
+        &mut |_, _, _| {},
+    )
+}
