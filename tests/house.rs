@@ -114,6 +114,29 @@ fn no_module_imports_round_a_loop() {
     assert!(cycles.is_empty(), "import cycles: {cycles:?}");
 }
 
+/// Each user of the solver has a room, and a room imports only from rooms below it:
+/// the product's commands (`cli`), the studies and the bench do not reach into the
+/// book's experiments, and the scene's data (`scenario`) does not reach into its
+/// discretisation (`mesh`, `bisection`, `assembly`) or the time loop.
+#[test]
+fn rooms_import_only_downwards() {
+    let map = imports();
+    for (room, below_it_not) in [
+        ("cli", &["experiments"][..]),
+        ("study", &["experiments", "cli"]),
+        ("bench", &["experiments", "cli"]),
+        ("output", &["experiments", "cli", "study"]),
+        (
+            "scenario",
+            &["mesh", "bisection", "assembly", "scheme", "output"],
+        ),
+    ] {
+        let deps = map.get(room).unwrap_or_else(|| panic!("no room {room}"));
+        let wrong: Vec<&&str> = below_it_not.iter().filter(|m| deps.contains(**m)).collect();
+        assert!(wrong.is_empty(), "{room} imports {wrong:?}");
+    }
+}
+
 #[test]
 fn main_rs_is_the_command_line_only() {
     let lines = std::fs::read_to_string(src().join("main.rs"))
