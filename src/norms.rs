@@ -91,6 +91,29 @@ struct Shape {
     dy: [f64; 3],
 }
 
+impl Shape {
+    /// The gradients of $u_x$ and $u_y$ on the triangle from the nodal values `vals`.
+    #[inline]
+    fn gradients(&self, vals: &[[f64; 2]; 3]) -> ([f64; 2], [f64; 2]) {
+        let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
+        for ((dx, dy), val) in self.dx.iter().zip(&self.dy).zip(vals) {
+            ux[0] += dx * val[0];
+            ux[1] += dy * val[0];
+            uy[0] += dx * val[1];
+            uy[1] += dy * val[1];
+        }
+        (ux, uy)
+    }
+
+    /// $\tfrac12 (\mathcal G \varepsilon, \varepsilon)\,|T|$ for the gradients `ux`, `uy`.
+    #[inline]
+    fn energy(&self, g: &crate::material::Isotropic, ux: [f64; 2], uy: [f64; 2]) -> f64 {
+        let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
+        let tr = e11 + e22;
+        self.half_area * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma))
+    }
+}
+
 impl NormGeometry {
     pub fn new(mesh: &crate::mesh::Mesh) -> NormGeometry {
         let mut index: std::collections::HashMap<[u64; 7], usize> = Default::default();
@@ -135,18 +158,8 @@ impl NormGeometry {
         for (tri, id) in &self.tris {
             let shape = &self.shapes[*id];
             let vals = tri.map(|k| v[k]);
-            // Gradients of u_x and u_y.
-            let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
-            for ((dx, dy), val) in shape.dx.iter().zip(&shape.dy).zip(&vals) {
-                ux[0] += dx * val[0];
-                ux[1] += dy * val[0];
-                uy[0] += dx * val[1];
-                uy[1] += dy * val[1];
-            }
-            let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
-            let tr = e11 + e22;
-            out.energy_sq += shape.half_area
-                * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma));
+            let (ux, uy) = shape.gradients(&vals);
+            out.energy_sq += shape.energy(g, ux, uy);
             out.h1_sq +=
                 shape.area * (ux[0] * ux[0] + ux[1] * ux[1] + uy[0] * uy[0] + uy[1] * uy[1]);
             // Exact P1 mass: |T|/12 (sum of squares + square of the sum), per component.
@@ -174,21 +187,11 @@ impl NormGeometry {
     ) {
         for (tri, id) in &self.tris {
             let shape = &self.shapes[*id];
-            let (mut ux, mut uy) = ([0.0; 2], [0.0; 2]);
-            let mut c = [0.0; 2];
-            for (k, (dx, dy)) in tri.iter().zip(shape.dx.iter().zip(&shape.dy)) {
-                let val = v[*k];
-                ux[0] += dx * val[0];
-                ux[1] += dy * val[0];
-                uy[0] += dx * val[1];
-                uy[1] += dy * val[1];
-                c[0] += mesh.nodes[*k][0] / 3.0;
-                c[1] += mesh.nodes[*k][1] / 3.0;
-            }
-            let (e11, e22, gamma) = (ux[0], uy[1], ux[1] + uy[0]);
-            let tr = e11 + e22;
-            out[region(c)] += shape.half_area
-                * (g.a * tr * tr + g.b * (e11 * e11 + e22 * e22 + 0.5 * gamma * gamma));
+            let (ux, uy) = shape.gradients(&tri.map(|k| v[k]));
+            let c = tri.iter().fold([0.0; 2], |c, &k| {
+                [c[0] + mesh.nodes[k][0] / 3.0, c[1] + mesh.nodes[k][1] / 3.0]
+            });
+            out[region(c)] += shape.energy(g, ux, uy);
         }
     }
 }

@@ -19,8 +19,5 @@ pub const TABLES: [BookTable; 5] = [
 /// The Markdown layout (key columns, most columns of a part) of `file` if it is one
 /// of the bench's tables the book shows.
 pub fn book_table(file: &str) -> Option<(usize, usize)> {
-    TABLES
-        .iter()
-        .find(|t| t.file == file)
-        .map(|t| (t.keys, t.cols))
+    crate::output::markdown::layout(TABLES.iter(), file)
 }

@@ -38,9 +38,7 @@ pub fn book_tables() -> impl Iterator<Item = &'static BookTable> {
 /// The Markdown layout (key columns, most columns of a part) of `file` if the book
 /// shows it: the [`super::Ctx::book_table`] of every experiment and the bench.
 pub fn book_table(file: &str) -> Option<(usize, usize)> {
-    book_tables()
-        .find(|t| t.file == file)
-        .map(|t| (t.keys, t.cols))
+    crate::output::markdown::layout(book_tables(), file)
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.

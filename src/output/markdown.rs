@@ -145,6 +145,14 @@ pub const fn book_table(file: &'static str, keys: usize, cols: usize) -> BookTab
     BookTable { file, keys, cols }
 }
 
+/// The Markdown layout (key columns, most columns of a part) of `file` among `tables`.
+pub fn layout<'a>(
+    mut tables: impl Iterator<Item = &'a BookTable>,
+    file: &str,
+) -> Option<(usize, usize)> {
+    tables.find(|t| t.file == file).map(|t| (t.keys, t.cols))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,10 +2,10 @@
 //! much finer step on the same mesh, the scalar layer model beside them, and its
 //! table. The book's time study (`time`) and `evhi study time` both run it.
 //!
-//! Measured: backward Euler's error
+//! What it measures: backward Euler's error
 //! $\max_n \|u^{h}(t_n) - u^{hk}_n\|_E$ and $\|u^h(T) - u^{hk}_N\|_E$ for $k = T/N$,
-//! measured against the same mesh run with a much finer step $k_{\text{ref}}$, for
-//! several load histories (see [`crate::history`]).
+//! against the same mesh run with a much finer step $k_{\text{ref}}$, for several load
+//! histories (see [`crate::history`]).
 //!
 //! Why it matters: the paper's constants give $\mathcal C = 0.07\,\mathcal G$, so away
 //! from contact every mode relaxes with the one time constant $\tau = 0.07$. A load
