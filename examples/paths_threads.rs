@@ -1,9 +1,20 @@
 //! The general loop with one and with two sweep threads against the reduced loop:
 //! the largest gap in the contact unknowns over all steps, relative, at h = k = 1/n.
 //! `cargo run --release --example paths_threads -- 64 128 256`
+use evhi::certificate::ContactState;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Settings, run_with_states};
-use evhi::step::newton::Newton;
+use evhi::simulation::{Loop, OnStep, RunSettings, Simulation};
+
+/// Every step's contact unknowns $u_\nu$ of one run with `settings`.
+fn trace(scn: &Scenario, settings: RunSettings) -> Vec<f64> {
+    let mut r = vec![];
+    let mut observer = OnStep::new(|_, _, _: Option<&[f64]>, c: &[ContactState]| {
+        r.extend(c.iter().map(|c| c.u_nu))
+    });
+    let sim = Simulation::new(scn.clone(), settings).unwrap();
+    sim.solve(&mut observer).unwrap();
+    r
+}
 
 fn main() {
     let scn = Scenario::load("figure").unwrap();
@@ -11,27 +22,14 @@ fn main() {
         .skip(1)
         .filter_map(|s| s.parse::<usize>().ok())
     {
-        let trace = |parallel: bool| {
-            let mut r = vec![];
-            let opt = Settings {
-                parallel,
-                ..Settings::new(n, n)
-            };
-            run_with_states(&scn, &opt, &mut Newton::default(), &mut |_, _, _, c| {
-                r.extend(c.iter().map(|c| c.u_nu))
-            })
-            .unwrap();
-            r
+        let at = |path: Loop, threads: u8| RunSettings {
+            n,
+            steps: Some(n),
+            path,
+            threads: Some(threads),
+            ..RunSettings::default()
         };
-        let mut red = vec![];
-        evhi::reduced::run(
-            &scn,
-            &Settings::new(n, n),
-            &mut Newton::default(),
-            &|_| false,
-            &mut |_, _, _, c| red.extend(c.iter().map(|c| c.u_nu)),
-        )
-        .unwrap();
+        let red = trace(&scn, at(Loop::Reduced, 2));
         let gap = |a: &[f64]| {
             let s = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             a.iter()
@@ -41,8 +39,8 @@ fn main() {
         };
         println!(
             "n = {n}: one sweep thread {:.2e}, two {:.2e}",
-            gap(&trace(false)),
-            gap(&trace(true))
+            gap(&trace(&scn, at(Loop::General, 1))),
+            gap(&trace(&scn, at(Loop::General, 2)))
         );
     }
 }

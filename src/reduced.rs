@@ -427,12 +427,12 @@ pub struct March {
     pub s_eigen: (f64, f64),
 }
 
-/// Runs one scenario by the reduced loop, with the result the general path gives
-/// ([`crate::scheme::run_with_states`]): the field is formed, and the step
+/// Runs one scenario by the reduced loop, with the result the general loop gives
+/// (the time loop of [`crate::scheme`]): the field is formed, and the step
 /// certified on the full system, where `want_field` asks, at the last step and at
 /// a sample of three more (a quarter, half and three quarters of the way);
 /// `observe(n, t_n, u_n, contact_n)` gets the field where it was formed.
-pub fn run(
+pub(crate) fn run(
     scn: &Scenario,
     opt: &Settings,
     solver: &mut dyn StepSolver,

@@ -413,67 +413,20 @@ impl Settings {
     }
 }
 
-/// Runs the scheme. `observe(n, t_n, u_n)` is called after every step.
-pub fn run(
-    scn: &Scenario,
-    opt: &Settings,
-    solver: &mut dyn StepSolver,
-    observe: &mut dyn FnMut(usize, f64, &[f64]),
-) -> Result<Run, RunError> {
-    let runs = run_batch(
-        std::slice::from_ref(scn),
-        opt,
-        &mut [solver],
-        &mut |_, step, t, u| observe(step, t, u),
-    )?;
-    Ok(runs.into_iter().next().expect("one run"))
-}
-
 /// `observe(i, n, t_n, u_n)` of a batch: scenario `i` finished step `n`.
 pub type BatchObserver<'a> = dyn FnMut(usize, usize, f64, &[f64]) + 'a;
 
-/// `observe(n, t_n, u_n, contact_n)` of a single run.
-pub type Observer<'a> = dyn FnMut(usize, f64, &[f64], &[ContactState]) + 'a;
-
 /// An observer that also sees the contact states of the step.
 pub type StateObserver<'a> = dyn FnMut(usize, usize, f64, &[f64], &[ContactState]) + 'a;
-
-/// [`run`] with an observer `observe(n, t_n, u_n, contact_n)` that also receives the
-/// contact states of every step (for output of the evolution).
-pub fn run_with_states(
-    scn: &Scenario,
-    opt: &Settings,
-    solver: &mut dyn StepSolver,
-    observe: &mut Observer<'_>,
-) -> Result<Run, RunError> {
-    let runs = run_batch_states(
-        std::slice::from_ref(scn),
-        opt,
-        &mut [solver],
-        &mut |_, step, t, u, c| observe(step, t, u, c),
-    )?;
-    Ok(runs.into_iter().next().expect("one run"))
-}
 
 /// Runs several scenarios that share the step matrix (the same geometry, supports,
 /// material and final time; loads, law and $g$ may differ) in lockstep: one
 /// factorisation, and per step one forward and one backward sweep over $L$ for all
 /// of them (a sweep costs memory traffic, which the columns share). Each scenario
-/// has its own step solver; `observe(i, n, t_n, u_n)` is called after every step of
-/// scenario `i`. The timings are those of the whole batch.
-pub fn run_batch(
-    scns: &[Scenario],
-    opt: &Settings,
-    solvers: &mut [&mut dyn StepSolver],
-    observe: &mut BatchObserver<'_>,
-) -> Result<Vec<Run>, RunError> {
-    run_batch_states(scns, opt, solvers, &mut |i, step, t, u, _| {
-        observe(i, step, t, u)
-    })
-}
-
-/// [`run_batch`] with an observer that also receives each step's contact states.
-pub fn run_batch_states(
+/// has its own step solver; `observe(i, n, t_n, u_n, contact_n)` is called after
+/// every step of scenario `i`. The timings are those of the whole batch. The one
+/// general loop: [`crate::simulation::Simulation`] runs a scene (or a batch) by it.
+pub(crate) fn run_batch_states(
     scns: &[Scenario],
     opt: &Settings,
     solvers: &mut [&mut dyn StepSolver],

@@ -135,6 +135,9 @@ pub struct Simulation {
     entry: &'static SolverEntry,
     opt: Settings,
     mesh: Arc<Mesh>,
+    /// Seconds spent building a uniform mesh (0 for a graded or given one), added to
+    /// the run's assembly time.
+    mesh_s: f64,
     reduced: bool,
 }
 
@@ -193,6 +196,28 @@ impl Simulation {
     /// Checks `settings` against `scenario` and builds the mesh. Every refusal names
     /// the field (the command line's option name) and what it allows.
     pub fn new(scenario: Scenario, settings: RunSettings) -> Result<Simulation, InputError> {
+        Simulation::build(scenario, settings, None)
+    }
+
+    /// [`Simulation::new`] on a mesh made elsewhere (say a bisected one from
+    /// [`crate::bisection`], shared by several simulations): the settings' `mesh` and
+    /// `grading` are not used and `grading` is refused; the ordering defaults to AMD
+    /// unless the mesh is a grid of the structured kind. The scene's supports,
+    /// tractions and $\Gamma_3$ must end on the mesh's boundary nodes.
+    pub fn on_mesh(
+        scenario: Scenario,
+        settings: RunSettings,
+        mesh: Arc<Mesh>,
+    ) -> Result<Simulation, InputError> {
+        scenario.check_ends_on(&mesh)?;
+        Simulation::build(scenario, settings, Some(mesh))
+    }
+
+    fn build(
+        scenario: Scenario,
+        settings: RunSettings,
+        given: Option<Arc<Mesh>>,
+    ) -> Result<Simulation, InputError> {
         let s = &settings;
         if !(1e-15..=1e-4).contains(&s.certificate_tol) {
             return Err(InputError::field(
@@ -204,15 +229,21 @@ impl Simulation {
         }
         let steps = s.steps.unwrap_or_else(|| default_steps(&scenario));
         let graded = s.mesh == MeshKind::Graded;
-        if let (Some(mu), false) = (s.grading, graded) {
+        if let (Some(mu), false) = (s.grading, graded && given.is_none()) {
             return Err(InputError::field(
                 "grading",
                 mu,
                 "nothing without --mesh graded (the exponent of the graded mesh)",
             ));
         }
-        let ordering = match (s.ordering, graded) {
-            (Some(OrderingKind::NestedDissection), true) => {
+        // Nested dissection cuts the lines of a structured grid; any other mesh is
+        // ordered by AMD.
+        let grid = match &given {
+            Some(mesh) => mesh.pattern != crate::geometry::Pattern::Bisected,
+            None => !graded,
+        };
+        let ordering = match (s.ordering, grid) {
+            (Some(OrderingKind::NestedDissection), false) => {
                 return Err(InputError::field(
                     "ordering",
                     "nd",
@@ -220,8 +251,8 @@ impl Simulation {
                 ));
             }
             (Some(o), _) => o,
-            (None, true) => OrderingKind::Amd,
-            (None, false) => OrderingKind::NestedDissection,
+            (None, false) => OrderingKind::Amd,
+            (None, true) => OrderingKind::NestedDissection,
         };
         let entry =
             crate::step::solver(s.solver.as_deref().unwrap_or(crate::step::DEFAULT_SOLVER))?;
@@ -231,11 +262,7 @@ impl Simulation {
             RunError::Input(e) => e,
             other => InputError::field("steps", steps, other.to_string()),
         })?;
-        opt.certificate_tol = if entry.certified {
-            s.certificate_tol
-        } else {
-            f64::INFINITY
-        };
+        opt.certificate_tol = s.certificate_tol;
         opt.ordering = ordering;
         opt.parallel = match (s.threads, ordering) {
             (Some(t), _) if !(1..=2).contains(&t) => {
@@ -258,23 +285,34 @@ impl Simulation {
             // The reduced loop checks proportionality again on the assembled matrices.
             Loop::Auto => scenario.relaxation_time().is_some(),
         };
-        // The mesh: a scene whose segments miss the mesh lines is refused by name.
-        crate::memory::check_memory(s.n, crate::mesh::rows(s.n, &scenario.geometry))?;
-        let mesh = Arc::new(if graded {
-            scenario.graded_mesh(s.n, s.grading.unwrap_or(DEFAULT_GRADING))?
-        } else {
-            scenario.mesh(s.n)?
-        });
-        if graded {
-            opt.mesh = Some(mesh.clone());
+        // The mesh: a scene whose segments miss the mesh lines is refused by name. The
+        // run takes it as it is; a uniform mesh's building time is counted in the run's
+        // assembly time, where the run would otherwise have built it.
+        let clock = std::time::Instant::now();
+        let (mesh, mesh_s) = match given {
+            Some(mesh) => (mesh, 0.0),
+            None => {
+                crate::memory::check_memory(s.n, crate::mesh::rows(s.n, &scenario.geometry))?;
+                if graded {
+                    let mu = s.grading.unwrap_or(DEFAULT_GRADING);
+                    (Arc::new(scenario.graded_mesh(s.n, mu)?), 0.0)
+                } else {
+                    let mesh = Arc::new(scenario.mesh(s.n)?);
+                    (mesh, clock.elapsed().as_secs_f64())
+                }
+            }
+        };
+        if !grid {
             crate::memory::check_memory_dofs(2 * mesh.nodes.len())?;
         }
+        opt.mesh = Some(mesh.clone());
         Ok(Simulation {
             scenario,
             settings,
             entry,
             opt,
             mesh,
+            mesh_s,
             reduced,
         })
     }
@@ -345,7 +383,7 @@ impl Simulation {
     /// ([`Solution::fallback`]), and the observer is told that run's steps again. If
     /// none does, the first failure is returned.
     pub fn solve(&self, observer: &mut dyn Observer) -> Result<Solution, RunError> {
-        let first = self.solve_with(self.entry, observer);
+        let first = self.solve_entry(self.entry, observer);
         let stalled = matches!(
             &first,
             Err(RunError::Step {
@@ -359,7 +397,7 @@ impl Simulation {
         for name in FALLBACKS {
             let entry = crate::step::solver(name).map_err(RunError::Input)?;
             observer.restart();
-            if let Ok(mut solution) = self.solve_with(entry, observer) {
+            if let Ok(mut solution) = self.solve_entry(entry, observer) {
                 // The failure itself, without the advice the fallback has taken.
                 let stalled = first
                     .as_ref()
@@ -376,36 +414,117 @@ impl Simulation {
         first
     }
 
-    fn solve_with(
+    fn solve_entry(
         &self,
         entry: &'static SolverEntry,
         observer: &mut dyn Observer,
     ) -> Result<Solution, RunError> {
-        let mut solver: Box<dyn StepSolver> = entry.build();
-        let run = if self.reduced {
+        self.solve_with(entry.build().as_mut(), observer)
+    }
+
+    /// The settings the loops take with `certified` solvers: an uncertified one is
+    /// judged by its own convergence instead of the certificate.
+    fn loop_settings(&self, certified: bool) -> Settings {
+        let mut opt = self.opt.clone();
+        if !certified {
+            opt.certificate_tol = f64::INFINITY;
+        }
+        opt
+    }
+
+    /// Runs the time loop with a step solver the caller built (say a penalty of its own
+    /// stiffness, or a solver wrapped to watch every step), as it is: no fallback. The
+    /// settings' `solver` is not used. An uncertified solver
+    /// ([`StepSolver::certified`]) is judged by its own convergence instead of the
+    /// certificate.
+    pub fn solve_with(
+        &self,
+        solver: &mut dyn StepSolver,
+        observer: &mut dyn Observer,
+    ) -> Result<Solution, RunError> {
+        let opt = self.loop_settings(solver.certified());
+        let mut run = if self.reduced {
             // Asked before the loop, so that the observer is free to be told.
-            let wanted: Vec<bool> = (0..=self.opt.steps)
-                .map(|s| observer.wants_field(s))
-                .collect();
+            let wanted: Vec<bool> = (0..=opt.steps).map(|s| observer.wants_field(s)).collect();
             crate::reduced::run(
                 &self.scenario,
-                &self.opt,
-                solver.as_mut(),
+                &opt,
+                solver,
                 &|step| wanted[step],
                 &mut |n, t, u, c| observer.step(n, t, u, c),
             )
         } else {
-            crate::scheme::run_with_states(
-                &self.scenario,
-                &self.opt,
-                solver.as_mut(),
-                &mut |n, t, u, c| observer.step(n, t, Some(u), c),
+            crate::scheme::run_batch_states(
+                std::slice::from_ref(&self.scenario),
+                &opt,
+                &mut [solver],
+                &mut |_, n, t, u, c| observer.step(n, t, Some(u), c),
             )
+            .map(|runs| runs.into_iter().next().expect("one run"))
         }?;
+        run.timings.assembly += self.mesh_s;
         Ok(Solution {
             run,
             reduced: self.reduced,
             fallback: None,
         })
+    }
+
+    /// Solves several scenes that share this simulation's step matrix (its geometry,
+    /// supports, material and $T$; their loads, law and $g$ may differ) in lockstep,
+    /// on the general loop: one factorisation for all, and each step one forward and
+    /// one backward sweep with a column per scene. Each scene has its own solver (as
+    /// in [`Simulation::solve_with`]); `observe(i, n, t_n, u_n, contact_n)` is told
+    /// step `n` of scene `i`. The runs come back in the scenes' order; their timings
+    /// are those of the whole batch. Refused with `path = reduced`, which solves one
+    /// scene at a time.
+    pub fn solve_batch(
+        &self,
+        scenarios: &[Scenario],
+        solvers: &mut [&mut dyn StepSolver],
+        observe: &mut crate::scheme::StateObserver<'_>,
+    ) -> Result<Vec<Run>, RunError> {
+        if self.settings.path == Loop::Reduced {
+            return Err(InputError::field(
+                "path",
+                "reduced",
+                "general or auto for a batch (the reduced loop solves one scene at a time)",
+            )
+            .into());
+        }
+        if let Some(other) = scenarios.iter().find(|o| !self.scenario.same_operator(o)) {
+            return Err(InputError::field(
+                "scenarios",
+                &other.name,
+                format!(
+                    "scenes that share the step matrix of `{}` (geometry, supports, material, T)",
+                    self.scenario.name
+                ),
+            )
+            .into());
+        }
+        let opt = self.loop_settings(solvers.iter().all(|s| s.certified()));
+        let mut runs = crate::scheme::run_batch_states(scenarios, &opt, solvers, observe)?;
+        for run in &mut runs {
+            run.timings.assembly += self.mesh_s;
+        }
+        Ok(runs)
+    }
+}
+
+/// An [`Observer`] made of a closure `f(n, t_n, u_n, contact_n)` told every step
+/// (`u_n` where the loop formed the field: every step on the general loop).
+pub struct OnStep<F>(F);
+
+impl<F: FnMut(usize, f64, Option<&[f64]>, &[ContactState])> OnStep<F> {
+    /// The observer that calls `f` at every step.
+    pub fn new(f: F) -> OnStep<F> {
+        OnStep(f)
+    }
+}
+
+impl<F: FnMut(usize, f64, Option<&[f64]>, &[ContactState])> Observer for OnStep<F> {
+    fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, contact: &[ContactState]) {
+        (self.0)(n, t, u, contact)
     }
 }

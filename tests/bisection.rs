@@ -142,7 +142,6 @@ fn interpolation_through_the_forest_is_exact() {
 /// that the top edges run left to right (a reversed edge flips its load).
 #[test]
 fn the_scheme_runs_on_bisected_meshes() {
-    use evhi::scheme::Settings;
     use std::sync::Arc;
     let scn = evhi::scenario::Scenario::load("figure").unwrap();
     let (mut forest, root) = Forest::new(4, &Geometry::paper()).unwrap();
@@ -151,17 +150,9 @@ fn the_scheme_runs_on_bisected_meshes() {
         leaves = uniform(&mut forest, &leaves, n);
     }
     let mesh = forest.mesh(&leaves, 16);
-    let opt = Settings {
-        mesh: Some(Arc::new(mesh.clone())),
-        ..Settings::new(16, 16)
-    };
-    let run = evhi::scheme::run(
-        &scn,
-        &opt,
-        &mut evhi::step::newton::Newton::default(),
-        &mut |_, _, _| {},
-    )
-    .unwrap();
+    let newton = &mut evhi::step::newton::Newton::default();
+    let given = Some(Arc::new(mesh.clone()));
+    let run = common::solve_with(&scn, common::general(16, 16), given, newton, &mut ()).unwrap();
     assert_eq!(run.dofs, evhi::mesh::Dofs::new(&mesh, true).count);
     let paper = common::run_newton(&scn, 16, 16).unwrap();
     assert_eq!(run.dofs, paper.dofs);

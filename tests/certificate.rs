@@ -5,8 +5,10 @@
 use evhi::certificate::{certify_condensed, split_node};
 use evhi::law::paper_law;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Check, Settings};
+use evhi::scheme::Check;
 use evhi::step::newton::Newton;
+
+mod common;
 
 const G: f64 = 0.1;
 
@@ -72,14 +74,9 @@ fn the_condensed_certificate_knows_the_exact_step() {
 #[test]
 fn condensed_and_full_certificates_agree_on_a_run() {
     let scn = Scenario::load("figure").unwrap();
-    let run = evhi::reduced::run(
-        &scn,
-        &Settings::new(16, 8),
-        &mut Newton::default(),
-        &|s| s == 3,
-        &mut |_, _, _, _| {},
-    )
-    .unwrap();
+    let mut third = common::watch(|s| s == 3, |_, _, _: Option<&[f64]>, _: &[_]| {});
+    let reduced = common::on_loop(16, 8, true);
+    let run = common::solve_with(&scn, reduced, None, &mut Newton::default(), &mut third).unwrap();
     for rec in &run.records {
         let full = rec.step == 3 || rec.step % 2 == 0;
         let want = if full { Check::Full } else { Check::Condensed };

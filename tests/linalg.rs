@@ -7,8 +7,11 @@ use evhi::assembly::{Pair, lin_comb, matvec};
 use evhi::linalg::Cholesky;
 use evhi::ordering::Ordering;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Discretisation, OrderingKind, Settings, run};
+use evhi::scheme::{Discretisation, OrderingKind};
+use evhi::simulation::{RunSettings, Simulation};
 use evhi::step::newton::Newton;
+
+mod common;
 
 fn operators(name: &str, n: usize) -> (Discretisation, evhi::assembly::SpMat) {
     let scn = Scenario::load(name).unwrap();
@@ -183,11 +186,11 @@ fn both_orderings_give_the_same_run() {
     let scn = Scenario::load("figure").unwrap();
     let mut last = vec![];
     for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
-        let opt = Settings {
-            ordering,
-            ..Settings::new(32, 16)
+        let settings = RunSettings {
+            ordering: Some(ordering),
+            ..common::general(32, 16)
         };
-        let r = run(&scn, &opt, &mut Newton::default(), &mut |_, _, _| {}).unwrap();
+        let r = common::solve_with(&scn, settings, None, &mut Newton::default(), &mut ()).unwrap();
         last.push(r.u);
     }
     let d = last[0]
@@ -204,16 +207,17 @@ fn a_batch_run_equals_separate_runs() {
         Scenario::load("literal").unwrap(),
         Scenario::load("figure").unwrap(),
     ];
-    let opt = Settings::new(32, 16);
+    let sim = Simulation::new(scns[0].clone(), common::general(32, 16)).unwrap();
     let mut seen = vec![0usize; 2];
     let (mut a, mut b) = (Newton::default(), Newton::default());
-    let batch = evhi::scheme::run_batch(&scns, &opt, &mut [&mut a, &mut b], &mut |i, _, _, _| {
-        seen[i] += 1
-    })
-    .unwrap();
+    let batch = sim
+        .solve_batch(&scns, &mut [&mut a, &mut b], &mut |i, _, _, _, _| {
+            seen[i] += 1
+        })
+        .unwrap();
     assert_eq!(seen, vec![16, 16]);
     for (scn, r) in scns.iter().zip(&batch) {
-        let alone = run(scn, &opt, &mut Newton::default(), &mut |_, _, _| {}).unwrap();
+        let alone = common::run_newton(scn, 32, 16).unwrap();
         // Column j of a batched sweep does the same arithmetic as a single one.
         assert_eq!(alone.u, r.u, "{}: batch and single runs differ", scn.name);
         assert_eq!(alone.records.len(), r.records.len());
@@ -227,14 +231,11 @@ fn a_batch_refuses_scenarios_with_different_operators() {
         Scenario::load("smooth").unwrap(),
     ];
     let (mut a, mut b) = (Newton::default(), Newton::default());
-    let err = evhi::scheme::run_batch(
-        &scns,
-        &Settings::new(16, 4),
-        &mut [&mut a, &mut b],
-        &mut |_, _, _, _| {},
-    )
-    .err()
-    .expect("different supports must be refused");
+    let sim = Simulation::new(scns[0].clone(), common::general(16, 4)).unwrap();
+    let err = sim
+        .solve_batch(&scns, &mut [&mut a, &mut b], &mut |_, _, _, _, _| {})
+        .err()
+        .expect("different supports must be refused");
     let msg = err.to_string();
     assert!(msg.contains("scenarios") && msg.contains("smooth"), "{msg}");
 }

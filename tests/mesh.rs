@@ -7,6 +7,8 @@ use evhi::mesh::{Interpolation, Mesh, Pattern};
 use evhi::norms::field_norms;
 use evhi::scenario::Scenario;
 
+mod common;
+
 const PATTERNS: [Pattern; 3] = [
     Pattern::Diagonal,
     Pattern::Antidiagonal,
@@ -124,23 +126,19 @@ fn field_norms_are_exact_for_linear_fields() {
 /// equals the AMD-ordered one, and no matrix entry couples the halves.
 #[test]
 fn criss_cross_runs_with_nested_dissection() {
-    use evhi::scheme::{OrderingKind, Settings, run};
+    use evhi::scheme::OrderingKind;
     use evhi::step::newton::Newton;
     let scn = Scenario::load("figure")
         .unwrap()
         .with_pattern(Pattern::CrissCross);
     let mut last = vec![];
     for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
-        let opt = Settings {
-            ordering,
-            ..Settings::new(16, 8)
+        let settings = evhi::simulation::RunSettings {
+            ordering: Some(ordering),
+            ..common::general(16, 8)
         };
-        let mut u_t = vec![];
-        run(&scn, &opt, &mut Newton::default(), &mut |_, _, u| {
-            u_t = u.to_vec();
-        })
-        .unwrap();
-        last.push(u_t);
+        let run = common::solve_with(&scn, settings, None, &mut Newton::default(), &mut ());
+        last.push(run.unwrap().u);
     }
     let scale = last[1].iter().fold(0.0f64, |a, x| a.max(x.abs()));
     assert!(scale > 0.0);

@@ -18,8 +18,10 @@
 
 use evhi::mesh::{Mesh, Pattern};
 use evhi::scenario::Scenario;
-use evhi::scheme::{Run, Settings, run};
+use evhi::scheme::Run;
 use std::sync::Arc;
+
+mod common;
 
 /// The data of `figure`, each factor multiplying one group.
 #[derive(Clone, Copy)]
@@ -68,19 +70,12 @@ fn scenario(d: Data) -> Scenario {
 fn solve(scn: &Scenario, name: &str, reduced: bool, pattern: Pattern) -> Run {
     let entry = evhi::step::solver(name).unwrap();
     let mut solver = entry.build();
-    let mut opt = Settings::new(16, 16);
-    if !entry.certified {
-        opt.certificate_tol = f64::INFINITY;
-    }
-    if pattern != Pattern::Diagonal {
-        opt.mesh = Some(Arc::new(Mesh::build(16, &scn.geometry, pattern).unwrap()));
-    }
-    let r = if reduced {
-        evhi::reduced::run(scn, &opt, solver.as_mut(), &|_| false, &mut |_, _, _, _| {})
-    } else {
-        run(scn, &opt, solver.as_mut(), &mut |_, _, _| {})
-    }
-    .unwrap_or_else(|e| panic!("{name}, g = {}: {e}", scn.g));
+    // An uncertified solver is judged by its own convergence.
+    let mesh = (pattern != Pattern::Diagonal)
+        .then(|| Arc::new(Mesh::build(16, &scn.geometry, pattern).unwrap()));
+    let settings = common::on_loop(16, 16, reduced);
+    let r = common::solve_with(scn, settings, mesh, solver.as_mut(), &mut ())
+        .unwrap_or_else(|e| panic!("{name}, g = {}: {e}", scn.g));
     if entry.certified {
         assert!(
             r.records.iter().all(|rec| rec.certificate.max() <= 1e-10),

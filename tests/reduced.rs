@@ -8,8 +8,10 @@
 use evhi::norms::energy_norm;
 use evhi::reduced::{Reduced, State};
 use evhi::scenario::Scenario;
-use evhi::scheme::{Check, Discretisation, OrderingKind, Settings, Timings, run_with_states};
+use evhi::scheme::{Check, Discretisation, OrderingKind, Timings};
 use evhi::step::newton::Newton;
+
+mod common;
 
 fn rel_gap(a: &[f64], b: &[f64]) -> f64 {
     let scale = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -21,28 +23,31 @@ fn rel_gap(a: &[f64], b: &[f64]) -> f64 {
 }
 
 fn compare(scn: &Scenario, n: usize, steps: usize) {
-    let opt = Settings::new(n, steps);
     let (mut fields, mut contact) = (vec![], vec![]);
-    let general = run_with_states(scn, &opt, &mut Newton::default(), &mut |_, _, u, c| {
-        fields.push(u.to_vec());
-        contact.push(c.iter().map(|c| c.u_nu).collect::<Vec<f64>>());
-    })
-    .unwrap();
+    let mut every = common::watch(
+        |_| true,
+        |_, _, u: Option<&[f64]>, c: &[_]| {
+            fields.push(u.expect("the general loop forms every field").to_vec());
+            contact.push(c.iter().map(|c| c.u_nu).collect::<Vec<f64>>());
+        },
+    );
+    let general = common::on_loop(n, steps, false);
+    let general = common::solve_with(scn, general, None, &mut Newton::default(), &mut every);
+    let general = general.unwrap();
     let outputs = [steps / 2, steps];
     let (mut formed, mut r) = (vec![], vec![]);
-    let reduced = evhi::reduced::run(
-        scn,
-        &opt,
-        &mut Newton::default(),
-        &|s| outputs.contains(&s),
-        &mut |step, _, u, c| {
+    let mut some = common::watch(
+        |s| outputs.contains(&s),
+        |step, _, u: Option<&[f64]>, c: &[_]| {
             if let Some(u) = u {
                 formed.push((step, u.to_vec()));
             }
             r.push(c.iter().map(|c| c.u_nu).collect::<Vec<f64>>());
         },
-    )
-    .unwrap();
+    );
+    let reduced = common::on_loop(n, steps, true);
+    let reduced = common::solve_with(scn, reduced, None, &mut Newton::default(), &mut some);
+    let reduced = reduced.unwrap();
     assert_eq!(r.len(), steps);
     let all_general: Vec<f64> = contact.concat();
     assert!(
@@ -133,17 +138,16 @@ fn one_operator_serves_every_k_and_its_norms_need_no_solve() {
         );
         // The same steps count alone, on the general path.
         let mut g = vec![];
-        run_with_states(
-            &scn,
-            &Settings::new(16, steps),
-            &mut Newton::default(),
-            &mut |n, _, u, _| {
+        let mut last_step = common::watch(
+            |_| false,
+            |n, _, u: Option<&[f64]>, _: &[_]| {
                 if n == steps {
-                    g = u.to_vec();
+                    g = u.expect("the general loop forms every field").to_vec();
                 }
             },
-        )
-        .unwrap();
+        );
+        let general = common::on_loop(16, steps, false);
+        common::solve_with(&scn, general, None, &mut Newton::default(), &mut last_step).unwrap();
         assert!(rel_gap(&g, &u) <= 1e-12, "{steps} steps");
         at_t.push((state, u));
     }
@@ -166,14 +170,9 @@ fn one_operator_serves_every_k_and_its_norms_need_no_solve() {
 fn damping_that_is_not_proportional_is_refused() {
     let mut scn = Scenario::load("figure").unwrap();
     scn.alpha = 60.0;
-    let err = evhi::reduced::run(
-        &scn,
-        &Settings::new(8, 4),
-        &mut Newton::default(),
-        &|_| false,
-        &mut |_, _, _, _| {},
-    )
-    .err()
-    .expect("must refuse");
+    let reduced = common::on_loop(8, 4, true);
+    let err = common::solve_with(&scn, reduced, None, &mut Newton::default(), &mut ())
+        .err()
+        .expect("must refuse");
     assert!(err.to_string().contains("proportional"), "{err}");
 }

@@ -8,7 +8,7 @@ mod common;
 
 use evhi::law::Law;
 use evhi::scenario::Scenario;
-use evhi::scheme::{RunError, Settings, run};
+use evhi::scheme::RunError;
 use evhi::step::Status;
 use evhi::step::newton::{self, Newton};
 use proptest::prelude::*;
@@ -121,7 +121,7 @@ fn a_solver_out_of_iterations_stops_the_run_with_its_step_and_residual() {
         max_iter: 0,
         ..newton::Settings::default()
     });
-    let err = run(&scn, &Settings::new(16, 16), &mut solver, &mut |_, _, _| {})
+    let err = common::solve_with(&scn, common::general(16, 16), None, &mut solver, &mut ())
         .err()
         .expect("must fail");
     match err {
@@ -142,9 +142,14 @@ fn a_solver_out_of_iterations_stops_the_run_with_its_step_and_residual() {
 #[test]
 fn a_certificate_over_tolerance_stops_the_run() {
     let scn = Scenario::load("figure").unwrap();
-    let mut opt = Settings::new(8, 4);
-    opt.certificate_tol = 1e-300;
-    let err = run(&scn, &opt, &mut Newton::default(), &mut |_, _, _| {})
+    // Proximal gradient stopped at a relative residual of 1e-2 calls the step
+    // converged; the certificate (tolerance 1e-10) does not.
+    let mut loose = Newton::new(newton::Settings {
+        newton: false,
+        tol: 1e-2,
+        ..newton::Settings::default()
+    });
+    let err = common::solve_with(&scn, common::general(8, 4), None, &mut loose, &mut ())
         .err()
         .expect("must fail");
     let msg = err.to_string();
@@ -162,9 +167,14 @@ fn the_observer_never_sees_a_failed_step() {
         ..newton::Settings::default()
     });
     let mut seen = vec![];
-    let err = run(&scn, &Settings::new(16, 16), &mut solver, &mut |n, _, _| {
-        seen.push(n)
-    })
+    let mut observer = common::watch(|_| false, |n, _, _: Option<&[f64]>, _: &[_]| seen.push(n));
+    let err = common::solve_with(
+        &scn,
+        common::general(16, 16),
+        None,
+        &mut solver,
+        &mut observer,
+    )
     .err()
     .expect("must fail");
     let RunError::Step { step, .. } = err else {
@@ -252,18 +262,15 @@ fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
             line_search: false,
             ..newton::Settings::default()
         };
-        let plain_run = run(
+        let settings = common::general(32, steps);
+        let plain_run = common::solve_with(
             &scn,
-            &Settings::new(32, steps),
+            settings.clone(),
+            None,
             &mut Newton::new(plain),
-            &mut |_, _, _| {},
+            &mut (),
         );
-        let globalised = run(
-            &scn,
-            &Settings::new(32, steps),
-            &mut Newton::default(),
-            &mut |_, _, _| {},
-        );
+        let globalised = common::solve_with(&scn, settings, None, &mut Newton::default(), &mut ());
         if let Err(e @ RunError::Step { status, .. }) = &plain_run {
             assert_eq!(*status, Status::MaxIterations);
             // A failed step says what may help, with the step's own numbers (issue 41,

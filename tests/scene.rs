@@ -8,8 +8,10 @@ use evhi::bisection::graded_mesh;
 use evhi::geometry::Geometry;
 use evhi::mesh::Mesh;
 use evhi::scenario::{Problem, Scenario};
-use evhi::scheme::{OrderingKind, Run, Settings, run};
+use evhi::scheme::{OrderingKind, Run};
 use std::sync::Arc;
+
+mod common;
 
 /// A scene with the given `[geometry]` lines and extra `[loads]` lines, the paper's
 /// material and law, the given `g` and problem.
@@ -48,14 +50,10 @@ fn cantilever(problem: &str) -> Scenario {
 /// reduced loop, with Newton; every step must be certified.
 fn solve(scn: &Scenario, n: usize, steps: usize, mesh: Option<Arc<Mesh>>, reduced: bool) -> Run {
     let mut solver = evhi::step::solver("newton").unwrap().build();
-    let mut opt = Settings::new(n, steps);
-    opt.mesh = mesh;
-    let r = if reduced {
-        evhi::reduced::run(scn, &opt, solver.as_mut(), &|_| true, &mut |_, _, _, _| {})
-    } else {
-        run(scn, &opt, solver.as_mut(), &mut |_, _, _| {})
-    }
-    .unwrap_or_else(|e| panic!("{}: {e}", scn.name));
+    let settings = common::on_loop(n, steps, reduced);
+    let every = &mut common::EveryField;
+    let r = common::solve_with(scn, settings, mesh, solver.as_mut(), every)
+        .unwrap_or_else(|e| panic!("{}: {e}", scn.name));
     let worst = r
         .records
         .iter()
@@ -306,11 +304,12 @@ fn bad_scene_values_are_refused_by_name() {
     // A steady problem is one step.
     let steady = parse(&scene("", "", "0.1", "steady")).unwrap();
     let mut solver = evhi::step::solver("newton").unwrap().build();
-    let err = run(
+    let err = common::solve_with(
         &steady,
-        &Settings::new(16, 4),
+        common::general(16, 4),
+        None,
         solver.as_mut(),
-        &mut |_, _, _| {},
+        &mut (),
     )
     .err()
     .expect("4 steps of a steady problem accepted");
@@ -420,10 +419,13 @@ fn ordering_and_reduced_loop_follow_the_geometry() {
     .unwrap();
     let n = 32;
     let mut solver = evhi::step::solver("newton").unwrap().build();
-    let mut opt = Settings::new(n, 16);
-    let nd = run(&scn, &opt, solver.as_mut(), &mut |_, _, _| {}).unwrap();
-    opt.ordering = OrderingKind::Amd;
-    let amd = run(&scn, &opt, solver.as_mut(), &mut |_, _, _| {}).unwrap();
+    let nd = common::solve_with(&scn, common::general(n, 16), None, solver.as_mut(), &mut ());
+    let amd_settings = evhi::simulation::RunSettings {
+        ordering: Some(OrderingKind::Amd),
+        ..common::general(n, 16)
+    };
+    let amd = common::solve_with(&scn, amd_settings, None, solver.as_mut(), &mut ()).unwrap();
+    let nd = nd.unwrap();
     assert!(sup_diff(&nd.u, &amd.u) <= 1e-12 * sup(&nd.u));
     let disc = evhi::scheme::Discretisation::new(&scn, n).unwrap();
     assert_eq!(
@@ -446,11 +448,8 @@ fn every_solver_runs_without_a_limit() {
     let reference = solve(&scn, 16, 8, None, false);
     for entry in evhi::step::SOLVERS.iter() {
         let mut solver = entry.build();
-        let mut opt = Settings::new(16, 8);
-        if !entry.certified {
-            opt.certificate_tol = f64::INFINITY;
-        }
-        match run(&scn, &opt, solver.as_mut(), &mut |_, _, _| {}) {
+        // An uncertified solver is judged by its own convergence.
+        match common::solve_with(&scn, common::general(16, 8), None, solver.as_mut(), &mut ()) {
             Ok(r) => {
                 let gap = sup_diff(&r.u, &reference.u);
                 assert!(gap <= 1e-8 * sup(&reference.u), "{}: {gap:e}", entry.name);

@@ -4,9 +4,11 @@
 use evhi::assembly::{lin_comb, matvec};
 use evhi::norms::energy_norm;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Discretisation, Settings, run};
+use evhi::scheme::Discretisation;
 use evhi::step::{StepSolver, convexify::Convexify, newton::Newton};
 use faer::Mat;
+
+mod common;
 
 fn fields(
     scn: &Scenario,
@@ -15,10 +17,12 @@ fn fields(
     solver: &mut dyn StepSolver,
 ) -> (Vec<Vec<f64>>, evhi::scheme::Run) {
     let mut us = vec![];
-    let r = run(scn, &Settings::new(n, steps), solver, &mut |_, _, u| {
-        us.push(u.to_vec())
-    })
-    .expect("run succeeds");
+    let mut every = common::watch(
+        |_| false,
+        |_, _, u: Option<&[f64]>, _: &[_]| us.push(u.expect("every field").to_vec()),
+    );
+    let general = common::general(n, steps);
+    let r = common::solve_with(scn, general, None, solver, &mut every).expect("run succeeds");
     (us, r)
 }
 
@@ -118,9 +122,12 @@ fn convexify_without_polish_is_still_certified_loosely() {
         polish: false,
         ..Default::default()
     });
-    let mut opt = Settings::new(16, 16);
-    opt.certificate_tol = 1e-5;
-    let r = run(&scn, &opt, &mut solver, &mut |_, _, _| {}).expect("loose run succeeds");
+    let loose = evhi::simulation::RunSettings {
+        certificate_tol: 1e-5,
+        ..common::general(16, 16)
+    };
+    let r =
+        common::solve_with(&scn, loose, None, &mut solver, &mut ()).expect("loose run succeeds");
     let worst = r
         .records
         .iter()
@@ -136,13 +143,7 @@ fn convexify_without_polish_is_still_certified_loosely() {
 fn literal_scenario_stays_off_the_law() {
     // The printed loads move the body by about 1e-6: no node reaches u_nu > 0.05.
     let scn = Scenario::load("literal").unwrap();
-    let r = run(
-        &scn,
-        &Settings::new(16, 16),
-        &mut Newton::default(),
-        &mut |_, _, _| {},
-    )
-    .unwrap();
+    let r = common::run_newton(&scn, 16, 16).unwrap();
     let max_unu = r.contact.iter().map(|c| c.u_nu.abs()).fold(0.0, f64::max);
     assert!(max_unu < 1e-4, "max |u_nu| = {max_unu}");
     assert!(r.records.iter().all(|s| s.certificate.max() < 1e-10));

@@ -6,6 +6,8 @@ use evhi::law::{Law, Softening};
 use evhi::scenario::Scenario;
 use evhi::step::{SOLVERS, Status, StepProblem, StepSolver};
 
+mod common;
+
 const C: f64 = 900.0;
 const A: f64 = 0.03;
 
@@ -102,11 +104,14 @@ fn every_certified_solver_solves_it_or_refuses_it_by_name() {
     .unwrap();
     for entry in SOLVERS.iter() {
         let mut solver = entry.build();
-        let mut opt = evhi::scheme::Settings::new(16, 16);
-        if !entry.certified {
-            opt.certificate_tol = f64::INFINITY;
-        }
-        match evhi::scheme::run(&scn, &opt, solver.as_mut(), &mut |_, _, _| {}) {
+        // An uncertified solver is judged by its own convergence.
+        match common::solve_with(
+            &scn,
+            common::general(16, 16),
+            None,
+            solver.as_mut(),
+            &mut (),
+        ) {
             Ok(r) => {
                 if entry.certified {
                     assert!(
@@ -131,13 +136,8 @@ fn every_certified_solver_solves_it_or_refuses_it_by_name() {
     // Newton and proximal gradient take it.
     for name in ["newton", "newton-no-line-search", "proxgrad"] {
         let mut s = evhi::step::solver(name).unwrap().build();
-        evhi::scheme::run(
-            &scn,
-            &evhi::scheme::Settings::new(16, 16),
-            s.as_mut(),
-            &mut |_, _, _| {},
-        )
-        .unwrap_or_else(|e| panic!("{name}: {e}"));
+        common::solve_with(&scn, common::general(16, 16), None, s.as_mut(), &mut ())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
     }
 }
 

@@ -16,6 +16,8 @@
 use evhi::law::Law;
 use evhi::step::{SOLVERS, Status, StepProblem};
 
+mod common;
+
 fn solve_all(law: &Law, r0: &[f64], expected: &[f64]) {
     let m = r0.len();
     let s = faer::Mat::from_fn(m, m, |i, j| if i == j { 1000.0 } else { 0.0 });
@@ -124,14 +126,10 @@ fn a_bad_setting_is_refused_before_the_first_step() {
         ..Default::default()
     });
     let mut steps = 0;
-    let err = evhi::scheme::run(
-        &scn,
-        &evhi::scheme::Settings::new(8, 4),
-        &mut newton,
-        &mut |_, _, _| steps += 1,
-    )
-    .err()
-    .expect("refused");
+    let mut count = common::watch(|_| false, |_, _, _: Option<&[f64]>, _: &[_]| steps += 1);
+    let err = common::solve_with(&scn, common::general(8, 4), None, &mut newton, &mut count)
+        .err()
+        .expect("refused");
     assert_eq!(steps, 0);
     let msg = err.to_string();
     assert!(
@@ -139,12 +137,12 @@ fn a_bad_setting_is_refused_before_the_first_step() {
         "{msg}"
     );
     let mut penalty = evhi::step::penalty::Penalty::relative(-1.0);
-    let err = evhi::reduced::run(
+    let err = common::solve_with(
         &scn,
-        &evhi::scheme::Settings::new(8, 4),
+        common::on_loop(8, 4, true),
+        None,
         &mut penalty,
-        &|_| false,
-        &mut |_, _, _, _| {},
+        &mut (),
     )
     .err()
     .expect("refused");
@@ -152,4 +150,15 @@ fn a_bad_setting_is_refused_before_the_first_step() {
         err.to_string().contains("penalty.relative_stiffness"),
         "{err}"
     );
+}
+
+/// A registry entry says whether its solver is certified, and so does the solver it
+/// builds (a caller-built solver is judged by the latter).
+#[test]
+fn entries_and_their_solvers_agree_on_certification() {
+    for entry in SOLVERS.iter() {
+        assert_eq!(entry.build().certified(), entry.certified, "{}", entry.name);
+    }
+    let penalty = evhi::step::penalty::Penalty::relative(1.0);
+    assert!(!evhi::step::StepSolver::certified(&penalty));
 }

@@ -8,11 +8,11 @@
 //! `softening` is drawn as Fig. 2 draws the paper's (`figures/example_softening_law`).
 
 use super::{Ctx, ExpError};
+use crate::certificate::ContactState;
 use crate::output::run::{Provenance, Recorder, Recording};
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
-use crate::scheme::Settings;
-use crate::simulation::{Loop, RunSettings, Simulation};
+use crate::simulation::{Loop, OnStep, RunSettings, Simulation};
 use crate::step::newton::Newton;
 
 /// The examples: name, TOML (compiled in), its path.
@@ -348,51 +348,48 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
     let mid = n / 2;
     let k = scn.t_end / steps as f64;
     let mut last: Option<(f64, Vec<bool>)> = None;
-    crate::scheme::run_with_states(
-        scn,
-        &Settings::new(n, steps),
-        &mut Newton::default(),
-        &mut |_, t, _, c| {
-            let codes: Vec<i32> = c.iter().map(|s| s.regime_code(&scn.law, scn.g)).collect();
-            if let Some(p) = &prev {
-                let back = codes.iter().zip(p).filter(|(a, b)| a < b).count();
-                if back > 0 {
-                    tr.reversals += back;
-                    tr.t_last_reversal = t;
-                }
+    let sim = crate::study::runs::simulation(scn, n, steps)?;
+    let mut observer = OnStep::new(|_, t, _: Option<&[f64]>, c: &[ContactState]| {
+        let codes: Vec<i32> = c.iter().map(|s| s.regime_code(&scn.law, scn.g)).collect();
+        if let Some(p) = &prev {
+            let back = codes.iter().zip(p).filter(|(a, b)| a < b).count();
+            if back > 0 {
+                tr.reversals += back;
+                tr.t_last_reversal = t;
             }
-            let s = -(c[mid].sigma_nu1 + c[mid].sigma_nu2);
-            tr.mid_sigma.push(s);
-            if s > tr.peak {
-                (tr.peak, tr.t_peak) = (s, t);
+        }
+        let s = -(c[mid].sigma_nu1 + c[mid].sigma_nu2);
+        tr.mid_sigma.push(s);
+        if s > tr.peak {
+            (tr.peak, tr.t_peak) = (s, t);
+        }
+        if tr.t_landing.is_nan() && c[mid].at_limit {
+            tr.t_landing = t;
+            // The state of the step before: its limit set; v_before is the
+            // velocity of the step that ended there.
+            if let Some((_, limit)) = last.take() {
+                tr.at_limit_before = limit;
             }
-            if tr.t_landing.is_nan() && c[mid].at_limit {
-                tr.t_landing = t;
-                // The state of the step before: its limit set; v_before is the
-                // velocity of the step that ended there.
-                if let Some((_, limit)) = last.take() {
-                    tr.at_limit_before = limit;
-                }
+        }
+        if tr.landings.is_empty() {
+            tr.landings = vec![f64::NAN; c.len()];
+        }
+        for (l, s) in tr.landings.iter_mut().zip(c) {
+            if l.is_nan() && s.at_limit {
+                *l = t;
             }
-            if tr.landings.is_empty() {
-                tr.landings = vec![f64::NAN; c.len()];
+        }
+        if tr.t_landing.is_nan() {
+            if let Some((u_prev, _)) = &last {
+                tr.v_before = (c[mid].u_nu - u_prev) / k;
             }
-            for (l, s) in tr.landings.iter_mut().zip(c) {
-                if l.is_nan() && s.at_limit {
-                    *l = t;
-                }
-            }
-            if tr.t_landing.is_nan() {
-                if let Some((u_prev, _)) = &last {
-                    tr.v_before = (c[mid].u_nu - u_prev) / k;
-                }
-                last = Some((c[mid].u_nu, c.iter().map(|s| s.at_limit).collect()));
-                tr.sigma_before = s;
-            }
-            tr.at_t = s;
-            prev = Some(codes);
-        },
-    )?;
+            last = Some((c[mid].u_nu, c.iter().map(|s| s.at_limit).collect()));
+            tr.sigma_before = s;
+        }
+        tr.at_t = s;
+        prev = Some(codes);
+    });
+    sim.solve_with(&mut Newton::default(), &mut observer)?;
     Ok(tr)
 }
 

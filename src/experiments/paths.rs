@@ -8,9 +8,11 @@
 //! `data/paths.csv`.
 
 use super::{Ctx, ExpError};
+use crate::certificate::ContactState;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{Run, Settings};
+use crate::scheme::Run;
+use crate::simulation::{Loop, OnStep, RunSettings, Simulation};
 use crate::step::newton::Newton;
 
 /// $\max|a - b| / \max|a|$.
@@ -32,22 +34,22 @@ type Traced = (Vec<f64>, Run);
 fn general(scns: &[&Scenario], n: usize) -> Result<Vec<Traced>, ExpError> {
     let owned: Vec<Scenario> = scns.iter().map(|s| (*s).clone()).collect();
     let mut r = vec![vec![]; scns.len()];
-    let runs =
-        super::run_newton_batch_states(&owned, &Settings::new(n, n), &mut |i, _, _, _, c| {
-            r[i].extend(c.iter().map(|c| c.u_nu))
-        })?;
+    let runs = super::run_newton_batch_states(&owned, n, n, &mut |i, _, _, _, c| {
+        r[i].extend(c.iter().map(|c| c.u_nu))
+    })?;
     Ok(r.into_iter().zip(runs).collect())
 }
 
 fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
     let mut r = vec![];
-    let run = crate::reduced::run(
-        scn,
-        &Settings::new(n, n),
-        &mut Newton::default(),
-        &|_| false,
-        &mut |_, _, _, c| r.extend(c.iter().map(|c| c.u_nu)),
-    )?;
+    let settings = RunSettings {
+        path: Loop::Reduced,
+        ..crate::study::runs::settings(n, n)
+    };
+    let sim = Simulation::new(scn.clone(), settings)?;
+    let mut observer =
+        OnStep::new(|_, _, _, c: &[ContactState]| r.extend(c.iter().map(|c| c.u_nu)));
+    let run = sim.solve_with(&mut Newton::default(), &mut observer)?.run;
     Ok((r, run))
 }
 

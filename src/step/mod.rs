@@ -93,6 +93,11 @@ pub trait StepSolver {
     fn declines(&self, _law: &crate::law::Law, _g: f64) -> Option<String> {
         None
     }
+    /// Whether its steps can be certified (see [`SolverEntry::certified`]): a run
+    /// judges an uncertified solver by its own convergence, not by the certificate.
+    fn certified(&self) -> bool {
+        true
+    }
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
 }
 

@@ -20,6 +20,9 @@ impl StepSolver for MultiStart {
     fn name(&self) -> &'static str {
         self.inner.name()
     }
+    fn certified(&self) -> bool {
+        self.inner.certified()
+    }
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info {
         let info = self.inner.solve(p, r);
         if info.status != Status::Converged {

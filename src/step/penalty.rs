@@ -93,6 +93,11 @@ impl StepSolver for Penalty {
         "penalty"
     }
 
+    /// The penalised answer overshoots $g$ by design.
+    fn certified(&self) -> bool {
+        false
+    }
+
     fn declines(&self, law: &Law, g: f64) -> Option<String> {
         law.penalised(g, 1.0).is_none().then(|| declined(law))
     }

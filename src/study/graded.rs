@@ -20,7 +20,6 @@ use crate::output::csv::Table;
 use crate::output::csv::{col_f64, col_str, read_csv};
 use crate::output::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
 use crate::scenario::Scenario;
-use crate::scheme::Settings;
 use plotters::prelude::*;
 use std::sync::Arc;
 
@@ -178,11 +177,9 @@ fn solve_steps(
     keep: impl Fn(usize) -> bool,
 ) -> Result<Vec<Vec<Vec<f64>>>, ExpError> {
     let mut fields = vec![vec![vec![]; steps + 1]; scns.len()];
-    let opt = Settings {
-        mesh: Some(mesh.clone()),
-        ..Settings::new(n, steps)
-    };
-    super::runs::run_batch_with(scns, &opt, solver, &mut |i, step, _, u| {
+    let settings = super::runs::settings(n, steps);
+    let sim = crate::simulation::Simulation::on_mesh(scns[0].clone(), settings, mesh.clone())?;
+    super::runs::run_batch_with(&sim, scns, solver, &mut |i, step, _, u| {
         if keep(step) {
             fields[i][step] = u.to_vec();
         }

@@ -4,7 +4,6 @@
 //! figure. The book's map (`stability`) and `evhi study stability` draw theirs with it.
 
 use crate::scenario::Scenario;
-use crate::scheme::{self, Settings};
 
 /// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
 /// cell also says "fail").
@@ -36,25 +35,26 @@ pub struct Cell {
 /// One cell: `scn` (whose softening slope is `c2`, recorded with the cell) run with
 /// `solver` at h = 1/n and `steps` steps.
 pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'static str) -> Cell {
-    let mut opt = Settings::new(n, steps);
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
-    if !entry.certified {
-        // The penalty answer overshoots g by design: judge it by its own convergence.
-        opt.certificate_tol = f64::INFINITY;
-    }
-    let (res, spread) = if entry.name == crate::step::DEFAULT_SOLVER {
-        // Newton also from other starts: does the step have several solutions?
-        let mut s = MultiStart {
-            inner: entry.build(),
-            spread: 0.0,
-        };
-        let r = scheme::run(scn, &opt, &mut s, &mut |_, _, _| {});
-        (r, s.spread)
-    } else {
-        (
-            scheme::run(scn, &opt, entry.build().as_mut(), &mut |_, _, _| {}),
+    // An uncertified solver (the penalty overshoots g by design) is judged by its own
+    // convergence.
+    let sim = crate::simulation::Simulation::new(scn.clone(), super::runs::settings(n, steps));
+    let (res, spread) = match sim {
+        Err(e) => (Err(e.into()), f64::NAN),
+        Ok(sim) if entry.name == crate::step::DEFAULT_SOLVER => {
+            // Newton also from other starts: does the step have several solutions?
+            let mut s = MultiStart {
+                inner: entry.build(),
+                spread: 0.0,
+            };
+            let r = sim.solve_with(&mut s, &mut ()).map(|s| s.run);
+            (r, s.spread)
+        }
+        Ok(sim) => (
+            sim.solve_with(entry.build().as_mut(), &mut ())
+                .map(|s| s.run),
             f64::NAN,
-        )
+        ),
     };
     match res {
         Ok(run) => Cell {

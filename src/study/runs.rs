@@ -1,85 +1,78 @@
-//! Runs of the scheme as the studies and the book's experiments make them: a Newton
-//! step solver (or the registry's) per scenario, batched where scenarios share the
-//! step matrix.
+//! Runs of the scheme as the studies and the book's experiments make them, all through
+//! [`Simulation`]: the general loop (every step's field), a Newton step solver (or the
+//! registry's) per scenario, batched where scenarios share the step matrix.
 
 use super::ExpError;
+use crate::scenario::Scenario;
+use crate::scheme::{Run, StateObserver};
+use crate::simulation::{Loop, RunSettings, Simulation};
+use crate::step::StepSolver;
+use crate::step::newton::Newton;
+
+/// The settings of a study's run at level `n` with `steps` steps: the general loop,
+/// the rest as [`RunSettings::default`].
+pub fn settings(n: usize, steps: usize) -> RunSettings {
+    RunSettings {
+        n,
+        steps: Some(steps),
+        path: Loop::General,
+        ..RunSettings::default()
+    }
+}
+
+/// A simulation of `scn` with [`settings`]`(n, steps)`.
+pub fn simulation(scn: &Scenario, n: usize, steps: usize) -> Result<Simulation, ExpError> {
+    Ok(Simulation::new(scn.clone(), settings(n, steps))?)
+}
 
 /// Runs the scheme with the Newton step solver and no observer: the plain solve
 /// most experiments need.
-pub fn run_newton(
-    scn: &crate::scenario::Scenario,
-    n: usize,
-    steps: usize,
-) -> Result<crate::scheme::Run, ExpError> {
-    let opt = crate::scheme::Settings::new(n, steps);
-    Ok(crate::scheme::run(
-        scn,
-        &opt,
-        &mut crate::step::newton::Newton::default(),
-        &mut |_, _, _| {},
-    )?)
+pub fn run_newton(scn: &Scenario, n: usize, steps: usize) -> Result<Run, ExpError> {
+    let sim = simulation(scn, n, steps)?;
+    Ok(sim.solve_with(&mut Newton::default(), &mut ())?.run)
 }
 
 /// [`run_newton`] for scenarios that share the step matrix, as one batched run
-/// ([`crate::scheme::run_batch`]: one factorisation, one sweep per step for all).
-pub fn run_newton_batch(
-    scns: &[crate::scenario::Scenario],
-    n: usize,
-    steps: usize,
-) -> Result<Vec<crate::scheme::Run>, ExpError> {
-    let opt = crate::scheme::Settings::new(n, steps);
-    run_newton_batch_with(scns, &opt, &mut |_, _, _, _| {})
+/// ([`Simulation::solve_batch`]: one factorisation, one sweep per step for all).
+pub fn run_newton_batch(scns: &[Scenario], n: usize, steps: usize) -> Result<Vec<Run>, ExpError> {
+    run_newton_batch_states(scns, n, steps, &mut |_, _, _, _, _| {})
 }
 
-/// A batched run with a Newton step solver per scenario, options `opt` and an
-/// observer.
-pub fn run_newton_batch_with(
-    scns: &[crate::scenario::Scenario],
-    opt: &crate::scheme::Settings,
-    observe: &mut crate::scheme::BatchObserver<'_>,
-) -> Result<Vec<crate::scheme::Run>, ExpError> {
-    run_newton_batch_states(scns, opt, &mut |i, step, t, u, _| observe(i, step, t, u))
-}
-
-/// [`run_newton_batch_with`] with the registry's step solver `solver` (one per scenario).
+/// A batched run of `scns` on `sim`'s discretisation with the registry's step solver
+/// `solver` (one per scenario); `observe(i, n, t_n, u_n)`.
 pub fn run_batch_with(
-    scns: &[crate::scenario::Scenario],
-    opt: &crate::scheme::Settings,
+    sim: &Simulation,
+    scns: &[Scenario],
     solver: &crate::step::SolverEntry,
     observe: &mut crate::scheme::BatchObserver<'_>,
-) -> Result<Vec<crate::scheme::Run>, ExpError> {
-    let mut built: Vec<Box<dyn crate::step::StepSolver>> =
-        scns.iter().map(|_| solver.build()).collect();
-    let mut solvers: Vec<&mut dyn crate::step::StepSolver> = built
+) -> Result<Vec<Run>, ExpError> {
+    let mut built: Vec<Box<dyn StepSolver>> = scns.iter().map(|_| solver.build()).collect();
+    let mut solvers: Vec<&mut dyn StepSolver> = built
         .iter_mut()
-        .map(|s| -> &mut dyn crate::step::StepSolver { &mut **s })
+        .map(|s| -> &mut dyn StepSolver { &mut **s })
         .collect();
-    let runs =
-        crate::scheme::run_batch_states(scns, opt, &mut solvers, &mut |i, step, t, u, _| {
-            observe(i, step, t, u)
-        })?;
+    let runs = sim.solve_batch(scns, &mut solvers, &mut |i, step, t, u, _| {
+        observe(i, step, t, u)
+    })?;
     drop(solvers);
     Ok(runs)
 }
 
-/// [`run_newton_batch_with`] with an observer that also sees each step's contact states.
+/// [`run_newton_batch`] with an observer that also sees each step's contact states.
 pub fn run_newton_batch_states(
-    scns: &[crate::scenario::Scenario],
-    opt: &crate::scheme::Settings,
-    observe: &mut crate::scheme::StateObserver<'_>,
-) -> Result<Vec<crate::scheme::Run>, ExpError> {
-    let mut newtons: Vec<_> = scns
-        .iter()
-        .map(|_| crate::step::newton::Newton::default())
-        .collect();
-    let mut solvers: Vec<&mut dyn crate::step::StepSolver> = newtons
+    scns: &[Scenario],
+    n: usize,
+    steps: usize,
+    observe: &mut StateObserver<'_>,
+) -> Result<Vec<Run>, ExpError> {
+    let Some(first) = scns.first() else {
+        return Ok(vec![]);
+    };
+    let sim = simulation(first, n, steps)?;
+    let mut newtons: Vec<_> = scns.iter().map(|_| Newton::default()).collect();
+    let mut solvers: Vec<&mut dyn StepSolver> = newtons
         .iter_mut()
-        .map(|s| s as &mut dyn crate::step::StepSolver)
+        .map(|s| s as &mut dyn StepSolver)
         .collect();
-    Ok(crate::scheme::run_batch_states(
-        scns,
-        opt,
-        &mut solvers,
-        observe,
-    )?)
+    Ok(sim.solve_batch(scns, &mut solvers, observe)?)
 }

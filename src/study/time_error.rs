@@ -32,7 +32,7 @@ use crate::history::History;
 use crate::norms::energy_norm;
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{Discretisation, Settings};
+use crate::scheme::Discretisation;
 
 /// Mesh, step levels and reference of a study.
 #[derive(Debug, Clone)]
@@ -330,8 +330,8 @@ fn general_measures(
     ));
     let mut refs: Vec<Vec<Vec<f64>>> = vec![vec![vec![0.0; disc.dofs.count]]; nb];
     let mut first_limit = vec![f64::NAN; nb];
-    let opt = Settings::new(plan.n, plan.n_ref);
-    super::runs::run_batch_with(batch, &opt, plan.solver, &mut |i, step, t, u| {
+    let sim = super::runs::simulation(&batch[0], plan.n, plan.n_ref)?;
+    super::runs::run_batch_with(&sim, batch, plan.solver, &mut |i, step, t, u| {
         if step % stride == 0 {
             refs[i].push(u.to_vec());
         }
@@ -353,8 +353,8 @@ fn general_measures(
         ctx.log(&format!("time study: N = {steps}"));
         let ratio = n_max / steps;
         let mut m = vec![LevelMeasure::default(); nb];
-        let opt = Settings::new(plan.n, steps);
-        super::runs::run_batch_with(batch, &opt, plan.solver, &mut |i, step, t, u| {
+        let sim = super::runs::simulation(&batch[0], plan.n, steps)?;
+        super::runs::run_batch_with(&sim, batch, plan.solver, &mut |i, step, t, u| {
             let j = step * ratio;
             let diff: Vec<f64> = u.iter().zip(&refs[i][j]).map(|(a, b)| a - b).collect();
             m[i].add(

@@ -272,9 +272,8 @@ fn certified(
     mesh: Option<std::sync::Arc<evhi::mesh::Mesh>>,
 ) -> evhi::scheme::Run {
     let mut solver = evhi::step::solver("newton").unwrap().build();
-    let mut opt = evhi::scheme::Settings::new(n, steps);
-    opt.mesh = mesh;
-    let r = evhi::scheme::run(scn, &opt, solver.as_mut(), &mut |_, _, _| {}).unwrap();
+    let settings = crate::common::general(n, steps);
+    let r = crate::common::solve_with(scn, settings, mesh, solver.as_mut(), &mut ()).unwrap();
     assert!(r.records.iter().all(|s| s.certificate.max() <= 1e-10));
     r
 }

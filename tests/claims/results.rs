@@ -554,12 +554,9 @@ fn results_literal_linear_springs() {
     for n in [8, 32] {
         let mut largest = 0.0f64;
         let mut touching = 0;
-        let opt = evhi::scheme::Settings::new(n, n);
-        evhi::scheme::run_with_states(
-            &scn,
-            &opt,
-            &mut evhi::step::newton::Newton::default(),
-            &mut |_, _, _, contact| {
+        let newton = &mut evhi::step::newton::Newton::default();
+        let mut observer =
+            evhi::simulation::OnStep::new(|_, _, _: Option<&[f64]>, contact: &[_]| {
                 for c in contact {
                     largest = largest.max(c.u_nu.abs());
                     if c.u_nu > 0.0 {
@@ -572,9 +569,9 @@ fn results_literal_linear_springs() {
                         assert_eq!(c.sigma_nu2, 0.0);
                     }
                 }
-            },
-        )
-        .unwrap();
+            });
+        let general = crate::common::general(n, n);
+        crate::common::solve_with(&scn, general, None, newton, &mut observer).unwrap();
         assert!(touching > 0, "n = {n}");
         // "of order 10^-6": the largest |u_nu| over all steps rounds to 10^-6 in the
         // exponent

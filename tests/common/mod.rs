@@ -292,6 +292,34 @@ pub fn contact(run: &Path) -> Vec<evhi::output::rows::ContactRow> {
         .unwrap_or_else(|e| panic!("{}: {e}", run.display()))
 }
 
+/// The settings of the general time loop on `n` segments with `steps` steps, the rest
+/// as [`evhi::simulation::RunSettings::default`].
+pub fn general(n: usize, steps: usize) -> evhi::simulation::RunSettings {
+    evhi::simulation::RunSettings {
+        n,
+        steps: Some(steps),
+        path: evhi::simulation::Loop::General,
+        ..Default::default()
+    }
+}
+
+/// Solves `scn` with `settings` (on `mesh` if given) by the caller's `solver`, telling
+/// `observer` every step.
+pub fn solve_with(
+    scn: &evhi::scenario::Scenario,
+    settings: evhi::simulation::RunSettings,
+    mesh: Option<std::sync::Arc<evhi::mesh::Mesh>>,
+    solver: &mut dyn evhi::step::StepSolver,
+    observer: &mut dyn evhi::simulation::Observer,
+) -> Result<evhi::scheme::Run, evhi::scheme::RunError> {
+    use evhi::simulation::Simulation;
+    let sim = match mesh {
+        Some(mesh) => Simulation::on_mesh(scn.clone(), settings, mesh)?,
+        None => Simulation::new(scn.clone(), settings)?,
+    };
+    Ok(sim.solve_with(solver, observer)?.run)
+}
+
 /// The general time loop with Newton on `n` segments and `steps` steps, no observer
 /// (the plain run the tests compare against).
 pub fn run_newton(
@@ -299,10 +327,57 @@ pub fn run_newton(
     n: usize,
     steps: usize,
 ) -> Result<evhi::scheme::Run, evhi::scheme::RunError> {
-    evhi::scheme::run(
-        scn,
-        &evhi::scheme::Settings::new(n, steps),
-        &mut evhi::step::newton::Newton::default(),
-        &mut |_, _, _| {},
-    )
+    let newton = &mut evhi::step::newton::Newton::default();
+    solve_with(scn, general(n, steps), None, newton, &mut ())
+}
+
+/// An observer that asks the reduced loop for the field at every step (and is told
+/// nothing).
+pub struct EveryField;
+
+impl evhi::simulation::Observer for EveryField {
+    fn wants_field(&self, _step: usize) -> bool {
+        true
+    }
+}
+
+/// The settings of the time loop `reduced` or general on `n` segments with `steps` steps.
+pub fn on_loop(n: usize, steps: usize, reduced: bool) -> evhi::simulation::RunSettings {
+    evhi::simulation::RunSettings {
+        path: if reduced {
+            evhi::simulation::Loop::Reduced
+        } else {
+            evhi::simulation::Loop::General
+        },
+        ..general(n, steps)
+    }
+}
+
+/// An observer that asks the reduced loop for the field where `wants(step)` and tells
+/// `step(n, t_n, u_n, contact_n)` every step.
+pub struct Watch<W, F> {
+    wants: W,
+    step: F,
+}
+
+/// The observer [`Watch`] of `wants` and `step`.
+pub fn watch<W, F>(wants: W, step: F) -> Watch<W, F>
+where
+    W: Fn(usize) -> bool,
+    F: FnMut(usize, f64, Option<&[f64]>, &[evhi::certificate::ContactState]),
+{
+    Watch { wants, step }
+}
+
+impl<W, F> evhi::simulation::Observer for Watch<W, F>
+where
+    W: Fn(usize) -> bool,
+    F: FnMut(usize, f64, Option<&[f64]>, &[evhi::certificate::ContactState]),
+{
+    fn wants_field(&self, step: usize) -> bool {
+        (self.wants)(step)
+    }
+    fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, c: &[evhi::certificate::ContactState]) {
+        (self.step)(n, t, u, c)
+    }
 }

@@ -48,7 +48,6 @@ use crate::mesh::{Interpolation, Mesh, Pattern};
 use crate::norms::{FieldNorms, NormGeometry, gamma_l2_sq};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::Settings;
 use std::collections::BTreeMap;
 
 mod table;
@@ -290,7 +289,8 @@ fn run_level(
     } else {
         super::run_newton_batch_states(
             &scns,
-            &Settings::new(n, steps),
+            n,
+            steps,
             &mut |i, step, _, u, states: &[ContactState]| {
                 if kept(step) {
                     keep(i, step * per, field(u, states));

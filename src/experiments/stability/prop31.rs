@@ -8,7 +8,7 @@ use crate::material::Isotropic;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::scenario::Scenario;
-use crate::scheme::{self, Settings};
+use crate::simulation::OnStep;
 use crate::step::newton::Newton;
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -28,18 +28,16 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             let k = scn.t_end / nsteps as f64;
             let mut prev = vec![0.0; dofs.count];
             let (mut max_sq, mut sum_sq) = (0.0f64, 0.0f64);
-            scheme::run(
-                &scn,
-                &Settings::new(n, nsteps),
-                &mut Newton::default(),
-                &mut |_, _, u| {
-                    let du: Vec<f64> = u.iter().zip(&prev).map(|(a, b)| (a - b) / k).collect();
-                    let sq = quad_form(&v_mat, &du);
-                    max_sq = max_sq.max(sq);
-                    sum_sq += k * sq;
-                    prev.copy_from_slice(u);
-                },
-            )?;
+            let sim = crate::study::runs::simulation(&scn, n, nsteps)?;
+            let mut observer = OnStep::new(|_, _, u: Option<&[f64]>, _: &[_]| {
+                let u = u.expect("the general loop forms every step's field");
+                let du: Vec<f64> = u.iter().zip(&prev).map(|(a, b)| (a - b) / k).collect();
+                let sq = quad_form(&v_mat, &du);
+                max_sq = max_sq.max(sq);
+                sum_sq += k * sq;
+                prev.copy_from_slice(u);
+            });
+            sim.solve_with(&mut Newton::default(), &mut observer)?;
             rows.push((name, nsteps, k, max_sq.sqrt(), sum_sq, max_sq + sum_sq));
         }
     }
