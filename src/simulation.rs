@@ -16,8 +16,9 @@
 use crate::certificate::ContactState;
 use crate::error::InputError;
 use crate::mesh::Mesh;
+use crate::reduced::Reduced;
 use crate::scenario::{Problem, Scenario};
-use crate::scheme::{OrderingKind, Run, RunError, Settings};
+use crate::scheme::{Discretisation, OrderingKind, Run, RunError, Settings};
 use crate::step::{SolverEntry, StepSolver};
 use std::sync::Arc;
 
@@ -350,6 +351,31 @@ impl Simulation {
     /// Whether the reduced time loop runs.
     pub fn reduced(&self) -> bool {
         self.reduced
+    }
+
+    /// The space discretisation of the scene on the simulation's mesh: dofs, the
+    /// operators $A$ and $B$, the load vector, the contact dofs and weights.
+    pub fn discretisation(&self) -> Discretisation {
+        Discretisation::on(&self.scenario, self.mesh.clone())
+    }
+
+    /// The reduced loop's operator on `disc` (from [`Simulation::discretisation`]),
+    /// factorised with the simulation's ordering and sweep threads: prepared once, it
+    /// marches any load of a scene that shares the step matrix, with any step count
+    /// ([`Reduced::march`]), and forms fields and energies from the contact unknowns
+    /// alone. Refused where the damping is not proportional to the elasticity.
+    pub fn reduced_operator<'d>(
+        &self,
+        disc: &'d Discretisation,
+        timings: &mut crate::scheme::Timings,
+    ) -> Result<Reduced<'d>, RunError> {
+        Reduced::new(
+            &self.scenario,
+            disc,
+            self.opt.ordering,
+            self.opt.parallel,
+            timings,
+        )
     }
 
     /// [`Simulation::solve`], with the smallness check H(s) of

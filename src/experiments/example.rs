@@ -437,14 +437,13 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         .collect::<Result<_, _>>()?;
     let mid = n / 2;
     // The condensed operator of the mesh, once for every row.
-    let disc = crate::scheme::Discretisation::new(scn, n)?;
-    let red = crate::reduced::Reduced::new(
-        scn,
-        &disc,
-        crate::scheme::OrderingKind::NestedDissection,
-        false,
-        &mut crate::scheme::Timings::default(),
-    )?;
+    let settings = RunSettings {
+        threads: Some(1),
+        ..crate::study::runs::settings(n, n)
+    };
+    let sim = Simulation::new(scn.clone(), settings)?;
+    let disc = sim.discretisation();
+    let red = sim.reduced_operator(&disc, &mut crate::scheme::Timings::default())?;
     let jumps: Vec<f64> = rows
         .iter()
         .map(|r| landing_jump(&red, r.v_before, &r.at_limit_before))

@@ -200,7 +200,9 @@ fn reference_at_t(
     steps: usize,
     solver: &crate::step::SolverEntry,
 ) -> Result<Vec<Vec<f64>>, ExpError> {
-    let disc = crate::scheme::Discretisation::on(&scns[0], mesh.clone());
+    let settings = super::runs::settings(n, steps);
+    let sim = crate::simulation::Simulation::on_mesh(scns[0].clone(), settings, mesh.clone())?;
+    let disc = sim.discretisation();
     if crate::reduced::proportional(&scns[0], &disc).is_none() {
         return Ok(solve_steps(scns, mesh, n, steps, solver, |s| s == steps)?
             .into_iter()
@@ -208,13 +210,7 @@ fn reference_at_t(
             .collect());
     }
     let mut timings = crate::scheme::Timings::default();
-    let op = crate::reduced::Reduced::new(
-        &scns[0],
-        &disc,
-        crate::scheme::OrderingKind::NestedDissection,
-        true,
-        &mut timings,
-    )?;
+    let op = sim.reduced_operator(&disc, &mut timings)?;
     let mut out = vec![];
     for scn in scns {
         let load = op.load_of(scn);

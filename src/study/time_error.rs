@@ -115,7 +115,8 @@ pub fn study_of(
     scns: &[(String, String, Scenario)],
 ) -> Result<Vec<Row>, ExpError> {
     let batch: Vec<Scenario> = scns.iter().map(|s| s.2.clone()).collect();
-    let disc = Discretisation::new(&batch[0], plan.n)?;
+    let sim = super::runs::simulation(&batch[0], plan.n, plan.n_ref)?;
+    let disc = sim.discretisation();
     let n_max = *plan.levels.iter().max().expect("levels");
     if !plan.n_ref.is_multiple_of(n_max) || plan.levels.iter().any(|l| !n_max.is_multiple_of(*l)) {
         return Err(crate::error::InputError::field(
@@ -127,7 +128,7 @@ pub fn study_of(
     }
     // The reference at the times of the finest level, and when nodes first reach g.
     ctx.add_units(1 + plan.levels.len());
-    let measured = match reduced_measures(plan, &batch, &disc, ctx)? {
+    let measured = match reduced_measures(plan, &batch, (&sim, &disc), ctx)? {
         Some(m) => m,
         None => general_measures(plan, &batch, &disc, ctx)?,
     };
@@ -238,7 +239,7 @@ fn at_limit(g: f64, s: f64) -> bool {
 fn reduced_measures(
     plan: &Plan,
     batch: &[Scenario],
-    disc: &Discretisation,
+    (sim, disc): (&crate::simulation::Simulation, &Discretisation),
     ctx: &Ctx,
 ) -> Result<Option<Measures>, ExpError> {
     if crate::reduced::proportional(&batch[0], disc).is_none() {
@@ -247,13 +248,7 @@ fn reduced_measures(
     let n_max = *plan.levels.iter().max().expect("levels");
     let stride = plan.n_ref / n_max;
     let mut timings = crate::scheme::Timings::default();
-    let op = crate::reduced::Reduced::new(
-        &batch[0],
-        disc,
-        crate::scheme::OrderingKind::NestedDissection,
-        true,
-        &mut timings,
-    )?;
+    let op = sim.reduced_operator(disc, &mut timings)?;
     let march = |scn: &Scenario,
                  load: &crate::reduced::Load,
                  steps: usize,

@@ -219,7 +219,8 @@ fn run_level(
     mut keep: impl FnMut(usize, usize, Field),
 ) -> Result<Mesh, ExpError> {
     let scns: Vec<Scenario> = group.loads.iter().map(|(_, s)| s.clone()).collect();
-    let disc = crate::scheme::Discretisation::new(&scns[0], n)?;
+    let sim = crate::study::runs::simulation(&scns[0], n, steps)?;
+    let disc = sim.discretisation();
     let dofs = &disc.dofs;
     let per = n_ref / steps;
     let kept = |step: usize| (step * per).is_multiple_of(stride);
@@ -229,13 +230,7 @@ fn run_level(
     };
     if crate::reduced::proportional(&scns[0], &disc).is_some() {
         let mut timings = crate::scheme::Timings::default();
-        let op = crate::reduced::Reduced::new(
-            &scns[0],
-            &disc,
-            crate::scheme::OrderingKind::NestedDissection,
-            true,
-            &mut timings,
-        )?;
+        let op = sim.reduced_operator(&disc, &mut timings)?;
         for (i, scn) in scns.iter().enumerate() {
             let load = op.load_of(scn);
             // The kept steps' states, their fields formed a batch at a time (one

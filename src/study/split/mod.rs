@@ -20,7 +20,8 @@ use crate::output::csv::{col_f64, col_str, read_csv};
 use crate::output::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
 use crate::reduced::{Reduced, State};
 use crate::scenario::Scenario;
-use crate::scheme::{Discretisation, OrderingKind, Timings};
+use crate::scheme::Timings;
+use crate::simulation::{Loop, RunSettings, Simulation};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 
@@ -196,20 +197,17 @@ fn grid_level(step: usize, steps: usize, grid: usize) -> Option<usize> {
         .then(|| step * grid / steps)
 }
 
-/// The reduced operator of a mesh of the study. Two workers already keep both
-/// cores busy, so its solves take one thread.
-fn operator<'d>(
-    scn: &Scenario,
-    disc: &'d Discretisation,
-    timings: &mut Timings,
-) -> Result<Reduced<'d>, ExpError> {
-    Ok(Reduced::new(
-        scn,
-        disc,
-        OrderingKind::NestedDissection,
-        false,
-        timings,
-    )?)
+/// The simulation of level `n` of the study, which prepares its discretisation and
+/// reduced operator. Two workers already keep both cores busy, so its solves take
+/// one thread.
+fn prepared(scn: &Scenario, n: usize) -> Result<Simulation, ExpError> {
+    let settings = RunSettings {
+        n,
+        path: Loop::Reduced,
+        threads: Some(1),
+        ..RunSettings::default()
+    };
+    Ok(Simulation::new(scn.clone(), settings)?)
 }
 
 /// Marches `scn` under `load` with `steps` steps on `op`, calls `at_level(j, state)`
@@ -258,9 +256,10 @@ impl Reference {
     ) -> Result<(Reference, Vec<Vec<LevelError>>), ExpError> {
         let n_ref = plan.n_ref;
         let clock = std::time::Instant::now();
-        let disc = Discretisation::new(&scns[0], n_ref)?;
+        let sim = prepared(&scns[0], n_ref)?;
+        let disc = sim.discretisation();
         let mut timings = Timings::default();
-        let op = operator(&scns[0], &disc, &mut timings)?;
+        let op = sim.reduced_operator(&disc, &mut timings)?;
         let tensor = scns[0].elasticity();
         let mut runs = Vec::with_capacity(scns.len());
         for scn in scns {
@@ -361,9 +360,10 @@ impl Reference {
         n: usize,
         n_ref: usize,
     ) -> Result<[Vec<LevelError>; 2], ExpError> {
-        let disc = Discretisation::new(&scns[0], n)?;
+        let sim = prepared(&scns[0], n)?;
+        let disc = sim.discretisation();
         let mut timings = Timings::default();
-        let op = operator(&scns[0], &disc, &mut timings)?;
+        let op = sim.reduced_operator(&disc, &mut timings)?;
         let interp = Interpolation::nested(&disc.mesh, &self.mesh)?;
         // Per coarse node: its index among the contact nodes.
         let mut contact_index = vec![None; disc.mesh.nodes.len()];
