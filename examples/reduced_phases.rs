@@ -1,9 +1,9 @@
 //! The phases of one reduced reference run at h = k = 1/n (default 1024), scenario
 //! `figure`, field formed at T: assembly, factorisation and condensation of B, the
 //! steps, and peak memory. `cargo run --release --example reduced_phases -- 1024`
-use evhi::reduced::Reduced;
 use evhi::scenario::Scenario;
-use evhi::scheme::{Discretisation, OrderingKind, Timings};
+use evhi::scheme::Timings;
+use evhi::simulation::{Loop, RunSettings, Simulation};
 use evhi::step::newton::Newton;
 use std::time::Instant;
 
@@ -14,10 +14,17 @@ fn main() {
         .unwrap_or(1024);
     let scn = Scenario::load("figure").unwrap();
     let t = Instant::now();
-    let disc = Discretisation::new(&scn, n).unwrap();
+    let settings = RunSettings {
+        n,
+        path: Loop::Reduced,
+        threads: Some(1),
+        ..RunSettings::default()
+    };
+    let sim = Simulation::new(scn.clone(), settings).unwrap();
+    let disc = sim.discretisation();
     let assembly = t.elapsed().as_secs_f64();
     let mut tm = Timings::default();
-    let op = Reduced::new(&scn, &disc, OrderingKind::NestedDissection, false, &mut tm).unwrap();
+    let op = sim.reduced_operator(&disc, &mut tm).unwrap();
     let load = op.load(disc.f.clone());
     let t = Instant::now();
     op.march(

@@ -15,11 +15,14 @@
 #![doc = concat!("```\n", include_str!("../examples/solve_a_scene.rs"), "```\n")]
 //!
 //! `examples/own_scene.rs` builds a scene in code and solves it for several limits.
-//! Every run of the crate (the CLI's, the studies', the book's experiments') goes
-//! through a [`simulation::Simulation`]: [`simulation::Simulation::solve_with`] takes a
+//! The CLI, the studies and the book's experiments start every time loop from a
+//! [`simulation::Simulation`]: [`simulation::Simulation::solve_with`] takes a
 //! step solver the caller built, [`simulation::Simulation::solve_batch`] solves scenes
-//! that share the step matrix with one factorisation, and
-//! [`simulation::Simulation::on_mesh`] takes a mesh made elsewhere.
+//! that share the step matrix with one factorisation,
+//! [`simulation::Simulation::on_mesh`] takes a mesh made elsewhere, and
+//! [`simulation::Simulation::reduced_operator`] prepares the reduced loop's operator
+//! once for many marches. The one exception is [`manufactured`], whose exact solutions
+//! come with loads and a contact rule of their own and keep their own loop.
 //!
 //! Data flows one way: [`scenario`] → [`mesh`] → [`assembly`] (with [`element`],
 //! [`material`]) → [`linalg`] and [`condense`] → [`scheme`] (time loop) →

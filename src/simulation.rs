@@ -503,7 +503,8 @@ impl Simulation {
     /// in [`Simulation::solve_with`]); `observe(i, n, t_n, u_n, contact_n)` is told
     /// step `n` of scene `i`. The runs come back in the scenes' order; their timings
     /// are those of the whole batch. Refused with `path = reduced`, which solves one
-    /// scene at a time.
+    /// scene at a time. The batch has one certificate tolerance: if any solver is
+    /// uncertified, no scene's certificate is checked.
     pub fn solve_batch(
         &self,
         scenarios: &[Scenario],

@@ -2,7 +2,7 @@
 //! configurations of the convergence study (`evhi bench` times them).
 
 use crate::output::csv::{col_f64, col_str, read_csv};
-use crate::output::plot::{Figure, both, circle_legend, e2s, legend};
+use crate::output::plot::{Figure, LogLogChart, both, circle_legend, e2s, legend, one_two_five};
 use crate::study::{Ctx, ExpError};
 use plotters::prelude::*;
 use std::path::Path;
@@ -74,33 +74,23 @@ impl Figure for Chart {
         let (ymin, ymax) = pts
             .iter()
             .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Work against precision, scenario figure (labels: n/N)",
-                ("sans-serif", 24),
-            )
-            .margin(15)
-            .x_label_area_size(55)
-            .y_label_area_size(80)
-            .build_cartesian_2d(
-                (xmin * 0.7..xmax * 1.5).log_scale(),
-                (ymin * 0.6..ymax * 1.6).log_scale().with_key_points(
-                    (-3..=2)
-                        .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
-                        .filter(|&y| y >= ymin * 0.6 && y <= ymax * 1.6)
-                        .collect::<Vec<f64>>(),
-                ),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_desc("wall time of the whole run [s] (median)")
-            .y_desc("relative error, max over t [%]")
-            .x_label_formatter(&|x| format!("{x:.3}"))
-            .y_label_formatter(&|y| format!("{y}"))
-            .label_style(("sans-serif", 16))
-            .draw()
-            .map_err(e2s)?;
+        let ykeys = one_two_five((ymin * 0.6, ymax * 1.6), -3..=2);
+        let mut chart = LogLogChart {
+            caption: ("Work against precision, scenario figure (labels: n/N)", 24),
+            label_areas: (55, 80),
+            desc: (
+                "wall time of the whole run [s] (median)",
+                "relative error, max over t [%]",
+            ),
+            format: (Some(&|x| format!("{x:.3}")), Some(&|y| format!("{y}"))),
+            fonts: (16, None),
+            ..LogLogChart::default()
+        }
+        .build(
+            root,
+            (xmin * 0.7..xmax * 1.5).log_scale(),
+            (ymin * 0.6..ymax * 1.6).log_scale().with_key_points(ykeys),
+        )?;
         let placed = place_labels(|x, y| chart.backend_coord(&(x, y)), &self.series);
         for (label, s, c) in &self.series {
             let c = *c;

@@ -20,7 +20,9 @@ use crate::linalg::Cholesky;
 use crate::mesh::Dofs;
 use crate::ordering::Ordering;
 use crate::output::csv::Table;
-use crate::output::plot::{Figure, both, circle_legend, e2s, legend, slope_guides};
+use crate::output::plot::{
+    Figure, LogLogChart, both, circle_legend, e2s, legend, one_two_five, slope_guides,
+};
 use crate::scenario::Scenario;
 pub use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use plotters::prelude::*;
@@ -285,34 +287,25 @@ impl Figure for StaticFig {
             .map(|e| 2f64.powi(e))
             .filter(|x| *x <= xmax)
             .collect();
-        let mut chart = ChartBuilder::on(root)
-            .caption(
-                "Static control: the paper's supports, no contact",
-                ("sans-serif", 26),
-            )
-            .margin(15)
-            .x_label_area_size(60)
-            .y_label_area_size(90)
-            .build_cartesian_2d(
-                (3.0..xmax * 1.3).log_scale().with_key_points(keys),
-                (ymin / 3.0..ymax * 2.5).log_scale().with_key_points(
-                    (-6..=3)
-                        .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
-                        .filter(|&y| y >= ymin / 3.0 && y <= ymax * 2.5)
-                        .collect::<Vec<f64>>(),
-                ),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_desc("n = 1/h (the difference to the next level, 2n)")
-            .y_desc("relative energy norm of the difference, %")
-            .x_label_formatter(&|x| format!("{}", x.round()))
-            .y_label_formatter(&|y| format!("{y}"))
-            .label_style(("sans-serif", 20))
-            .axis_desc_style(("sans-serif", 20))
-            .draw()
-            .map_err(e2s)?;
+        let ykeys = one_two_five((ymin / 3.0, ymax * 2.5), -6..=3);
+        let mut chart = LogLogChart {
+            caption: ("Static control: the paper's supports, no contact", 26),
+            label_areas: (60, 90),
+            desc: (
+                "n = 1/h (the difference to the next level, 2n)",
+                "relative energy norm of the difference, %",
+            ),
+            format: (
+                Some(&|x| format!("{}", x.round())),
+                Some(&|y| format!("{y}")),
+            ),
+            ..LogLogChart::default()
+        }
+        .build(
+            root,
+            (3.0..xmax * 1.3).log_scale().with_key_points(keys),
+            (ymin / 3.0..ymax * 2.5).log_scale().with_key_points(ykeys),
+        )?;
         for (label, s, c) in &self.series {
             let c = *c;
             chart

@@ -2,6 +2,7 @@
 //! so that no system font is needed).
 
 use super::FileError;
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
@@ -320,3 +321,91 @@ pub type DashedLegend<DB> = ComposedElement<
 >;
 
 type Dash = PathElement<(i32, i32)>;
+
+/// A tick label's text from its value.
+pub type Format<'f> = &'f dyn Fn(&f64) -> String;
+
+/// The frame of a log–log chart, set up in one place for every figure that draws one:
+/// the caption, the margin, the label areas, the axis descriptions, the tick labels'
+/// text and the fonts. [`LogLogChart::default`] is the house style; a figure states only
+/// where it differs. The axes (their ranges, log scales and key points) are the
+/// figure's own, passed to [`LogLogChart::build`].
+#[derive(Clone, Copy)]
+pub struct LogLogChart<'t> {
+    /// The caption and its font size.
+    pub caption: (&'t str, u32),
+    /// The margin around the chart, pixels.
+    pub margin: u32,
+    /// The height of the x labels' area and the width of the y labels', pixels.
+    pub label_areas: (u32, u32),
+    /// The axis descriptions, x then y.
+    pub desc: (&'t str, &'t str),
+    /// The tick labels' text, x then y (`None`: plotters' own).
+    pub format: (Option<Format<'t>>, Option<Format<'t>>),
+    /// The font size of the tick labels, and of the axis descriptions (`None`:
+    /// plotters' own).
+    pub fonts: (u32, Option<u32>),
+}
+
+impl Default for LogLogChart<'_> {
+    fn default() -> Self {
+        LogLogChart {
+            caption: ("", 24),
+            margin: 15,
+            label_areas: (60, 80),
+            desc: ("", ""),
+            format: (None, None),
+            fonts: (20, Some(20)),
+        }
+    }
+}
+
+impl<'t> LogLogChart<'t> {
+    /// The chart on `area` with the axes `x` and `y` (log scales, with or without key
+    /// points), its mesh, labels and descriptions drawn.
+    pub fn build<'a, DB, X, Y>(
+        &self,
+        area: &'a DrawingArea<DB, plotters::coord::Shift>,
+        x: X,
+        y: Y,
+    ) -> Result<ChartContext<'a, DB, Cartesian2d<X::CoordDescType, Y::CoordDescType>>, String>
+    where
+        DB: DrawingBackend + 'a,
+        X: AsRangedCoord<Value = f64>,
+        Y: AsRangedCoord<Value = f64>,
+        X::CoordDescType: ValueFormatter<f64>,
+        Y::CoordDescType: ValueFormatter<f64>,
+    {
+        let mut chart = ChartBuilder::on(area)
+            .caption(self.caption.0, ("sans-serif", self.caption.1))
+            .margin(self.margin)
+            .x_label_area_size(self.label_areas.0)
+            .y_label_area_size(self.label_areas.1)
+            .build_cartesian_2d(x, y)
+            .map_err(e2s)?;
+        let mut mesh = chart.configure_mesh();
+        mesh.x_desc(self.desc.0)
+            .y_desc(self.desc.1)
+            .label_style(("sans-serif", self.fonts.0));
+        if let Some(f) = self.format.0 {
+            mesh.x_label_formatter(f);
+        }
+        if let Some(f) = self.format.1 {
+            mesh.y_label_formatter(f);
+        }
+        if let Some(size) = self.fonts.1 {
+            mesh.axis_desc_style(("sans-serif", size));
+        }
+        mesh.draw().map_err(e2s)?;
+        Ok(chart)
+    }
+}
+
+/// The 1-2-5 points of the decades $10^e$, $e$ in `exponents`, that lie in `range`: the
+/// key points of a log axis with a label at 1, 2 and 5 of each decade.
+pub fn one_two_five(range: (f64, f64), exponents: std::ops::RangeInclusive<i32>) -> Vec<f64> {
+    keys_within(
+        range,
+        exponents.flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e))),
+    )
+}

@@ -18,7 +18,7 @@ use crate::geometry::Geometry;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::output::csv::{col_f64, col_str, read_csv};
-use crate::output::plot::{Figure, both, e2s, keys_within, legend, slope_guides};
+use crate::output::plot::{Figure, LogLogChart, both, e2s, keys_within, legend, slope_guides};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 use std::sync::Arc;
@@ -722,26 +722,18 @@ impl Figure for GradedFig {
             );
             let keys = keys_within(xr, (1..=7).map(|e| 10f64.powi(e)));
             let ykeys = keys_within(yr, [0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
-            let mut chart = ChartBuilder::on(area)
-                .caption(title, ("sans-serif", 24))
-                .margin(15)
-                .x_label_area_size(60)
-                .y_label_area_size(80)
-                .build_cartesian_2d(
-                    (xr.0..xr.1).log_scale().with_key_points(keys),
-                    (yr.0..yr.1).log_scale().with_key_points(ykeys),
-                )
-                .map_err(e2s)?;
-            chart
-                .configure_mesh()
-                .x_desc("unknowns N")
-                .y_desc(ydesc.as_str())
-                .x_label_formatter(&|x| format!("{x:.0e}"))
-                .y_label_formatter(&|y| format!("{y}"))
-                .label_style(("sans-serif", 20))
-                .axis_desc_style(("sans-serif", 22))
-                .draw()
-                .map_err(e2s)?;
+            let mut chart = LogLogChart {
+                caption: (title, 24),
+                desc: ("unknowns N", ydesc),
+                format: (Some(&|x| format!("{x:.0e}")), Some(&|y| format!("{y}"))),
+                fonts: (20, Some(22)),
+                ..LogLogChart::default()
+            }
+            .build(
+                area,
+                (xr.0..xr.1).log_scale().with_key_points(keys),
+                (yr.0..yr.1).log_scale().with_key_points(ykeys),
+            )?;
             for (label, s, c, f) in series {
                 let (c, f) = (*c, *f);
                 let style = if f == 0 {

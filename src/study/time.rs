@@ -109,7 +109,7 @@ impl crate::output::plot::Figure for TimeFig {
         &self,
         root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        use crate::output::plot::{e2s, legend};
+        use crate::output::plot::{LogLogChart, e2s, legend};
         use plotters::prelude::*;
         let pts: Vec<(f64, f64)> = self.series.iter().flat_map(|s| s.1.clone()).collect();
         let (x0, x1) = pts
@@ -125,24 +125,19 @@ impl crate::output::plot::Figure for TimeFig {
         let mut ns: Vec<f64> = pts.iter().map(|p| p.0).collect();
         ns.sort_by(f64::total_cmp);
         ns.dedup();
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(80)
-            .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5).log_scale().with_key_points(ns),
-                (y0 / 3.0..y1 * 3.0).log_scale(),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_label_formatter(&|x| format!("{x:.0}"))
-            .x_desc("time steps N")
-            .y_desc("relative energy error, %")
-            .label_style(("sans-serif", 17))
-            .draw()
-            .map_err(e2s)?;
+        let mut chart = LogLogChart {
+            caption: (&self.title, 22),
+            margin: 12,
+            label_areas: (45, 80),
+            desc: ("time steps N", "relative energy error, %"),
+            format: (Some(&|x| format!("{x:.0}")), None),
+            fonts: (17, None),
+        }
+        .build(
+            root,
+            (x0 / 1.5..x1 * 1.5).log_scale().with_key_points(ns),
+            (y0 / 3.0..y1 * 3.0).log_scale(),
+        )?;
         for (label, p, c, dashed) in &self.series {
             let c = *c;
             if *dashed {

@@ -3,7 +3,9 @@
 
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::manufactured::run::REGIMES;
-use crate::output::plot::{Figure, both, e2s, legend, regime_colour, regime_label, slope_guides};
+use crate::output::plot::{
+    Figure, LogLogChart, both, e2s, legend, regime_colour, regime_label, slope_guides,
+};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -80,26 +82,22 @@ impl LogLog {
             .map(|e| 10f64.powi(e))
             .filter(|&y| y >= ylo && y <= yhi)
             .collect();
-        let mut chart = ChartBuilder::on(area)
-            .caption(&self.title, ("sans-serif", 22))
-            .margin(15)
-            .x_label_area_size(60)
-            .y_label_area_size(90)
-            .build_cartesian_2d(
-                (xmin / 1.3..xmax * 1.3).log_scale().with_key_points(keys),
-                (ylo..yhi).log_scale().with_key_points(ykeys),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_desc(self.x_desc.as_str())
-            .y_desc(self.y_desc.as_str())
-            .x_label_formatter(&|x| format!("{}", x.round()))
-            .y_label_formatter(&|y| format!("{y:e}"))
-            .label_style(("sans-serif", 18))
-            .axis_desc_style(("sans-serif", 18))
-            .draw()
-            .map_err(e2s)?;
+        let mut chart = LogLogChart {
+            caption: (&self.title, 22),
+            label_areas: (60, 90),
+            desc: (&self.x_desc, &self.y_desc),
+            format: (
+                Some(&|x| format!("{}", x.round())),
+                Some(&|y| format!("{y:e}")),
+            ),
+            fonts: (18, Some(18)),
+            ..LogLogChart::default()
+        }
+        .build(
+            area,
+            (xmin / 1.3..xmax * 1.3).log_scale().with_key_points(keys),
+            (ylo..yhi).log_scale().with_key_points(ykeys),
+        )?;
         for (i, (label, s, c)) in self.series.iter().enumerate() {
             let (c, m) = (*c, first_marker + i);
             chart

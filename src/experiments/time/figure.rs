@@ -3,6 +3,7 @@
 
 #[allow(unused_imports)]
 use super::*;
+use crate::output::plot::LogLogChart;
 
 /// Okabe–Ito colours (safe for colour-blind readers), one per history.
 const COLOURS: [RGBColor; 3] = [
@@ -98,32 +99,28 @@ impl Figure for TimeFig {
         let ymax = ys.iter().copied().fold(0.0, f64::max);
         let (xmin, xmax) = (self.levels[0], self.levels[self.levels.len() - 1]);
         let levels = self.levels.clone();
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 28))
-            .margin(15)
-            .x_label_area_size(60)
-            .y_label_area_size(90)
-            .build_cartesian_2d(
-                (xmin / 1.4..xmax * 1.4).log_scale().with_key_points(levels),
-                (ymin / 3.0..ymax * self.headroom).log_scale(),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_desc("time step k")
-            .y_desc("relative error in energy norm [%]")
-            .x_label_formatter(&|x| format!("1/{}", (1.0 / x).round()))
-            .y_label_formatter(&|y| {
-                if (1e-3..1e3).contains(y) {
-                    format!("{}", (y * 1e6).round() / 1e6)
-                } else {
-                    format!("{y:.0e}")
-                }
-            })
-            .label_style(("sans-serif", 20))
-            .axis_desc_style(("sans-serif", 22))
-            .draw()
-            .map_err(e2s)?;
+        let mut chart = LogLogChart {
+            caption: (&self.title, 28),
+            label_areas: (60, 90),
+            desc: ("time step k", "relative error in energy norm [%]"),
+            format: (
+                Some(&|x| format!("1/{}", (1.0 / x).round())),
+                Some(&|y| {
+                    if (1e-3..1e3).contains(y) {
+                        format!("{}", (y * 1e6).round() / 1e6)
+                    } else {
+                        format!("{y:.0e}")
+                    }
+                }),
+            ),
+            fonts: (20, Some(22)),
+            ..LogLogChart::default()
+        }
+        .build(
+            root,
+            (xmin / 1.4..xmax * 1.4).log_scale().with_key_points(levels),
+            (ymin / 3.0..ymax * self.headroom).log_scale(),
+        )?;
         for (label, pts, ci, marker, dashed) in &self.series {
             if pts.is_empty() {
                 continue;
@@ -297,29 +294,19 @@ impl Figure for ControlFig {
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
             let keys = crate::output::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
             let ykeys = crate::output::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
-            let mut chart = ChartBuilder::on(area)
-                .caption(
-                    format!("Time error against k/tau: {title}"),
-                    ("sans-serif", 22),
-                )
-                .margin(15)
-                .x_label_area_size(60)
-                .y_label_area_size(80)
-                .build_cartesian_2d(
-                    (xr.0..xr.1).log_scale().with_key_points(keys),
-                    (yr.0..yr.1).log_scale().with_key_points(ykeys),
-                )
-                .map_err(e2s)?;
-            chart
-                .configure_mesh()
-                .x_desc("k / tau")
-                .y_desc("relative error in energy norm, %")
-                .x_label_formatter(&|x| format!("{x:e}"))
-                .y_label_formatter(&|y| format!("{y:e}"))
-                .label_style(("sans-serif", 17))
-                .axis_desc_style(("sans-serif", 19))
-                .draw()
-                .map_err(e2s)?;
+            let caption = format!("Time error against k/tau: {title}");
+            let mut chart = LogLogChart {
+                caption: (&caption, 22),
+                desc: ("k / tau", "relative error in energy norm, %"),
+                format: (Some(&|x| format!("{x:e}")), Some(&|y| format!("{y:e}"))),
+                fonts: (17, Some(19)),
+                ..LogLogChart::default()
+            }
+            .build(
+                area,
+                (xr.0..xr.1).log_scale().with_key_points(keys),
+                (yr.0..yr.1).log_scale().with_key_points(ykeys),
+            )?;
             for (label, pts, c, marker, dashed) in series {
                 let (c, m) = (*c, *marker);
                 if *dashed {

@@ -3,6 +3,7 @@
 
 #[allow(unused_imports)]
 use super::*;
+use crate::output::plot::{LogLogChart, one_two_five};
 
 /// A plotted series: label, points, colour, and whether it is the second
 /// (dashed, crosses) series of its scenario.
@@ -120,30 +121,20 @@ impl Figure for Fig5 {
         let mut keys: Vec<f64> = pts.iter().map(|p| p.0).collect();
         keys.sort_by(f64::total_cmp);
         keys.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-        let ykeys: Vec<f64> = (-6..=3)
-            .flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e)))
-            .filter(|&y| y >= ymin * 0.5 && y <= ymax * 2.0)
-            .collect();
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 24))
-            .margin(15)
-            .x_label_area_size(55)
-            .y_label_area_size(80)
-            .build_cartesian_2d(
-                (xmin * 0.8..xmax * 1.25).log_scale().with_key_points(keys),
-                (ymin * 0.5..ymax * 2.0).log_scale().with_key_points(ykeys),
-            )
-            .map_err(e2s)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_desc)
-            .x_label_formatter(&|x| reciprocal_label(*x))
-            .y_label_formatter(&|y| format!("{y}"))
-            .y_desc("relative energy error, %")
-            .label_style(("sans-serif", 18))
-            .axis_desc_style(("sans-serif", 20))
-            .draw()
-            .map_err(e2s)?;
+        let ykeys = one_two_five((ymin * 0.5, ymax * 2.0), -6..=3);
+        let mut chart = LogLogChart {
+            caption: (&self.title, 24),
+            label_areas: (55, 80),
+            desc: (&self.x_desc, "relative energy error, %"),
+            format: (Some(&|x| reciprocal_label(*x)), Some(&|y| format!("{y}"))),
+            fonts: (18, Some(20)),
+            ..LogLogChart::default()
+        }
+        .build(
+            root,
+            (xmin * 0.8..xmax * 1.25).log_scale().with_key_points(keys),
+            (ymin * 0.5..ymax * 2.0).log_scale().with_key_points(ykeys),
+        )?;
         for (label, s, colour, second) in &self.series {
             if s.is_empty() {
                 continue;
