@@ -325,6 +325,13 @@ type Dash = PathElement<(i32, i32)>;
 /// A tick label's text from its value.
 pub type Format<'f> = &'f dyn Fn(&f64) -> String;
 
+/// The chart [`LogLogChart::build`] returns: on `DB`, axes `X` and `Y`.
+pub type LogLogContext<'a, DB, X, Y> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<<X as AsRangedCoord>::CoordDescType, <Y as AsRangedCoord>::CoordDescType>,
+>;
+
 /// The frame of a log–log chart, set up in one place for every figure that draws one:
 /// the caption, the margin, the label areas, the axis descriptions, the tick labels'
 /// text and the fonts. [`LogLogChart::default`] is the house style; a figure states only
@@ -368,7 +375,7 @@ impl<'t> LogLogChart<'t> {
         area: &'a DrawingArea<DB, plotters::coord::Shift>,
         x: X,
         y: Y,
-    ) -> Result<ChartContext<'a, DB, Cartesian2d<X::CoordDescType, Y::CoordDescType>>, String>
+    ) -> Result<LogLogContext<'a, DB, X, Y>, String>
     where
         DB: DrawingBackend + 'a,
         X: AsRangedCoord<Value = f64>,
