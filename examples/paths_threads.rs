@@ -4,6 +4,7 @@
 use evhi::certificate::ContactState;
 use evhi::scenario::Scenario;
 use evhi::simulation::{Loop, OnStep, RunSettings, Simulation};
+use evhi::step::newton::Newton;
 
 /// Every step's contact unknowns $u_\nu$ of one run with `settings`.
 fn trace(scn: &Scenario, settings: RunSettings) -> Vec<f64> {
@@ -12,7 +13,8 @@ fn trace(scn: &Scenario, settings: RunSettings) -> Vec<f64> {
         r.extend(c.iter().map(|c| c.u_nu))
     });
     let sim = Simulation::new(scn.clone(), settings).unwrap();
-    sim.solve(&mut observer).unwrap();
+    sim.solve_with(&mut Newton::default(), &mut observer)
+        .unwrap();
     r
 }
 

@@ -5,6 +5,7 @@
 use evhi::certificate::ContactState;
 use evhi::scenario::Scenario;
 use evhi::simulation::{Loop, OnStep, RunSettings, Simulation, Solution};
+use evhi::step::newton::Newton;
 use std::time::Instant;
 
 /// One run by `path`: every step's contact unknowns, the solution and the wall time.
@@ -22,7 +23,7 @@ fn timed(scn: &Scenario, n: usize, path: Loop) -> (Vec<f64>, Solution, f64) {
     };
     let solution = Simulation::new(scn.clone(), settings)
         .unwrap()
-        .solve(&mut observer)
+        .solve_with(&mut Newton::default(), &mut observer)
         .unwrap();
     (r, solution, t.elapsed().as_secs_f64())
 }

@@ -372,8 +372,10 @@ pub struct Settings {
     pub ordering: OrderingKind,
     /// Whether triangular solves may use a second thread (large meshes only).
     pub parallel: bool,
-    /// A mesh to use instead of the scenario's structured mesh with `n` segments
-    /// (a bisected one, [`crate::bisection`]); it is ordered by AMD.
+    /// A mesh to use instead of building the scenario's structured mesh with `n`
+    /// segments ([`crate::simulation::Simulation`] always passes its own). A structured
+    /// grid takes the requested ordering; a bisected one ([`crate::bisection`]) is
+    /// ordered by AMD.
     pub mesh: Option<std::sync::Arc<Mesh>>,
 }
 

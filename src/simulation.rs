@@ -245,10 +245,15 @@ impl Simulation {
         };
         let ordering = match (s.ordering, grid) {
             (Some(OrderingKind::NestedDissection), false) => {
+                let which = if given.is_some() {
+                    "a bisected mesh"
+                } else {
+                    "--mesh graded"
+                };
                 return Err(InputError::field(
                     "ordering",
                     "nd",
-                    "amd with --mesh graded (nested dissection cuts the uniform grid's lines)",
+                    format!("amd with {which} (nested dissection cuts the uniform grid's lines)"),
                 ));
             }
             (Some(o), _) => o,
@@ -289,11 +294,11 @@ impl Simulation {
         // The mesh: a scene whose segments miss the mesh lines is refused by name. The
         // run takes it as it is; a uniform mesh's building time is counted in the run's
         // assembly time, where the run would otherwise have built it.
-        let clock = std::time::Instant::now();
         let (mesh, mesh_s) = match given {
             Some(mesh) => (mesh, 0.0),
             None => {
                 crate::memory::check_memory(s.n, crate::mesh::rows(s.n, &scenario.geometry))?;
+                let clock = std::time::Instant::now();
                 if graded {
                     let mu = s.grading.unwrap_or(DEFAULT_GRADING);
                     (Arc::new(scenario.graded_mesh(s.n, mu)?), 0.0)
@@ -540,7 +545,10 @@ impl Simulation {
 }
 
 /// An [`Observer`] made of a closure `f(n, t_n, u_n, contact_n)` told every step
-/// (`u_n` where the loop formed the field: every step on the general loop).
+/// (`u_n` where the loop formed the field: every step on the general loop). It ignores
+/// [`Observer::restart`]: with [`Simulation::solve`], whose fallback starts the run
+/// again, a closure that keeps steps would keep the failed run's too; use it with
+/// [`Simulation::solve_with`], or write an observer that forgets them.
 pub struct OnStep<F>(F);
 
 impl<F: FnMut(usize, f64, Option<&[f64]>, &[ContactState])> OnStep<F> {

@@ -154,6 +154,17 @@ fn a_certificate_over_tolerance_stops_the_run() {
         .expect("must fail");
     let msg = err.to_string();
     assert!(
+        matches!(
+            err,
+            RunError::Step {
+                step: 1,
+                status: Status::Converged,
+                ..
+            }
+        ),
+        "not a converged step 1 that the certificate stopped: {msg}"
+    );
+    assert!(
         msg.contains("step 1") && msg.contains("certificate"),
         "{msg}"
     );

@@ -177,8 +177,11 @@ fn solve_steps(
     keep: impl Fn(usize) -> bool,
 ) -> Result<Vec<Vec<Vec<f64>>>, ExpError> {
     let mut fields = vec![vec![vec![]; steps + 1]; scns.len()];
+    let Some(first) = scns.first() else {
+        return Ok(fields);
+    };
     let settings = super::runs::settings(n, steps);
-    let sim = crate::simulation::Simulation::on_mesh(scns[0].clone(), settings, mesh.clone())?;
+    let sim = crate::simulation::Simulation::on_mesh(first.clone(), settings, mesh.clone())?;
     super::runs::run_batch_with(&sim, scns, solver, &mut |i, step, _, u| {
         if keep(step) {
             fields[i][step] = u.to_vec();
