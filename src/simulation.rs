@@ -524,7 +524,9 @@ impl Simulation {
             )
             .into());
         }
-        if let Some(other) = scenarios.iter().find(|o| !self.scenario.same_operator(o)) {
+        // The first scene must share the simulation's step matrix; the loop checks the
+        // others against the first.
+        if let Some(other) = (scenarios.first()).filter(|o| !self.scenario.same_operator(o)) {
             return Err(InputError::field(
                 "scenarios",
                 &other.name,

@@ -2,7 +2,9 @@
 //! configurations of the convergence study (`evhi bench` times them).
 
 use crate::output::csv::{col_f64, col_str, read_csv};
-use crate::output::plot::{Figure, LogLogChart, both, circle_legend, e2s, legend, one_two_five};
+use crate::output::plot::{
+    Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
+};
 use crate::study::{Ctx, ExpError};
 use plotters::prelude::*;
 use std::path::Path;
@@ -68,12 +70,7 @@ impl Figure for Chart {
             .iter()
             .flat_map(|s| s.1.iter().map(|p| (p.0, p.1)))
             .collect();
-        let (xmin, xmax) = pts
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-        let (ymin, ymax) = pts
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        let ((xmin, xmax), (ymin, ymax)) = extent(&pts);
         let ykeys = one_two_five((ymin * 0.6, ymax * 1.6), -3..=2);
         let mut chart = LogLogChart {
             caption: ("Work against precision, scenario figure (labels: n/N)", 24),

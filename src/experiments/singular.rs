@@ -21,7 +21,7 @@ use crate::mesh::Dofs;
 use crate::ordering::Ordering;
 use crate::output::csv::Table;
 use crate::output::plot::{
-    Figure, LogLogChart, both, circle_legend, e2s, legend, one_two_five, slope_guides,
+    Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five, slope_guides,
 };
 use crate::scenario::Scenario;
 pub use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
@@ -280,9 +280,7 @@ impl Figure for StaticFig {
             .iter()
             .flat_map(|s| s.1.iter().copied())
             .collect();
-        let xmax = pts.iter().map(|p| p.0).fold(0.0, f64::max);
-        let ymin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-        let ymax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+        let ((_, xmax), (ymin, ymax)) = extent(&pts);
         let keys: Vec<f64> = (2..=12)
             .map(|e| 2f64.powi(e))
             .filter(|x| *x <= xmax)

@@ -408,6 +408,16 @@ impl<'t> LogLogChart<'t> {
     }
 }
 
+/// The smallest and largest $x$ and the smallest and largest $y$ of `points`, as
+/// `((xmin, xmax), (ymin, ymax))`: the data range of a chart of positive values (the
+/// maxima start from 0, the minima from $\infty$).
+pub fn extent<'p>(points: impl IntoIterator<Item = &'p (f64, f64)>) -> ((f64, f64), (f64, f64)) {
+    points.into_iter().fold(
+        ((f64::INFINITY, 0.0), (f64::INFINITY, 0.0)),
+        |((x0, x1), (y0, y1)), p| ((x0.min(p.0), x1.max(p.0)), (y0.min(p.1), y1.max(p.1))),
+    )
+}
+
 /// The 1-2-5 points of the decades $10^e$, $e$ in `exponents`, that lie in `range`: the
 /// key points of a log axis with a label at 1, 2 and 5 of each decade.
 pub fn one_two_five(range: (f64, f64), exponents: std::ops::RangeInclusive<i32>) -> Vec<f64> {

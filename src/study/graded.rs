@@ -706,12 +706,7 @@ impl Figure for GradedFig {
             [areas.0, areas.1].iter().zip(&self.panels).enumerate()
         {
             let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
-            let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-                (a.min(p.0), b.max(p.0))
-            });
-            let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-                (a.min(p.1), b.max(p.1))
-            });
+            let ((xmin, xmax), (ymin, ymax)) = crate::output::plot::extent(&pts);
             // Room below the data for the whole of each slope guide.
             let guides_low = series
                 .get(1)

@@ -109,15 +109,10 @@ impl crate::output::plot::Figure for TimeFig {
         &self,
         root: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        use crate::output::plot::{LogLogChart, e2s, legend};
+        use crate::output::plot::{LogLogChart, e2s, extent, legend};
         use plotters::prelude::*;
         let pts: Vec<(f64, f64)> = self.series.iter().flat_map(|s| s.1.clone()).collect();
-        let (x0, x1) = pts
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-        let (y0, y1) = pts
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        let ((x0, x1), (y0, y1)) = extent(&pts);
         if pts.is_empty() {
             return Err("no positive error to draw".into());
         }

@@ -4,7 +4,7 @@
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use crate::manufactured::run::REGIMES;
 use crate::output::plot::{
-    Figure, LogLogChart, both, e2s, legend, regime_colour, regime_label, slope_guides,
+    Figure, LogLogChart, both, e2s, extent, legend, regime_colour, regime_label, slope_guides,
 };
 use plotters::prelude::*;
 use std::path::Path;
@@ -69,10 +69,7 @@ impl LogLog {
             .iter()
             .flat_map(|s| s.1.iter().copied())
             .collect();
-        let xmin = pts.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
-        let xmax = pts.iter().map(|p| p.0).fold(0.0, f64::max);
-        let ymin = pts.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-        let ymax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
+        let ((xmin, xmax), (ymin, ymax)) = extent(&pts);
         let keys: Vec<f64> = (0..=10)
             .map(|e| 2f64.powi(e))
             .filter(|x| *x >= xmin && *x <= xmax)

@@ -285,12 +285,7 @@ impl Figure for ControlFig {
         for (k, (title, series)) in self.panels.iter().enumerate() {
             let area = root;
             let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
-            let (xmin, xmax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-                (a.min(p.0), b.max(p.0))
-            });
-            let (ymin, ymax) = pts.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-                (a.min(p.1), b.max(p.1))
-            });
+            let ((xmin, xmax), (ymin, ymax)) = crate::output::plot::extent(&pts);
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
             let keys = crate::output::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
             let ykeys = crate::output::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));

@@ -3,7 +3,7 @@
 
 #[allow(unused_imports)]
 use super::*;
-use crate::output::plot::{LogLogChart, one_two_five};
+use crate::output::plot::{LogLogChart, extent, one_two_five};
 
 /// A plotted series: label, points, colour, and whether it is the second
 /// (dashed, crosses) series of its scenario.
@@ -111,12 +111,7 @@ impl Figure for Fig5 {
             .iter()
             .flat_map(|s| s.1.iter().copied())
             .collect();
-        let (xmin, xmax) = pts
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
-        let (ymin, ymax) = pts
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+        let ((xmin, xmax), (ymin, ymax)) = extent(&pts);
         // A tick and a label at every level.
         let mut keys: Vec<f64> = pts.iter().map(|p| p.0).collect();
         keys.sort_by(f64::total_cmp);
