@@ -32,6 +32,23 @@ impl InputError {
             allowed: allowed.into(),
         }
     }
+    /// The same refusal named by the command-line flag that set the value: `--f2` for
+    /// the library's `loads.f2`, `--f0[1]` for `loads.f0[1]`. The library speaks in the
+    /// scene's keys; the command line adds its flags.
+    pub fn for_flag(self, key: &str, flag: &str) -> Self {
+        match self {
+            InputError::Field {
+                field,
+                value,
+                allowed,
+            } if field.starts_with(key) => InputError::Field {
+                field: format!("{flag}{}", &field[key.len()..]),
+                value,
+                allowed,
+            },
+            other => other,
+        }
+    }
     /// The name of the offending field, if any.
     pub fn field_name(&self) -> Option<&str> {
         match self {
@@ -126,4 +143,12 @@ pub fn finite(field: &str, v: f64) -> Result<f64, InputError> {
 /// A modulus or a viscosity: between [`MIN_MAGNITUDE`] and [`MAX_MAGNITUDE`].
 pub fn positive(field: &str, v: f64) -> Result<f64, InputError> {
     in_range(field, v, MIN_MAGNITUDE, MAX_MAGNITUDE)
+}
+
+/// Whether `c` may end a line for some reader: a control character (line feed,
+/// carriage return, U+0085 and the rest) or a Unicode line or paragraph separator
+/// (U+2028, U+2029, which Python's `splitlines` honours). Text that goes into one
+/// line of a table's `#` header must have none.
+pub fn breaks_line(c: char) -> bool {
+    c.is_control() || c == '\u{2028}' || c == '\u{2029}'
 }

@@ -67,4 +67,5 @@ pub mod show;
 pub mod simulation;
 pub mod step;
 pub mod study;
+pub mod term;
 pub mod timing;

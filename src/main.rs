@@ -71,14 +71,15 @@ fn main() -> ExitCode {
         Command::Reproduce(args) => evhi::experiments::reproduce::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Scenarios => {
-            for (name, text) in evhi::scenario::BUILTIN {
-                match Scenario::from_toml(text, name) {
-                    Ok(s) => println!("{name:10} {}", s.description),
-                    Err(e) => println!("{name:10} (invalid: {e})"),
+            let mut text = String::new();
+            for (name, toml) in evhi::scenario::BUILTIN {
+                match Scenario::from_toml(toml, name) {
+                    Ok(s) => text += &format!("{name:10} {}\n", s.description()),
+                    Err(e) => text += &format!("{name:10} (invalid: {e})\n"),
                 }
             }
-            println!("(`evhi show NAME` prints one; the TOML files are in data/scenarios/)");
-            Ok(())
+            text += "(`evhi show NAME` prints one; the TOML files are in data/scenarios/)\n";
+            evhi::term::emit(&text).map_err(Into::into)
         }
         Command::Show(args) => cli::show::run(args),
         Command::Study(which) => study::run(which),
@@ -87,13 +88,17 @@ fn main() -> ExitCode {
             &run_dir.canonicalize().unwrap_or_else(|_| run_dir.clone()),
         )
         .map_err(|e| e.to_string())
-        .and_then(|_lock| evhi::output::runplot::draw(&run_dir).map_err(|e| e.to_string()))
-        .map_err(|e| format!("{}: {e}", run_dir.display()).into()),
+        .and_then(|_lock| {
+            evhi::output::runplot::draw(&run_dir).map_err(|e| format!("{}: {e}", run_dir.display()))
+        })
+        .map_err(Into::into),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of stdout went away (`evhi scenarios | head -1`): nothing is lost.
+        Err(e) if evhi::term::is_closed_pipe(e.as_ref()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            evhi::diag!("error: {e}");
             ExitCode::FAILURE
         }
     }

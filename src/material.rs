@@ -5,7 +5,7 @@
 //! $a = \alpha$, $b = \beta$ for $\mathcal C$. Also the `[material]` table of a
 //! scenario file and the forms it may give the elasticity in ([`MaterialForm`]).
 
-use crate::error::{InputError, finite, positive};
+use crate::error::{InputError, bounded, positive};
 use nalgebra::Matrix3;
 use serde::Deserialize;
 
@@ -106,7 +106,10 @@ pub(crate) fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64, MaterialForm
     };
     let (a, b, field, form) = if lame {
         let mu = positive("material.mu", need("mu", m.mu)?)?;
-        let lambda = finite("material.lambda", need("lambda", m.lambda)?)?;
+        // Bounded, as in the (E, kappa) form, only through the Poisson ratio it implies
+        // (below): E = 1e9, kappa = 0.499999 is lambda = 1.67e14, and both forms of one
+        // material are accepted or refused together.
+        let lambda = bounded("material.lambda", need("lambda", m.lambda)?, f64::MAX)?;
         // The plane-strain Poisson ratio the constants give must exceed -1 (the
         // (E, kappa) form the code keeps needs it): lambda > -2 mu/3 in plane strain,
         // > -mu/2 in plane stress, each stricter than positive definiteness (lambda >

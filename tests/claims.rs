@@ -904,7 +904,7 @@ fn results_smooth_every_regime() {
     let seen: BTreeSet<String> = run
         .contact
         .iter()
-        .map(|c| c.regime(&scn.law, scn.g))
+        .map(|c| c.regime(scn.law(), scn.g()))
         .collect();
     let expected: BTreeSet<String> = ["branch1", "branch2", "branch3", "limit"]
         .map(String::from)

@@ -759,7 +759,7 @@ fn a_vtk_series_that_cannot_fit_is_refused() {
     let dir = scratch("vtk-volume");
     let words = "--n 128 --steps 1000000 --vtk-every 1";
     let err = failed(&solve("figure", words, &dir.join("run")).output().unwrap());
-    assert_contains(&err, &["`vtk-every`", "GB in all"]);
+    assert_contains(&err, &["`vtk-every`", "TB in all"]);
     assert!(!dir.join("run/summary.csv").exists());
 }
 

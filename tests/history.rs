@@ -49,22 +49,25 @@ fn phi_of_ramp_and_constant() {
 #[test]
 fn toml_forms_parse() {
     let s = Scenario::from_toml(&figure_with("history = { ramp = 0.25 }"), "t").unwrap();
-    assert_eq!(s.history, History::Ramp { t_r: 0.25 });
+    assert_eq!(s.history().clone(), History::Ramp { t_r: 0.25 });
     let s = Scenario::from_toml(&figure_with("history = \"constant\""), "t").unwrap();
-    assert_eq!(s.history, History::Constant);
+    assert_eq!(s.history().clone(), History::Constant);
     let s = Scenario::from_toml(
         &figure_with("history = { table = [[0.0, 0.0], [0.5, 1.0], [1.0, 1.0]] }"),
         "t",
     )
     .unwrap();
     assert_eq!(
-        s.history,
+        s.history().clone(),
         History::Table {
             points: vec![(0.0, 0.0), (0.5, 1.0), (1.0, 1.0)]
         }
     );
     // Absent means constant: the shipped scenarios are unchanged.
-    assert_eq!(Scenario::load("figure").unwrap().history, History::Constant);
+    assert_eq!(
+        Scenario::load("figure").unwrap().history().clone(),
+        History::Constant
+    );
 }
 
 #[test]
@@ -134,7 +137,7 @@ fn the_ramp_override_is_validated() {
     let err = s.clone().with_ramp(0.0).unwrap_err();
     assert_eq!(err.field_name(), Some("ramp"));
     assert_eq!(
-        s.with_ramp(0.5).unwrap().history,
+        s.with_ramp(0.5).unwrap().history().clone(),
         History::Ramp { t_r: 0.5 }
     );
 }

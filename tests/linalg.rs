@@ -219,7 +219,7 @@ fn a_batch_run_equals_separate_runs() {
     for (scn, r) in scns.iter().zip(&batch) {
         let alone = common::run_newton(scn, 32, 16).unwrap();
         // Column j of a batched sweep does the same arithmetic as a single one.
-        assert_eq!(alone.u, r.u, "{}: batch and single runs differ", scn.name);
+        assert_eq!(alone.u, r.u, "{}: batch and single runs differ", scn.name());
         assert_eq!(alone.records.len(), r.records.len());
     }
 }

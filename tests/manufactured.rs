@@ -209,7 +209,7 @@ fn data_satisfy_the_hypotheses_and_the_contact_conditions() {
                 let x = i as f64 / 200.0;
                 let u_nu = data.u_nu(x, t);
                 assert!(
-                    u_nu <= scn.g + 1e-15,
+                    u_nu <= scn.g() + 1e-15,
                     "{sol:?}: u_nu = {u_nu} at ({x}, {t})"
                 );
                 let lam = sol.reaction(x, t);
@@ -217,7 +217,7 @@ fn data_satisfy_the_hypotheses_and_the_contact_conditions() {
                 if lam > 0.0 {
                     touched = true;
                     assert!(
-                        (u_nu - scn.g).abs() < 1e-15,
+                        (u_nu - scn.g()).abs() < 1e-15,
                         "{sol:?}: reaction {lam} where u_nu = {u_nu}"
                     );
                 }
@@ -263,7 +263,7 @@ fn the_steady_solution_by_hand() {
     let (a, b, delta) = (elast.a, elast.b, 0.06);
     let data = Data::new(Solution::Steady, &scn);
     let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * y.abs().max(1.0);
-    assert!(close(scn.law.p(delta), 9.0));
+    assert!(close(scn.law().p(delta), 9.0));
     for x in [0.1, 0.7, 1.9] {
         assert!(close(data.u_nu(x, 0.0), delta));
         let f3 = data.gamma3_load(x, 0.0);
@@ -305,7 +305,7 @@ fn landing_lands_at_speed_and_p1limit_at_rest() {
             (sol == Solution::Landing).then_some(0.4)
         );
         for x in [0.5, 0.8, 1.0, 1.5] {
-            assert_eq!(data.u_nu(x, 0.4), scn.g, "{sol:?} at {x}");
+            assert_eq!(data.u_nu(x, 0.4), scn.g(), "{sol:?} at {x}");
             let before = (data.u_nu(x, 0.4) - data.u_nu(x, 0.4 - dt)) / dt;
             let after = (data.u_nu(x, 0.4 + dt) - data.u_nu(x, 0.4)) / dt;
             assert!((before - speed).abs() < 1e-5, "{sol:?} at {x}: {before}");

@@ -193,7 +193,7 @@ fn a_bad_pattern_is_refused_by_name() {
     assert!(err.to_string().contains("crisscross"), "{err}");
     let good = format!("{text}\n[geometry]\npattern = \"crisscross\"\n");
     assert_eq!(
-        Scenario::from_toml(&good, "test").unwrap().pattern,
+        Scenario::from_toml(&good, "test").unwrap().pattern(),
         Pattern::CrissCross
     );
 }

@@ -72,10 +72,10 @@ fn solve(scn: &Scenario, name: &str, reduced: bool, pattern: Pattern) -> Run {
     let mut solver = entry.build();
     // An uncertified solver is judged by its own convergence.
     let mesh = (pattern != Pattern::Diagonal)
-        .then(|| Arc::new(Mesh::build(16, &scn.geometry, pattern).unwrap()));
+        .then(|| Arc::new(Mesh::build(16, scn.geometry(), pattern).unwrap()));
     let settings = common::on_loop(16, 16, reduced);
     let r = common::solve_with(scn, settings, mesh, solver.as_mut(), &mut ())
-        .unwrap_or_else(|e| panic!("{name}, g = {}: {e}", scn.g));
+        .unwrap_or_else(|e| panic!("{name}, g = {}: {e}", scn.g()));
     if entry.certified {
         assert!(
             r.records.iter().all(|rec| rec.certificate.max() <= 1e-10),

@@ -43,13 +43,16 @@ fn show_says_when_e_and_kappa_are_converted_and_from_what() {
     // Plane stress E_s = 1000, nu_s = 0.3: kappa = nu_s/(1 + nu_s), E = E_s(1 + 2 nu_s)/(1 + nu_s)^2.
     let text = show("stress", PLANE_STRESS);
     let scn = evhi::scenario::Scenario::from_toml(&with_material(PLANE_STRESS), "stress").unwrap();
-    assert!((scn.kappa - 0.3 / 1.3).abs() < 1e-14 && (scn.e - 1000.0 * 1.6 / 1.69).abs() < 1e-9);
+    assert!(
+        (scn.kappa() - 0.3 / 1.3).abs() < 1e-14 && (scn.e() - 1000.0 * 1.6 / 1.69).abs() < 1e-9
+    );
     assert_contains(
         &text,
         &[&format!(
             "material: E = {}, kappa = {} (plane strain, converted from the file's plane-stress \
              E = 1000, nu = 0.3), alpha = 100, beta = 50",
-            scn.e, scn.kappa
+            scn.e(),
+            scn.kappa()
         )],
     );
     assert_contains(
@@ -84,10 +87,10 @@ fn summary_records_the_material_the_solver_used_after_the_old_columns() {
         ok(&o);
         let row = common::summary(&run);
         for (col, got, want) in [
-            ("E", row.e, scn.e),
-            ("kappa", row.kappa, scn.kappa),
-            ("alpha", row.alpha, scn.alpha),
-            ("beta", row.beta, scn.beta),
+            ("E", row.e, scn.e()),
+            ("kappa", row.kappa, scn.kappa()),
+            ("alpha", row.alpha, scn.alpha()),
+            ("beta", row.beta, scn.beta()),
         ] {
             assert_eq!(got, want, "{name}: {col}");
         }

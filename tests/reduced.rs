@@ -53,13 +53,13 @@ fn compare(scn: &Scenario, n: usize, steps: usize) {
     assert!(
         all_general.iter().any(|x| x.abs() > 0.0),
         "{}: nothing moves",
-        scn.name
+        scn.name()
     );
     let gap = rel_gap(&all_general, &r.concat());
     assert!(
         gap <= 1e-12,
         "{}: contact unknowns off by {gap:e}",
-        scn.name
+        scn.name()
     );
     // Asked for: half-way and the end; sampled besides: the quarters.
     let sampled = |s: usize| s.is_multiple_of(steps / 4);
@@ -69,22 +69,22 @@ fn compare(scn: &Scenario, n: usize, steps: usize) {
         assert!(
             gap <= 1e-12,
             "{}: field at step {step} off by {gap:e}",
-            scn.name
+            scn.name()
         );
     }
     let energy = |run: &evhi::scheme::Run| -> Vec<f64> {
         run.records.iter().map(|s| s.energy_norm).collect()
     };
     let gap = rel_gap(&energy(&general), &energy(&reduced));
-    assert!(gap <= 1e-12, "{}: energy norms off by {gap:e}", scn.name);
+    assert!(gap <= 1e-12, "{}: energy norms off by {gap:e}", scn.name());
     for rec in &reduced.records {
         let want = if outputs.contains(&rec.step) || sampled(rec.step) {
             Check::Full
         } else {
             Check::Condensed
         };
-        assert_eq!(rec.check, want, "{}: step {}", scn.name, rec.step);
-        assert!(rec.certificate.max() <= 1e-10, "{}: {rec:?}", scn.name);
+        assert_eq!(rec.check, want, "{}: step {}", scn.name(), rec.step);
+        assert!(rec.certificate.max() <= 1e-10, "{}: {rec:?}", scn.name());
     }
 }
 
@@ -168,8 +168,10 @@ fn one_operator_serves_every_k_and_its_norms_need_no_solve() {
 
 #[test]
 fn damping_that_is_not_proportional_is_refused() {
-    let mut scn = Scenario::load("figure").unwrap();
-    scn.alpha = 60.0;
+    let scn = Scenario::load("figure")
+        .unwrap()
+        .with_viscosity(60.0, 50.0)
+        .unwrap();
     let reduced = common::on_loop(8, 4, true);
     let err = common::solve_with(&scn, reduced, None, &mut Newton::default(), &mut ())
         .err()

@@ -69,9 +69,9 @@ proptest! {
         let text = mutate(field, &v);
         match Scenario::from_toml(&text, "generated") {
             Ok(s) => {
-                prop_assert!(s.t_end > 0.0 && s.t_end.is_finite());
-                prop_assert!(s.g > 0.0 && s.g.is_finite());
-                prop_assert!(s.kappa > -1.0 && s.kappa < 0.5);
+                prop_assert!(s.t_end() > 0.0 && s.t_end().is_finite());
+                prop_assert!(s.g() > 0.0 && s.g().is_finite());
+                prop_assert!(s.kappa() > -1.0 && s.kappa() < 0.5);
             }
             Err(e) => {
                 let msg = e.to_string();
@@ -261,14 +261,18 @@ fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
     ];
     let mut shown = 0;
     for (steps, c2) in cells {
-        let mut scn = Scenario::load("figure").unwrap();
-        scn.law = Law::new(
-            &[0.0, 0.05, 0.075],
-            &[0.0, 200.0, c2, 300.0],
-            &[0.0; 3],
-            0.0,
-        )
-        .unwrap();
+        let scn = Scenario::load("figure")
+            .unwrap()
+            .with_law(
+                Law::new(
+                    &[0.0, 0.05, 0.075],
+                    &[0.0, 200.0, c2, 300.0],
+                    &[0.0; 3],
+                    0.0,
+                )
+                .unwrap(),
+            )
+            .unwrap();
         let plain = newton::Settings {
             line_search: false,
             ..newton::Settings::default()
@@ -300,4 +304,66 @@ fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
         shown >= 1,
         "the line search made no difference in any of {cells:?}"
     );
+}
+
+/// Any double, ordinary or hostile, for the builders.
+fn any_double() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        -1e6f64..1e6,
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(0.0),
+        Just(-0.0),
+        Just(1e308),
+        Just(5e-324),
+        any::<f64>(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(300),
+        ..ProptestConfig::default()
+    })]
+
+    /// The builder path of the public API (issue 48, item 1; `fuzz/fuzz_targets/builder.rs`
+    /// is its fuzzing twin): a chain of checked builders with any doubles never panics,
+    /// a refusal names its field, and an accepted scene keeps the file's invariants
+    /// and builds a simulation that solves or fails with an error, never a panic.
+    #[test]
+    fn the_builders_never_panic_and_keep_the_invariants(
+        ops in proptest::collection::vec((0u8..7, any_double(), any_double()), 1..5)
+    ) {
+        let mut scene = Scenario::load("figure").unwrap();
+        for (op, a, b) in ops {
+            let next = match op {
+                0 => scene.clone().with_g(a),
+                1 => scene.clone().with_loads(Some([a, b]), Some([0.0, b])),
+                2 => scene.clone().with_elasticity(a, b),
+                3 => scene.clone().with_viscosity(a, b),
+                4 => scene.clone().with_ramp(a),
+                5 => Law::new(&[0.0, a.abs()], &[0.0, b, 300.0], &[0.0, a], 0.0)
+                    .and_then(|law| scene.clone().with_law(law)),
+                _ => scene.clone().with_name(&format!("{a}\u{2028}{b}")),
+            };
+            match next {
+                Ok(s) => scene = s,
+                Err(e) => prop_assert!(e.field_name().is_some(), "{e}"),
+            }
+        }
+        prop_assert!(scene.g() > 0.0 && !scene.g().is_nan());
+        prop_assert!(scene.e() > 0.0 && scene.e().is_finite());
+        prop_assert!(scene.kappa() > -1.0 && scene.kappa() < 0.5);
+        prop_assert!(scene.f0().iter().chain(scene.f2().iter()).all(|x| x.is_finite()));
+        prop_assert!(scene.beta() > 0.0 && 2.0 * scene.alpha() + scene.beta() > 0.0);
+        let settings = evhi::simulation::RunSettings {
+            n: 4,
+            steps: Some(2),
+            ..Default::default()
+        };
+        if let Ok(sim) = evhi::simulation::Simulation::new(scene, settings) {
+            let _ = sim.solve(&mut ());
+        }
+    }
 }

@@ -13,9 +13,9 @@ fn with(from: &str, to: &str) -> String {
 fn builtins_parse() {
     for name in ["literal", "figure"] {
         let s = Scenario::load(name).unwrap();
-        assert_eq!(s.name, name);
-        assert_eq!(s.g, 0.1);
-        assert_eq!(s.law, evhi::law::paper_law());
+        assert_eq!(s.name(), name);
+        assert_eq!(s.g(), 0.1);
+        assert_eq!(*s.law(), evhi::law::paper_law());
     }
 }
 
@@ -72,9 +72,9 @@ fn overrides_are_validated() {
             .with_loads(Some([f64::NAN, 0.0]), None)
             .unwrap_err()
             .field_name(),
-        Some("f0[0]")
+        Some("loads.f0[0]")
     );
-    assert_eq!(s.with_g(0.07).unwrap().g, 0.07);
+    assert_eq!(s.with_g(0.07).unwrap().g(), 0.07);
 }
 
 /// A traction on the clamped top (supports = "rollers") cannot act: it is refused by
@@ -86,7 +86,7 @@ fn a_traction_on_a_clamped_top_is_refused_by_name() {
         .clone()
         .with_loads(None, Some([0.0, -1e6]))
         .unwrap_err();
-    assert_eq!(e.field_name(), Some("f2"), "{e}");
+    assert_eq!(e.field_name(), Some("loads.f2"), "{e}");
     assert!(e.to_string().contains("rollers"), "{e}");
     // A zero traction stays allowed, and the paper's supports take any.
     assert!(smooth.with_loads(None, Some([0.0, 0.0])).is_ok());
@@ -149,7 +149,7 @@ fn the_law_table_takes_one_family_and_names_the_other_s_keys() {
     );
     assert_ne!(soft, GOOD, "fixture changed");
     let s = Scenario::from_toml(&soft, "test").unwrap();
-    assert_eq!(s.law.kind(), "softening");
+    assert_eq!(s.law().kind(), "softening");
     let cases = [
         (
             soft.replace("length = 0.03", "length = 0.03\nslopes = [1.0]"),
@@ -315,4 +315,138 @@ fn elasticity_ranges_are_the_documented_ones() {
         assert_eq!(err.field_name(), Some("material.kappa"), "{err}");
         assert!(err.to_string().contains("(-1/2, 1/2)"), "{err}");
     }
+}
+
+/// A scene built through the library cannot hold what the file reader refuses: each
+/// checked builder refuses the same value with the same words as the file (issue 48,
+/// item 1; `scene.g = -1.0` used to solve, "certified", with u_nu = -1).
+#[test]
+fn the_builders_refuse_what_the_file_refuses_in_the_same_words() {
+    use evhi::law::Law;
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenarios/figure.toml"
+    ))
+    .unwrap();
+    let figure = Scenario::load("figure").unwrap();
+    let smooth = Scenario::load("smooth").unwrap();
+    let smooth_text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenarios/smooth.toml"
+    ))
+    .unwrap();
+    let law =
+        |slopes: &[f64], jumps: &[f64]| Law::new(&[0.0, 0.05, 0.075], slopes, jumps, 0.0).unwrap();
+    type Build = Box<dyn Fn() -> Result<Scenario, evhi::error::InputError>>;
+    let cases: Vec<(String, Build)> = vec![
+        (
+            text.replace("g = 0.1", "g = -1.0"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_g(-1.0)
+            }),
+        ),
+        (
+            text.replace("f0 = [0.0, -5.0]", "f0 = [nan, -5.0]"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_loads(Some([f64::NAN, -5.0]), None)
+            }),
+        ),
+        (
+            text.replace("f2 = [0.0, -75.0]", "f2 = [0.0, 1e300]"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_loads(None, Some([0.0, 1e300]))
+            }),
+        ),
+        (
+            smooth_text.replace("f2 = [0.0, 0.0]", "f2 = [0.0, -75.0]"),
+            Box::new({
+                let s = smooth.clone();
+                move || s.clone().with_loads(None, Some([0.0, -75.0]))
+            }),
+        ),
+        (
+            text.replace("E = 1000.0", "E = -1.0"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_elasticity(-1.0, 0.4)
+            }),
+        ),
+        (
+            text.replace("kappa = 0.4", "kappa = 0.5"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_elasticity(1000.0, 0.5)
+            }),
+        ),
+        (
+            text.replace("alpha = 100.0", "alpha = -30.0"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_viscosity(-30.0, 50.0)
+            }),
+        ),
+        (
+            text.replace("beta = 50.0", "beta = 0.0"),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_viscosity(100.0, 0.0)
+            }),
+        ),
+        (
+            text.replace(
+                "slopes = [0.0, 200.0, -100.0, 300.0]",
+                "slopes = [0.0, 200.0, -1e12, 300.0]",
+            ),
+            Box::new({
+                let s = figure.clone();
+                move || {
+                    s.clone()
+                        .with_law(law(&[0.0, 200.0, -1e12, 300.0], &[0.0; 3]))
+                }
+            }),
+        ),
+        (
+            text.replace(
+                "slopes = [0.0, 200.0, -100.0, 300.0]",
+                "slopes = [0.0, 200.0, -100.0, 300.0]\njumps = [0.0, -1e9, 0.0]",
+            ),
+            Box::new({
+                let s = figure.clone();
+                move || {
+                    s.clone()
+                        .with_law(law(&[0.0, 200.0, -100.0, 300.0], &[0.0, -1e9, 0.0]))
+                }
+            }),
+        ),
+        (
+            text.replace("name = \"figure\"", "name = \"  \""),
+            Box::new({
+                let s = figure.clone();
+                move || s.clone().with_name("  ")
+            }),
+        ),
+    ];
+    for (file, build) in cases {
+        let from_file = Scenario::from_toml(&file, "test").unwrap_err();
+        let from_code = build().unwrap_err();
+        assert_eq!(from_file.to_string(), from_code.to_string());
+        assert!(from_code.field_name().is_some(), "{from_code}");
+    }
+    // An elastic scene takes no viscosity, as its file may give none.
+    let elastic = figure
+        .clone()
+        .with_problem(evhi::scenario::Problem::Elastic)
+        .unwrap();
+    let e = elastic.with_viscosity(100.0, 50.0).unwrap_err();
+    assert_eq!(e.field_name(), Some("material.alpha"), "{e}");
+    // What is accepted is what the accessors give back.
+    let s = figure
+        .with_viscosity(60.0, 30.0)
+        .unwrap()
+        .with_g(0.2)
+        .unwrap();
+    assert_eq!((s.alpha(), s.beta(), s.g()), (60.0, 30.0, 0.2));
 }

@@ -53,13 +53,13 @@ fn solve(scn: &Scenario, n: usize, steps: usize, mesh: Option<Arc<Mesh>>, reduce
     let settings = common::on_loop(n, steps, reduced);
     let every = &mut common::EveryField;
     let r = common::solve_with(scn, settings, mesh, solver.as_mut(), every)
-        .unwrap_or_else(|e| panic!("{}: {e}", scn.name));
+        .unwrap_or_else(|e| panic!("{}: {e}", scn.name()));
     let worst = r
         .records
         .iter()
         .map(|s| s.certificate.max())
         .fold(0.0, f64::max);
-    assert!(worst <= 1e-10, "{}: certificate {worst:e}", scn.name);
+    assert!(worst <= 1e-10, "{}: certificate {worst:e}", scn.name());
     r
 }
 
@@ -351,7 +351,7 @@ fn singular_points_follow_the_supports() {
     expected.sort_by(|a, b| a.partial_cmp(b).unwrap());
     assert_eq!(paper, expected);
     assert!(Geometry::rollers().singular_points().is_empty());
-    let mut c = cantilever("viscoelastic").geometry.singular_points();
+    let mut c = cantilever("viscoelastic").geometry().singular_points();
     c.sort_by(|a, b| a.partial_cmp(b).unwrap());
     assert_eq!(c, vec![[0.0, 0.0], [0.0, 0.5]]);
 }
@@ -391,10 +391,10 @@ fn cantilever_static_quasistatic_and_graded() {
         "viscoelastic at T vs steady: {gap:e}"
     );
     // On the graded mesh, in all three problems.
-    let mesh = Arc::new(graded_mesh(&steady_scn.geometry, n, 0.4).unwrap());
+    let mesh = Arc::new(graded_mesh(steady_scn.geometry(), n, 0.4).unwrap());
     assert!(
         mesh.nodes.len()
-            > Mesh::build(n, &steady_scn.geometry, Default::default())
+            > Mesh::build(n, steady_scn.geometry(), Default::default())
                 .unwrap()
                 .nodes
                 .len()
@@ -561,7 +561,7 @@ fn graded_meshes_keep_every_end_a_node() {
         let load = vertical_load(&scn, &mesh);
         assert!((load - 5.0).abs() <= 1e-12, "n = {n}: load {load}");
     }
-    let old = graded_mesh(&scn.geometry, 24, 0.4).unwrap();
+    let old = graded_mesh(scn.geometry(), 24, 0.4).unwrap();
     let err = old
         .check_nodes_at("loads.traction[0]", evhi::geometry::Side::Top, [2.5, 3.0])
         .unwrap_err();
@@ -742,7 +742,7 @@ fn the_ends_of_gamma_3_are_singular_points() {
     ))
     .unwrap();
     let ends: Vec<[f64; 2]> = scn
-        .geometry
+        .geometry()
         .singularities()
         .into_iter()
         .filter(|s| s.contact_end)

@@ -35,7 +35,7 @@ fn condensed_step_equals_full_space_solve() {
     let (n, steps) = (8, 8);
     let (us, res) = fields(&scn, n, steps, &mut Newton::default());
     let disc = Discretisation::new(&scn, n).unwrap();
-    let k = scn.t_end / steps as f64;
+    let k = scn.t_end() / steps as f64;
     let kmat = lin_comb(1.0, &disc.a, k, &disc.b);
     let b: Vec<f64> = matvec(&disc.a, &us[steps - 2])
         .iter()
@@ -50,17 +50,17 @@ fn condensed_step_equals_full_space_solve() {
     for (i, &d) in disc.contact_dofs.iter().enumerate() {
         let s = -u_cond[d];
         let kw = k * disc.weights[i];
-        if scn.g - s <= 1e-8 * scn.g {
+        if scn.g() - s <= 1e-8 * scn.g() {
             // u_d = -g
             for j in 0..nd {
                 h[(d, j)] = 0.0;
             }
             h[(d, d)] = 1.0;
-            rhs[(d, 0)] = -scn.g;
+            rhs[(d, 0)] = -scn.g();
             pinned += 1;
         } else {
             // d/du_d of kw j(-u_d) = -kw (p_b(0) - c_b u_d)
-            let t = scn.law.tangent(s);
+            let t = scn.law().tangent(s);
             h[(d, d)] += kw * t.slope;
             rhs[(d, 0)] += kw * t.at_zero;
         }
@@ -104,7 +104,7 @@ fn newton_and_convexify_agree_at_every_step() {
         let regimes: std::collections::BTreeSet<String> = rn
             .contact
             .iter()
-            .map(|c| c.regime(&scn.law, scn.g))
+            .map(|c| c.regime(scn.law(), scn.g()))
             .collect();
         assert!(
             regimes.contains("limit") && regimes.contains("branch2") && regimes.contains("branch3"),

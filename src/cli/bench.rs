@@ -126,6 +126,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         progress: None,
         reference: None,
         command: None,
+        out_flags: String::new(),
         experiment: "bench",
         book_table: crate::bench::book_table,
     };
@@ -138,7 +139,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         return Ok(());
     }
     let machine = machine();
-    eprintln!("bench on {machine}");
+    crate::diag!("bench on {machine}");
     if args.sweeps {
         crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
         return Ok(());
@@ -171,7 +172,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
             }
             let mut runs = vec![];
             for r in 0..args.repeat.max(1) {
-                eprintln!("  n = steps = {n}, {path} path, run {}", r + 1);
+                crate::diag!("  n = steps = {n}, {path} path, run {}", r + 1);
                 runs.push(child_run(n, n, DEFAULT_SOLVER, path)?);
             }
             dofs.push(f(&runs[0], "dofs") as u64);
@@ -203,7 +204,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
             .filter(|e| e.benchmarked)
             .map(|e| e.name)
         {
-            eprintln!("  solvers: n = steps = {n}, {solver}");
+            crate::diag!("  solvers: n = steps = {n}, {solver}");
             let runs: Vec<_> = (0..args.repeat.max(1))
                 .map(|_| child_run(n, n, solver, "auto"))
                 .collect::<Result<_, _>>()?;
@@ -249,7 +250,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut wp = vec![];
     for i in (0..sc.len()).filter(|&i| sc[i] == "figure") {
         let (ni, si) = (n[i] as usize, st[i] as usize);
-        eprintln!("  work-precision: n = {ni}, steps = {si}");
+        crate::diag!("  work-precision: n = {ni}, steps = {si}");
         let runs: Vec<_> = (0..args.repeat.max(1))
             .map(|_| child_run(ni, si, DEFAULT_SOLVER, "auto"))
             .collect::<Result<_, _>>()?;
@@ -337,7 +338,7 @@ fn scipy(
         solve_into(&check, n, n, DEFAULT_SOLVER, "reduced")?;
         let (mut sp, mut gen_, mut red) = (vec![], vec![], vec![]);
         for r in 0..args.repeat.max(1) {
-            eprintln!("  scipy comparison: n = steps = {n}, round {}", r + 1);
+            crate::diag!("  scipy comparison: n = steps = {n}, round {}", r + 1);
             sp.push(scipy_run(n, &check)?);
             gen_.push(child_run(n, n, DEFAULT_SOLVER, "general")?);
             red.push(child_run(n, n, DEFAULT_SOLVER, "reduced")?);

@@ -26,9 +26,9 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or_else(|| crate::simulation::default_steps(&scn));
     crate::scheme::check_steps(Some(&scn), &crate::scheme::Settings::new(args.n, steps))?;
     let (text, warnings) = crate::show::report(&scn, args.n, steps);
-    print!("{text}");
+    crate::term::emit(&text)?;
     if warnings > 0 {
-        eprintln!("{warnings} warning(s)");
+        crate::diag!("{warnings} warning(s)");
     }
     Ok(())
 }

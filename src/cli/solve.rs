@@ -133,9 +133,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let wall = Instant::now();
     // Read once: the run writes this text, whatever happens to the file meanwhile.
     let (scn, toml) = Scenario::read(&args.scenario)?;
-    let scn = scn.with_loads(args.f0, args.f2)?;
+    let scn = scn
+        .with_loads(args.f0, args.f2)
+        .map_err(|e| e.for_flag("loads.f0", "--f0").for_flag("loads.f2", "--f2"))?;
     let scn = match args.g {
-        Some(g) => scn.with_g(g)?,
+        Some(g) => scn.with_g(g).map_err(|e| e.for_flag("g", "--g"))?,
         None => scn,
     };
     let scn = match args.ramp {
@@ -146,7 +148,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
         .iter()
-        .for_each(|l| eprintln!("{l}"));
+        .for_each(|l| crate::diag!("{l}"));
     let (mesh, steps) = (sim.mesh().clone(), sim.steps());
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
@@ -169,13 +171,9 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let solution = solution?;
     let (lines, h_s) = diagnostics::after(scn, entry, &solution, args.n, h_s);
-    lines.iter().for_each(|l| eprintln!("{l}"));
+    lines.iter().for_each(|l| crate::diag!("{l}"));
     let t_out = Instant::now();
-    let prov = Provenance::of(
-        &sim,
-        &solution,
-        crate::output::run::quote_args(std::env::args().skip(1)),
-    );
+    let prov = Provenance::of(&sim, &solution, crate::output::run::command_line());
     let run = &solution.run;
     let seconds = wall.elapsed().as_secs_f64();
     crate::output::run::write(
@@ -193,7 +191,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     out.publish()?;
     if args.timings {
         let (output, total) = (t_out.elapsed(), wall.elapsed());
-        eprint!("{}", crate::output::run::timings(&sim, run, output, total));
+        crate::diag_text!("{}", crate::output::run::timings(&sim, run, output, total));
     }
     Ok(())
 }
@@ -286,15 +284,15 @@ fn check_vtk_volume(
             "vtk-every",
             every,
             format!(
-                "a series that fits: {files} files of about {:.2} MB each, {:.1} GB in all, \
-                 but at most {:.1} GB may be written ({}); write fewer snapshots",
-                120.0 * nodes / 1e6,
-                bytes / 1e9,
-                limit / 1e9,
+                "a series that fits: {files} files of about {} each, {} in all, but at most \
+                 {} may be written ({}); write fewer snapshots",
+                crate::term::size_text(120.0 * nodes),
+                crate::term::size_text(bytes),
+                crate::term::size_text(limit),
                 match free {
                     Some(f) if f < VTK_CAP_BYTES =>
-                        format!("the free space there, {:.1} GB", f / 1e9),
-                    _ => format!("the cap of {:.0} GB", VTK_CAP_BYTES / 1e9),
+                        format!("the free space there, {}", crate::term::size_text(f)),
+                    _ => format!("the cap of {}", crate::term::size_text(VTK_CAP_BYTES)),
                 }
             ),
         ));

@@ -100,6 +100,18 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         )
         .into());
     }
+    // The provenance names the directories where the user chose them.
+    let out_flags: String = [("--data", &args.data), ("--figures", &args.figures)]
+        .iter()
+        .filter_map(|(flag, dir)| {
+            dir.as_ref().map(|d| {
+                format!(
+                    " {flag} {}",
+                    crate::output::run::quote_args([d.to_string_lossy().into_owned()])
+                )
+            })
+        })
+        .collect();
     let ctx = Ctx {
         quick: args.quick,
         data: args.data.unwrap_or_else(|| quick_or(args.quick, "data")),
@@ -110,25 +122,30 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         progress: None,
         reference: args.reference,
         command: None,
+        out_flags,
         experiment: "",
         book_table: registry::book_table,
     };
     for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
-        if dir.exists() && !dir.is_dir() {
-            return Err(crate::error::InputError::field(
-                flag,
-                dir.display(),
-                "a directory (created if missing): this path exists and is not one",
-            )
-            .into());
-        }
-        std::fs::create_dir_all(dir).map_err(|e| {
-            crate::error::InputError::field(
-                flag,
-                dir.display(),
-                format!("a directory that can be created: {e}"),
-            )
-        })?;
+        check_output_dir(flag, dir)?;
+    }
+    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
+        std::fs::create_dir_all(dir)
+            .and_then(|()| {
+                let marker = dir.join(OUTPUTS_MARKER);
+                if marker.exists() {
+                    Ok(())
+                } else {
+                    crate::output::write_atomic(&marker, OUTPUTS_MARKER_TEXT.as_bytes())
+                }
+            })
+            .map_err(|e| {
+                crate::error::InputError::field(
+                    flag,
+                    dir.display(),
+                    format!("a directory that can be created and written: {e}"),
+                )
+            })?;
     }
     // One writer of an output set at a time; then the temporaries a killed run left.
     let _lock = lock_outputs(&ctx.data)?;
@@ -207,17 +224,17 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut failed = vec![];
     for (name, secs, r) in &results {
         match r {
-            Ok(()) if !args.quiet => eprintln!("  {name}: done in {secs:.1} s"),
+            Ok(()) if !args.quiet => crate::diag!("  {name}: done in {secs:.1} s"),
             Ok(()) => {}
             Err(e) => {
-                eprintln!("  {name}: FAILED after {secs:.1} s: {e}");
+                crate::diag!("  {name}: FAILED after {secs:.1} s: {e}");
                 failed.push(name.clone());
             }
         }
     }
     let wall = total.elapsed().as_secs_f64();
     if !args.quiet {
-        eprintln!(
+        crate::diag!(
             "reproduce: {} experiment(s) in {wall:.1} s wall",
             results.len()
         );
@@ -280,6 +297,44 @@ fn remove_stale_temporaries(dir: &std::path::Path) {
 
 /// The default output directory `dir`, or its git-ignored `local/quick/` for a quick
 /// run (whose coarse levels must not replace the committed full-level outputs).
+/// Marks a directory that `evhi reproduce` writes its tables or figures into, so that
+/// a later run may replace the files there.
+pub const OUTPUTS_MARKER: &str = ".evhi-outputs";
+
+const OUTPUTS_MARKER_TEXT: &str = "evhi reproduce writes its tables and figures into this \
+directory under fixed names, replacing files of the same names; this file marks it as one \
+that it may write into.\n";
+
+/// Refuses an output directory that `reproduce` would write into over files it did not
+/// write: one that exists and is not a directory, or holds files but not the mark
+/// [`OUTPUTS_MARKER`] of an earlier run (`/`, a home directory, a mistyped path). The
+/// committed `data/` and `figures/` carry the mark.
+fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::error::InputError> {
+    let refuse = |what: String| crate::error::InputError::field(flag, dir.display(), what);
+    if dir.exists() && !dir.is_dir() {
+        return Err(refuse(
+            "a directory (created if missing): this path exists and is not one".into(),
+        ));
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    let mut names: Vec<String> = entries
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    if names.is_empty() || dir.join(OUTPUTS_MARKER).exists() {
+        return Ok(());
+    }
+    names.sort();
+    Err(refuse(format!(
+        "a new or empty directory, or one an earlier `evhi reproduce` wrote (it holds \
+         `{OUTPUTS_MARKER}`): this one holds files evhi did not write (for example `{}`), \
+         and reproduce would replace any of the same names as its tables and figures",
+        names[0]
+    )))
+}
+
 fn quick_or(quick: bool, dir: &str) -> PathBuf {
     if quick {
         PathBuf::from(dir).join("local").join("quick")

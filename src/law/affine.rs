@@ -23,6 +23,8 @@ use crate::error::{InputError, bounded};
 pub struct Affine {
     /// Breakpoints $s_1 < \dots < s_K$.
     breaks: Vec<f64>,
+    /// The jump of $p$ at each breakpoint, as given.
+    jump_sizes: Vec<f64>,
     /// Slopes $c_0, \dots, c_K$, one per branch.
     slopes: Vec<f64>,
     /// Value of $p$ at the left end of each branch: $p(s_1^-)$ for branch 0
@@ -114,6 +116,7 @@ impl Affine {
         }
         let mut law = Affine {
             breaks: breaks.to_vec(),
+            jump_sizes: jumps.to_vec(),
             slopes: slopes.to_vec(),
             start,
             prim_start,
@@ -123,8 +126,17 @@ impl Affine {
         Ok(law)
     }
 
+    /// The breakpoints $s_1 < \dots < s_K$.
     pub fn breakpoints(&self) -> &[f64] {
         &self.breaks
+    }
+    /// The jump $p(s_i^+) - p(s_i^-)$ at each breakpoint, as given to [`Affine::new`].
+    pub fn jump_sizes(&self) -> &[f64] {
+        &self.jump_sizes
+    }
+    /// $p(s_1^-)$ (or $p(0)$ when there are no breakpoints), as given to [`Affine::new`].
+    pub fn p_left(&self) -> f64 {
+        self.start[0]
     }
     pub fn slopes(&self) -> &[f64] {
         &self.slopes

@@ -71,17 +71,13 @@ pub(crate) fn law_from(raw: &RawLaw) -> Result<Law, InputError> {
             let slopes = raw.slopes.clone().ok_or_else(|| {
                 InputError::field("law.slopes", "nothing", "a list of slopes, one per branch")
             })?;
-            for (i, &s) in breakpoints.iter().enumerate() {
-                bounded(&format!("law.breakpoints[{i}]"), s, 1e6)?;
-            }
-            for (i, &c) in slopes.iter().enumerate() {
-                bounded(&format!("law.slopes[{i}]"), c, MAX_LAW)?;
-            }
-            for (i, &d) in raw.jumps.iter().flatten().enumerate() {
-                bounded(&format!("law.jumps[{i}]"), d, MAX_LAW_VALUE)?;
-            }
             let p_left = raw.p_left.unwrap_or(0.0);
-            bounded("law.p_left", p_left, MAX_LAW_VALUE)?;
+            piecewise_bounds(
+                &breakpoints,
+                &slopes,
+                raw.jumps.as_deref().unwrap_or_default(),
+                p_left,
+            )?;
             let jumps = raw
                 .jumps
                 .clone()
@@ -99,11 +95,7 @@ pub(crate) fn law_from(raw: &RawLaw) -> Result<Law, InputError> {
             let a = raw.length.ok_or_else(|| {
                 InputError::field("law.length", "nothing", "a > 0 in p(s) = c s exp(-s/a)")
             })?;
-            bounded("law.stiffness", c, MAX_LAW)?;
-            // As small as g may be, and no smaller: below it (1e-310 was accepted) the
-            // law's scale leaves what a solve can resolve, and Newton ran out of
-            // iterations without naming the key.
-            in_range("law.length", a, MIN_MAGNITUDE, 1e6)?;
+            softening_bounds(c, a)?;
             Ok(Law::Softening(crate::law::Softening::new(c, a)?))
         }
         other => Err(InputError::field(
@@ -111,5 +103,45 @@ pub(crate) fn law_from(raw: &RawLaw) -> Result<Law, InputError> {
             other,
             "\"piecewise\" (breakpoints, slopes, jumps, p_left) or \"softening\" (stiffness, length)",
         )),
+    }
+}
+
+/// The file's bounds on a piecewise law's values (see [`MAX_LAW`], [`MAX_LAW_VALUE`]).
+fn piecewise_bounds(
+    breakpoints: &[f64],
+    slopes: &[f64],
+    jumps: &[f64],
+    p_left: f64,
+) -> Result<(), InputError> {
+    for (i, &s) in breakpoints.iter().enumerate() {
+        bounded(&format!("law.breakpoints[{i}]"), s, 1e6)?;
+    }
+    for (i, &c) in slopes.iter().enumerate() {
+        bounded(&format!("law.slopes[{i}]"), c, MAX_LAW)?;
+    }
+    for (i, &d) in jumps.iter().enumerate() {
+        bounded(&format!("law.jumps[{i}]"), d, MAX_LAW_VALUE)?;
+    }
+    bounded("law.p_left", p_left, MAX_LAW_VALUE)?;
+    Ok(())
+}
+
+/// The file's bounds on a softening law's stiffness and length.
+fn softening_bounds(c: f64, a: f64) -> Result<(), InputError> {
+    bounded("law.stiffness", c, MAX_LAW)?;
+    // As small as g may be, and no smaller: below it (1e-310 was accepted) the
+    // law's scale leaves what a solve can resolve, and Newton ran out of
+    // iterations without naming the key.
+    in_range("law.length", a, MIN_MAGNITUDE, 1e6)?;
+    Ok(())
+}
+
+/// The file's bounds checked on a law built in code ([`Law::new`] accepts any finite
+/// values), so that [`crate::scenario::Scenario::with_law`] refuses what a file would,
+/// in the same words.
+pub(crate) fn check_bounds(law: &Law) -> Result<(), InputError> {
+    match law {
+        Law::Affine(l) => piecewise_bounds(l.breakpoints(), l.slopes(), l.jump_sizes(), l.p_left()),
+        Law::Softening(l) => softening_bounds(l.stiffness(), l.length()),
     }
 }

@@ -89,13 +89,24 @@ impl crate::simulation::Observer for Recording<'_> {
 pub fn one_line(text: &str) -> String {
     text.chars()
         .map(|c| {
-            if c.is_control() {
+            if crate::error::breaks_line(c) {
                 c.escape_default().to_string()
             } else {
                 c.to_string()
             }
         })
         .collect()
+}
+
+/// This process's command line after the program's name, for a provenance line:
+/// [`quote_args`] of its arguments, each read lossily (a path that is not UTF-8, legal
+/// on Linux, shows its undecodable bytes as U+FFFD instead of stopping the run).
+pub fn command_line() -> String {
+    quote_args(
+        std::env::args_os()
+            .skip(1)
+            .map(|a| a.to_string_lossy().into_owned()),
+    )
 }
 
 /// A command line as a shell would read it back: arguments with spaces, quotes or

@@ -76,12 +76,22 @@ fn is_snapshot(name: &str) -> bool {
 /// Why the output directory cannot be used.
 #[derive(Debug, thiserror::Error)]
 pub enum OutError {
-    #[error("--out `{path}`: {message}")]
-    Unusable { path: String, message: String },
-    #[error(
-        "--out `{path}`: another evhi run is writing to it (lock `{lock}`); wait for it or choose another directory"
-    )]
-    Busy { path: String, lock: String },
+    /// The directory cannot be used; `role` names it as the command does (`--out` for
+    /// a run being written, `run directory` for one `evhi plot` redraws).
+    #[error("{role} `{path}`: {message}")]
+    Unusable {
+        role: &'static str,
+        path: String,
+        message: String,
+    },
+    /// Another process holds the directory's lock.
+    #[error("{role} `{path}`: another evhi run is writing to it (lock `{lock}`); {remedy}")]
+    Busy {
+        role: &'static str,
+        path: String,
+        lock: String,
+        remedy: &'static str,
+    },
     #[error("writing `{path}`: {source}")]
     Io {
         path: String,
@@ -110,10 +120,11 @@ impl RunDir {
     /// reason the output cannot be written shows here, before any computation.
     pub fn open(target: &Path) -> Result<RunDir, OutError> {
         let unusable = |message: String| OutError::Unusable {
+            role: WRITER.role,
             path: target.display().to_string(),
             message,
         };
-        let (parent, name) = parent_and_name(target)?;
+        let (parent, name) = parent_and_name(target, WRITER)?;
         if let Ok(meta) = std::fs::symlink_metadata(target) {
             if meta.file_type().is_symlink() {
                 return Err(unusable(
@@ -172,7 +183,7 @@ impl RunDir {
         }
         std::fs::create_dir_all(&parent)
             .map_err(|e| unusable(format!("its parent cannot be created: {e}")))?;
-        let lock = lock_beside(target, &parent, &name)?;
+        let lock = lock_beside(target, &parent, &name, WRITER)?;
         clean_leftovers(&parent, &name, target);
         let staging = parent.join(format!(".{name}.staging-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&staging);
@@ -269,7 +280,7 @@ impl RunDir {
                 }
             }
             if !kept.is_empty() {
-                eprintln!(
+                crate::diag!(
                     "warning: {} appeared in `{}` during the run and was kept beside the new \
                      set; a later run into it will refuse until it is moved out",
                     kept.iter()
@@ -295,17 +306,46 @@ fn listed_files(target: &Path) -> Vec<String> {
         .unwrap_or_default()
 }
 
+/// Who uses a run directory, as its messages name it and what they advise.
+#[derive(Clone, Copy)]
+struct User {
+    /// The directory as the command names it.
+    role: &'static str,
+    /// What to do when another process holds the lock.
+    remedy: &'static str,
+}
+
+/// A run writing its directory (`evhi solve`, `evhi study`: `--out`).
+const WRITER: User = User {
+    role: "--out",
+    remedy: "wait for it or choose another directory",
+};
+
+/// `evhi plot` redrawing a run directory's figures.
+const REDRAWER: User = User {
+    role: "run directory",
+    remedy: "wait for it to finish, then redraw",
+};
+
 /// Takes the lock `.NAME.lock` beside the run directory `target` (in `parent`, the
 /// directory's name `name`), or fails at once if another process holds it.
-fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<super::HeldLock, OutError> {
+fn lock_beside(
+    target: &Path,
+    parent: &Path,
+    name: &str,
+    user: User,
+) -> Result<super::HeldLock, OutError> {
     let lock_path = parent.join(format!(".{name}.lock"));
     match super::try_lock_file(&lock_path) {
         Ok(Some(lock)) => Ok(lock),
         Ok(None) => Err(OutError::Busy {
+            role: user.role,
             path: target.display().to_string(),
             lock: lock_path.display().to_string(),
+            remedy: user.remedy,
         }),
         Err(e) => Err(OutError::Unusable {
+            role: user.role,
             path: target.display().to_string(),
             message: format!(
                 "cannot create a file beside it (`{}`): {e}",
@@ -320,11 +360,12 @@ fn lock_beside(target: &Path, parent: &Path, name: &str) -> Result<super::HeldLo
 /// The longest last component of a run directory's path, in bytes.
 pub const MAX_NAME_BYTES: usize = 235;
 
-fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
+fn parent_and_name(target: &Path, user: User) -> Result<(PathBuf, String), OutError> {
     let name = target
         .file_name()
         .filter(|n| !n.is_empty() && *n != "." && *n != "..")
         .ok_or_else(|| OutError::Unusable {
+            role: user.role,
             path: target.display().to_string(),
             message: "name a directory (not `.`, `..` or `/`)".into(),
         })?
@@ -334,6 +375,7 @@ fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
     // 20 bytes more than the name, within the 255 bytes a file name may have.
     if name.len() > MAX_NAME_BYTES {
         return Err(OutError::Unusable {
+            role: user.role,
             path: target.display().to_string(),
             message: format!(
                 "its last component is {} bytes long; at most {MAX_NAME_BYTES} are allowed \
@@ -353,8 +395,8 @@ fn parent_and_name(target: &Path) -> Result<(PathBuf, String), OutError> {
 /// Takes the lock of an existing run directory for a reader that rewrites part of it
 /// (`evhi plot`), so that it never mixes its figures with a `solve` writing there.
 pub fn lock_run_dir(dir: &Path) -> Result<super::HeldLock, OutError> {
-    let (parent, name) = parent_and_name(dir)?;
-    lock_beside(dir, &parent, &name)
+    let (parent, name) = parent_and_name(dir, REDRAWER)?;
+    lock_beside(dir, &parent, &name, REDRAWER)
 }
 
 impl Drop for RunDir {

@@ -15,7 +15,7 @@ use serde::Deserialize;
 pub(super) fn parse(text: &str, source: &str) -> Result<Scenario, InputError> {
     let raw: RawScenario = toml::from_str(text).map_err(|e| InputError::Parse {
         source_name: source.to_string(),
-        message: truncate(e.to_string().trim(), 600),
+        message: parse_message(text, &e),
     })?;
     Scenario::validate(raw)
 }
@@ -80,6 +80,58 @@ struct RawTraction {
     #[serde(default)]
     to: Option<f64>,
     f: Vec<f64>,
+}
+
+/// Characters of the offending line echoed on each side of the error.
+const ECHO_SIDE: usize = 40;
+
+/// A TOML error in our layout: `line L, column C: reason`, then the line cut to
+/// [`ECHO_SIDE`] characters on each side of the error, its control characters
+/// escaped (a file with bare carriage returns is one long line to TOML), and a caret
+/// under the spot. The reason is never cut: it says what to change.
+fn parse_message(text: &str, e: &toml::de::Error) -> String {
+    let reason = truncate(e.message().trim(), 600);
+    let Some(span) = e.span() else {
+        return reason;
+    };
+    let at = span.start.min(text.len());
+    let at = (0..=at)
+        .rev()
+        .find(|&i| text.is_char_boundary(i))
+        .unwrap_or(0);
+    let line_start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+    let line_no = text[..at].matches('\n').count() + 1;
+    let before: Vec<char> = text[line_start..at].chars().collect();
+    let after: Vec<char> = text[at..line_end].chars().collect();
+    let column = before.len() + 1;
+    let escape = |cs: &[char]| -> String {
+        cs.iter()
+            .map(|&c| {
+                if crate::error::breaks_line(c) {
+                    c.escape_default().to_string()
+                } else {
+                    c.to_string()
+                }
+            })
+            .collect()
+    };
+    let cut_before = before.len().saturating_sub(ECHO_SIDE);
+    let cut_after = after.len().min(ECHO_SIDE);
+    let head = format!(
+        "{}{}",
+        if cut_before > 0 { "…" } else { "" },
+        escape(&before[cut_before..])
+    );
+    let tail = format!(
+        "{}{}",
+        escape(&after[..cut_after]),
+        if cut_after < after.len() { "…" } else { "" }
+    );
+    format!(
+        "line {line_no}, column {column}: {reason}\n  | {head}{tail}\n  | {}^",
+        " ".repeat(head.chars().count())
+    )
 }
 
 /// `text` cut to at most `max` characters, marking the cut.
@@ -230,25 +282,78 @@ fn tractions_from(
     Ok(out)
 }
 
-impl Scenario {
-    fn validate(raw: RawScenario) -> Result<Scenario, InputError> {
-        if raw.name.trim().is_empty() {
+/// A name or description: one line (no control character and no other Unicode
+/// line break, U+2028 or U+2029, which some readers, Python's `splitlines` among
+/// them, take for the end of a line), and for a name not blank. Both go into the `#`
+/// lines of every table.
+pub(super) fn one_line_text(field: &str, text: &str, may_be_blank: bool) -> Result<(), InputError> {
+    if !may_be_blank && text.trim().is_empty() {
+        return Err(InputError::field(
+            field,
+            format!("{text:?}"),
+            "a name that is not blank",
+        ));
+    }
+    if text.chars().any(crate::error::breaks_line) {
+        return Err(InputError::field(
+            field,
+            format!("{text:?}"),
+            "text on one line, without control characters (line feeds, carriage returns, \
+             tabs) or Unicode line and paragraph separators (U+2028, U+2029)",
+        ));
+    }
+    Ok(())
+}
+
+/// The viscosity $(\alpha, \beta)$ of a problem: both given for a viscoelastic one
+/// ($\alpha$ finite, $\beta > 0$, $2\alpha + \beta > 0$), neither for another (then 0).
+pub(super) fn viscosity(
+    problem: Problem,
+    alpha: Option<f64>,
+    beta: Option<f64>,
+) -> Result<(f64, f64), InputError> {
+    if problem.viscous() {
+        let need = |field: &str, v: Option<f64>| {
+            v.ok_or_else(|| {
+                InputError::field(
+                    format!("material.{field}"),
+                    "nothing",
+                    "a number: a viscoelastic body needs the viscosity alpha and beta \
+                     (or set problem = \"elastic\" or \"steady\")",
+                )
+            })
+        };
+        let alpha = finite("material.alpha", need("alpha", alpha)?)?;
+        let beta = positive("material.beta", need("beta", beta)?)?;
+        if 2.0 * alpha + beta <= 0.0 {
             return Err(InputError::field(
-                "name",
-                format!("{:?}", raw.name),
-                "a name that is not blank",
+                "material.alpha",
+                alpha,
+                format!(
+                    "a value > -beta/2 = {} (the viscosity tensor must be positive definite)",
+                    -beta / 2.0
+                ),
             ));
         }
-        // Names and descriptions go into the `#` lines of every table: one line each.
-        for (field, text) in [("name", &raw.name), ("description", &raw.description)] {
-            if text.chars().any(char::is_control) {
+        Ok((alpha, beta))
+    } else {
+        for (field, v) in [("alpha", alpha), ("beta", beta)] {
+            if v.is_some() {
                 return Err(InputError::field(
-                    field,
-                    format!("{text:?}"),
-                    "text without control characters (line feeds, carriage returns, tabs)",
+                    format!("material.{field}"),
+                    "a value",
+                    format!("nothing: problem = \"{}\" has no viscosity", problem.name()),
                 ));
             }
         }
+        Ok((0.0, 0.0))
+    }
+}
+
+impl Scenario {
+    fn validate(raw: RawScenario) -> Result<Scenario, InputError> {
+        one_line_text("name", &raw.name, false)?;
+        one_line_text("description", &raw.description, true)?;
         let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
         let g = limit_value(&raw.g)?;
         let problem = match raw.problem.as_deref() {
@@ -267,42 +372,7 @@ impl Scenario {
         };
         let m = &raw.material;
         let (e, kappa, material_form) = elasticity_from(m)?;
-        let (alpha, beta) = if problem.viscous() {
-            let need = |field: &str, v: Option<f64>| {
-                v.ok_or_else(|| {
-                    InputError::field(
-                        format!("material.{field}"),
-                        "nothing",
-                        "a number: a viscoelastic body needs the viscosity alpha and beta \
-                         (or set problem = \"elastic\" or \"steady\")",
-                    )
-                })
-            };
-            let alpha = finite("material.alpha", need("alpha", m.alpha)?)?;
-            let beta = positive("material.beta", need("beta", m.beta)?)?;
-            if 2.0 * alpha + beta <= 0.0 {
-                return Err(InputError::field(
-                    "material.alpha",
-                    alpha,
-                    format!(
-                        "a value > -beta/2 = {} (the viscosity tensor must be positive definite)",
-                        -beta / 2.0
-                    ),
-                ));
-            }
-            (alpha, beta)
-        } else {
-            for (field, v) in [("alpha", m.alpha), ("beta", m.beta)] {
-                if v.is_some() {
-                    return Err(InputError::field(
-                        format!("material.{field}"),
-                        "a value",
-                        format!("nothing: problem = \"{}\" has no viscosity", problem.name()),
-                    ));
-                }
-            }
-            (0.0, 0.0)
-        };
+        let (alpha, beta) = viscosity(problem, m.alpha, m.beta)?;
         let f0 = vector("loads.f0", &raw.loads.f0)?;
         let f2 = vector("loads.f2", &raw.loads.f2)?;
         let history = match &raw.loads.history {

@@ -49,40 +49,47 @@ impl Problem {
 }
 
 /// A validated scenario.
+///
+/// Its fields are private to the crate: a scene comes from a file
+/// ([`Scenario::from_toml`], [`Scenario::load`]) and changes only through the checked
+/// `with_*` builders, each of which refuses what the file reader refuses, in the same
+/// words. The values are read through the accessors of the same names
+/// ([`Scenario::g`], [`Scenario::law`], ...). So a scene in the hands of a
+/// [`crate::simulation::Simulation`] has always passed the file's checks.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scenario {
-    pub name: String,
-    pub description: String,
+    pub(crate) name: String,
+    pub(crate) description: String,
     /// Final time $T$.
-    pub t_end: f64,
+    pub(crate) t_end: f64,
     /// Unilateral limit $g > 0$ ($+\infty$: no limit, `g = "none"`).
-    pub g: f64,
+    pub(crate) g: f64,
     /// What is solved (the paper's viscoelastic evolution by default).
-    pub problem: Problem,
+    pub(crate) problem: Problem,
     /// Young's modulus $E$, Poisson's ratio $\kappa$: the plane-strain constants the
     /// solver uses, converted from the file's form where it gave another.
-    pub e: f64,
-    pub kappa: f64,
+    pub(crate) e: f64,
+    pub(crate) kappa: f64,
     /// How the file gave the elasticity (plane strain by `E`, `kappa` unless it says
     /// otherwise), so that outputs can say when `e` and `kappa` are converted.
-    pub material_form: MaterialForm,
+    pub(crate) material_form: MaterialForm,
     /// Viscosity constants $\alpha$, $\beta$ (both 0 for an elastic or steady problem).
-    pub alpha: f64,
-    pub beta: f64,
+    pub(crate) alpha: f64,
+    pub(crate) beta: f64,
     /// Constant volume force $f_0$ and top traction $f_2$ (the paper's, on the whole top).
-    pub f0: [f64; 2],
-    pub f2: [f64; 2],
+    pub(crate) f0: [f64; 2],
+    pub(crate) f2: [f64; 2],
     /// Further tractions on segments of the sides (`[[loads.traction]]`).
-    pub tractions: Vec<Traction>,
+    pub(crate) tractions: Vec<Traction>,
     /// $a$ in the volume force $f_0 (1 + a \cos \pi x)$ (0: constant, the paper's case).
-    pub f0_modulation: f64,
+    pub(crate) f0_modulation: f64,
     /// The load history: $f(t) = \varphi(t)\,(f_0, f_2)$.
-    pub history: History,
-    pub law: Law,
+    pub(crate) history: History,
+    pub(crate) law: Law,
     /// The rectangle, its supports and $\Gamma_3$.
-    pub geometry: Geometry,
+    pub(crate) geometry: Geometry,
     /// How the mesh cuts its cells (the paper's diagonal unless a study varies it).
-    pub pattern: Pattern,
+    pub(crate) pattern: Pattern,
 }
 
 /// The data's hypotheses at $t = 0$: see [`Scenario::time_hypotheses`].
@@ -152,6 +159,83 @@ pub const MAX_FILE_BYTES: u64 = 1 << 20;
 /// squares of displacements of that order stay some 200 orders of magnitude above
 /// the smallest normal double (`Scenario::check_load_scale`).
 pub const MIN_LOAD_SCALE: f64 = 1e-100;
+
+/// Read access to a scene's data: each field by its own name.
+impl Scenario {
+    /// The scene's name (one line, not blank).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+    /// Its description (one line; may be empty).
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+    /// The final time $T$.
+    pub fn t_end(&self) -> f64 {
+        self.t_end
+    }
+    /// The unilateral limit $g > 0$ ($+\infty$: no limit).
+    pub fn g(&self) -> f64 {
+        self.g
+    }
+    /// What is solved.
+    pub fn problem(&self) -> Problem {
+        self.problem
+    }
+    /// Young's modulus $E$ of the plane-strain constants the solver uses.
+    pub fn e(&self) -> f64 {
+        self.e
+    }
+    /// Poisson's ratio $\kappa$ of the plane-strain constants the solver uses.
+    pub fn kappa(&self) -> f64 {
+        self.kappa
+    }
+    /// How the file gave the elasticity.
+    pub fn material_form(&self) -> MaterialForm {
+        self.material_form
+    }
+    /// The viscosity constant $\alpha$ (0 without viscosity).
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+    /// The viscosity constant $\beta$ (0 without viscosity).
+    pub fn beta(&self) -> f64 {
+        self.beta
+    }
+    /// The volume force $f_0$ (before the history's factor and the modulation).
+    pub fn f0(&self) -> [f64; 2] {
+        self.f0
+    }
+    /// The paper's traction $f_2$ on the whole top.
+    pub fn f2(&self) -> [f64; 2] {
+        self.f2
+    }
+    /// The further tractions on segments of the sides (`[[loads.traction]]`);
+    /// [`Scenario::tractions`] gives them after $f_2$.
+    pub fn further_tractions(&self) -> &[Traction] {
+        &self.tractions
+    }
+    /// $a$ in the volume force $f_0 (1 + a \cos \pi x)$.
+    pub fn f0_modulation(&self) -> f64 {
+        self.f0_modulation
+    }
+    /// The load history $\varphi$.
+    pub fn history(&self) -> &History {
+        &self.history
+    }
+    /// The normal compliance law.
+    pub fn law(&self) -> &Law {
+        &self.law
+    }
+    /// The rectangle, its supports and $\Gamma_3$.
+    pub fn geometry(&self) -> &Geometry {
+        &self.geometry
+    }
+    /// How the mesh cuts its cells.
+    pub fn pattern(&self) -> Pattern {
+        self.pattern
+    }
+}
 
 impl Scenario {
     /// Parses and validates TOML text; `source` names it in errors.
@@ -284,7 +368,7 @@ impl Scenario {
         f0: Option<[f64; 2]>,
         f2: Option<[f64; 2]>,
     ) -> Result<Self, InputError> {
-        for (name, v) in [("f0", f0), ("f2", f2)] {
+        for (name, v) in [("loads.f0", f0), ("loads.f2", f2)] {
             if let Some(v) = v {
                 for (c, x) in v.iter().enumerate() {
                     finite(&format!("{name}[{c}]"), *x)?;
@@ -302,7 +386,7 @@ impl Scenario {
                     from: 0.0,
                     to: self.geometry.width,
                     f: v,
-                    field: "f2".into(),
+                    field: "loads.f2".into(),
                 },
             )?;
             self.f2 = v;
@@ -409,9 +493,42 @@ impl Scenario {
         Ok(self)
     }
 
+    /// Replaces the viscosity constants $\alpha$, $\beta$ (validated like the file's:
+    /// $\alpha$ finite, $\beta > 0$, $2\alpha + \beta > 0$). A scene without viscosity
+    /// (elastic or steady) refuses them, as its file would.
+    pub fn with_viscosity(mut self, alpha: f64, beta: f64) -> Result<Self, InputError> {
+        (self.alpha, self.beta) = file::viscosity(self.problem, Some(alpha), Some(beta))?;
+        Ok(self)
+    }
+
+    /// Replaces the normal compliance law, refused where the file would refuse it:
+    /// [`Law::new`] takes any finite values, the file bounds them
+    /// ([`MAX_LAW`], [`MAX_LAW_VALUE`]).
+    pub fn with_law(mut self, law: Law) -> Result<Self, InputError> {
+        crate::law::file::check_bounds(&law)?;
+        self.law = law;
+        Ok(self)
+    }
+
+    /// Renames the scene (one line, not blank: it heads every table's `#` lines).
+    pub fn with_name(mut self, name: &str) -> Result<Self, InputError> {
+        file::one_line_text("name", name, false)?;
+        self.name = name.to_string();
+        Ok(self)
+    }
+
+    /// Replaces the description (one line).
+    pub fn with_description(mut self, description: &str) -> Result<Self, InputError> {
+        file::one_line_text("description", description, true)?;
+        self.description = description.to_string();
+        Ok(self)
+    }
+
+    /// The elasticity tensor $\mathcal G$.
     pub fn elasticity(&self) -> Isotropic {
         Isotropic::elasticity(self.e, self.kappa)
     }
+    /// The viscosity tensor $\mathcal C$ (zero without viscosity).
     pub fn viscosity(&self) -> Isotropic {
         Isotropic::viscosity(self.alpha, self.beta)
     }

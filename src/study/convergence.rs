@@ -383,7 +383,7 @@ fn plans(
     }
     crate::scheme::check_memory(plan.n_ref, crate::mesh::rows(plan.n_ref, &scn.geometry))?;
     if args.announce {
-        eprintln!("{}", cost_notice(scn, &plan, args.quick));
+        crate::diag!("{}", cost_notice(scn, &plan, args.quick));
     }
     // The h and k parts apart only where there is a time error to part, and on the
     // reduced loop, which needs proportional damping (C = c G).
@@ -710,7 +710,7 @@ fn graded_report(
             "the graded family's last order, {g:.3}, is no better than the uniform one's, {u:.3}: \
              the grading gains nothing on these levels ({why}){finer}"
         );
-        eprintln!("warning: {warning}");
+        crate::diag!("warning: {warning}");
         let _ = writeln!(md, "\nWarning: {warning}.");
     }
     let _ = writeln!(

@@ -28,6 +28,9 @@ pub struct Ctx {
     /// The command named in the provenance lines, when it is not `evhi reproduce`
     /// (a study on a user's scenario).
     pub command: Option<String>,
+    /// The output flags `evhi reproduce` was given (` --data DIR --figures DIR`, each
+    /// only where the user chose it), named in the provenance lines after the mode.
+    pub out_flags: String,
     /// The experiment running (set by the dispatcher from the registry): its tables'
     /// provenance names it.
     pub experiment: &'static str,
@@ -54,6 +57,7 @@ impl Ctx {
             progress: None,
             reference: None,
             command: None,
+            out_flags: String::new(),
             experiment: "",
             book_table: no_book_table,
         }
@@ -73,10 +77,11 @@ impl Ctx {
                     env!("CARGO_PKG_VERSION")
                 ),
                 _ => format!(
-                    "produced by evhi {} `evhi reproduce{}{experiment}{}`",
+                    "produced by evhi {} `evhi reproduce{}{experiment}{}{}`",
                     env!("CARGO_PKG_VERSION"),
                     if experiment.is_empty() { "" } else { " " },
-                    if self.quick { " --quick" } else { "" }
+                    if self.quick { " --quick" } else { "" },
+                    crate::output::run::one_line(&self.out_flags)
                 ),
             },
             params.to_string(),
@@ -154,7 +159,7 @@ impl Ctx {
                 bar.set_message(msg.to_string());
                 bar.inc(1);
             }
-            None if self.verbose => eprintln!(
+            None if self.verbose => crate::diag!(
                 "  [{:7.1} s] {}: {msg}",
                 crate::timing::since_start(),
                 self.experiment

@@ -170,12 +170,11 @@ fn study_solver(
 }
 
 pub fn run(mut study: Study) -> Result<(), Box<dyn std::error::Error>> {
-    let command =
-        crate::output::run::one_line(&crate::output::run::quote_args(std::env::args().skip(1)));
+    let command = crate::output::run::one_line(&crate::output::run::command_line());
     if let Study::Convergence(args) = &mut study {
         args.announce = true;
     }
-    eprint!("{}", run_as(study, &command)?);
+    crate::diag_text!("{}", run_as(study, &command)?);
     Ok(())
 }
 
@@ -249,6 +248,7 @@ pub(super) fn study_ctx(out: &RunDir, quick: bool, progress: &ProgressBar, comma
         progress: Some(progress.clone()),
         reference: None,
         command: Some(command.to_string()),
+        out_flags: String::new(),
         experiment: "",
         book_table: ctx::no_book_table,
     }

@@ -334,7 +334,7 @@ fn own_scene_static() {
 #[test]
 fn own_scene_graded() {
     let scn = cantilever("viscoelastic");
-    let mesh = evhi::bisection::graded_mesh(&scn.geometry, 16, 0.4).unwrap();
+    let mesh = evhi::bisection::graded_mesh(scn.geometry(), 16, 0.4).unwrap();
     let uniform = scn.mesh(16).unwrap();
     assert_eq!(uniform.nodes.len(), 17 * 5);
     assert!(mesh.nodes.len() > uniform.nodes.len());

@@ -320,7 +320,10 @@ fn results_k_part_model() {
         .unwrap();
     assert_eq!((lit["phi"].as_str(), num(lit, "phi0")), ("constant", 1.0));
     assert!(matches!(
-        evhi::scenario::Scenario::load("literal").unwrap().history,
+        evhi::scenario::Scenario::load("literal")
+            .unwrap()
+            .history()
+            .clone(),
         evhi::history::History::Constant
     ));
     // relaxation time 0.07
@@ -547,9 +550,9 @@ fn results_static_vs_n512() {
 fn results_literal_linear_springs() {
     // Not stored in data/: recomputed (h = k = 1/8 and 1/32, a fraction of a second).
     let scn = evhi::scenario::Scenario::load("literal").unwrap();
-    let u1 = scn.law.kinks()[1];
+    let u1 = scn.law().kinks()[1];
     assert_eq!(u1, 0.05);
-    let stiffness = scn.law.tangent(0.5 * u1).slope;
+    let stiffness = scn.law().tangent(0.5 * u1).slope;
     assert_eq!(stiffness, 200.0);
     for n in [8, 32] {
         let mut largest = 0.0f64;
@@ -562,7 +565,7 @@ fn results_literal_linear_springs() {
                     if c.u_nu > 0.0 {
                         touching += 1;
                         // a linear spring: sigma_nu^1 = -200 u_nu, no limit
-                        assert_eq!(c.regime(&scn.law, scn.g), "branch1");
+                        assert_eq!(c.regime(scn.law(), scn.g()), "branch1");
                         assert!(
                             (c.sigma_nu1 + stiffness * c.u_nu).abs() <= 1e-9 * stiffness * c.u_nu
                         );
@@ -692,7 +695,10 @@ fn results_smooth_orders() {
 fn results_smooth_max_over_time() {
     // loads at full size from t = 0: H(f) and H(0) fail, as for literal and figure
     assert!(matches!(
-        evhi::scenario::Scenario::load("smooth").unwrap().history,
+        evhi::scenario::Scenario::load("smooth")
+            .unwrap()
+            .history()
+            .clone(),
         evhi::history::History::Constant
     ));
     let h = rows("hypotheses_compat.csv");

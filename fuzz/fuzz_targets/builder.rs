@@ -1,0 +1,54 @@
+//! Arbitrary bytes as a sequence of the scene's checked builders (`with_g`,
+//! `with_loads`, `with_elasticity`, `with_viscosity`, `with_ramp`, `with_law`,
+//! `with_name`) applied to the paper's scene, each with values read from the bytes
+//! (any bit pattern: NaN, infinities, subnormals). No builder may panic; a refusal
+//! must name its field; a scene that is accepted must solve on a small mesh without a
+//! panic (a failure to converge is an error, not a crash).
+#![no_main]
+use evhi::law::Law;
+use evhi::scenario::Scenario;
+use evhi::simulation::{RunSettings, Simulation};
+use libfuzzer_sys::fuzz_target;
+
+fn take(data: &mut &[u8]) -> Option<f64> {
+    let (head, rest) = data.split_first_chunk::<8>()?;
+    *data = rest;
+    Some(f64::from_le_bytes(*head))
+}
+
+fuzz_target!(|bytes: &[u8]| {
+    let mut data = bytes;
+    let mut scene = Scenario::load("figure").expect("the built-in scene");
+    while let Some((&op, rest)) = data.split_first() {
+        data = rest;
+        let (Some(a), Some(b)) = (take(&mut data), take(&mut data)) else {
+            break;
+        };
+        let next = match op % 7 {
+            0 => scene.clone().with_g(a),
+            1 => scene.clone().with_loads(Some([a, b]), Some([0.0, b])),
+            2 => scene.clone().with_elasticity(a, b),
+            3 => scene.clone().with_viscosity(a, b),
+            4 => scene.clone().with_ramp(a),
+            5 => match Law::new(&[0.0, a.abs()], &[0.0, b, 300.0], &[0.0, a], 0.0) {
+                Ok(law) => scene.clone().with_law(law),
+                Err(e) => Err(e),
+            },
+            _ => scene
+                .clone()
+                .with_name(&String::from_utf8_lossy(&a.to_le_bytes())),
+        };
+        match next {
+            Ok(s) => scene = s,
+            Err(e) => assert!(e.field_name().is_some() || !e.to_string().is_empty()),
+        }
+    }
+    let settings = RunSettings {
+        n: 4,
+        steps: Some(2),
+        ..RunSettings::default()
+    };
+    if let Ok(sim) = Simulation::new(scene, settings) {
+        let _ = sim.solve(&mut ());
+    }
+});
