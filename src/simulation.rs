@@ -110,8 +110,8 @@ pub fn default_steps(scn: &Scenario) -> usize {
     }
 }
 
-/// What a run is told as it goes. Both methods have defaults, so `&mut ()` observes
-/// nothing.
+/// What a run is told as it goes. All three methods have defaults, so `&mut ()`
+/// observes nothing.
 pub trait Observer {
     /// Whether the reduced loop should form the field $u_n$ at `step` (it forms it
     /// anyway at the last step and every $\max(1, \lfloor N/4 \rfloor)$-th); the general
@@ -143,6 +143,8 @@ pub struct Simulation {
 }
 
 /// The result of a solve: the state at $T$, every step's record and the timings.
+/// Its `Debug` form is a summary (the sizes, the certificate, the loop and the
+/// fallback), not the field's values.
 pub struct Solution {
     /// The run: $u_N$ (free dofs), the contact states at $T$, each step's record
     /// (iterations, solver residual, certificate), the timings, the mesh.
@@ -170,6 +172,21 @@ pub struct Fallback {
 /// proximal gradient with its own iteration budget still converge.
 pub const FALLBACKS: [&str; 2] = ["newton-no-line-search", "proxgrad"];
 
+impl std::fmt::Debug for Solution {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Solution")
+            .field("n", &self.run.n)
+            .field("steps", &self.run.steps)
+            .field("dofs", &self.run.dofs)
+            .field("max_certificate", &self.max_certificate())
+            .field("energy_norm_t", &self.energy_norm_t())
+            .field("contact_nodes", &self.run.contact.len())
+            .field("reduced", &self.reduced)
+            .field("fallback", &self.fallback)
+            .finish_non_exhaustive()
+    }
+}
+
 impl Solution {
     /// The largest certificate over the steps (relative residual of the discrete
     /// inequality, checked independently of the solver).
@@ -181,13 +198,17 @@ impl Solution {
             .fold(0.0, f64::max)
     }
 
-    /// The energy norm of $u_N$, $\sqrt{(\mathcal G \varepsilon(u), \varepsilon(u))}$
-    /// (that of the last step's record).
+    /// The energy norm of $u_N$, $\|u\|_E = \tfrac{1}{\sqrt 2}(\mathcal G \varepsilon(u),
+    /// \varepsilon(u))^{1/2} = \sqrt{u^\top B u / 2}$ (that of the last step's record;
+    /// see [`crate::norms`]).
     pub fn energy_norm_t(&self) -> f64 {
         self.run.records.last().map_or(0.0, |s| s.energy_norm)
     }
 
-    /// The state of each contact node at $T$ ($x$, $u_\nu$, $\sigma_\nu^1$, $\sigma_\nu^2$, regime).
+    /// The state of each contact node at $T$ ($u_\nu$, $\sigma_\nu^1$, $\sigma_\nu^2$, whether
+    /// it is at the limit), in the order of the mesh's contact nodes
+    /// ([`crate::mesh::Mesh::contact`], left to right along $\Gamma_3$). The node's $x$
+    /// and its regime on the law are in [`Solution::contact_rows`].
     pub fn contact(&self) -> &[ContactState] {
         &self.run.contact
     }
@@ -504,7 +525,9 @@ impl Simulation {
     /// Solves several scenes that share this simulation's step matrix (its geometry,
     /// supports, material and $T$; their loads, law and $g$ may differ) in lockstep,
     /// on the general loop: one factorisation for all, and each step one forward and
-    /// one backward sweep with a column per scene. Each scene has its own solver (as
+    /// one backward sweep with a column per scene. With [`Loop::Auto`] (the default)
+    /// or [`Loop::General`] the batch runs on the general loop whatever the damping;
+    /// [`Loop::Reduced`] is refused. Each scene has its own solver (as
     /// in [`Simulation::solve_with`]); `observe(i, n, t_n, u_n, contact_n)` is told
     /// step `n` of scene `i`. The runs come back in the scenes' order; their timings
     /// are those of the whole batch. Refused with `path = reduced`, which solves one

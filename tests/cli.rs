@@ -167,7 +167,7 @@ fn load_histories_from_the_cli_and_the_file() {
 fn bad_arguments_fail_with_the_field_named() {
     for (args, needle) in [
         ("--n 10", "`n`"),
-        ("--g -0.1", "`g`"),
+        ("--g -0.1", "`--g`"),
         ("--steps 0", "`steps`"),
         ("--scenario nope", "`scenario`"),
         // issue 12: negative counts name their option; absurd tolerances are refused
@@ -176,7 +176,7 @@ fn bad_arguments_fail_with_the_field_named() {
         ("--certificate-tol inf", "`certificate-tol`"),
         ("--certificate-tol 1e300", "`certificate-tol`"),
         ("--certificate-tol 1e-20", "`certificate-tol`"),
-        ("--g 1e308", "`g`"),
+        ("--g 1e308", "`--g`"),
         ("--n 4096", "needs about"),
         ("--ramp 1e-300", "`ramp`"),
     ] {
@@ -522,7 +522,7 @@ fn reproduce_keeps_its_times_local_unless_recorded() {
     let recorded = read(data.join("reproduce_times.csv"));
     let first = recorded.lines().next().unwrap();
     assert!(
-        first.contains("`evhi reproduce fig2 --record-times`"),
+        first.contains("`evhi reproduce fig2 --record-times --data "),
         "{first}"
     );
     assert!(recorded.contains("machine: "), "{recorded}");
@@ -1036,9 +1036,15 @@ fn the_time_and_stability_studies_run_on_user_scenarios() {
 fn reproduce_writes_the_same_files_whatever_the_jobs() {
     let dir = scratch("jobs");
     let experiments = "hypotheses fig2 fig3 table1 graded time";
+    // The same relative directories, so that the provenance lines, which name them,
+    // are the same too.
     for jobs in ["1", "8"] {
+        std::fs::create_dir_all(dir.join(jobs)).unwrap();
         let words = format!("--quick -q --jobs {jobs} {experiments}");
-        succeed(&mut reproduce(&words, &dir.join(jobs)));
+        succeed(
+            reproduce_into(&words, Path::new("data"), Path::new("figures"))
+                .current_dir(dir.join(jobs)),
+        );
     }
     let mut compared = 0;
     for sub in ["data", "figures"] {

@@ -193,6 +193,14 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         let (output, total) = (t_out.elapsed(), wall.elapsed());
         crate::diag_text!("{}", crate::output::run::timings(&sim, run, output, total));
     }
+    crate::diag!(
+        "solved: {} steps, n = {}, largest certificate {:.1e}, {:.2} s wall; run directory {}",
+        run.steps,
+        run.n,
+        solution.max_certificate(),
+        wall.elapsed().as_secs_f64(),
+        args.out.display()
+    );
     Ok(())
 }
 

@@ -261,7 +261,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
 /// tables and figures with the first one's.
 /// The caller has made the directory (and refused a `--data` that is no directory).
 fn lock_outputs(data: &std::path::Path) -> Result<crate::output::HeldLock, String> {
-    let path = data.join(".reproduce.lock");
+    let path = data.join(LOCK_NAME);
     crate::output::try_lock_file(&path)
         .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?
         .ok_or_else(|| {
@@ -281,12 +281,7 @@ fn remove_stale_temporaries(dir: &std::path::Path) {
     };
     for entry in entries.flatten() {
         let name = entry.file_name().to_string_lossy().into_owned();
-        let Some(pid) = name
-            .strip_prefix('.')
-            .and_then(|n| n.rsplit_once(".tmp-"))
-            .map(|(_, rest)| rest.split('.').next().unwrap_or(""))
-            .and_then(|p| p.parse::<u32>().ok())
-        else {
+        let Some(pid) = temporary_pid(&name) else {
             continue;
         };
         if !crate::output::process_alive(pid) && entry.path().is_file() {
@@ -319,9 +314,11 @@ fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::erro
     let Ok(entries) = std::fs::read_dir(dir) else {
         return Ok(());
     };
+    // Its own lock and the temporaries of a killed run are reproduce's, not the user's.
     let mut names: Vec<String> = entries
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != LOCK_NAME && temporary_pid(n).is_none())
         .collect();
     if names.is_empty() || dir.join(OUTPUTS_MARKER).exists() {
         return Ok(());
@@ -333,6 +330,18 @@ fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::erro
          and reproduce would replace any of the same names as its tables and figures",
         names[0]
     )))
+}
+
+/// The lock of an output set, in its data directory.
+const LOCK_NAME: &str = ".reproduce.lock";
+
+/// The process id in the name of a temporary `.NAME.tmp-PID` (or `.STEM.tmp-PID.EXT`
+/// for a figure) that a writer of an output set leaves while it writes.
+fn temporary_pid(name: &str) -> Option<u32> {
+    name.strip_prefix('.')
+        .and_then(|n| n.rsplit_once(".tmp-"))
+        .map(|(_, rest)| rest.split('.').next().unwrap_or(""))
+        .and_then(|p| p.parse::<u32>().ok())
 }
 
 fn quick_or(quick: bool, dir: &str) -> PathBuf {

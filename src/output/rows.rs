@@ -196,13 +196,59 @@ impl StepRow {
 }
 
 row! {
-    /// One row of `contact.csv`: a contact node at $T$, its $x$, $u_\nu$, the two
-    /// parts of $-\sigma_\nu$ and its regime on the law.
+    /// One row of `contact.csv`: a contact node at $T$, its $x$, $u_\nu$,
+    /// $\sigma_\nu^1 = -p(u_\nu)$ and $\sigma_\nu^2$ (the limit's reaction), the two parts
+    /// of the normal stress $\sigma_\nu = \sigma_\nu^1 + \sigma_\nu^2$ (negative in
+    /// compression), and its regime on the law.
     pub struct ContactRow {
         x: f64 => "x",
         u_nu: f64 => "u_nu",
         sigma_nu1: f64 => "sigma_nu1",
         sigma_nu2: f64 => "sigma_nu2",
         regime: String => "regime",
+    }
+}
+
+impl ContactRow {
+    /// The rows of `contact.csv` for a run of `scene`: each contact node at $T$, in the
+    /// order of the mesh's contact nodes (left to right along $\Gamma_3$), with its $x$
+    /// and its regime on the scene's law and limit.
+    pub fn of(run: &crate::scheme::Run, scene: &crate::scenario::Scenario) -> Vec<ContactRow> {
+        let mesh = &*run.mesh;
+        (mesh.contact.iter().zip(&run.contact))
+            .map(|(&v, s)| ContactRow {
+                x: mesh.nodes[v][0],
+                u_nu: s.u_nu,
+                sigma_nu1: s.sigma_nu1,
+                sigma_nu2: s.sigma_nu2,
+                regime: s.regime(scene.law(), scene.g()),
+            })
+            .collect()
+    }
+}
+
+impl crate::simulation::Solution {
+    /// The rows `contact.csv` is written from, for this solution of `scene` (the scene
+    /// the simulation solved, [`crate::simulation::Simulation::scenario`]): for each
+    /// contact node at $T$, in the order of [`crate::simulation::Solution::contact`],
+    /// its $x$, $u_\nu$, $\sigma_\nu^1 = -p(u_\nu)$ and $\sigma_\nu^2$ (the limit's
+    /// reaction), both parts of the normal stress, negative in compression, and its
+    /// regime on the law.
+    ///
+    /// ```
+    /// use evhi::scenario::Scenario;
+    /// use evhi::simulation::{RunSettings, Simulation};
+    /// let settings = RunSettings { n: 8, steps: Some(4), ..RunSettings::default() };
+    /// let sim = Simulation::new(Scenario::load("figure")?, settings)?;
+    /// let solution = sim.solve(&mut ())?;
+    /// let rows = solution.contact_rows(sim.scenario());
+    /// assert_eq!(rows.len(), 9);
+    /// // Left to right along the contact boundary, compressed in the middle.
+    /// assert!(rows.windows(2).all(|w| w[0].x < w[1].x));
+    /// assert!(rows[4].sigma_nu1 + rows[4].sigma_nu2 < 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn contact_rows(&self, scene: &crate::scenario::Scenario) -> Vec<ContactRow> {
+        ContactRow::of(&self.run, scene)
     }
 }

@@ -319,15 +319,7 @@ pub fn write(
     }
     let mesh = &*run.mesh;
     let dofs = Dofs::new(mesh, true);
-    let contact: Vec<ContactRow> = (mesh.contact.iter().zip(&run.contact))
-        .map(|(&v, s)| ContactRow {
-            x: mesh.nodes[v][0],
-            u_nu: s.u_nu,
-            sigma_nu1: s.sigma_nu1,
-            sigma_nu2: s.sigma_nu2,
-            regime: s.regime(&scn.law, scn.g),
-        })
-        .collect();
+    let contact = ContactRow::of(run, scn);
     out.write_table("contact.csv", &ContactRow::table(&contact), &header)?;
     let r = &run.records;
     out.write_table("steps.csv", &StepRow::table(&step_rows(r)), &header)?;
