@@ -308,3 +308,40 @@ fn the_lock_leaves_no_file_and_still_excludes() {
     assert_eq!(taken.load(Ordering::SeqCst), 8 * 20);
     assert!(!path.exists());
 }
+
+/// A log axis over a range that is not finite, positive and increasing is refused at
+/// once: plotters' key points of a log axis from 0 never moved (a work-precision chart
+/// of a time of 0 spun) and to infinity never ended (NaN allocated without bound;
+/// issue 47, case 3).
+#[test]
+fn a_log_axis_over_zero_or_nan_is_refused_not_drawn() {
+    use evhi::output::plot::{LogLogChart, init_font};
+    use plotters::prelude::*;
+    init_font();
+    let start = Instant::now();
+    for (x, y) in [
+        ((0.0, 0.0), (1.0, 10.0)),
+        ((0.0, 2.0), (1.0, 10.0)),
+        ((f64::INFINITY, 0.0), (1.0, 10.0)),
+        ((f64::NAN, 1.0), (1.0, 10.0)),
+        ((1.0, 10.0), (-1.0, 10.0)),
+        ((1.0, 10.0), (5.0, 5.0)),
+        ((1.0, f64::INFINITY), (1.0, 10.0)),
+    ] {
+        let mut svg = String::new();
+        let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
+        let chart = LogLogChart {
+            desc: ("time [s]", "error [%]"),
+            ..LogLogChart::default()
+        }
+        .build(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale());
+        let err = chart.err().unwrap_or_else(|| panic!("{x:?} x {y:?} drawn"));
+        assert!(err.contains("a log axis spans finite numbers > 0"), "{err}");
+    }
+    assert!(start.elapsed() < Duration::from_secs(5));
+    let mut svg = String::new();
+    let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
+    let chart =
+        LogLogChart::default().build(&root, (0.5..20.0).log_scale(), (1e-3..1e2).log_scale());
+    assert!(chart.is_ok(), "{:?}", chart.err());
+}
