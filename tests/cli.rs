@@ -1179,6 +1179,94 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
     }
 }
 
+/// `text` without its column `column`.
+fn without_column(text: &str, column: &str) -> String {
+    let header = text.lines().find(|l| !l.starts_with('#')).unwrap();
+    let at = header.split(',').position(|c| c == column).unwrap();
+    let lines: Vec<String> = (text.lines())
+        .map(|l| {
+            if l.starts_with('#') {
+                return l.to_string();
+            }
+            let mut f: Vec<&str> = l.split(',').collect();
+            f.remove(at);
+            f.join(",")
+        })
+        .collect();
+    lines.join("\n") + "\n"
+}
+
+/// What the table library advises its Python users, which no message of ours repeats.
+const POLARS_ADVICE: [&str; 4] = [
+    "truncate_ragged_lines",
+    "infer_schema_length",
+    "ignore_errors",
+    "schema_overrides",
+];
+
+/// An edited table is refused in our words, by file, line and column: a ragged
+/// `summary.csv` passed on the table library's advice to its Python users (issue 47,
+/// case 12), and a missing column named the column where the file should stand
+/// ("table a: not found", case 13).
+#[test]
+fn plot_names_the_file_line_and_column_of_an_edited_table() {
+    let dir = scratch("plot-ragged");
+    let out = dir.join("run");
+    succeed(&mut small_solve(&out));
+    let summary = read(out.join("summary.csv"));
+    let lines: Vec<&str> = summary.lines().collect();
+    let cols = lines[2].split(',').count();
+    let last = lines[2].split(',').next_back().unwrap();
+    let longer = format!("{},extra\n", lines[..4].join("\n"));
+    let shorter = format!("{}\n", lines[..4].join("\n").rsplit_once(',').unwrap().0);
+    let before = snapshot(&out);
+    for (text, needles) in [
+        (
+            longer,
+            vec![
+                "summary.csv:4".to_string(),
+                format!("{} fields where the header (line 3) has {cols}", cols + 1),
+                "`extra`, has no column".into(),
+            ],
+        ),
+        (
+            shorter,
+            vec![
+                "summary.csv:4".to_string(),
+                format!("{} fields where the header (line 3) has {cols}", cols - 1),
+                format!("column `{last}` (field {cols}) has no value"),
+            ],
+        ),
+    ] {
+        std::fs::write(out.join("summary.csv"), text).unwrap();
+        let needles: Vec<&str> = needles.iter().map(String::as_str).collect();
+        let err = refused(&plot(&out), &needles);
+        for advice in POLARS_ADVICE {
+            assert!(!err.contains(advice), "{err}");
+        }
+    }
+    std::fs::write(out.join("summary.csv"), &summary).unwrap();
+    assert!(snapshot(&out) == before, "the run directory changed");
+
+    let graded = dir.join("graded");
+    succeed(small_solve(&graded).args(["--mesh", "graded"]));
+    let triangles = read(graded.join("triangles.csv"));
+    std::fs::write(
+        graded.join("triangles.csv"),
+        without_column(&triangles, "a"),
+    )
+    .unwrap();
+    let err = refused(
+        &plot(&graded),
+        &[
+            "triangles.csv:3",
+            "no column `a`",
+            "the header has `b`, `c`",
+        ],
+    );
+    assert!(!err.contains("table a:"), "{err}");
+}
+
 /// An absurd n is refused by the memory guard (the integer count of unknowns used to
 /// wrap and let n = 5643117386039700 pass `show`), with the need in readable units.
 #[test]

@@ -4,7 +4,7 @@
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
 use super::FileError;
-use super::csv::{col_f64, read_csv};
+use super::csv::{Text, col_f64, read_csv};
 use super::rows::SummaryRow;
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
@@ -29,57 +29,33 @@ const PLAUSIBLE: f64 = 1e100;
 /// a numeric column; the error names the file, the line and the column.
 pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
     for (file, text_cols) in TABLES {
-        let path = dir.join(file);
-        let err = |line: usize, message: String| FileError::Table {
-            path: format!("{}:{line}", path.display()),
-            message,
-        };
-        let text = std::fs::read_to_string(&path).map_err(|e| FileError::Io {
-            path: path.display().to_string(),
-            source: e,
-        })?;
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.starts_with('#'));
-        let Some((hl, header)) = lines.next() else {
-            return Err(err(1, "no header line".into()));
-        };
-        let cols: Vec<&str> = header.split(',').collect();
-        let mut rows = 0;
-        for (i, line) in lines {
-            let fields: Vec<&str> = line.split(',').collect();
-            if fields.len() != cols.len() {
-                return Err(err(
-                    i + 1,
-                    format!(
-                        "{} fields where the header has {}",
-                        fields.len(),
-                        cols.len()
-                    ),
-                ));
-            }
-            for (c, f) in cols.iter().zip(&fields) {
-                if text_cols.contains(c) {
+        let text = Text::read(&dir.join(file))?;
+        let (hl, cols) = &text.header;
+        if text.rows.is_empty() {
+            return Err(FileError::Table {
+                path: format!("{}:{hl}", text.path),
+                message: "a header and no data row".into(),
+            });
+        }
+        for (i, (_, fields)) in text.rows.iter().enumerate() {
+            for (c, f) in cols.iter().zip(fields) {
+                if text_cols.contains(&c.as_str()) {
                     continue;
                 }
                 match f.trim().parse::<f64>() {
                     Ok(x) if x.is_finite() && x.abs() <= PLAUSIBLE => {}
                     _ => {
-                        return Err(err(
-                            i + 1,
-                            format!(
-                                "column `{c}` holds `{f}`, not a finite number of magnitude at \
-                                 most {PLAUSIBLE:e} (the table was not written by this run)"
+                        return Err(text.bad_cell(
+                            i,
+                            c,
+                            &format!(
+                                "a finite number of magnitude at most {PLAUSIBLE:e} (the table \
+                                 was not written by this run)"
                             ),
                         ));
                     }
                 }
             }
-            rows += 1;
-        }
-        if rows == 0 {
-            return Err(err(hl + 1, "a header and no data row".into()));
         }
     }
     Ok(())
@@ -89,15 +65,16 @@ pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
 pub fn draw(dir: &Path) -> Result<(), FileError> {
     validate_tables(dir)?;
     let summary_path = dir.join("summary.csv");
-    let summary = SummaryRow::read(&summary_path)?
+    let (line, summary) = SummaryRow::read_lines(&summary_path)?
         .into_iter()
         .next()
         .ok_or_else(|| FileError::Table {
             path: summary_path.display().to_string(),
             message: "no row".into(),
         })?;
+    let summary_at = format!("{}:{line}", summary_path.display());
     let bad = |c: &str, v: f64, allowed: &str| FileError::Table {
-        path: summary_path.display().to_string(),
+        path: summary_at.clone(),
         message: format!(
             "column `{c}` holds `{v}`, not {allowed} (the table was not written by this run)"
         ),
