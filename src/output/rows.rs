@@ -153,6 +153,8 @@ macro_rules! row {
     };
 }
 
+pub(crate) use row;
+
 row! {
     /// One row of `summary.csv`: the run's size, result, data, costs and provenance.
     pub struct SummaryRow {
