@@ -1219,6 +1219,53 @@ const POLARS_ADVICE: [&str; 4] = [
     "schema_overrides",
 ];
 
+/// `plot` checks what its titles claim against the run's own tables: a summary that
+/// says n = 128 (and h = 1/128) on a run of n = 64 drew it titled "h = 1/128"; n, h and
+/// steps are now checked against the contact nodes, the body's width and the steps
+/// recorded, and the figures are left as they were (issue 47, case 7). A graded run's
+/// nodes do not give its n: its h and steps are checked.
+#[test]
+fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
+    let dir = scratch("plot-claims");
+    let out = dir.join("run");
+    succeed(&mut solve("figure", "--n 64 --steps 2", &out));
+    let summary = read(out.join("summary.csv"));
+    let before = snapshot(&out);
+    for (edits, needles) in [
+        (
+            &[("n", "128"), ("h", "0.0078125")][..],
+            &["summary.csv:4", "column `n` holds `128`", "makes n = 64"][..],
+        ),
+        (
+            &[("n", "32"), ("h", "0.03125")][..],
+            &["summary.csv:4", "column `n` holds `32`", "makes n = 64"][..],
+        ),
+        (
+            &[("h", "0.0078125")][..],
+            &["column `h` holds `0.0078125`", "h = W/(2n) = 0.015625"][..],
+        ),
+        (
+            &[("steps", "3")][..],
+            &["column `steps` holds `3`", "regimes.csv records 2 step(s)"][..],
+        ),
+    ] {
+        std::fs::write(out.join("summary.csv"), with_cells(&summary, 4, edits)).unwrap();
+        refused(&plot(&out), needles);
+        std::fs::write(out.join("summary.csv"), &summary).unwrap();
+        assert!(
+            snapshot(&out) == before,
+            "{edits:?}: the run directory changed"
+        );
+    }
+    ok(&plot(&out));
+
+    // A graded run of a level that is no power of two: its nodes do not give n, and
+    // what they give is not refused.
+    let graded = dir.join("graded");
+    succeed(solve("figure", "--n 24 --steps 2", &graded).args(["--mesh", "graded"]));
+    ok(&plot(&graded));
+}
+
 /// An edited table is refused in our words, by file, line and column: a ragged
 /// `summary.csv` passed on the table library's advice to its Python users (issue 47,
 /// case 12), and a missing column named the column where the file should stand

@@ -61,6 +61,75 @@ pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
     Ok(())
 }
 
+/// Refuses a summary (its row at `at`) whose n, h or steps, which the figures' titles
+/// state, the run's other tables contradict (a summary copied from another run):
+/// - n, on a uniform mesh: its contact nodes (`contact.csv`) lie on the bottom's cells
+///   of width $W/n$, $W$ the width of `nodes.csv`, so every gap between neighbours is
+///   a whole number of cells (more than one where a support holds a node) and the
+///   smallest is one. A graded mesh's nodes do not give n (its initial grid is the
+///   coarsest that resolves the scene, bisected down to a size that n bounds).
+/// - h: $W/(2n)$.
+/// - steps: `regimes.csv` has a row per step, the last numbered `steps`.
+fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileError> {
+    let refuse = |column: &str, value: String, why: String| FileError::Table {
+        path: at.to_string(),
+        message: format!(
+            "column `{column}` holds `{value}`, but {why}; the summary was not written by \
+             the run of these tables"
+        ),
+    };
+    let x = col_f64(&read_csv(&dir.join("nodes.csv"))?, "x")?;
+    let width = x.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        - x.iter().copied().fold(f64::INFINITY, f64::min);
+    let n = summary.n as f64;
+    let cell = width / n;
+    if !dir.join("triangles.csv").exists() {
+        let mut xs: Vec<f64> = super::rows::ContactRow::read(&dir.join("contact.csv"))?
+            .into_iter()
+            .map(|r| r.x)
+            .collect();
+        xs.sort_by(f64::total_cmp);
+        let gaps: Vec<f64> = xs.windows(2).map(|w| w[1] - w[0]).collect();
+        // Gaps in cells, a whole number up to rounding in the coordinates.
+        let whole = |gap: f64| ((gap / cell) - (gap / cell).round()).abs() < 1e-6;
+        let closest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
+        let fits = gaps.iter().all(|&g| whole(g)) && (closest / cell - 1.0).abs() < 1e-6;
+        if !gaps.is_empty() && !fits {
+            return Err(refuse(
+                "n",
+                summary.n.to_string(),
+                format!(
+                    "the contact nodes of contact.csv are {closest} apart at the closest, on a \
+                     body {width} wide, which makes n = {}, not cells of {width}/{n}",
+                    (width / closest).round()
+                ),
+            ));
+        }
+    }
+    let h = width / (2.0 * n);
+    if (summary.h - h).abs() > 1e-9 * h {
+        return Err(refuse(
+            "h",
+            summary.h.to_string(),
+            format!("the body of nodes.csv is {width} wide, so h = W/(2n) = {h} for n = {n}"),
+        ));
+    }
+    let regimes = read_csv(&dir.join("regimes.csv"))?;
+    let step = col_f64(&regimes, "step")?;
+    let last = step.last().copied().unwrap_or(0.0);
+    if step.len() as u64 != summary.steps || last != summary.steps as f64 {
+        return Err(refuse(
+            "steps",
+            summary.steps.to_string(),
+            format!(
+                "regimes.csv records {} step(s), the last numbered {last}",
+                step.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Draws both figures of the run directory `dir` into it.
 pub fn draw(dir: &Path) -> Result<(), FileError> {
     validate_tables(dir)?;
@@ -121,6 +190,7 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
         }
         stride
     };
+    check_claims(dir, &summary_at, &summary)?;
     // h as the summary gives it: 1/n on the paper's rectangle, W/(2n) on another.
     let h = summary.h;
     let h_text = if (h * n as f64 - 1.0).abs() < 1e-12 {
