@@ -1185,6 +1185,314 @@ fn plot_refuses_a_summary_or_lattice_that_does_not_fit() {
     }
 }
 
+/// `text`, a table as evhi writes it, with the row at `line` (from 1, as an error
+/// names it) holding `value` in `column`, for each of `edits`.
+fn with_cells(text: &str, line: usize, edits: &[(&str, &str)]) -> String {
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let header = lines.iter().find(|l| !l.starts_with('#')).unwrap().clone();
+    let cols: Vec<&str> = header.split(',').collect();
+    let mut row: Vec<String> = lines[line - 1].split(',').map(str::to_string).collect();
+    for (column, value) in edits {
+        let at = cols.iter().position(|c| c == column).unwrap();
+        row[at] = value.to_string();
+    }
+    lines[line - 1] = row.join(",");
+    lines.join("\n") + "\n"
+}
+
+/// `text` without its column `column`.
+fn without_column(text: &str, column: &str) -> String {
+    let header = text.lines().find(|l| !l.starts_with('#')).unwrap();
+    let at = header.split(',').position(|c| c == column).unwrap();
+    let lines: Vec<String> = (text.lines())
+        .map(|l| {
+            if l.starts_with('#') {
+                return l.to_string();
+            }
+            let mut f: Vec<&str> = l.split(',').collect();
+            f.remove(at);
+            f.join(",")
+        })
+        .collect();
+    lines.join("\n") + "\n"
+}
+
+/// What the table library advises its Python users, which no message of ours repeats.
+const POLARS_ADVICE: [&str; 4] = [
+    "truncate_ragged_lines",
+    "infer_schema_length",
+    "ignore_errors",
+    "schema_overrides",
+];
+
+/// `plot` checks what its titles claim against the run's own tables: a summary that
+/// says n = 128 (and h = 1/128) on a run of n = 64 drew it titled "h = 1/128"; n, h and
+/// steps are now checked against the contact nodes, the body's width and the steps
+/// recorded, and the figures are left as they were (issue 47, case 7). A graded run's
+/// nodes do not give its n: its h and steps are checked.
+#[test]
+fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
+    let dir = scratch("plot-claims");
+    let out = dir.join("run");
+    succeed(&mut solve("figure", "--n 64 --steps 2", &out));
+    let summary = read(out.join("summary.csv"));
+    let before = snapshot(&out);
+    for (edits, needles) in [
+        (
+            &[("n", "128"), ("h", "0.0078125")][..],
+            &["summary.csv:4", "column `n` holds `128`", "makes n = 64"][..],
+        ),
+        (
+            &[("n", "32"), ("h", "0.03125")][..],
+            &["summary.csv:4", "column `n` holds `32`", "makes n = 64"][..],
+        ),
+        (
+            &[("h", "0.0078125")][..],
+            &["column `h` holds `0.0078125`", "h = W/(2n) = 0.015625"][..],
+        ),
+        (
+            &[("steps", "3")][..],
+            &["column `steps` holds `3`", "regimes.csv records 2 step(s)"][..],
+        ),
+    ] {
+        std::fs::write(out.join("summary.csv"), with_cells(&summary, 4, edits)).unwrap();
+        refused(&plot(&out), needles);
+        std::fs::write(out.join("summary.csv"), &summary).unwrap();
+        assert!(
+            snapshot(&out) == before,
+            "{edits:?}: the run directory changed"
+        );
+    }
+    ok(&plot(&out));
+
+    // A graded run of a level that is no power of two: its nodes do not give n, and
+    // what they give is not refused.
+    let graded = dir.join("graded");
+    succeed(solve("figure", "--n 24 --steps 2", &graded).args(["--mesh", "graded"]));
+    ok(&plot(&graded));
+}
+
+/// An edited table is refused in our words, by file, line and column: a ragged
+/// `summary.csv` passed on the table library's advice to its Python users (issue 47,
+/// case 12), and a missing column named the column where the file should stand
+/// ("table a: not found", case 13).
+#[test]
+fn plot_names_the_file_line_and_column_of_an_edited_table() {
+    let dir = scratch("plot-ragged");
+    let out = dir.join("run");
+    succeed(&mut small_solve(&out));
+    let summary = read(out.join("summary.csv"));
+    let lines: Vec<&str> = summary.lines().collect();
+    let cols = lines[2].split(',').count();
+    let last = lines[2].split(',').next_back().unwrap();
+    let longer = format!("{},extra\n", lines[..4].join("\n"));
+    let shorter = format!("{}\n", lines[..4].join("\n").rsplit_once(',').unwrap().0);
+    let before = snapshot(&out);
+    for (text, needles) in [
+        (
+            longer,
+            vec![
+                "summary.csv:4".to_string(),
+                format!("{} fields where the header (line 3) has {cols}", cols + 1),
+                "`extra`, has no column".into(),
+            ],
+        ),
+        (
+            shorter,
+            vec![
+                "summary.csv:4".to_string(),
+                format!("{} fields where the header (line 3) has {cols}", cols - 1),
+                format!("column `{last}` (field {cols}) has no value"),
+            ],
+        ),
+    ] {
+        std::fs::write(out.join("summary.csv"), text).unwrap();
+        let needles: Vec<&str> = needles.iter().map(String::as_str).collect();
+        let err = refused(&plot(&out), &needles);
+        for advice in POLARS_ADVICE {
+            assert!(!err.contains(advice), "{err}");
+        }
+    }
+    std::fs::write(out.join("summary.csv"), &summary).unwrap();
+    assert!(snapshot(&out) == before, "the run directory changed");
+
+    let graded = dir.join("graded");
+    succeed(small_solve(&graded).args(["--mesh", "graded"]));
+    let triangles = read(graded.join("triangles.csv"));
+    std::fs::write(
+        graded.join("triangles.csv"),
+        without_column(&triangles, "a"),
+    )
+    .unwrap();
+    let err = refused(
+        &plot(&graded),
+        &[
+            "triangles.csv:3",
+            "no column `a`",
+            "the header has `b`, `c`",
+        ],
+    );
+    assert!(!err.contains("table a:"), "{err}");
+}
+
+/// The bench's tables `bench --from-csv` reads, as committed.
+const BENCH_TABLES: [&str; 7] = [
+    "bench.csv",
+    "work_precision.csv",
+    "bench_solvers.csv",
+    "bench_scipy.csv",
+    "bench_sweeps.csv",
+    "bench_vs_paper.csv",
+    "table1_reference_error.csv",
+];
+
+/// `evhi bench --from-csv --data DIR/data --figures DIR/figures`, run with a time limit.
+fn from_csv(dir: &Path) -> Output {
+    let mut cmd = evhi_with("bench --from-csv --data");
+    cmd.arg(dir.join("data"))
+        .arg("--figures")
+        .arg(dir.join("figures"));
+    output_within(&mut cmd, 120)
+}
+
+/// `bench --from-csv` trusted its tables: a time of 0 spun for ten minutes and NaN
+/// allocated until the kernel killed it (issue 47, case 3); NaN, 0 or negative times
+/// became NaN, inf or -133 in bench_vs_paper.csv, negative dofs 0, n = 128.4 counted
+/// as 128, an unknown loop and a repeated row passed, and garbage was rendered into
+/// Markdown (case 5); a ragged table passed on the table library's advice (case 12)
+/// and a missing column was named where the file should be (case 13). Each is now
+/// refused by file, line, column and value, at once, with nothing written; the
+/// committed tables still render byte for byte.
+#[test]
+fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
+    let dir = scratch("bench-from-csv");
+    let data = dir.join("data");
+    std::fs::create_dir_all(&data).unwrap();
+    for f in BENCH_TABLES {
+        std::fs::copy(Path::new("data").join(f), data.join(f)).unwrap();
+    }
+    ok(&from_csv(&dir));
+    for f in [
+        "bench_vs_paper.csv",
+        "bench_vs_paper.md",
+        "bench.md",
+        "bench_solvers.md",
+    ] {
+        assert_eq!(read(data.join(f)), read(Path::new("data").join(f)), "{f}");
+    }
+    let before = snapshot(&dir);
+    let wp = read(data.join("work_precision.csv"));
+    let bench = read(data.join("bench.csv"));
+    let lines: Vec<&str> = bench.lines().collect();
+    let repeated = format!("{}\n{}\n", lines[..8].join("\n"), lines[7..].join("\n"));
+    let cell = |file: &str, line: usize, column: &str, value: &str| {
+        let text = if file == "bench.csv" { &bench } else { &wp };
+        with_cells(text, line, &[(column, value)]).into_bytes()
+    };
+    // Each case: the file, its text, and what the refusal says.
+    let mut cases: Vec<(&str, Vec<u8>, Vec<String>)> = vec![];
+    for (file, line, column, value, allowed) in [
+        (
+            "work_precision.csv",
+            4,
+            "wall_s",
+            "0",
+            "a finite number > 0",
+        ),
+        (
+            "work_precision.csv",
+            5,
+            "wall_s",
+            "NaN",
+            "a finite number > 0",
+        ),
+        (
+            "work_precision.csv",
+            6,
+            "rel_err_max_percent",
+            "-1",
+            "a finite number > 0",
+        ),
+        (
+            "work_precision.csv",
+            5,
+            "steps",
+            "256",
+            "the family `h` has steps = 512",
+        ),
+        ("bench.csv", 8, "wall_s", "0", "a finite number > 0"),
+        ("bench.csv", 8, "wall_s", "NaN", "a finite number > 0"),
+        ("bench.csv", 9, "wall_s", "-0.005", "a finite number > 0"),
+        ("bench.csv", 8, "dofs", "-16638", "a whole number >= 1"),
+        ("bench.csv", 8, "n", "128.4", "a whole number >= 1"),
+        ("bench.csv", 8, "path", "sideways", "`general` or `reduced`"),
+    ] {
+        let at = format!("{file}:{line}");
+        let holds = format!("column `{column}` holds `{value}`");
+        let text = cell(file, line, column, value);
+        cases.push((file, text, vec![at, holds, allowed.into()]));
+    }
+    let garbage = b"n,solver,wall_s\n16,new\0ton\x01,0.1\n".to_vec();
+    let mut ragged = wp.lines().map(str::to_string).collect::<Vec<_>>();
+    ragged[5].push_str(",7");
+    for (file, text, needles) in [
+        (
+            "bench.csv",
+            repeated.into_bytes(),
+            vec!["bench.csv:9", "line 8 has it"],
+        ),
+        (
+            "bench_solvers.csv",
+            garbage,
+            vec!["bench_solvers.csv:2", "U+0000"],
+        ),
+        (
+            "bench_solvers.csv",
+            b"\xff\xfe\x00garbage\n".to_vec(),
+            vec!["bench_solvers.csv:1", "not UTF-8"],
+        ),
+        (
+            "work_precision.csv",
+            (ragged.join("\n") + "\n").into_bytes(),
+            vec![
+                "work_precision.csv:6",
+                "7 fields where the header (line 3) has 6",
+            ],
+        ),
+        (
+            "work_precision.csv",
+            without_column(&wp, "wall_s").into_bytes(),
+            vec!["work_precision.csv:3", "no column `wall_s`"],
+        ),
+        (
+            "bench.csv",
+            without_column(&bench, "dofs").into_bytes(),
+            vec!["bench.csv:3", "no column `dofs`"],
+        ),
+    ] {
+        cases.push((
+            file,
+            text,
+            needles.into_iter().map(str::to_string).collect(),
+        ));
+    }
+    for (file, text, needles) in cases {
+        let original = std::fs::read(data.join(file)).unwrap();
+        std::fs::write(data.join(file), &text).unwrap();
+        let needles: Vec<&str> = needles.iter().map(String::as_str).collect();
+        let err = refused(&from_csv(&dir), &needles);
+        for advice in POLARS_ADVICE {
+            assert!(!err.contains(advice), "{err}");
+        }
+        std::fs::write(data.join(file), original).unwrap();
+        assert!(
+            snapshot(&dir) == before,
+            "{needles:?}: a file was written or changed"
+        );
+    }
+    ok(&from_csv(&dir));
+}
+
 /// An absurd n is refused by the memory guard (the integer count of unknowns used to
 /// wrap and let n = 5643117386039700 pass `show`), with the need in readable units.
 #[test]

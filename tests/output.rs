@@ -308,3 +308,89 @@ fn the_lock_leaves_no_file_and_still_excludes() {
     assert_eq!(taken.load(Ordering::SeqCst), 8 * 20);
     assert!(!path.exists());
 }
+
+/// A log axis over a range that is not finite, positive and increasing is refused at
+/// once: plotters' key points of a log axis from 0 never moved (a work-precision chart
+/// of a time of 0 spun) and to infinity never ended (NaN allocated without bound;
+/// issue 47, case 3).
+#[test]
+fn a_log_axis_over_zero_or_nan_is_refused_not_drawn() {
+    use evhi::output::plot::{LogLogChart, init_font};
+    use plotters::prelude::*;
+    init_font();
+    let start = Instant::now();
+    for (x, y) in [
+        ((0.0, 0.0), (1.0, 10.0)),
+        ((0.0, 2.0), (1.0, 10.0)),
+        ((f64::INFINITY, 0.0), (1.0, 10.0)),
+        ((f64::NAN, 1.0), (1.0, 10.0)),
+        ((1.0, 10.0), (-1.0, 10.0)),
+        ((1.0, 10.0), (5.0, 5.0)),
+        ((1.0, f64::INFINITY), (1.0, 10.0)),
+    ] {
+        let mut svg = String::new();
+        let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
+        let chart = LogLogChart {
+            desc: ("time [s]", "error [%]"),
+            ..LogLogChart::default()
+        }
+        .build(&root, (x.0..x.1).log_scale(), (y.0..y.1).log_scale());
+        let err = chart.err().unwrap_or_else(|| panic!("{x:?} x {y:?} drawn"));
+        assert!(err.contains("a log axis spans finite numbers > 0"), "{err}");
+    }
+    assert!(start.elapsed() < Duration::from_secs(5));
+    let mut svg = String::new();
+    let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
+    let chart =
+        LogLogChart::default().build(&root, (0.5..20.0).log_scale(), (1e-3..1e2).log_scale());
+    assert!(chart.is_ok(), "{:?}", chart.err());
+}
+
+/// The text reader of every table names the file, line and column of what it refuses,
+/// and reads every committed table.
+#[test]
+fn tables_are_read_as_written_and_refused_by_line_and_column() {
+    use evhi::output::csv::Text;
+    let t = Text::parse(
+        b"# made by a test\na,b\n\"x, \"\"y\"\"\",1\n\n\"\",2\n",
+        "t.csv",
+    )
+    .unwrap();
+    assert_eq!(t.header, (2, vec!["a".to_string(), "b".to_string()]));
+    assert_eq!(
+        t.rows[0],
+        (3, vec!["x, \"y\"".to_string(), "1".to_string()])
+    );
+    assert_eq!(t.rows[1], (5, vec![String::new(), "2".to_string()]));
+    for (text, expect) in [
+        (
+            &b"a,b\n1,2,3\n"[..],
+            "t.csv:2: 3 fields where the header (line 1) has 2: field 3, `3`, has no column",
+        ),
+        (
+            b"a,b\n1\n",
+            "t.csv:2: 1 fields where the header (line 1) has 2: column `b` (field 2) has no value",
+        ),
+        (b"a,b\n1,\"2\n", "t.csv:2: a double quote is not closed"),
+        (
+            b"a,b\n1,x\x00y\n",
+            "t.csv:2: column `b` holds `x\\0y`, with the control character U+0000",
+        ),
+        (b"a,a\n", "t.csv:1: column `a` appears twice in the header"),
+        (b"# only\n", "t.csv:1: no header line"),
+        (b"a,b\n1,\xff\n", "t.csv:2: not UTF-8 text"),
+    ] {
+        let err = Text::parse(text, "t.csv").unwrap_err().to_string();
+        assert!(err.contains(expect), "{err}");
+    }
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let tables: Vec<PathBuf> = names(&data)
+        .into_iter()
+        .filter(|f| f.ends_with(".csv"))
+        .map(|f| data.join(f))
+        .collect();
+    assert!(tables.len() > 40);
+    for path in tables {
+        Text::read(&path).unwrap_or_else(|e| panic!("{e}"));
+    }
+}

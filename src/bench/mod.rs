@@ -1,8 +1,10 @@
 //! What `evhi bench` measures beyond the phases of a solve: the triangular sweeps
 //! against a ready-made factorisation (`sweeps`), and the paper's and our work against
-//! the precision reached (`workprec`), with the tables of the bench the book shows.
+//! the precision reached (`workprec`), with the tables of the bench (`tables`) and
+//! the ones the book shows.
 
 pub mod sweeps;
+pub mod tables;
 pub mod workprec;
 
 use crate::output::markdown::{BookTable, book_table as table};
@@ -20,4 +22,26 @@ pub const TABLES: [BookTable; 5] = [
 /// of the bench's tables the book shows.
 pub fn book_table(file: &str) -> Option<(usize, usize)> {
     crate::output::markdown::layout(TABLES.iter(), file)
+}
+
+/// `evhi bench --from-csv`: measures nothing; rebuilds `bench_vs_paper.csv`, the
+/// work-precision chart and the Markdown of [`TABLES`] from the CSV files in
+/// `ctx.data`. Every table is read and checked first ([`tables`]), so that a table
+/// the bench cannot have written is refused by file, line and column before anything
+/// is drawn or written.
+pub fn from_csv(ctx: &crate::study::Ctx) -> Result<(), crate::study::ExpError> {
+    let bench: Vec<tables::BenchRow> = tables::read_bench(&ctx.data_path("bench.csv"))?
+        .into_iter()
+        .map(|(_, r)| r)
+        .collect();
+    let chart = workprec::Chart::read(ctx, &ctx.data_path("work_precision.csv"))?;
+    tables::read_solvers(&ctx.data_path("bench_solvers.csv"))?;
+    tables::read_scipy(&ctx.data_path("bench_scipy.csv"))?;
+    tables::read_sweeps(&ctx.data_path("bench_sweeps.csv"))?;
+    chart.draw(ctx)?;
+    workprec::write_paper_comparison(ctx, &bench)?;
+    for t in &TABLES {
+        ctx.render_book_table(t.file)?;
+    }
+    Ok(())
 }

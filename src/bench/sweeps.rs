@@ -3,10 +3,10 @@
 //! timed for faer's own solve and for ours with the ordering, threads, prefetch and
 //! number of columns varied, beside the machine's streaming bandwidth.
 
+use super::tables::SweepRow;
 use crate::assembly::Pair;
 use crate::linalg::Cholesky;
 use crate::ordering::Ordering;
-use crate::output::csv::Table;
 use crate::scenario::Scenario;
 use crate::scheme::Discretisation;
 use crate::study::{Ctx, ExpError};
@@ -17,7 +17,7 @@ use std::time::Instant;
 /// Repetitions of each timing; the median is kept.
 const REPEAT: usize = 21;
 
-/// One row of the table.
+/// One variant as measured (the table's row, [`SweepRow`], adds what follows from it).
 struct Row {
     variant: &'static str,
     ordering: &'static str,
@@ -188,36 +188,25 @@ pub fn run(ctx: &Ctx, n: usize, machine: &str) -> Result<(), ExpError> {
             r.forward_ms + r.backward_ms
         }
     };
-    let t = Table::new()
-        .str(
-            "variant",
-            rows.iter().map(|r| r.variant.to_string()).collect(),
-        )
-        .str(
-            "ordering",
-            rows.iter().map(|r| r.ordering.to_string()).collect(),
-        )
-        .u64("threads", rows.iter().map(|r| r.threads).collect())
-        .str(
-            "prefetch",
-            rows.iter().map(|r| r.prefetch.to_string()).collect(),
-        )
-        .u64("columns", rows.iter().map(|r| r.columns).collect())
-        .f64("nnz_l", rows.iter().map(|r| r.nnz_l).collect())
-        .f64("forward_ms", rows.iter().map(|r| r.forward_ms).collect())
-        .f64("backward_ms", rows.iter().map(|r| r.backward_ms).collect())
-        .f64("total_ms", rows.iter().map(total).collect())
-        .f64(
-            "ms_per_column",
-            rows.iter().map(|r| total(r) / r.columns as f64).collect(),
-        )
-        .f64(
-            // Bytes of values read by the two passes over the time they took.
-            "gb_per_s",
-            rows.iter()
-                .map(|r| 2.0 * 8.0 * r.nnz_l / (1e-3 * total(r)) / 1e9)
-                .collect(),
-        );
+    let t = SweepRow::table(
+        &rows
+            .iter()
+            .map(|r| SweepRow {
+                variant: r.variant.to_string(),
+                ordering: r.ordering.to_string(),
+                threads: r.threads,
+                prefetch: r.prefetch.to_string(),
+                columns: r.columns,
+                nnz_l: r.nnz_l,
+                forward_ms: r.forward_ms,
+                backward_ms: r.backward_ms,
+                total_ms: total(r),
+                ms_per_column: total(r) / r.columns as f64,
+                // Bytes of values read by the two passes over the time they took.
+                gb_per_s: 2.0 * 8.0 * r.nnz_l / (1e-3 * total(r)) / 1e9,
+            })
+            .collect::<Vec<_>>(),
+    );
     ctx.write_as(
         "bench_sweeps.csv",
         &t,

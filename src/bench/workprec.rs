@@ -1,10 +1,12 @@
 //! The work–precision chart: error in energy norm against wall time for the
 //! configurations of the convergence study (`evhi bench` times them).
 
-use crate::output::csv::{col_f64, col_str, read_csv};
+use super::tables::{BenchRow, PaperRow, REFERENCE, WorkPrecisionRow, read_bench};
+use crate::output::csv;
 use crate::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
 };
+use crate::output::rows::{POSITIVE, column};
 use crate::study::{Ctx, ExpError};
 use plotters::prelude::*;
 use std::path::Path;
@@ -12,7 +14,8 @@ use std::path::Path;
 /// A family of runs: label, points (time, error, "n/N"), colour.
 type Family = (String, Vec<(f64, f64, String)>, RGBColor);
 
-struct Chart {
+/// The work-precision chart, read from its table and ready to draw.
+pub struct Chart {
     series: Vec<Family>,
     /// The estimated own error of the $h = 1/512$ mesh (percent), below which the
     /// $k$ family's total error cannot go: its errors are measured against a
@@ -21,43 +24,70 @@ struct Chart {
 }
 
 /// The orthogonal estimate of the 1/512 mesh's own error for `figure`, percent, from
-/// `data/table1_reference_error.csv` (written by the forensics), if there.
-fn mesh_floor(ctx: &Ctx) -> Option<f64> {
-    let df = read_csv(&ctx.data_path("table1_reference_error.csv")).ok()?;
-    let load = col_str(&df, "load").ok()?;
-    let v = col_f64(&df, "reference_error_orthogonal_percent").ok()?;
-    load.iter().position(|l| l == "figure").map(|i| v[i])
+/// `data/table1_reference_error.csv` (written by the forensics), if there; a value
+/// there that is not a finite number > 0 is refused (the chart draws it on a log axis).
+fn mesh_floor(ctx: &Ctx) -> Result<Option<f64>, ExpError> {
+    let path = ctx.data_path("table1_reference_error.csv");
+    if !path.exists() {
+        return Ok(None);
+    }
+    let text = csv::Text::read(&path)?;
+    let load = column::<String>(&text, "load", &[])?;
+    let name = "reference_error_orthogonal_percent";
+    let v = column::<f64>(&text, name, &[])?;
+    Ok(match load.iter().position(|l| l == "figure") {
+        Some(i) if !(POSITIVE.test)(&v[i]) => Err(text.bad_cell(i, name, POSITIVE.says))?,
+        Some(i) => Some(v[i]),
+        None => None,
+    })
+}
+
+impl Chart {
+    /// The chart of `data/work_precision.csv` at `path` (checked, see
+    /// [`super::tables::read_work_precision`]).
+    pub fn read(ctx: &Ctx, path: &Path) -> Result<Chart, ExpError> {
+        let rows: Vec<WorkPrecisionRow> = super::tables::read_work_precision(path)?
+            .into_iter()
+            .map(|(_, r)| r)
+            .collect();
+        let pick = |f: &str| -> Vec<(f64, f64, String)> {
+            (rows.iter().filter(|r| r.family == f))
+                .map(|r| {
+                    (
+                        r.wall_s,
+                        r.rel_err_max_percent,
+                        format!("{}/{}", r.n, r.steps),
+                    )
+                })
+                .collect()
+        };
+        Ok(Chart {
+            series: vec![
+                ("h = k = 1/n".into(), pick("h=k"), RGBColor(0, 114, 178)),
+                (
+                    format!("h = 1/n, k = 1/{REFERENCE}"),
+                    pick("h"),
+                    RGBColor(213, 94, 0),
+                ),
+                (
+                    format!("h = 1/{REFERENCE}, k = 1/N: time error only"),
+                    pick("k"),
+                    RGBColor(0, 158, 115),
+                ),
+            ],
+            floor: mesh_floor(ctx)?,
+        })
+    }
+
+    /// Draws `figures/work_precision.{png,svg}`.
+    pub fn draw(&self, ctx: &Ctx) -> Result<(), ExpError> {
+        Ok(both(&ctx.figures, "work_precision", (1000, 750), self)?)
+    }
 }
 
 /// Draws `figures/work_precision.{png,svg}` from `data/work_precision.csv`.
 pub fn draw(ctx: &Ctx, path: &Path) -> Result<(), ExpError> {
-    let df = read_csv(path)?;
-    let fam = col_str(&df, "family")?;
-    let (n, st, wall, err) = (
-        col_f64(&df, "n")?,
-        col_f64(&df, "steps")?,
-        col_f64(&df, "wall_s")?,
-        col_f64(&df, "rel_err_max_percent")?,
-    );
-    let pick = |f: &str| -> Vec<(f64, f64, String)> {
-        (0..fam.len())
-            .filter(|&i| fam[i] == f)
-            .map(|i| (wall[i], err[i], format!("{}/{}", n[i], st[i])))
-            .collect()
-    };
-    let chart = Chart {
-        series: vec![
-            ("h = k = 1/n".into(), pick("h=k"), RGBColor(0, 114, 178)),
-            ("h = 1/n, k = 1/512".into(), pick("h"), RGBColor(213, 94, 0)),
-            (
-                "h = 1/512, k = 1/N: time error only".into(),
-                pick("k"),
-                RGBColor(0, 158, 115),
-            ),
-        ],
-        floor: mesh_floor(ctx),
-    };
-    Ok(both(&ctx.figures, "work_precision", (1000, 750), &chart)?)
+    Chart::read(ctx, path)?.draw(ctx)
 }
 
 impl Figure for Chart {
@@ -187,35 +217,44 @@ fn place_labels(
 /// 2.33 GHz Intel core.
 pub const PAPER_TIMES: [(usize, u64, f64); 2] = [(128, 17_028, 665.0), (512, 264_508, 93_878.0)];
 
-/// Writes `data/bench_vs_paper.csv` from `data/bench.csv`: our median wall time
-/// beside the paper's CPU time at the same $h = k$.
-pub fn paper_comparison(ctx: &Ctx) -> Result<(), ExpError> {
-    let df = read_csv(&ctx.data_path("bench.csv"))?;
-    let (n, dofs, wall, path) = (
-        col_f64(&df, "n")?,
-        col_f64(&df, "dofs")?,
-        col_f64(&df, "wall_s")?,
-        col_str(&df, "path")?,
-    );
-    let mut rows: Vec<(usize, u64, f64, f64, f64, &str)> = vec![];
+/// The rows of `data/bench_vs_paper.csv`: for each of the paper's levels, our rows
+/// of `bench` at that level.
+pub fn paper_rows(bench: &[BenchRow]) -> Vec<PaperRow> {
+    let mut rows = vec![];
     for &(pn, pd, ps) in PAPER_TIMES.iter() {
-        for i in (0..n.len()).filter(|&i| n[i] as usize == pn) {
-            rows.push((pn, pd, ps, dofs[i], wall[i], path[i].as_str()));
+        for r in bench.iter().filter(|r| r.n == pn as u64) {
+            rows.push(PaperRow {
+                n_and_steps: pn as u64,
+                paper_dofs: pd,
+                paper_cpu_s: ps,
+                path: r.path.clone(),
+                our_dofs: r.dofs,
+                our_wall_s: r.wall_s,
+                paper_over_ours: ps / r.wall_s,
+            });
         }
     }
-    let t = crate::output::csv::Table::new()
-        .u64("n_and_steps", rows.iter().map(|r| r.0 as u64).collect())
-        .u64("paper_dofs", rows.iter().map(|r| r.1).collect())
-        .f64("paper_cpu_s", rows.iter().map(|r| r.2).collect())
-        .str("path", rows.iter().map(|r| r.5.to_string()).collect())
-        .u64("our_dofs", rows.iter().map(|r| r.3 as u64).collect())
-        .f64("our_wall_s", rows.iter().map(|r| r.4).collect())
-        .f64("paper_over_ours", rows.iter().map(|r| r.2 / r.4).collect());
+    rows
+}
+
+/// Writes `data/bench_vs_paper.csv` (and its Markdown) from the rows of `data/bench.csv`:
+/// our median wall time beside the paper's CPU time at the same $h = k$.
+pub fn write_paper_comparison(ctx: &Ctx, bench: &[BenchRow]) -> Result<(), ExpError> {
     ctx.write_as(
         "bench_vs_paper.csv",
-        &t,
+        &PaperRow::table(&paper_rows(bench)),
         "bench",
         "paper: CPU seconds of its section 5 (2.33 GHz Intel core, its own dof count); ours: median wall seconds from data/bench.csv (machine named there)",
     )?;
     Ok(())
+}
+
+/// Writes `data/bench_vs_paper.csv` from `data/bench.csv` (checked, see
+/// [`super::tables::read_bench`]).
+pub fn paper_comparison(ctx: &Ctx) -> Result<(), ExpError> {
+    let bench: Vec<BenchRow> = read_bench(&ctx.data_path("bench.csv"))?
+        .into_iter()
+        .map(|(_, r)| r)
+        .collect();
+    write_paper_comparison(ctx, &bench)
 }

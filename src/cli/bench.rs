@@ -1,5 +1,6 @@
 //! `evhi bench`: every phase timed at several levels, each run in a fresh process.
 
+use crate::bench::tables::{BenchRow, ScipyRow, SolverRow, WorkPrecisionRow};
 use crate::step::DEFAULT_SOLVER;
 use crate::timing::{machine, median};
 use std::path::PathBuf;
@@ -116,7 +117,6 @@ fn child_run(
 
 /// Runs the benchmark and writes its tables and chart.
 pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::output::csv::Table;
     use crate::study::Ctx;
     let ctx = Ctx {
         quick: false,
@@ -131,12 +131,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         book_table: crate::bench::book_table,
     };
     if args.from_csv {
-        crate::bench::workprec::paper_comparison(&ctx)?;
-        crate::bench::workprec::draw(&ctx, &ctx.data_path("work_precision.csv"))?;
-        for t in &crate::bench::TABLES {
-            ctx.render_book_table(t.file)?;
-        }
-        return Ok(());
+        return Ok(crate::bench::from_csv(&ctx)?);
     }
     let machine = machine();
     crate::diag!("bench on {machine}");
@@ -150,23 +145,11 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
         row.get(k).copied().unwrap_or(f64::NAN)
     };
-    // Phase timings, Newton, medians over repeats.
-    let cols = [
-        "wall_s",
-        "assembly_s",
-        "factorisation_s",
-        "condensation_s",
-        "steps_s",
-        "one_solve_s",
-        "floor_ratio",
-        "peak_rss_mb",
-    ];
-    // Both time loops at every level: general (a sweep per step) and reduced.
-    let paths = ["general", "reduced"];
-    let mut med: Vec<Vec<f64>> = vec![vec![]; cols.len()];
-    let (mut dofs, mut keys) = (vec![], vec![]);
+    // Phase timings, Newton, medians over repeats; both time loops at every level:
+    // general (a sweep per step) and reduced.
+    let mut bench = vec![];
     for &n in &args.levels {
-        for path in paths {
+        for path in ["general", "reduced"] {
             if path == "general" && n > args.general_max {
                 continue;
             }
@@ -175,21 +158,24 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
                 crate::diag!("  n = steps = {n}, {path} path, run {}", r + 1);
                 runs.push(child_run(n, n, DEFAULT_SOLVER, path)?);
             }
-            dofs.push(f(&runs[0], "dofs") as u64);
-            keys.push((n, path));
-            for (c, name) in cols.iter().enumerate() {
-                med[c].push(median(runs.iter().map(|r| f(r, name)).collect()));
-            }
+            let m = |k: &str| median(runs.iter().map(|r| f(r, k)).collect());
+            bench.push(BenchRow {
+                n: n as u64,
+                steps: n as u64,
+                path: path.to_string(),
+                dofs: f(&runs[0], "dofs") as u64,
+                wall_s: m("wall_s"),
+                assembly_s: m("assembly_s"),
+                factorisation_s: m("factorisation_s"),
+                condensation_s: m("condensation_s"),
+                steps_s: m("steps_s"),
+                one_solve_s: m("one_solve_s"),
+                floor_ratio: m("floor_ratio"),
+                peak_rss_mb: m("peak_rss_mb"),
+            });
         }
     }
-    let mut t = Table::new()
-        .u64("n", keys.iter().map(|k| k.0 as u64).collect())
-        .u64("steps", keys.iter().map(|k| k.0 as u64).collect())
-        .str("path", keys.iter().map(|k| k.1.to_string()).collect())
-        .u64("dofs", dofs);
-    for (c, name) in cols.iter().enumerate() {
-        t = t.f64(name, med[c].clone());
-    }
+    let t = BenchRow::table(&bench);
     let params = format!(
         "machine: {machine}; scenario figure, solver newton, h = k = 1/n; path: the general time loop or the reduced one; medians of {} runs, each in a fresh process; wall_s is the solve without writing its files",
         args.repeat
@@ -209,27 +195,19 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
                 .map(|_| child_run(n, n, solver, "auto"))
                 .collect::<Result<_, _>>()?;
             let m = |k: &str| median(runs.iter().map(|r| f(r, k)).collect());
-            rows.push((
-                n,
-                solver,
-                m("wall_s"),
-                m("steps_s"),
-                f(&runs[0], "iterations_total"),
-                f(&runs[0], "inner_iterations_total"),
-                m("max_certificate"),
-                f(&runs[0], "energy_norm_T"),
-            ));
+            rows.push(SolverRow {
+                n: n as u64,
+                solver: solver.to_string(),
+                wall_s: m("wall_s"),
+                steps_s: m("steps_s"),
+                iterations_total: f(&runs[0], "iterations_total"),
+                inner_iterations_total: f(&runs[0], "inner_iterations_total"),
+                max_certificate: m("max_certificate"),
+                energy_norm_t: f(&runs[0], "energy_norm_T"),
+            });
         }
     }
-    let ts = Table::new()
-        .u64("n", rows.iter().map(|r| r.0 as u64).collect())
-        .str("solver", rows.iter().map(|r| r.1.to_string()).collect())
-        .f64("wall_s", rows.iter().map(|r| r.2).collect())
-        .f64("steps_s", rows.iter().map(|r| r.3).collect())
-        .f64("iterations_total", rows.iter().map(|r| r.4).collect())
-        .f64("inner_iterations_total", rows.iter().map(|r| r.5).collect())
-        .f64("max_certificate", rows.iter().map(|r| r.6).collect())
-        .f64("energy_norm_T", rows.iter().map(|r| r.7).collect());
+    let ts = SolverRow::table(&rows);
     ctx.write_as(
         "bench_solvers.csv",
         &ts,
@@ -254,22 +232,16 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         let runs: Vec<_> = (0..args.repeat.max(1))
             .map(|_| child_run(ni, si, DEFAULT_SOLVER, "auto"))
             .collect::<Result<_, _>>()?;
-        wp.push((
-            fam[i].clone(),
-            ni,
-            si,
-            median(runs.iter().map(|r| f(r, "wall_s")).collect()),
-            err[i],
-            errm[i],
-        ));
+        wp.push(WorkPrecisionRow {
+            family: fam[i].clone(),
+            n: ni as u64,
+            steps: si as u64,
+            wall_s: median(runs.iter().map(|r| f(r, "wall_s")).collect()),
+            rel_err_t_percent: err[i],
+            rel_err_max_percent: errm[i],
+        });
     }
-    let tw = Table::new()
-        .str("family", wp.iter().map(|r| r.0.clone()).collect())
-        .u64("n", wp.iter().map(|r| r.1 as u64).collect())
-        .u64("steps", wp.iter().map(|r| r.2 as u64).collect())
-        .f64("wall_s", wp.iter().map(|r| r.3).collect())
-        .f64("rel_err_T_percent", wp.iter().map(|r| r.4).collect())
-        .f64("rel_err_max_percent", wp.iter().map(|r| r.5).collect());
+    let tw = WorkPrecisionRow::table(&wp);
     let path = ctx.write_as("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
     crate::bench::workprec::draw(&ctx, &path)?;
     crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
@@ -326,7 +298,6 @@ fn scipy(
     args: &BenchArgs,
     machine: &str,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::output::csv::Table;
     let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
         row.get(k).copied().unwrap_or(f64::NAN)
     };
@@ -348,34 +319,20 @@ fn scipy(
             median(runs.iter().map(|r| f(r, k)).collect())
         };
         let (ts, tg, tr) = (m(&sp, "total_s"), m(&gen_, "wall_s"), m(&red, "wall_s"));
-        rows.push((
-            n,
-            f(&red[0], "dofs"),
-            ts,
-            m(&sp, "steps_s"),
-            tg,
-            tr,
-            f(&sp[0], "rel_err_u_nu"),
-            f(&sp[0], "rel_diff_energy_norm"),
-        ));
+        rows.push(ScipyRow {
+            n: n as u64,
+            dofs: f(&red[0], "dofs") as u64,
+            scipy_total_s: ts,
+            scipy_steps_s: m(&sp, "steps_s"),
+            general_wall_s: tg,
+            reduced_wall_s: tr,
+            scipy_over_general: ts / tg,
+            scipy_over_reduced: ts / tr,
+            scipy_gap_u_nu: f(&sp[0], "rel_err_u_nu"),
+            scipy_gap_energy: f(&sp[0], "rel_diff_energy_norm").abs(),
+        });
     }
-    let t = Table::new()
-        .u64("n", rows.iter().map(|r| r.0 as u64).collect())
-        .u64("dofs", rows.iter().map(|r| r.1 as u64).collect())
-        .f64("scipy_total_s", rows.iter().map(|r| r.2).collect())
-        .f64("scipy_steps_s", rows.iter().map(|r| r.3).collect())
-        .f64("general_wall_s", rows.iter().map(|r| r.4).collect())
-        .f64("reduced_wall_s", rows.iter().map(|r| r.5).collect())
-        .f64(
-            "scipy_over_general",
-            rows.iter().map(|r| r.2 / r.4).collect(),
-        )
-        .f64(
-            "scipy_over_reduced",
-            rows.iter().map(|r| r.2 / r.5).collect(),
-        )
-        .f64("scipy_gap_u_nu", rows.iter().map(|r| r.6).collect())
-        .f64("scipy_gap_energy", rows.iter().map(|r| r.7.abs()).collect());
+    let t = ScipyRow::table(&rows);
     ctx.write_as(
         "bench_scipy.csv",
         &t,

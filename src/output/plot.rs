@@ -383,6 +383,9 @@ impl<'t> LogLogChart<'t> {
         X::CoordDescType: ValueFormatter<f64>,
         Y::CoordDescType: ValueFormatter<f64>,
     {
+        let (x, y): (X::CoordDescType, Y::CoordDescType) = (x.into(), y.into());
+        log_range(self.desc.0, x.range())?;
+        log_range(self.desc.1, y.range())?;
         let mut chart = ChartBuilder::on(area)
             .caption(self.caption.0, ("sans-serif", self.caption.1))
             .margin(self.margin)
@@ -405,6 +408,24 @@ impl<'t> LogLogChart<'t> {
         }
         mesh.draw().map_err(e2s)?;
         Ok(chart)
+    }
+}
+
+/// Refuses the range of a log axis (described as `axis`) that is not finite, positive
+/// and increasing: plotters makes the key points of a log axis by stepping from its
+/// lower end by a factor until it passes the upper, which from 0 never moves and to
+/// $\infty$ never ends (a chart of a time of 0 spun; one of NaN allocated without
+/// bound).
+pub fn log_range(axis: &str, range: std::ops::Range<f64>) -> Result<(), String> {
+    let (lo, hi) = (range.start, range.end);
+    if lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi {
+        Ok(())
+    } else {
+        Err(format!(
+            "the log axis \"{axis}\" would span {lo:e} to {hi:e}; a log axis spans finite \
+             numbers > 0, the lower below the upper (the data hold a value that is not a \
+             finite number > 0, or none)"
+        ))
     }
 }
 

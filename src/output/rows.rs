@@ -1,28 +1,32 @@
 //! The rows of a run's tables, typed: `summary.csv` ([`SummaryRow`]), `steps.csv`
-//! ([`StepRow`]) and `contact.csv` ([`ContactRow`]). Each column is spelled once, in
-//! its row's definition; the run writes its tables from these rows, and `evhi plot`,
-//! `evhi bench` and the tests read them back into the same rows.
+//! ([`StepRow`]), `contact.csv` ([`ContactRow`]) and a graded run's `triangles.csv`
+//! ([`TriangleRow`]). Each column is spelled once, in its row's definition; the run
+//! writes its tables from these rows, and `evhi plot`, `evhi bench` and the tests read
+//! them back into the same rows, each cell checked and a wrong one named by its file,
+//! line and column. Other tables define their rows with the same `row!` macro.
 
 use super::FileError;
-use super::csv::{Table, col_f64, col_str, read_csv};
-use polars::prelude::DataFrame;
-use std::path::Path;
+use super::csv::{Table, Text};
 
-/// A value a column holds: how a column of them goes into a [`Table`] and comes back
-/// from a CSV (the error names the column and the value that is not of its kind).
+/// A value a column holds: how a column of them goes into a [`Table`] and how a cell's
+/// text reads back as one.
 pub trait Cell: Sized + Clone {
+    /// What a cell of this kind holds, as an error says it ("a whole number >= 0").
+    const KIND: &'static str;
     fn put(t: Table, name: &str, v: Vec<Self>) -> Table;
-    fn get(df: &DataFrame, name: &str) -> Result<Vec<Self>, FileError>;
+    /// The value a cell's text holds, if it is of this kind.
+    fn parse(text: &str) -> Option<Self>;
     /// The value as a number, for a reader that wants every numeric column.
     fn number(&self) -> Option<f64>;
 }
 
 impl Cell for f64 {
+    const KIND: &'static str = "a number";
     fn put(t: Table, name: &str, v: Vec<Self>) -> Table {
         t.f64(name, v)
     }
-    fn get(df: &DataFrame, name: &str) -> Result<Vec<Self>, FileError> {
-        col_f64(df, name)
+    fn parse(text: &str) -> Option<Self> {
+        text.trim().parse().ok()
     }
     fn number(&self) -> Option<f64> {
         Some(*self)
@@ -30,26 +34,14 @@ impl Cell for f64 {
 }
 
 impl Cell for u64 {
+    const KIND: &'static str = "a whole number >= 0";
     fn put(t: Table, name: &str, v: Vec<Self>) -> Table {
         t.u64(name, v)
     }
-    fn get(df: &DataFrame, name: &str) -> Result<Vec<Self>, FileError> {
-        col_f64(df, name)?
-            .into_iter()
-            .map(|x| {
-                if x >= 0.0 && x.fract() == 0.0 && x < u64::MAX as f64 {
-                    Ok(x as u64)
-                } else {
-                    Err(FileError::Table {
-                        path: name.to_string(),
-                        message: format!(
-                            "column `{name}` holds `{x}`, not a whole number >= 0 (the table \
-                             was not written by this run)"
-                        ),
-                    })
-                }
-            })
-            .collect()
+    fn parse(text: &str) -> Option<Self> {
+        // As a number first: a float column's `30293238.0` is a whole number too.
+        let x: f64 = text.trim().parse().ok()?;
+        (x >= 0.0 && x.fract() == 0.0 && x < u64::MAX as f64).then_some(x as u64)
     }
     fn number(&self) -> Option<f64> {
         Some(*self as f64)
@@ -57,21 +49,66 @@ impl Cell for u64 {
 }
 
 impl Cell for String {
+    const KIND: &'static str = "text";
     fn put(t: Table, name: &str, v: Vec<Self>) -> Table {
         t.str(name, v)
     }
-    fn get(df: &DataFrame, name: &str) -> Result<Vec<Self>, FileError> {
-        col_str(df, name)
+    fn parse(text: &str) -> Option<Self> {
+        Some(text.to_string())
     }
     fn number(&self) -> Option<f64> {
         None
     }
 }
 
+/// What a column allows beyond its kind: a test of a value, and the words an error
+/// says it in ("a finite number > 0").
+pub struct Allowed<T> {
+    pub test: fn(&T) -> bool,
+    pub says: &'static str,
+}
+
+/// A finite number > 0 (a time a log axis draws, a divisor).
+pub const POSITIVE: Allowed<f64> = Allowed {
+    test: |x| x.is_finite() && *x > 0.0,
+    says: "a finite number > 0",
+};
+
+/// A finite number >= 0 (a time, an error, a norm).
+pub const NON_NEGATIVE: Allowed<f64> = Allowed {
+    test: |x| x.is_finite() && *x >= 0.0,
+    says: "a finite number >= 0",
+};
+
+/// A whole number >= 1 (a level, a step count, a dof count).
+pub const AT_LEAST_ONE: Allowed<u64> = Allowed {
+    test: |x| *x >= 1,
+    says: "a whole number >= 1",
+};
+
+/// The column `name` of `text`, each cell read as a `T` that every one of `rules`
+/// allows; a cell that is not is refused with its file, line, value and what the
+/// column allows.
+pub fn column<T: Cell>(text: &Text, name: &str, rules: &[Allowed<T>]) -> Result<Vec<T>, FileError> {
+    let k = text.column(name)?;
+    (text.rows.iter().enumerate())
+        .map(|(i, (_, fields))| {
+            // A cell not of the kind is told what the column allows, where it says more.
+            let allowed = rules.first().map_or(T::KIND, |r| r.says);
+            let v = T::parse(&fields[k]).ok_or_else(|| text.bad_cell(i, name, allowed))?;
+            match rules.iter().find(|r| !(r.test)(&v)) {
+                Some(r) => Err(text.bad_cell(i, name, r.says)),
+                None => Ok(v),
+            }
+        })
+        .collect()
+}
+
 /// Defines a row struct whose fields are the table's columns (`field: type =>
-/// "column"`), with its table ([`Table`]), its reader and its numeric columns.
+/// "column"`, with `if RULE` where the column allows less than its type, see
+/// [`Allowed`]), with its table ([`Table`]), its reader and its numeric columns.
 macro_rules! row {
-    ($(#[$m:meta])* pub struct $name:ident { $( $(#[$fm:meta])* $field:ident : $ty:ty => $col:literal, )* }) => {
+    ($(#[$m:meta])* pub struct $name:ident { $( $(#[$fm:meta])* $field:ident : $ty:ty => $col:literal $(if $rule:expr)?, )* }) => {
         $(#[$m])*
         #[derive(Debug, Clone, PartialEq)]
         pub struct $name {
@@ -83,38 +120,40 @@ macro_rules! row {
             pub const COLUMNS: &'static [&'static str] = &[$($col),*];
 
             /// The table of `rows`.
-            pub fn table(rows: &[Self]) -> Table {
-                let t = Table::new();
-                $( let t = <$ty as Cell>::put(t, $col, rows.iter().map(|r| r.$field.clone()).collect()); )*
+            pub fn table(rows: &[Self]) -> $crate::output::csv::Table {
+                let t = $crate::output::csv::Table::new();
+                $( let t = <$ty as $crate::output::rows::Cell>::put(t, $col, rows.iter().map(|r| r.$field.clone()).collect()); )*
                 t
             }
 
             /// The rows of the table at `path` (its `#` lines skipped); every column must
-            /// be there, of its kind.
-            pub fn read(path: &Path) -> Result<Vec<Self>, FileError> {
-                let df = read_csv(path)?;
-                let at = |e: FileError| match e {
-                    FileError::Table { message, .. } => FileError::Table {
-                        path: path.display().to_string(),
-                        message,
-                    },
-                    other => other,
-                };
-                $( let $field = <$ty as Cell>::get(&df, $col).map_err(at)?; )*
-                Ok((0..df.height())
-                    .map(|i| Self { $( $field: $field[i].clone(), )* })
+            /// be there, each cell of its kind and allowed by its rule.
+            pub fn read(path: &std::path::Path) -> Result<Vec<Self>, $crate::output::FileError> {
+                Ok(Self::read_lines(path)?.into_iter().map(|(_, r)| r).collect())
+            }
+
+            /// [`Self::read`], each row with its line number in the file.
+            pub fn read_lines(
+                path: &std::path::Path,
+            ) -> Result<Vec<(usize, Self)>, $crate::output::FileError> {
+                let text = $crate::output::csv::Text::read(path)?;
+                $( let $field = $crate::output::rows::column::<$ty>(&text, $col, &[$($rule)?])?; )*
+                Ok((0..text.rows.len())
+                    .map(|i| (text.rows[i].0, Self { $( $field: $field[i].clone(), )* }))
                     .collect())
             }
 
             /// Every numeric column of the row, by name.
             pub fn numbers(&self) -> Vec<(&'static str, f64)> {
                 let mut out = vec![];
-                $( if let Some(x) = Cell::number(&self.$field) { out.push(($col, x)); } )*
+                $( if let Some(x) = $crate::output::rows::Cell::number(&self.$field) { out.push(($col, x)); } )*
                 out
             }
         }
     };
 }
+
+pub(crate) use row;
 
 row! {
     /// One row of `summary.csv`: the run's size, result, data, costs and provenance.
@@ -250,5 +289,15 @@ impl crate::simulation::Solution {
     /// ```
     pub fn contact_rows(&self, scene: &crate::scenario::Scenario) -> Vec<ContactRow> {
         ContactRow::of(&self.run, scene)
+    }
+}
+
+row! {
+    /// One row of a graded run's `triangles.csv`: the three corners of a triangle, as
+    /// indices into the rows of `nodes.csv`.
+    pub struct TriangleRow {
+        a: u64 => "a",
+        b: u64 => "b",
+        c: u64 => "c",
     }
 }

@@ -5,7 +5,7 @@
 //! with the same two provenance lines.
 
 use super::csv::Table;
-use super::rows::{ContactRow, StepRow, SummaryRow};
+use super::rows::{ContactRow, StepRow, SummaryRow, TriangleRow};
 use super::rundir::{OutError, RunDir};
 use super::vtu;
 use crate::certificate::ContactState;
@@ -396,15 +396,14 @@ pub fn write(
                 .f64("uy", dcol(1)),
             &header,
         )?;
-        let corner = |c: usize| mesh.triangles.iter().map(|t| t[c] as u64).collect();
-        out.write_table(
-            "triangles.csv",
-            &Table::new()
-                .u64("a", corner(0))
-                .u64("b", corner(1))
-                .u64("c", corner(2)),
-            &header,
-        )?;
+        let triangles: Vec<TriangleRow> = (mesh.triangles.iter())
+            .map(|t| TriangleRow {
+                a: t[0] as u64,
+                b: t[1] as u64,
+                c: t[2] as u64,
+            })
+            .collect();
+        out.write_table("triangles.csv", &TriangleRow::table(&triangles), &header)?;
     } else {
         out.write_table(
             "nodes.csv",

@@ -4,7 +4,7 @@
 //! and force at five contact nodes over time, and the number of nodes in each regime).
 
 use super::FileError;
-use super::csv::{col_f64, read_csv};
+use super::csv::{Text, col_f64, read_csv};
 use super::rows::SummaryRow;
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
@@ -29,58 +29,103 @@ const PLAUSIBLE: f64 = 1e100;
 /// a numeric column; the error names the file, the line and the column.
 pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
     for (file, text_cols) in TABLES {
-        let path = dir.join(file);
-        let err = |line: usize, message: String| FileError::Table {
-            path: format!("{}:{line}", path.display()),
-            message,
-        };
-        let text = std::fs::read_to_string(&path).map_err(|e| FileError::Io {
-            path: path.display().to_string(),
-            source: e,
-        })?;
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.starts_with('#'));
-        let Some((hl, header)) = lines.next() else {
-            return Err(err(1, "no header line".into()));
-        };
-        let cols: Vec<&str> = header.split(',').collect();
-        let mut rows = 0;
-        for (i, line) in lines {
-            let fields: Vec<&str> = line.split(',').collect();
-            if fields.len() != cols.len() {
-                return Err(err(
-                    i + 1,
-                    format!(
-                        "{} fields where the header has {}",
-                        fields.len(),
-                        cols.len()
-                    ),
-                ));
-            }
-            for (c, f) in cols.iter().zip(&fields) {
-                if text_cols.contains(c) {
+        let text = Text::read(&dir.join(file))?;
+        let (hl, cols) = &text.header;
+        if text.rows.is_empty() {
+            return Err(FileError::Table {
+                path: format!("{}:{hl}", text.path),
+                message: "a header and no data row".into(),
+            });
+        }
+        for (i, (_, fields)) in text.rows.iter().enumerate() {
+            for (c, f) in cols.iter().zip(fields) {
+                if text_cols.contains(&c.as_str()) {
                     continue;
                 }
                 match f.trim().parse::<f64>() {
                     Ok(x) if x.is_finite() && x.abs() <= PLAUSIBLE => {}
                     _ => {
-                        return Err(err(
-                            i + 1,
-                            format!(
-                                "column `{c}` holds `{f}`, not a finite number of magnitude at \
-                                 most {PLAUSIBLE:e} (the table was not written by this run)"
+                        return Err(text.bad_cell(
+                            i,
+                            c,
+                            &format!(
+                                "a finite number of magnitude at most {PLAUSIBLE:e} (the table \
+                                 was not written by this run)"
                             ),
                         ));
                     }
                 }
             }
-            rows += 1;
         }
-        if rows == 0 {
-            return Err(err(hl + 1, "a header and no data row".into()));
+    }
+    Ok(())
+}
+
+/// Refuses a summary (its row at `at`) whose n, h or steps, which the figures' titles
+/// state, the run's other tables contradict (a summary copied from another run):
+/// - n, on a uniform mesh: its contact nodes (`contact.csv`) lie on the bottom's cells
+///   of width $W/n$, $W$ the width of `nodes.csv`, so every gap between neighbours is
+///   a whole number of cells (more than one where a support holds a node) and the
+///   smallest is one. A graded mesh's nodes do not give n (its initial grid is the
+///   coarsest that resolves the scene, bisected down to a size that n bounds).
+/// - h: $W/(2n)$.
+/// - steps: `regimes.csv` has a row per step, the last numbered `steps`.
+fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileError> {
+    let refuse = |column: &str, value: String, why: String| FileError::Table {
+        path: at.to_string(),
+        message: format!(
+            "column `{column}` holds `{value}`, but {why}; the summary was not written by \
+             the run of these tables"
+        ),
+    };
+    let x = col_f64(&read_csv(&dir.join("nodes.csv"))?, "x")?;
+    let width = x.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        - x.iter().copied().fold(f64::INFINITY, f64::min);
+    let n = summary.n as f64;
+    let cell = width / n;
+    if !dir.join("triangles.csv").exists() {
+        let mut xs: Vec<f64> = super::rows::ContactRow::read(&dir.join("contact.csv"))?
+            .into_iter()
+            .map(|r| r.x)
+            .collect();
+        xs.sort_by(f64::total_cmp);
+        let gaps: Vec<f64> = xs.windows(2).map(|w| w[1] - w[0]).collect();
+        // Gaps in cells, a whole number up to rounding in the coordinates.
+        let whole = |gap: f64| ((gap / cell) - (gap / cell).round()).abs() < 1e-6;
+        let closest = gaps.iter().copied().fold(f64::INFINITY, f64::min);
+        let fits = gaps.iter().all(|&g| whole(g)) && (closest / cell - 1.0).abs() < 1e-6;
+        if !gaps.is_empty() && !fits {
+            return Err(refuse(
+                "n",
+                summary.n.to_string(),
+                format!(
+                    "the contact nodes of contact.csv are {closest} apart at the closest, on a \
+                     body {width} wide, which makes n = {}, not cells of {width}/{n}",
+                    (width / closest).round()
+                ),
+            ));
         }
+    }
+    let h = width / (2.0 * n);
+    if (summary.h - h).abs() > 1e-9 * h {
+        return Err(refuse(
+            "h",
+            summary.h.to_string(),
+            format!("the body of nodes.csv is {width} wide, so h = W/(2n) = {h} for n = {n}"),
+        ));
+    }
+    let regimes = read_csv(&dir.join("regimes.csv"))?;
+    let step = col_f64(&regimes, "step")?;
+    let last = step.last().copied().unwrap_or(0.0);
+    if step.len() as u64 != summary.steps || last != summary.steps as f64 {
+        return Err(refuse(
+            "steps",
+            summary.steps.to_string(),
+            format!(
+                "regimes.csv records {} step(s), the last numbered {last}",
+                step.len()
+            ),
+        ));
     }
     Ok(())
 }
@@ -89,15 +134,16 @@ pub fn validate_tables(dir: &Path) -> Result<(), FileError> {
 pub fn draw(dir: &Path) -> Result<(), FileError> {
     validate_tables(dir)?;
     let summary_path = dir.join("summary.csv");
-    let summary = SummaryRow::read(&summary_path)?
+    let (line, summary) = SummaryRow::read_lines(&summary_path)?
         .into_iter()
         .next()
         .ok_or_else(|| FileError::Table {
             path: summary_path.display().to_string(),
             message: "no row".into(),
         })?;
+    let summary_at = format!("{}:{line}", summary_path.display());
     let bad = |c: &str, v: f64, allowed: &str| FileError::Table {
-        path: summary_path.display().to_string(),
+        path: summary_at.clone(),
         message: format!(
             "column `{c}` holds `{v}`, not {allowed} (the table was not written by this run)"
         ),
@@ -144,6 +190,7 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
         }
         stride
     };
+    check_claims(dir, &summary_at, &summary)?;
     // h as the summary gives it: 1/n on the paper's rectangle, W/(2n) on another.
     let h = summary.h;
     let h_text = if (h * n as f64 - 1.0).abs() < 1e-12 {

@@ -5,7 +5,8 @@
 //! figure with it, and Figs. 3 and 4 of the paper's experiments their panels.
 
 use super::FileError;
-use super::csv::{col_f64, col_str, read_csv};
+use super::csv::{Frame, Text, col_f64, col_str, read_csv};
+use super::rows::{TriangleRow, column};
 use crate::certificate::regime_order;
 use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
 use crate::scenario::Scenario;
@@ -22,20 +23,23 @@ pub fn draw_run(
     let mut panel = Panel::from_csv(&dir.join("contact.csv"), &dir.join("nodes.csv"), g, cells)?;
     let tri = dir.join("triangles.csv");
     if tri.exists() {
-        let t = read_csv(&tri)?;
-        let (a, b, c) = (col_f64(&t, "a")?, col_f64(&t, "b")?, col_f64(&t, "c")?);
+        // Read as numbers, so that a row of NaN, -5 or 1.5 is refused as a triangle.
+        let text = Text::read(&tri)?;
+        let corners = (TriangleRow::COLUMNS.iter())
+            .map(|c| column::<f64>(&text, c, &[]))
+            .collect::<Result<Vec<_>, _>>()?;
         let nodes = panel.x.len();
-        let mut list = Vec::with_capacity(a.len());
-        for i in 0..a.len() {
-            let raw = [a[i], b[i], c[i]];
+        let mut list = Vec::with_capacity(text.rows.len());
+        for (i, (line, _)) in text.rows.iter().enumerate() {
+            let raw = [corners[0][i], corners[1][i], corners[2][i]];
             if !raw
                 .iter()
                 .all(|&k| k >= 0.0 && k.fract() == 0.0 && k < nodes as f64)
             {
                 return Err(FileError::Table {
-                    path: tri.display().to_string(),
+                    path: format!("{}:{line}", tri.display()),
                     message: format!(
-                        "row {i} holds {raw:?}, not three node numbers in 0..{nodes} (the \
+                        "the row holds {raw:?}, not three node numbers in 0..{nodes} (the \
                          nodes of nodes.csv)"
                     ),
                 });
@@ -110,9 +114,7 @@ impl Panel {
         let c = read_csv(cp)?;
         let nd = read_csv(np)?;
         // A run directory's tables have no `g` column: every row is this panel's.
-        let g_col = |df: &polars::prelude::DataFrame| {
-            col_f64(df, "g").unwrap_or_else(|_| vec![g; df.height()])
-        };
+        let g_col = |df: &Frame| col_f64(df, "g").unwrap_or_else(|_| vec![g; df.height()]);
         let cg = g_col(&c);
         let ng = g_col(&nd);
         let pick = |v: Vec<f64>, gg: &[f64]| {

@@ -33,7 +33,7 @@ pub(super) fn write_shift(
     let base = check_base(ctx)?;
     let (old, new) = (read_csv(&base)?, read_csv(path)?);
     // A row is its scenario, family and level: n, or the steps in the k family.
-    let key = |df: &polars::prelude::DataFrame| -> Result<Vec<String>, ExpError> {
+    let key = |df: &crate::output::csv::Frame| -> Result<Vec<String>, ExpError> {
         let (s, f) = (col_str(df, "scenario")?, col_str(df, "family")?);
         let (n, k) = (col_f64(df, "n")?, col_f64(df, "steps")?);
         Ok((0..s.len())
@@ -49,7 +49,7 @@ pub(super) fn write_shift(
             message: "its rows are not those of the finer reference's table (quick mode?)".into(),
         }));
     }
-    let col = |df: &polars::prelude::DataFrame, c: &str| col_f64(df, c);
+    let col = |df: &crate::output::csv::Frame, c: &str| col_f64(df, c);
     let (t0, t1) = (
         col(&old, "rel_err_T_percent")?,
         col(&new, "rel_err_T_percent")?,
