@@ -1,6 +1,5 @@
 //! Solve a scene and read the result: the crate's front-page example (a doctest too).
-use evhi::scenario::Scenario;
-use evhi::simulation::{RunSettings, Simulation};
+use evhi::prelude::*;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The paper's scene with loads that reach every branch of the law, h = k = 1/16.

@@ -59,6 +59,7 @@ pub mod mesh;
 pub mod norms;
 pub mod ordering;
 pub mod output;
+pub mod prelude;
 pub mod quadrature;
 pub mod reduced;
 pub mod scenario;

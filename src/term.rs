@@ -2,8 +2,8 @@
 //!
 //! `println!` and `eprintln!` panic when their stream is closed or full (`evhi
 //! scenarios | head -1`, `2>/dev/full`). Here a diagnostic that cannot be written is
-//! dropped, since the run's files matter more than its commentary ([`diag!`],
-//! [`diag_text!`]), and a command's product that cannot be written is an error the
+//! dropped, since the run's files matter more than its commentary ([`crate::diag!`],
+//! [`crate::diag_text!`]), and a command's product that cannot be written is an error the
 //! caller can tell apart ([`emit`]): a reader that went away ([`is_closed_pipe`]) ends
 //! the command quietly, as other command-line tools do, and a full disk is reported.
 

@@ -2,8 +2,8 @@
 //!
 //! Every field is checked; a bad value is rejected with the field's name, the
 //! value and what is allowed, and unknown keys are errors. This module holds the
-//! validated model; the file format (the raw TOML tables and their refusals) is
-//! [`file`], the law's table is read in the law's room ([`crate::law::file`]) and the
+//! validated model; the file format (the raw TOML tables and their refusals) is the
+//! private `scenario/file.rs`, the law's table is read in the law's room ([`crate::law::file`]) and the
 //! material's in the material's ([`crate::material`]). A scenario's meshes are built in
 //! the mesh's rooms (`Scenario::mesh` and its checks in [`crate::mesh`],
 //! `Scenario::graded_mesh` in [`crate::bisection`]) and its load vector in
