@@ -80,6 +80,14 @@ impl ExactRun {
     fn max(&self, f: impl Fn(&StepRow) -> f64) -> f64 {
         self.rows.iter().map(f).fold(0.0, f64::max)
     }
+    /// The step where $\|e_n\|_E$ is largest (the first, on a tie): the step that sets
+    /// [`ExactRun::rel_max`].
+    pub fn max_row(&self) -> &StepRow {
+        self.rows
+            .iter()
+            .reduce(|a, b| if b.err_e > a.err_e { b } else { a })
+            .expect("a step")
+    }
     /// $\max_n\|e_n\|_E / \max_n\|u_n\|_E$.
     pub fn rel_max(&self) -> f64 {
         self.max(|r| r.err_e) / self.max(|r| r.exact_e)

@@ -44,6 +44,33 @@ fn exact_p1limit_k_order() {
     assert!(hi - 1.0 < 0.035 && 1.0 - lo < 0.035, "{ratio:?}");
 }
 
+/// (f)'s k family: where its maximum over time sits. At no level does the discrete
+/// solution have a node at g there; from N = 64 on it is the last step before t = 0.4,
+/// where the limit starts to hold, so the orders 0.981 are measured before the limit
+/// acts. (e)'s maxima sit at the same steps.
+#[test]
+fn exact_p1limit_max_before_hold() {
+    let (t, steps) = (
+        conv("p1limit", "k", "t_at_max"),
+        conv("p1limit", "k", "steps"),
+    );
+    assert_eq!(conv("p1limit", "k", "limit_nodes_at_max"), vec![0.0; 8]);
+    // The last step before the hold at t = 0.4, with k = 1/N (T = 1).
+    let before = |n: f64| ((0.4 * n).ceil() - 1.0) / n;
+    for (t, n) in t.iter().zip(&steps) {
+        match *n as usize {
+            4 => assert_eq!(*t, 1.0, "at N = 4 the maximum is at T"),
+            32 => assert_eq!(*t, 13.0 / 32.0, "at N = 32 the first step after 0.4"),
+            _ => assert_eq!(*t, before(*n), "N = {n}"),
+        }
+        assert!(before(*n) < 0.4 && before(*n) + 1.0 / n > 0.4);
+    }
+    assert_eq!(steps[4], 64.0);
+    assert!(t[4..].iter().all(|&t| t < 0.4));
+    assert_eq!(fixes(&t[5..], 4), ["0.3984", "0.3984", "0.3984"]);
+    assert_eq!(conv("p1", "k", "t_at_max"), t);
+}
+
 #[test]
 fn exact_p1limit_limit_nodes() {
     let limit = column(
