@@ -71,6 +71,34 @@ fn exact_p1limit_max_before_hold() {
     assert_eq!(conv("p1", "k", "t_at_max"), t);
 }
 
+/// (b)'s h = k maxima sit outside the hold too: from n = 32 on, at a step next to
+/// t = 0.4 with no node at g.
+#[test]
+fn exact_b_max_outside_hold() {
+    let (t, n, nodes) = (
+        conv("regimes", "h=k", "t_at_max"),
+        conv("regimes", "h=k", "n"),
+        conv("regimes", "h=k", "limit_nodes_at_max"),
+    );
+    let from32: Vec<usize> = (0..n.len()).filter(|&i| n[i] >= 32.0).collect();
+    assert_eq!(from32.len(), 3, "{n:?}");
+    let ts: Vec<f64> = from32.iter().map(|&i| t[i]).collect();
+    assert_eq!(ts, [13.0 / 32.0, 25.0 / 64.0, 51.0 / 128.0]);
+    for &i in &from32 {
+        assert_eq!(nodes[i], 0.0, "n = {}", n[i]);
+        assert!(
+            (t[i] - 0.4).abs() <= 1.0 / n[i],
+            "n = {}: t = {}",
+            n[i],
+            t[i]
+        );
+    }
+    assert_eq!(
+        fixes(&conv("regimes", "h=k", "order_max")[2..], 4),
+        ["0.9097", "0.9623", "0.9782"]
+    );
+}
+
 #[test]
 fn exact_p1limit_limit_nodes() {
     let limit = column(
