@@ -135,7 +135,11 @@ fn every_study_takes_a_solver() {
     let failed = study("convergence", &[], "plain");
     assert!(!failed.status.success());
     let err = String::from_utf8_lossy(&failed.stderr);
-    assert!(err.contains("`--solver proxgrad`"), "{err}");
+    // The advice names what a study takes: --solver, not the --steps of `solve`.
+    assert!(
+        err.contains("`--solver proxgrad`") && !err.contains("more `--steps`"),
+        "{err}"
+    );
     ok(&study(
         "convergence",
         &["--solver", "newton-no-line-search"],

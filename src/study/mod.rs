@@ -188,6 +188,19 @@ pub fn run_as(study: Study, command: &str) -> Result<String, Box<dyn std::error:
         Study::Time(args) => time::run(args, command),
         Study::Stability(args) => stability::run(args, command),
     }
+    .map_err(study_advice)
+}
+
+/// A study's error with a failed step's advice fitted to the studies
+/// ([`ExpError::in_study`]: no `--steps`); any other error as it is.
+fn study_advice(e: Box<dyn std::error::Error>) -> Box<dyn std::error::Error> {
+    match e.downcast::<ExpError>() {
+        Ok(e) => Box::new(e.in_study()),
+        Err(e) => match e.downcast::<crate::scheme::RunError>() {
+            Ok(e) => Box::new(ExpError::Run(*e).in_study()),
+            Err(e) => e,
+        },
+    }
 }
 
 /// The coarsest n0 (at least `floor`; 4, 8, 16, … up to 256 first, then any other
