@@ -546,11 +546,26 @@ impl Interpolation {
                 "the paper's diagonal pattern on both meshes (else Interpolation::new)",
             ));
         }
-        if !fine.n.is_multiple_of(coarse.n) || fine.ny * coarse.n != coarse.ny * fine.n {
+        if !fine.n.is_multiple_of(coarse.n) {
             return Err(InputError::field(
                 "n",
                 format!("{} to {}", coarse.n, fine.n),
                 "a fine n that is a multiple of the coarse n",
+            ));
+        }
+        // The rows, n H / W rounded and at least 1, must grow as n does.
+        if fine.ny * coarse.n != coarse.ny * fine.n {
+            return Err(InputError::field(
+                "n",
+                format!(
+                    "{} to {}, whose meshes have {} to {} row(s) of cells",
+                    coarse.n, fine.n, coarse.ny, fine.ny
+                ),
+                format!(
+                    "nested meshes, whose rows grow as n does ({} times): on this rectangle \
+                     the rows, n H / W rounded and at least 1, do not",
+                    fine.n / coarse.n
+                ),
             ));
         }
         let r = fine.n / coarse.n;

@@ -2,7 +2,7 @@
 
 use super::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use super::graded;
-use super::{coarsest, pct, study_ctx};
+use super::{ExpError, coarsest, pct, study_ctx};
 use crate::geometry::Hold;
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;
@@ -163,51 +163,17 @@ fn resolved_word(e: f64, r: f64, threshold: f64) -> &'static str {
 /// finer than the finest level in both modes: on the paper's scene (coarsest n 4)
 /// the full plan is Table 1's ([`super::split::plan`]).
 pub fn split_plan(n0: usize, quick: bool) -> super::split::Plan {
-    let levels = if quick { 3 } else { 6 };
+    split_plan_of(n0, if quick { 3 } else { 6 })
+}
+
+/// The split's `levels` levels from `n0` and its reference four times finer than the
+/// finest.
+fn split_plan_of(n0: usize, levels: usize) -> super::split::Plan {
     super::split::Plan {
         levels: (0..levels).map(|j| n0 << j).collect(),
         n_ref: n0 << (levels + 1),
         solver: crate::step::DEFAULT_SOLVER_ENTRY,
     }
-}
-
-/// What the study will cost, said before it starts: its levels and its reference (the
-/// graded family refined to `n_ref`, with at least the unknowns of the uniform mesh
-/// there), whose work (unknowns times steps) dominates, as a multiple of the same
-/// mode's reference on the paper's scene, which takes seconds.
-fn cost_notice(scn: &Scenario, plan: &graded::Plan, quick: bool) -> String {
-    let unknowns =
-        |n: usize, geo: &crate::geometry::Geometry| 2 * (n + 1) * (crate::mesh::rows(n, geo) + 1);
-    let steps = |n: usize| if scn.problem.viscous() { n } else { 1 };
-    let work = unknowns(plan.n_ref, &scn.geometry) * steps(plan.n_ref);
-    let paper = graded::plan(quick);
-    let paper_geo = crate::scenario::Scenario::load("literal")
-        .map(|p| p.geometry)
-        .unwrap_or_else(|_| scn.geometry.clone());
-    let paper_work = unknowns(paper.n_ref, &paper_geo) * paper.n_ref;
-    let levels = |v: &[usize]| match (v.first(), v.last()) {
-        (Some(a), Some(b)) => format!("{a} to {b}"),
-        _ => "none".into(),
-    };
-    let ratio = work as f64 / paper_work as f64;
-    let scale = if ratio > 2.0 {
-        format!(
-            "; about {ratio:.0} times the work of the paper's scene in this mode (which takes \
-             seconds): expect the time to grow in proportion"
-        )
-    } else {
-        String::new()
-    };
-    format!(
-        "study convergence ({}): uniform levels n = {}, graded n = {}, reference at n = {} \
-         with at least {} unknowns and {} step(s){scale}",
-        if quick { "quick" } else { "full" },
-        levels(&plan.uniform),
-        levels(&plan.graded),
-        plan.n_ref,
-        unknowns(plan.n_ref, &scn.geometry),
-        steps(plan.n_ref)
-    )
 }
 
 /// The split reference's own error in one family, in % like the errors: the finest
@@ -240,6 +206,7 @@ pub(super) fn run(
         plan,
         split_plan,
         no_split,
+        cut,
     } = plans(&scn, &args, solver)?;
     let viscous = no_split.is_none();
     let sing = scn.geometry.singularities();
@@ -287,7 +254,15 @@ pub(super) fn run(
     out.write_table("convergence.csv", &table, &lines)?;
     let sing_table = singular_table(&scn, &sing);
     out.write_table("singular.csv", &sing_table, &lines)?;
-    let mut md = graded_report(&out, &scn, args.quick, &lines, &families, &plan, &sing)?;
+    let mut md = graded_report(
+        &out,
+        &scn,
+        (args.quick, cut.as_ref()),
+        &lines,
+        &families,
+        &plan,
+        &sing,
+    )?;
     match &split_table {
         Some(t) => split_report(&out, &mut md, &command, &scn, &split_plan, t)?,
         None => {
@@ -312,12 +287,271 @@ pub(super) fn run(
 }
 
 /// The plans of the study: the graded families' and, where the time error can be parted
-/// (a viscoelastic scene with proportional damping), the split's; `no_split` says why
-/// not otherwise. Refuses a scene the study cannot mesh or afford before any work.
+/// (a viscoelastic scene with proportional damping and nested uniform meshes), the
+/// split's; `no_split` says why not otherwise; `cut` says how many levels quick mode's
+/// budget took off, and what the uncut plan would have cost.
 struct Plans {
     plan: graded::Plan,
     split_plan: super::split::Plan,
     no_split: Option<String>,
+    cut: Option<Cut>,
+}
+
+/// Levels a quick plan dropped to fit [`QUICK_BUDGET_S`], and what the full quick plan
+/// would have cost.
+struct Cut {
+    levels: usize,
+    uncut: String,
+}
+
+/// The plans of the study at `cut` levels fewer than its mode's (only quick mode is
+/// cut), from the coarsest $n_0$ at which every structured level resolves the scene.
+struct Candidate {
+    n0: usize,
+    plan: graded::Plan,
+    split_plan: super::split::Plan,
+    no_split: Option<String>,
+}
+
+impl Candidate {
+    fn new(
+        scn: &Scenario,
+        quick: bool,
+        cut: usize,
+        solver: &'static crate::step::SolverEntry,
+    ) -> Result<Candidate, crate::error::InputError> {
+        // The split's uniform levels and its reference are structured meshes: each must
+        // resolve the scene (the bisection families nest by construction).
+        let split_levels = if quick {
+            3usize.saturating_sub(cut).max(2)
+        } else {
+            6
+        };
+        let split_multiples: Vec<usize> =
+            if scn.problem.viscous() && scn.relaxation_time().is_some() {
+                (0..split_levels)
+                    .map(|j| 1 << j)
+                    .chain([1 << (split_levels + 1)])
+                    .collect()
+            } else {
+                vec![1]
+            };
+        let n0 = coarsest(scn, &split_multiples, 4)?;
+        let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
+        let plan = if quick {
+            graded::Plan {
+                uniform: levels(4 - cut),
+                graded: levels(4 - cut),
+                n_ref: n0 * (32 >> cut),
+                solver,
+            }
+        } else {
+            graded::Plan {
+                uniform: levels(6),
+                graded: levels(5),
+                n_ref: n0 * 64,
+                solver,
+            }
+        };
+        let split_plan = super::split::Plan {
+            solver,
+            ..split_plan_of(n0, split_levels)
+        };
+        let no_split = no_split(scn, &split_plan);
+        Ok(Candidate {
+            n0,
+            plan,
+            split_plan,
+            no_split,
+        })
+    }
+
+    /// What the plan will cost, roughly, before any work: every run's steps times the
+    /// work of a step, [`SECONDS_PER_UNKNOWN_STEP`] per unknown and
+    /// [`SECONDS_PER_CONTACT_CUBE`] per cube of the contact nodes (the step solver
+    /// factors its dense condensed matrix). A uniform level's sizes are counted from its
+    /// grid; a graded one's from the family's level $2 n_0$, built here, its unknowns
+    /// times four and its contact nodes times two per halving of $h$ (on the paper's
+    /// scene that gives the quick reference 89 600 unknowns against its 90 130), or,
+    /// where that level is too large to build for an estimate, as the uniform mesh's (a
+    /// lower bound).
+    fn cost(&self, scn: &Scenario, points: &[[f64; 2]]) -> Result<Cost, ExpError> {
+        let (plan, n0, geo) = (&self.plan, self.n0, &scn.geometry);
+        let uniform = |n: usize| {
+            let contact = (geo.contact[1] - geo.contact[0]) / geo.width * n as f64;
+            (grid_unknowns(scn, n), contact.round() as usize + 1)
+        };
+        let built = if !points.is_empty() && grid_unknowns(scn, 2 * n0) <= ESTIMATE_BUILD_MAX {
+            Some(graded::first_sizes(geo, n0, points)?)
+        } else {
+            None
+        };
+        let graded = |n: usize| match built {
+            _ if points.is_empty() => uniform(n),
+            Some([first, _]) if n == n0 => first,
+            Some([_, (dofs, contact)]) => {
+                let r = n / (2 * n0);
+                (dofs * r * r, contact * r)
+            }
+            None => uniform(n),
+        };
+        let work = |n: usize, (unknowns, contact): (usize, usize)| {
+            steps_of(scn, n) as f64
+                * (unknowns as f64 * SECONDS_PER_UNKNOWN_STEP
+                    + (contact as f64).powi(3) * SECONDS_PER_CONTACT_CUBE)
+        };
+        // The check of the coarsest level, the families and the reference.
+        let mut total = work(n0, uniform(n0));
+        total += (plan.uniform.iter())
+            .map(|&n| work(n, uniform(n)))
+            .sum::<f64>();
+        if !points.is_empty() {
+            total += (plan.graded.iter())
+                .map(|&n| work(n, graded(n)))
+                .sum::<f64>();
+        }
+        let reference = graded(plan.n_ref);
+        total += work(plan.n_ref, reference);
+        // The split: its reference, the k family on the reference's mesh, and the
+        // h = k and h families on each level's.
+        if self.no_split.is_none() {
+            let sp = &self.split_plan;
+            let r = sp.n_ref;
+            total += work(r, uniform(r));
+            for &n in &sp.levels {
+                total += work(n, uniform(r)) + work(n, uniform(n)) + work(r, uniform(n));
+            }
+        }
+        Ok(Cost {
+            ref_unknowns: reference.0,
+            lower_bound: built.is_none() && !points.is_empty(),
+            seconds: total,
+        })
+    }
+
+    /// The plan in words: its levels and its reference, with `cost`.
+    fn words(&self, scn: &Scenario, cost: &Cost) -> String {
+        let levels = |v: &[usize]| match (v.first(), v.last()) {
+            (Some(a), Some(b)) => format!("{a} to {b}"),
+            _ => "none".into(),
+        };
+        let steps = steps_of(scn, self.plan.n_ref);
+        format!(
+            "uniform levels n = {}, graded n = {}, reference at n = {} with {} {:.1e} \
+             unknowns and {steps} step(s): {} of work",
+            levels(&self.plan.uniform),
+            levels(&self.plan.graded),
+            self.plan.n_ref,
+            if cost.lower_bound {
+                "at least"
+            } else {
+                "about"
+            },
+            cost.ref_unknowns as f64,
+            duration(cost.seconds),
+        )
+    }
+}
+
+/// A duration in words: under a second, seconds, minutes or hours.
+fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s < 1.0 => "under a second".to_string(),
+        s if s < 120.0 => format!("about {s:.0} s"),
+        s if s < 7200.0 => format!("about {:.0} min", s / 60.0),
+        s => format!("about {:.0} h", s / 3600.0),
+    }
+}
+
+/// What a plan will cost, estimated before any work ([`Candidate::cost`]).
+struct Cost {
+    /// The reference's unknowns.
+    ref_unknowns: usize,
+    /// Whether `ref_unknowns` is only a lower bound (the uniform mesh's).
+    lower_bound: bool,
+    /// Seconds of work, at [`SECONDS_PER_UNKNOWN_STEP`].
+    seconds: f64,
+}
+
+/// Quick mode's budget, seconds of work as [`Candidate::cost`] estimates it: a quick
+/// plan above it is cut a level at a time, the reference and the split with it, down
+/// to two levels per family (one observed order each); a scene whose smallest quick
+/// plan is still above it is refused before any work.
+const QUICK_BUDGET_S: f64 = 10.0;
+
+/// The most levels quick mode drops to fit [`QUICK_BUDGET_S`]: four levels per family
+/// become two.
+const QUICK_CUTS: usize = 2;
+
+/// The rates of [`Candidate::cost`] on a two-core AMD EPYC: seconds per unknown and
+/// time step, and (below) per cube of a step's contact nodes. Fitted to two runs: the
+/// quick study of issue 47's `K2` scene (a 3 x 1 rectangle, six singular points, the
+/// general loop; its reference at n = 512 has 1.04e6 unknowns, the estimate's 1.12e6,
+/// and 768 contact nodes by the estimate, for 512 steps) took 84 to 88 s idle, and a
+/// general-loop `solve` of a 64 x 1 strip at n = 512 (9198 unknowns, 513 contact
+/// nodes, 512 steps) took 13 s of CPU where that study took 164 s, both on the same
+/// loaded machine. The estimate errs large on the reduced loop, which the paper's scene's
+/// quick study runs (estimated 1.4 s, measured 1.0 s of CPU).
+const SECONDS_PER_UNKNOWN_STEP: f64 = 1.1e-7;
+
+/// The rate of [`Candidate::cost`] per cube of a step's contact nodes (see
+/// [`SECONDS_PER_UNKNOWN_STEP`]).
+const SECONDS_PER_CONTACT_CUBE: f64 = 1.0e-10;
+
+/// The largest uniform mesh, in unknowns, at level $2 n_0$ whose graded counterpart
+/// [`Candidate::cost`] builds for its estimate (a fraction of a second).
+const ESTIMATE_BUILD_MAX: usize = 200_000;
+
+/// Why the split of `plan` does not run on `scn`, or `None` where it does: a steady or
+/// elastic problem has no time error to part, the reduced loop it runs on needs
+/// proportional damping, and its errors need every level embedded in the reference,
+/// which structured meshes are only where the rows grow with $n$.
+fn no_split(scn: &Scenario, plan: &super::split::Plan) -> Option<String> {
+    match scn.problem {
+        crate::scenario::Problem::Steady => {
+            return Some(
+                "the problem is steady (one solve at T), so there is no time error to part"
+                    .to_string(),
+            );
+        }
+        crate::scenario::Problem::Elastic => {
+            return Some(
+                "the problem is elastic (each step is the static problem with f(t_n)), so \
+                 there is no time error to part"
+                    .to_string(),
+            );
+        }
+        crate::scenario::Problem::Viscoelastic => {}
+    }
+    if scn.relaxation_time().is_none() {
+        return Some(
+            "the damping is not proportional (C is not a multiple of G), and the split runs \
+             on the reduced time loop, which needs it; the h = k families above carry both \
+             parts"
+                .to_string(),
+        );
+    }
+    // A structured mesh has n H / W rows, rounded and at least 1: where rounding
+    // moves them, a level's mesh is not a refinement of the reference's.
+    let geo = &scn.geometry;
+    let rows = |n: usize| crate::mesh::rows(n, geo);
+    let r = plan.n_ref;
+    plan.levels
+        .iter()
+        .find(|&&n| rows(n) * r != rows(r) * n)
+        .map(|&n| {
+            format!(
+                "the split's uniform meshes do not nest: the {} x {} rectangle has {} row(s) \
+                 of cells at n = {n} and {} at its reference's n = {r} (n H / W rounded, at \
+                 least 1), not {r}/{n} times as many, so a level is not embedded in the \
+                 reference, which the split's errors need; the graded families above nest \
+                 by bisection and carry both parts",
+                geo.width,
+                geo.height,
+                rows(n),
+                rows(r),
+            )
+        })
 }
 
 fn plans(
@@ -336,37 +570,14 @@ fn plans(
         )
         .into());
     }
-    // The split's uniform levels and its reference are structured meshes: each must
-    // resolve the scene (the bisection families nest by construction).
-    let split_multiples: Vec<usize> = if scn.problem.viscous() && scn.relaxation_time().is_some() {
-        let k = if args.quick { 3 } else { 6 };
-        (0..k).map(|j| 1 << j).chain([1 << (k + 1)]).collect()
-    } else {
-        vec![1]
-    };
-    let n0 = coarsest(scn, &split_multiples, 4)?;
-    let levels = |k: usize| (0..k).map(|j| n0 << j).collect::<Vec<_>>();
-    let plan = if args.quick {
-        graded::Plan {
-            uniform: levels(4),
-            graded: levels(4),
-            n_ref: n0 * 32,
-            solver,
-        }
-    } else {
-        graded::Plan {
-            uniform: levels(6),
-            graded: levels(5),
-            n_ref: n0 * 64,
-            solver,
-        }
-    };
+    let points = scn.geometry.singular_points();
+    let first = Candidate::new(scn, args.quick, 0, solver)?;
     // The reference is the graded family refined to n_ref, at least the unknowns of
     // the uniform mesh there: refused by name before any work if it cannot be built
     // (it used to refine until an allocation failed).
     let most = crate::mesh::MAX_N;
-    if plan.n_ref > most {
-        let ratio = plan.n_ref / n0;
+    if first.plan.n_ref > most {
+        let (n0, ratio) = (first.n0, first.plan.n_ref / first.n0);
         return Err(crate::error::InputError::field(
             "scenario",
             &args.scenario,
@@ -375,50 +586,143 @@ fn plans(
                  n = {n0}, so the reference would be at n = {} ({ratio} times that), beyond \
                  the {most} a mesh may have; put the ends of its supports, tractions and \
                  Gamma_3 on the grid of n = {} or coarser",
-                plan.n_ref,
+                first.plan.n_ref,
                 most / ratio
             ),
         )
         .into());
     }
-    crate::scheme::check_memory(plan.n_ref, crate::mesh::rows(plan.n_ref, &scn.geometry))?;
-    if args.announce {
-        crate::diag!("{}", cost_notice(scn, &plan, args.quick));
+    // Quick mode's plan, cut a level at a time until it fits its budget.
+    let first_cost = first.cost(scn, &points)?;
+    let mut chosen = (first, first_cost, 0);
+    while args.quick && chosen.1.seconds > QUICK_BUDGET_S && chosen.2 < QUICK_CUTS {
+        let cut = chosen.2 + 1;
+        let next = Candidate::new(scn, true, cut, solver)?;
+        let cost = next.cost(scn, &points)?;
+        chosen = (next, cost, cut);
     }
-    // The h and k parts apart only where there is a time error to part, and on the
-    // reduced loop, which needs proportional damping (C = c G).
-    let no_split = match scn.relaxation_time() {
-        _ if scn.problem == crate::scenario::Problem::Steady => Some(
-            "the problem is steady (one solve at T), so there is no time error to part".to_string(),
-        ),
-        _ if scn.problem == crate::scenario::Problem::Elastic => Some(
-            "the problem is elastic (each step is the static problem with f(t_n)), so there is no time \
-             error to part"
-                .to_string(),
-        ),
-        Some(_) => None,
-        None => Some(
-            "the damping is not proportional (C is not a multiple of G), and the split runs on the reduced \
-             time loop, which needs it; the h = k families above carry both parts"
-                .to_string(),
-        ),
-    };
-    let viscous = no_split.is_none();
-    let split_plan = super::split::Plan {
-        solver,
-        ..split_plan(n0, args.quick)
-    };
-    if viscous {
+    let (candidate, cost, cut) = chosen;
+    let n0 = candidate.n0;
+    let over = args.quick && cost.seconds > QUICK_BUDGET_S;
+    if !over {
         crate::scheme::check_memory(
-            split_plan.n_ref,
-            crate::mesh::rows(split_plan.n_ref, &scn.geometry),
+            candidate.plan.n_ref,
+            crate::mesh::rows(candidate.plan.n_ref, &scn.geometry),
         )?;
+        if candidate.no_split.is_none() {
+            crate::scheme::check_memory(
+                candidate.split_plan.n_ref,
+                crate::mesh::rows(candidate.split_plan.n_ref, &scn.geometry),
+            )?;
+        }
+    }
+    let cut = (cut > 0).then(|| -> Result<Cut, ExpError> {
+        let uncut = Candidate::new(scn, true, 0, solver)?;
+        let uncut_cost = uncut.cost(scn, &points)?;
+        Ok(Cut {
+            levels: cut,
+            uncut: uncut.words(scn, &uncut_cost),
+        })
+    });
+    let cut = cut.transpose()?;
+    if args.announce && !over {
+        crate::diag!(
+            "study convergence ({}): {}, estimated for a two-core AMD EPYC{}",
+            if args.quick { "quick" } else { "full" },
+            candidate.words(scn, &cost),
+            match &cut {
+                Some(c) => format!(
+                    "; cut by {} level(s) to quick mode's budget of {QUICK_BUDGET_S} s from {}",
+                    c.levels, c.uncut
+                ),
+                None => String::new(),
+            }
+        );
+        if let Some(why) = &candidate.no_split {
+            crate::diag!("study convergence: no h and k parts: {why}");
+        }
+    }
+    // The coarsest level first, as `solve` runs it: a scene the time loop refuses is
+    // refused now, with the loop's own cause, not after the reference.
+    let check_s = (grid_unknowns(scn, n0) * steps_of(scn, n0)) as f64 * SECONDS_PER_UNKNOWN_STEP;
+    if !over || check_s <= QUICK_BUDGET_S {
+        check_scene(scn, n0, solver)?;
+    }
+    if over {
+        // The full study, where its reference is a mesh the study may build.
+        let full = match Candidate::new(scn, false, 0, solver) {
+            Ok(c) if c.plan.n_ref > most => format!(
+                "Without --quick the reference would be at n = {}, beyond the {most} a mesh \
+                 may have. C",
+                c.plan.n_ref
+            ),
+            Ok(c) => match c.cost(scn, &points) {
+                Ok(k) => format!("Run it without --quick ({}), or c", c.words(scn, &k)),
+                Err(_) => "Run it without --quick, or c".to_string(),
+            },
+            Err(_) => "C".to_string(),
+        };
+        return Err(crate::error::InputError::field(
+            "scenario",
+            &args.scenario,
+            format!(
+                "a scene whose quick convergence study fits quick mode's budget of about \
+                 {QUICK_BUDGET_S} s of work: even cut to {} levels per family it has {}, \
+                 estimated for a two-core AMD EPYC. {full}hange the scene so that a coarser grid resolves it: the study \
+                 starts from the coarsest n whose cells are near squares and whose nodes \
+                 hold the ends of the supports, tractions and Gamma_3, here n = {n0} (a \
+                 long thin body needs many cells along it)",
+                candidate.plan.uniform.len(),
+                candidate.words(scn, &cost),
+            ),
+        )
+        .into());
     }
     Ok(Plans {
-        plan,
-        split_plan,
-        no_split,
+        plan: candidate.plan,
+        split_plan: candidate.split_plan,
+        no_split: candidate.no_split,
+        cut,
     })
+}
+
+/// The unknowns of the structured grid of level `n`, two per node (clamped ones
+/// included).
+fn grid_unknowns(scn: &Scenario, n: usize) -> usize {
+    2 * (n + 1) * (crate::mesh::rows(n, &scn.geometry) + 1)
+}
+
+/// The steps of a study's level `n`: $k = T/n$, or one step for a steady problem.
+fn steps_of(scn: &Scenario, n: usize) -> usize {
+    if scn.problem == crate::scenario::Problem::Steady {
+        1
+    } else {
+        n
+    }
+}
+
+/// Solves the study's coarsest level `n0` as its uniform family's first level runs
+/// (the structured mesh, $k = T/n_0$, the general loop, the study's solver), through
+/// the same [`Simulation`](crate::simulation::Simulation) as `solve`, before any other
+/// work: a scene whose steps the loop refuses, say one too long or too thin for its
+/// loads ([`RunError::Cancellation`](crate::scheme::RunError::Cancellation)), is refused
+/// at once with the loop's own cause instead of after the reference.
+fn check_scene(
+    scn: &Scenario,
+    n0: usize,
+    solver: &'static crate::step::SolverEntry,
+) -> Result<(), ExpError> {
+    let steps = steps_of(scn, n0);
+    let context = || {
+        format!(
+            "the study's coarsest level, n = {n0} with {steps} step(s), solved first as a \
+             check of the scene"
+        )
+    };
+    let sim = super::runs::simulation(scn, n0, steps).map_err(|e| e.at(context()))?;
+    sim.solve_with(solver.build().as_mut(), &mut ())
+        .map(|_| ())
+        .map_err(|e| ExpError::from(e).at(context()))
 }
 
 /// The `#` lines of `convergence.csv` and `singular.csv`: the command, the scene, the
@@ -507,7 +811,7 @@ fn singular_table(scn: &Scenario, sing: &[crate::geometry::Singularity]) -> Tabl
 fn graded_report(
     out: &RunDir,
     scn: &Scenario,
-    quick: bool,
+    (quick, cut): (bool, Option<&Cut>),
     lines: &[String],
     families: &[(String, Vec<[f64; 2]>)],
     plan: &graded::Plan,
@@ -550,6 +854,18 @@ fn graded_report(
             MAX_INCREMENT_STATIC
         }
     );
+    if let Some(c) = cut {
+        // After the table's header: a paragraph of its own before the table.
+        let at = md.find("\n\n| family").expect("the table's header");
+        md.insert_str(
+            at,
+            &format!(
+                "\n\nQuick mode's budget, about {QUICK_BUDGET_S} s of work, cut this plan by {} \
+                 level(s) per family, and its reference with them: its full quick plan has {}.",
+                c.levels, c.uncut
+            ),
+        );
+    }
     for i in 0..fam.len() {
         let _ = writeln!(
             md,
@@ -634,10 +950,13 @@ fn graded_report(
         .join(", ");
     let trend = uniform_trend(last, expected);
     let latest = last.last().copied().unwrap_or(f64::NAN);
-    let finer = if quick {
-        " (the full run, without --quick, goes two levels finer)"
-    } else {
-        ""
+    let finer = match (quick, cut) {
+        (true, None) => " (the full run, without --quick, goes two levels finer)".to_string(),
+        (true, Some(c)) => format!(
+            " (the full run, without --quick, goes {} levels finer)",
+            2 + c.levels
+        ),
+        (false, _) => String::new(),
     };
     let _ = writeln!(
         md,

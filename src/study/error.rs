@@ -17,6 +17,16 @@ pub enum ExpError {
         context: String,
         source: Box<ExpError>,
     },
+    /// A failed step of a study's run ([`crate::scheme::RunError::failed_step`]), with
+    /// the advice a study can take: `evhi study` sets its own time steps, so the
+    /// advice of `solve` to take more `--steps` is not one.
+    #[error(
+        "{failed}. What may help: another step solver (`--solver proxgrad` and \
+         `newton-no-line-search` certify too), or, where the law softens, a stiffer \
+         material or a milder softening (a study sets its own time steps: it takes no \
+         --steps)"
+    )]
+    StudyStep { failed: String },
 }
 
 impl ExpError {
@@ -25,6 +35,22 @@ impl ExpError {
         ExpError::At {
             context: context.into(),
             source: Box::new(self),
+        }
+    }
+
+    /// This error as a study reports it: a failed step ([`crate::scheme::RunError::Step`]),
+    /// at any depth of context, with the advice of [`ExpError::StudyStep`].
+    pub fn in_study(self) -> ExpError {
+        match self {
+            ExpError::Run(e) => match e.failed_step() {
+                Some(failed) => ExpError::StudyStep { failed },
+                None => ExpError::Run(e),
+            },
+            ExpError::At { context, source } => ExpError::At {
+                context,
+                source: Box::new(source.in_study()),
+            },
+            e => e,
         }
     }
 }

@@ -299,6 +299,26 @@ pub fn units(plan: &Plan, families: usize) -> usize {
     plan.uniform.len() + (families.saturating_sub(1)) * plan.graded.len() + 1
 }
 
+/// The unknowns and the contact nodes of the first two levels, `n0` and `2 n0`, of a
+/// family graded towards `points` from the structured mesh of `n0` on `geo`, built as
+/// [`compute`] builds them (a family without points is uniform): what `evhi study
+/// convergence` carries on to its finer levels to say what a plan will cost before any
+/// work.
+pub fn first_sizes(
+    geo: &Geometry,
+    n0: usize,
+    points: &[[f64; 2]],
+) -> Result<[(usize, usize); 2], ExpError> {
+    let (mut forest, root) = Forest::new(n0, geo)?;
+    let first = level(&mut forest, geo, &root, n0, points);
+    let second = level(&mut forest, geo, &first, 2 * n0, points);
+    let sizes = |leaves: &Leaves, n: usize| {
+        let mesh = forest.mesh(leaves, n);
+        (Dofs::new(&mesh, true).count, mesh.contact.len())
+    };
+    Ok([sizes(&first, n0), sizes(&second, 2 * n0)])
+}
+
 /// The convergence study of the scenarios `scns` (one batch: they share the geometry
 /// and the step matrix) on nested families of bisection meshes of their scene: the
 /// first family uniform on `plan.uniform`, each other graded towards its points on

@@ -50,8 +50,10 @@ pub enum Study {
     /// and convergence.png/svg; for a viscoelastic scenario with proportional damping
     /// also split.csv and split.png/svg, Table 1's h = k, h-only and k-only families on
     /// uniform meshes against a reference four times finer, with their own rough
-    /// reference-error estimate and resolved flags in the summary (which says why they
-    /// are absent otherwise).
+    /// reference-error estimate and resolved flags in the summary, where those meshes
+    /// nest (the summary says why they are absent otherwise: on a 64 x 1 strip the rows
+    /// of cells go from 1 at n = 32 to 4 at n = 256, and a level is not embedded in the
+    /// reference).
     ///
     /// Example: evhi study convergence --scenario data/scenarios/examples/cantilever.toml --quick --out runs/conv
     Convergence(ConvergenceArgs),
@@ -123,12 +125,18 @@ pub struct ConvergenceArgs {
     #[arg(long)]
     pub scenario: String,
     /// Four levels per family and a reference at 32 times the coarsest n, the split
-    /// on three levels against 16 times (seconds); without it six uniform and five
-    /// graded levels and a reference at 64 times, the split on six levels against 128
-    /// times, Table 1's plan on the paper's scene (about 8 s there on a two-core
-    /// AMD EPYC: median of three whole runs, 7.7 to 8.8 s). Before any work the study
-    /// says what it will cost: its levels, its reference's size and steps, and how many
-    /// times the paper's scene's work in the same mode that is.
+    /// on three levels against 16 times, within a budget of about 10 s of work (the
+    /// paper's scene's quick study is estimated at 2 s): where the estimate is larger,
+    /// the plan drops a level at a time, its references with it, down to two levels per
+    /// family, and a scene still above the budget is refused before any work, with what
+    /// it would take. Without
+    /// it six uniform and five graded levels and a reference at 64 times, the split on
+    /// six levels against 128 times, Table 1's plan on the paper's scene (about 8 s
+    /// there on a two-core AMD EPYC: median of three whole runs, 7.7 to 8.8 s). Before
+    /// any work the study says what it will cost (its levels, its reference's size and
+    /// steps, and the seconds of work they take at the rate measured on that machine)
+    /// and solves its coarsest level as `solve` would, so that a scene the time loop
+    /// refuses is refused at once, with the loop's cause.
     #[arg(long)]
     pub quick: bool,
     /// The step solver of every run of the study (default newton), a certified one:
@@ -186,6 +194,19 @@ pub fn run_as(study: Study, command: &str) -> Result<String, Box<dyn std::error:
         Study::Convergence(args) => convergence::run(args, command),
         Study::Time(args) => time::run(args, command),
         Study::Stability(args) => stability::run(args, command),
+    }
+    .map_err(study_advice)
+}
+
+/// A study's error with a failed step's advice fitted to the studies
+/// ([`ExpError::in_study`]: no `--steps`); any other error as it is.
+fn study_advice(e: Box<dyn std::error::Error>) -> Box<dyn std::error::Error> {
+    match e.downcast::<ExpError>() {
+        Ok(e) => Box::new(e.in_study()),
+        Err(e) => match e.downcast::<crate::scheme::RunError>() {
+            Ok(e) => Box::new(ExpError::Run(*e).in_study()),
+            Err(e) => e,
+        },
     }
 }
 
