@@ -1368,7 +1368,7 @@ fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
     let dir = scratch("bench-from-csv");
     let data = dir.join("data");
     std::fs::create_dir_all(&data).unwrap();
-    for f in BENCH_TABLES {
+    for f in BENCH_TABLES.iter().chain([&".evhi-outputs"]) {
         std::fs::copy(Path::new("data").join(f), data.join(f)).unwrap();
     }
     ok(&from_csv(&dir));
@@ -1397,14 +1397,29 @@ fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
             4,
             "wall_s",
             "0",
-            "a finite number > 0",
+            "a time in seconds from 1e-9 to 1e6",
         ),
         (
             "work_precision.csv",
             5,
             "wall_s",
             "NaN",
-            "a finite number > 0",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        // A subnormal time spun for hours in the chart's axis (round four's re-run).
+        (
+            "work_precision.csv",
+            4,
+            "wall_s",
+            "1e-310",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        (
+            "work_precision.csv",
+            6,
+            "rel_err_max_percent",
+            "1e-310",
+            "at least 2.2e-308",
         ),
         (
             "work_precision.csv",
@@ -1420,9 +1435,42 @@ fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
             "256",
             "the family `h` has steps = 512",
         ),
-        ("bench.csv", 8, "wall_s", "0", "a finite number > 0"),
-        ("bench.csv", 8, "wall_s", "NaN", "a finite number > 0"),
-        ("bench.csv", 9, "wall_s", "-0.005", "a finite number > 0"),
+        (
+            "bench.csv",
+            8,
+            "wall_s",
+            "0",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        (
+            "bench.csv",
+            8,
+            "wall_s",
+            "NaN",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        (
+            "bench.csv",
+            9,
+            "wall_s",
+            "-0.005",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        (
+            "bench.csv",
+            8,
+            "wall_s",
+            "1e-310",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        (
+            "bench.csv",
+            8,
+            "wall_s",
+            "1e308",
+            "a time in seconds from 1e-9 to 1e6",
+        ),
+        ("bench.csv", 8, "dofs", "16000", "has 16638 free unknowns"),
         ("bench.csv", 8, "dofs", "-16638", "a whole number >= 1"),
         ("bench.csv", 8, "n", "128.4", "a whole number >= 1"),
         ("bench.csv", 8, "path", "sideways", "`general` or `reduced`"),
@@ -1433,6 +1481,12 @@ fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
         cases.push((file, text, vec![at, holds, allowed.into()]));
     }
     let garbage = b"n,solver,wall_s\n16,new\0ton\x01,0.1\n".to_vec();
+    let header_only = |text: &str| -> Vec<u8> {
+        let header = text.lines().take_while(|l| l.starts_with('#')).count() + 1;
+        let kept: Vec<&str> = text.lines().take(header).collect();
+        (kept.join("\n") + "\n").into_bytes()
+    };
+    let solvers = read(data.join("bench_solvers.csv"));
     let mut ragged = wp.lines().map(str::to_string).collect::<Vec<_>>();
     ragged[5].push_str(",7");
     for (file, text, needles) in [
@@ -1445,6 +1499,16 @@ fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
             "bench_solvers.csv",
             garbage,
             vec!["bench_solvers.csv:2", "U+0000"],
+        ),
+        (
+            "bench.csv",
+            header_only(&bench),
+            vec!["bench.csv", "a header and no data row"],
+        ),
+        (
+            "bench_solvers.csv",
+            header_only(&solvers),
+            vec!["bench_solvers.csv", "a header and no data row"],
         ),
         (
             "bench_solvers.csv",
@@ -1491,6 +1555,39 @@ fn bench_from_csv_refuses_tables_the_bench_cannot_have_written() {
         );
     }
     ok(&from_csv(&dir));
+}
+
+/// `bench` writes its tables and figures under fixed names into --data and
+/// --figures: a directory holding files evhi did not write is refused before
+/// anything is read or written, as `reproduce` refuses it (round four's re-run found
+/// `bench --from-csv --figures DIR` replacing a user's `work_precision.png`).
+#[test]
+fn bench_refuses_a_foreign_output_directory() {
+    let dir = scratch("bench-foreign");
+    let data = dir.join("data");
+    let figures = dir.join("figures");
+    std::fs::create_dir_all(&data).unwrap();
+    std::fs::create_dir_all(&figures).unwrap();
+    for f in BENCH_TABLES.iter().chain([&".evhi-outputs"]) {
+        std::fs::copy(Path::new("data").join(f), data.join(f)).unwrap();
+    }
+    std::fs::write(figures.join("work_precision.png"), "the user's own").unwrap();
+    let before = snapshot(&dir);
+    refused(
+        &from_csv(&dir),
+        &[
+            "figures",
+            "holds files evhi did not write",
+            "work_precision.png",
+        ],
+    );
+    assert!(snapshot(&dir) == before, "a file was written or changed");
+    // Without the mark, the data directory is refused as well.
+    std::fs::remove_file(figures.join("work_precision.png")).unwrap();
+    std::fs::remove_file(data.join(".evhi-outputs")).unwrap();
+    let before = snapshot(&dir);
+    refused(&from_csv(&dir), &["data", "holds files evhi did not write"]);
+    assert!(snapshot(&dir) == before, "a file was written or changed");
 }
 
 /// An absurd n is refused by the memory guard (the integer count of unknowns used to

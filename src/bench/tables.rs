@@ -9,7 +9,7 @@
 //! drawn or written.
 
 use crate::output::FileError;
-use crate::output::rows::{AT_LEAST_ONE, Allowed, NON_NEGATIVE, POSITIVE, row};
+use crate::output::rows::{AT_LEAST_ONE, Allowed, NON_NEGATIVE, POSITIVE, SECONDS, row};
 use std::path::Path;
 
 /// A time loop `evhi solve` runs.
@@ -73,7 +73,7 @@ row! {
         steps: u64 => "steps" if AT_LEAST_ONE,
         path: String => "path" if LOOP,
         dofs: u64 => "dofs" if AT_LEAST_ONE,
-        wall_s: f64 => "wall_s" if POSITIVE,
+        wall_s: f64 => "wall_s" if SECONDS,
         assembly_s: f64 => "assembly_s" if NON_NEGATIVE,
         factorisation_s: f64 => "factorisation_s" if NON_NEGATIVE,
         condensation_s: f64 => "condensation_s" if NON_NEGATIVE,
@@ -90,7 +90,7 @@ row! {
     pub struct SolverRow {
         n: u64 => "n" if AT_LEAST_ONE,
         solver: String => "solver" if SOLVER,
-        wall_s: f64 => "wall_s" if POSITIVE,
+        wall_s: f64 => "wall_s" if SECONDS,
         steps_s: f64 => "steps_s" if NON_NEGATIVE,
         iterations_total: f64 => "iterations_total" if WHOLE,
         inner_iterations_total: f64 => "inner_iterations_total" if WHOLE,
@@ -106,7 +106,7 @@ row! {
         family: String => "family" if FAMILY,
         n: u64 => "n" if AT_LEAST_ONE,
         steps: u64 => "steps" if AT_LEAST_ONE,
-        wall_s: f64 => "wall_s" if POSITIVE,
+        wall_s: f64 => "wall_s" if SECONDS,
         rel_err_t_percent: f64 => "rel_err_T_percent" if NON_NEGATIVE,
         rel_err_max_percent: f64 => "rel_err_max_percent" if POSITIVE,
     }
@@ -132,10 +132,10 @@ row! {
     pub struct ScipyRow {
         n: u64 => "n" if AT_LEAST_ONE,
         dofs: u64 => "dofs" if AT_LEAST_ONE,
-        scipy_total_s: f64 => "scipy_total_s" if POSITIVE,
+        scipy_total_s: f64 => "scipy_total_s" if SECONDS,
         scipy_steps_s: f64 => "scipy_steps_s" if NON_NEGATIVE,
-        general_wall_s: f64 => "general_wall_s" if POSITIVE,
-        reduced_wall_s: f64 => "reduced_wall_s" if POSITIVE,
+        general_wall_s: f64 => "general_wall_s" if SECONDS,
+        reduced_wall_s: f64 => "reduced_wall_s" if SECONDS,
         scipy_over_general: f64 => "scipy_over_general" if POSITIVE,
         scipy_over_reduced: f64 => "scipy_over_reduced" if POSITIVE,
         scipy_gap_u_nu: f64 => "scipy_gap_u_nu" if NON_NEGATIVE,
@@ -184,6 +184,50 @@ fn once<R, K: PartialEq + std::fmt::Display>(
     Ok(())
 }
 
+/// Refuses a table of `path` with a header and no data row: the bench writes a row for
+/// each configuration it measures, and draws or renders each table.
+fn some<R>(path: &Path, rows: &[(usize, R)]) -> Result<(), FileError> {
+    if rows.is_empty() {
+        return Err(FileError::Table {
+            path: path.display().to_string(),
+            message: "a header and no data row: the bench writes a row per configuration \
+                      it measures"
+                .into(),
+        });
+    }
+    Ok(())
+}
+
+/// Refuses a row of `rows` whose dof count is not that of the paper's scene (which
+/// the bench times) at its n: the count of its free unknowns, from the mesh itself.
+fn paper_dofs<R>(
+    path: &Path,
+    rows: &[(usize, R)],
+    n_dofs: impl Fn(&R) -> (u64, u64),
+) -> Result<(), FileError> {
+    for (line, r) in rows {
+        let (n, dofs) = n_dofs(r);
+        let expected = usize::try_from(n)
+            .ok()
+            .and_then(|n| crate::mesh::Mesh::structured(n).ok())
+            .map(|mesh| crate::mesh::Dofs::new(&mesh, true).count as u64);
+        let message = match expected {
+            Some(e) if e == dofs => continue,
+            Some(e) => format!(
+                "column `dofs` holds `{dofs}`, where the paper's scene at n = {n} has {e} \
+                 free unknowns (the bench times that scene)"
+            ),
+            None => format!(
+                "column `n` holds `{n}`, which is not a level of the paper's scene (a \
+                 multiple of 4 up to {})",
+                crate::mesh::MAX_N
+            ),
+        };
+        return Err(at(path, *line, message));
+    }
+    Ok(())
+}
+
 /// The error of the row at `line` of `path`.
 fn at(path: &Path, line: usize, message: String) -> FileError {
     FileError::Table {
@@ -192,11 +236,13 @@ fn at(path: &Path, line: usize, message: String) -> FileError {
     }
 }
 
-/// The rows of `bench.csv`, checked: each (n, path) once, and steps = n (the bench
-/// times h = k = 1/n).
+/// The rows of `bench.csv`, checked: at least one, each (n, path) once, each dof
+/// count the paper scene's at its n, and steps = n (the bench times h = k = 1/n).
 pub fn read_bench(path: &Path) -> Result<Vec<(usize, BenchRow)>, FileError> {
     let rows = BenchRow::read_lines(path)?;
+    some(path, &rows)?;
     once(path, &rows, |r| format!("n = {}, path {}", r.n, r.path))?;
+    paper_dofs(path, &rows, |r| (r.n, r.dofs))?;
     if let Some((line, r)) = rows.iter().find(|(_, r)| r.steps != r.n) {
         return Err(at(
             path,
@@ -219,12 +265,7 @@ pub const REFERENCE: u64 = 512;
 /// [`REFERENCE`], `k` has n = [`REFERENCE`].
 pub fn read_work_precision(path: &Path) -> Result<Vec<(usize, WorkPrecisionRow)>, FileError> {
     let rows = WorkPrecisionRow::read_lines(path)?;
-    if rows.is_empty() {
-        return Err(FileError::Table {
-            path: path.display().to_string(),
-            message: "a header and no data row: no point to draw".into(),
-        });
-    }
+    some(path, &rows)?;
     once(path, &rows, |r| {
         format!("family {}, n = {}, steps = {}", r.family, r.n, r.steps)
     })?;
@@ -247,23 +288,28 @@ pub fn read_work_precision(path: &Path) -> Result<Vec<(usize, WorkPrecisionRow)>
     Ok(rows)
 }
 
-/// The rows of `bench_solvers.csv`, checked: each (n, solver) once.
+/// The rows of `bench_solvers.csv`, checked: at least one, and each (n, solver) once.
 pub fn read_solvers(path: &Path) -> Result<Vec<(usize, SolverRow)>, FileError> {
     let rows = SolverRow::read_lines(path)?;
+    some(path, &rows)?;
     once(path, &rows, |r| format!("n = {}, solver {}", r.n, r.solver))?;
     Ok(rows)
 }
 
-/// The rows of `bench_scipy.csv`, checked: each n once.
+/// The rows of `bench_scipy.csv`, checked: at least one, each n once, and each dof
+/// count the paper scene's at its n.
 pub fn read_scipy(path: &Path) -> Result<Vec<(usize, ScipyRow)>, FileError> {
     let rows = ScipyRow::read_lines(path)?;
+    some(path, &rows)?;
     once(path, &rows, |r| format!("n = {}", r.n))?;
+    paper_dofs(path, &rows, |r| (r.n, r.dofs))?;
     Ok(rows)
 }
 
-/// The rows of `bench_sweeps.csv`, checked: each variant once.
+/// The rows of `bench_sweeps.csv`, checked: at least one, and each variant once.
 pub fn read_sweeps(path: &Path) -> Result<Vec<(usize, SweepRow)>, FileError> {
     let rows = SweepRow::read_lines(path)?;
+    some(path, &rows)?;
     once(path, &rows, |r| {
         format!(
             "{}, ordering `{}`, {} thread(s), prefetch {}, {} column(s)",

@@ -130,6 +130,9 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         experiment: "bench",
         book_table: crate::bench::book_table,
     };
+    // The tables and figures replace files of the same names: only in directories
+    // evhi wrote (or new ones), one writer at a time.
+    let _lock = crate::experiments::reproduce::claim_outputs(&ctx)?;
     if args.from_csv {
         return Ok(crate::bench::from_csv(&ctx)?);
     }

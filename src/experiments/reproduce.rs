@@ -126,32 +126,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         experiment: "",
         book_table: registry::book_table,
     };
-    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
-        check_output_dir(flag, dir)?;
-    }
-    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
-        std::fs::create_dir_all(dir)
-            .and_then(|()| {
-                let marker = dir.join(OUTPUTS_MARKER);
-                if marker.exists() {
-                    Ok(())
-                } else {
-                    crate::output::write_atomic(&marker, OUTPUTS_MARKER_TEXT.as_bytes())
-                }
-            })
-            .map_err(|e| {
-                crate::error::InputError::field(
-                    flag,
-                    dir.display(),
-                    format!("a directory that can be created and written: {e}"),
-                )
-            })?;
-    }
-    // One writer of an output set at a time; then the temporaries a killed run left.
-    let _lock = lock_outputs(&ctx.data)?;
-    for dir in [&ctx.data, &ctx.figures] {
-        remove_stale_temporaries(dir);
-    }
+    let _lock = claim_outputs(&ctx)?;
     let set = if names.len() == all.len() {
         "all".to_string()
     } else if names.iter().eq(paper_set().iter()) {
@@ -290,8 +265,6 @@ fn remove_stale_temporaries(dir: &std::path::Path) {
     }
 }
 
-/// The default output directory `dir`, or its git-ignored `local/quick/` for a quick
-/// run (whose coarse levels must not replace the committed full-level outputs).
 /// Marks a directory that `evhi reproduce` writes its tables or figures into, so that
 /// a later run may replace the files there.
 pub const OUTPUTS_MARKER: &str = ".evhi-outputs";
@@ -332,6 +305,43 @@ fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::erro
     )))
 }
 
+/// Makes `ctx`'s data and figure directories the output set of this process: refuses
+/// either if it holds files evhi did not write ([`check_output_dir`], before anything
+/// is created), creates and marks both, takes the set's lock (held while the returned
+/// value lives) and removes the temporaries a killed writer left. `reproduce` and
+/// `bench` call it before any work.
+pub fn claim_outputs(
+    ctx: &super::Ctx,
+) -> Result<crate::output::HeldLock, Box<dyn std::error::Error>> {
+    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
+        check_output_dir(flag, dir)?;
+    }
+    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
+        std::fs::create_dir_all(dir)
+            .and_then(|()| {
+                let marker = dir.join(OUTPUTS_MARKER);
+                if marker.exists() {
+                    Ok(())
+                } else {
+                    crate::output::write_atomic(&marker, OUTPUTS_MARKER_TEXT.as_bytes())
+                }
+            })
+            .map_err(|e| {
+                crate::error::InputError::field(
+                    flag,
+                    dir.display(),
+                    format!("a directory that can be created and written: {e}"),
+                )
+            })?;
+    }
+    // One writer of an output set at a time; then the temporaries a killed run left.
+    let lock = lock_outputs(&ctx.data)?;
+    for dir in [&ctx.data, &ctx.figures] {
+        remove_stale_temporaries(dir);
+    }
+    Ok(lock)
+}
+
 /// The lock of an output set, in its data directory.
 const LOCK_NAME: &str = ".reproduce.lock";
 
@@ -344,6 +354,8 @@ fn temporary_pid(name: &str) -> Option<u32> {
         .and_then(|p| p.parse::<u32>().ok())
 }
 
+/// The default output directory `dir`, or its git-ignored `local/quick/` for a quick
+/// run (whose coarse levels must not replace the committed full-level outputs).
 fn quick_or(quick: bool, dir: &str) -> PathBuf {
     if quick {
         PathBuf::from(dir).join("local").join("quick")

@@ -411,14 +411,26 @@ impl<'t> LogLogChart<'t> {
     }
 }
 
+/// The widest ratio of a log axis's ends that a chart draws readably (30 decades).
+pub const MAX_LOG_SPAN: f64 = 1e30;
+
 /// Refuses the range of a log axis (described as `axis`) that is not finite, positive
 /// and increasing: plotters makes the key points of a log axis by stepping from its
 /// lower end by a factor until it passes the upper, which from 0 never moves and to
 /// $\infty$ never ends (a chart of a time of 0 spun; one of NaN allocated without
-/// bound).
+/// bound). An axis over more than [`MAX_LOG_SPAN`] is refused too: its labels would
+/// run together, and from a subnormal end plotters' stepping takes hours.
 pub fn log_range(axis: &str, range: std::ops::Range<f64>) -> Result<(), String> {
     let (lo, hi) = (range.start, range.end);
-    if lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi {
+    if lo.is_finite() && hi.is_finite() && f64::MIN_POSITIVE <= lo && lo < hi {
+        if hi / lo > MAX_LOG_SPAN {
+            return Err(format!(
+                "the log axis \"{axis}\" would span {lo:e} to {hi:e}, {:.0} decades; a chart \
+                 shows at most {} (the data hold a value far from the others)",
+                hi.log10() - lo.log10(),
+                MAX_LOG_SPAN.log10()
+            ));
+        }
         Ok(())
     } else {
         Err(format!(

@@ -68,10 +68,18 @@ pub struct Allowed<T> {
     pub says: &'static str,
 }
 
-/// A finite number > 0 (a time a log axis draws, a divisor).
+/// A finite number > 0 that is not subnormal (a value a log axis draws, a divisor:
+/// below `f64::MIN_POSITIVE` its logarithm and reciprocal are no longer exact).
 pub const POSITIVE: Allowed<f64> = Allowed {
-    test: |x| x.is_finite() && *x > 0.0,
-    says: "a finite number > 0",
+    test: |x| x.is_finite() && *x >= f64::MIN_POSITIVE,
+    says: "a finite number > 0 (at least 2.2e-308)",
+};
+
+/// A measured time in seconds: from a nanosecond (what the clock resolves) to a
+/// million seconds (some eleven days, longer than any run of this crate).
+pub const SECONDS: Allowed<f64> = Allowed {
+    test: |x| (1e-9..=1e6).contains(x),
+    says: "a time in seconds from 1e-9 to 1e6",
 };
 
 /// A finite number >= 0 (a time, an error, a norm).
