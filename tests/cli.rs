@@ -1254,6 +1254,16 @@ fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
             &[("steps", "3")][..],
             &["column `steps` holds `3`", "regimes.csv records 2 step(s)"][..],
         ),
+        // The limit line of evolution.png (round four's re-run drew it where the
+        // edited summary said).
+        (
+            &[("g", "0.2")][..],
+            &["column `g` holds `0.2`", "(scenario.toml) has g = 0.1"][..],
+        ),
+        (
+            &[("g", "inf")][..],
+            &["column `g` holds `inf`", "(scenario.toml) has g = 0.1"][..],
+        ),
     ] {
         std::fs::write(out.join("summary.csv"), with_cells(&summary, 4, edits)).unwrap();
         refused(&plot(&out), needles);
@@ -1264,12 +1274,52 @@ fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
         );
     }
     ok(&plot(&out));
+    // Without its scene, the contact nodes still bound g from below.
+    let scene = read(out.join("scenario.toml"));
+    std::fs::remove_file(out.join("scenario.toml")).unwrap();
+    std::fs::write(
+        out.join("summary.csv"),
+        with_cells(&summary, 4, &[("g", "0.001")]),
+    )
+    .unwrap();
+    refused(&plot(&out), &["column `g` holds `0.001`", "above it"]);
+    std::fs::write(out.join("summary.csv"), &summary).unwrap();
+    std::fs::write(out.join("scenario.toml"), scene).unwrap();
+    ok(&plot(&out));
 
     // A graded run of a level that is no power of two: its nodes do not give n, and
     // what they give is not refused.
     let graded = dir.join("graded");
     succeed(solve("figure", "--n 24 --steps 2", &graded).args(["--mesh", "graded"]));
     ok(&plot(&graded));
+}
+
+/// `plot` of what is not a run directory says so, and names no flag it does not have
+/// (round four's re-run: `plot .` gave a raw "i/o on ./contact.csv"); the staging
+/// directory of a `solve` at work is refused, for it is under that run's lock, not its
+/// own (1 in 184 plots during a solve wrote into it).
+#[test]
+fn plot_says_what_is_not_a_run_directory() {
+    let dir = scratch("plot-not-a-run");
+    let file = written(dir.join("file.txt"), "x");
+    let staging = dir.join(".run.staging-4242");
+    std::fs::create_dir_all(&staging).unwrap();
+    for (path, needles) in [
+        (
+            dir.to_path_buf(),
+            &["not a run directory: it has no summary.csv"][..],
+        ),
+        (dir.join("missing"), &["no such directory"][..]),
+        (file, &["not a directory"][..]),
+        (
+            staging,
+            &["the staging directory of a `solve` writing `run`"][..],
+        ),
+    ] {
+        let err = refused(&plot(&path), needles);
+        assert!(!err.contains("--out"), "{err}");
+        assert!(!err.contains("i/o on"), "{err}");
+    }
 }
 
 /// An edited table is refused in our words, by file, line and column: a ragged

@@ -25,6 +25,10 @@ pub enum FileError {
     Table { path: String, message: String },
     #[error("figure {path}: {message}")]
     Plot { path: String, message: String },
+    /// A path that is not what the reader reads (not a run directory); the caller
+    /// names the path.
+    #[error("{message}")]
+    NotThere { message: String },
 }
 
 use std::io::Write;

@@ -392,10 +392,28 @@ fn parent_and_name(target: &Path, user: User) -> Result<(PathBuf, String), OutEr
     Ok((parent, name))
 }
 
+/// The run that `name` is the staging directory of (`.NAME.staging-PID` gives NAME).
+fn staging_of(name: &str) -> Option<&str> {
+    let (run, pid) = name.strip_prefix('.')?.rsplit_once(".staging-")?;
+    (!run.is_empty() && !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit())).then_some(run)
+}
+
 /// Takes the lock of an existing run directory for a reader that rewrites part of it
 /// (`evhi plot`), so that it never mixes its figures with a `solve` writing there.
 pub fn lock_run_dir(dir: &Path) -> Result<super::HeldLock, OutError> {
     let (parent, name) = parent_and_name(dir, REDRAWER)?;
+    // A run's staging directory is under the lock of the run it becomes, which a
+    // lock by its own name would not wait for.
+    if let Some(run) = staging_of(&name) {
+        return Err(OutError::Unusable {
+            role: REDRAWER.role,
+            path: dir.display().to_string(),
+            message: format!(
+                "a run directory, not the staging directory of a `solve` writing `{run}`; \
+                 plot `{run}` once that solve has ended"
+            ),
+        });
+    }
     lock_beside(dir, &parent, &name, REDRAWER)
 }
 

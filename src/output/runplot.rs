@@ -114,6 +114,7 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
             format!("the body of nodes.csv is {width} wide, so h = W/(2n) = {h} for n = {n}"),
         ));
     }
+    check_g(dir, summary.g, &refuse)?;
     let regimes = read_csv(&dir.join("regimes.csv"))?;
     let step = col_f64(&regimes, "step")?;
     let last = step.last().copied().unwrap_or(0.0);
@@ -130,8 +131,72 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
     Ok(())
 }
 
+/// Refuses a summary's g (the limit line the evolution figure draws) that the run
+/// contradicts: the run's own scene (`scenario.toml`) has another g, a contact node
+/// lies above it, or a node `contact.csv` places at the limit is not at it.
+fn check_g(
+    dir: &Path,
+    g: f64,
+    refuse: &dyn Fn(&str, String, String) -> FileError,
+) -> Result<(), FileError> {
+    let close = |a: f64, b: f64| {
+        a == b || (a.is_finite() && b.is_finite() && (a - b).abs() <= 1e-9 * a.abs().max(b.abs()))
+    };
+    let scene_path = dir.join("scenario.toml");
+    if scene_path.exists() {
+        let text = std::fs::read_to_string(&scene_path).map_err(|e| FileError::Io {
+            path: scene_path.display().to_string(),
+            source: e,
+        })?;
+        let scene = crate::scenario::Scenario::from_toml(&text, &scene_path.display().to_string())
+            .map_err(|e| FileError::Table {
+                path: scene_path.display().to_string(),
+                message: format!("the run's scene does not read back: {e}"),
+            })?;
+        if !close(scene.g(), g) {
+            return Err(refuse(
+                "g",
+                g.to_string(),
+                format!("the run's scene (scenario.toml) has g = {}", scene.g()),
+            ));
+        }
+    }
+    for r in super::rows::ContactRow::read(&dir.join("contact.csv"))? {
+        let at_limit = r.regime == "limit";
+        if r.u_nu > g + 1e-9 * g.abs() || (at_limit && !close(r.u_nu, g)) {
+            return Err(refuse(
+                "g",
+                g.to_string(),
+                format!(
+                    "contact.csv's node at x = {} has u_nu = {} {}",
+                    r.x,
+                    r.u_nu,
+                    if at_limit { "at the limit" } else { "above it" }
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Draws both figures of the run directory `dir` into it.
 pub fn draw(dir: &Path) -> Result<(), FileError> {
+    let not_a_run = |what: &str| FileError::NotThere {
+        message: format!(
+            "{what}; `evhi plot` redraws the figures of a run directory that `evhi solve` \
+             wrote (it holds summary.csv, contact.csv, nodes.csv, …)"
+        ),
+    };
+    if !dir.is_dir() {
+        return Err(not_a_run(if dir.exists() {
+            "not a directory"
+        } else {
+            "no such directory"
+        }));
+    }
+    if !dir.join("summary.csv").is_file() {
+        return Err(not_a_run("not a run directory: it has no summary.csv"));
+    }
     validate_tables(dir)?;
     let summary_path = dir.join("summary.csv");
     let (line, summary) = SummaryRow::read_lines(&summary_path)?
