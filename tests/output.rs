@@ -327,6 +327,8 @@ fn a_log_axis_over_zero_or_nan_is_refused_not_drawn() {
         ((1.0, 10.0), (-1.0, 10.0)),
         ((1.0, 10.0), (5.0, 5.0)),
         ((1.0, f64::INFINITY), (1.0, 10.0)),
+        // Subnormal: plotters stepped up from it for hours (round four's re-run).
+        ((1e-310, 1.0), (1.0, 10.0)),
     ] {
         let mut svg = String::new();
         let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
@@ -338,6 +340,16 @@ fn a_log_axis_over_zero_or_nan_is_refused_not_drawn() {
         let err = chart.err().unwrap_or_else(|| panic!("{x:?} x {y:?} drawn"));
         assert!(err.contains("a log axis spans finite numbers > 0"), "{err}");
     }
+    // An axis over more than 30 decades is refused as unreadable.
+    let mut svg = String::new();
+    let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
+    let wide =
+        LogLogChart::default().build(&root, (1e-300..1e10).log_scale(), (1.0..10.0).log_scale());
+    let err = wide.err().expect("310 decades drawn");
+    assert!(
+        err.contains("310 decades; a chart shows at most 30"),
+        "{err}"
+    );
     assert!(start.elapsed() < Duration::from_secs(5));
     let mut svg = String::new();
     let root = SVGBackend::with_string(&mut svg, (400, 300)).into_drawing_area();
@@ -362,6 +374,13 @@ fn tables_are_read_as_written_and_refused_by_line_and_column() {
         (3, vec!["x, \"y\"".to_string(), "1".to_string()])
     );
     assert_eq!(t.rows[1], (5, vec![String::new(), "2".to_string()]));
+    // A byte-order mark is not part of the first column's name.
+    let bom = Text::parse("\u{feff}a,b\n1,2\n".as_bytes(), "t.csv").unwrap();
+    assert_eq!(bom.column("a").unwrap(), 0);
+    // A deleted header line: the first row stands as the header, and the error says so.
+    let headless = Text::parse(b"1,2\n3,4\n", "t.csv").unwrap();
+    let err = headless.column("a").unwrap_err().to_string();
+    assert!(err.contains("the header line seems to be missing"), "{err}");
     for (text, expect) in [
         (
             &b"a,b\n1,2,3\n"[..],
@@ -374,7 +393,12 @@ fn tables_are_read_as_written_and_refused_by_line_and_column() {
         (b"a,b\n1,\"2\n", "t.csv:2: a double quote is not closed"),
         (
             b"a,b\n1,x\x00y\n",
-            "t.csv:2: column `b` holds `x\\0y`, with the control character U+0000",
+            "t.csv:2: column `b` holds `x\\0y`, with the control or line-breaking character U+0000",
+        ),
+        // A line separator inside quotes (round four's re-run saw it echoed raw).
+        (
+            "a,b\n1,\"x\u{2028}y\"\n".as_bytes(),
+            "t.csv:2: column `b` holds `x\\u{2028}y`, with the control or line-breaking character U+2028",
         ),
         (b"a,a\n", "t.csv:1: column `a` appears twice in the header"),
         (b"# only\n", "t.csv:1: no header line"),
@@ -393,4 +417,36 @@ fn tables_are_read_as_written_and_refused_by_line_and_column() {
     for path in tables {
         Text::read(&path).unwrap_or_else(|e| panic!("{e}"));
     }
+}
+
+/// A figure that cannot be written says its I/O error in words (round four's re-run
+/// on a full disk got plotters' Debug dump, "backend error … ImageError(IoError(…))").
+/// Here the temporary's name is taken by a directory, which no file can replace.
+#[test]
+fn a_figure_that_cannot_be_written_says_why() {
+    use evhi::output::plot::{Figure, both};
+    use plotters::prelude::*;
+    struct Blank;
+    impl Figure for Blank {
+        fn draw<DB: DrawingBackend>(
+            &self,
+            root: &DrawingArea<DB, plotters::coord::Shift>,
+        ) -> Result<(), String> {
+            root.fill(&WHITE).map_err(|e| e.to_string())
+        }
+    }
+    let dir = scratch("figure-unwritable");
+    let pid = std::process::id();
+    for ext in ["png", "svg"] {
+        std::fs::create_dir_all(dir.join(format!(".blank.tmp-{pid}.{ext}"))).unwrap();
+    }
+    let err = both(&dir, "blank", (40, 30), &Blank)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("blank.png: could not be written: Is a directory"),
+        "{err}"
+    );
+    assert!(!err.contains("Error("), "{err}");
+    assert!(!dir.join("blank.png").exists());
 }

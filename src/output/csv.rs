@@ -111,6 +111,8 @@ impl Text {
                 .count();
             at(line, "not UTF-8 text, as a table evhi writes is".into())
         })?;
+        // A byte-order mark (some editors save one) is not part of the first name.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let mut header: Option<(usize, Vec<String>)> = None;
         let mut rows = vec![];
         for (i, line) in text.split('\n').enumerate() {
@@ -122,15 +124,17 @@ impl Text {
                 split(line).ok_or_else(|| at(i + 1, "a double quote is not closed".into()))?;
             let names = header.as_ref().map(|h| h.1.as_slice()).unwrap_or(&fields);
             for (k, f) in fields.iter().enumerate() {
-                if let Some(c) = f.chars().find(|c| c.is_control()) {
+                // A line separator breaks the line for other readers (Python's
+                // `splitlines`) as a control character does.
+                if let Some(c) = f.chars().find(|&c| crate::error::breaks_line(c)) {
                     let column = names.get(k).map_or(format!("field {}", k + 1), |n| {
                         format!("column `{}`", n.escape_debug())
                     });
                     return Err(at(
                         i + 1,
                         format!(
-                            "{column} holds `{}`, with the control character U+{:04X}, not text \
-                             a table holds",
+                            "{column} holds `{}`, with the control or line-breaking character \
+                             U+{:04X}, not text a table holds",
                             f.escape_debug(),
                             c as u32
                         ),
@@ -209,11 +213,23 @@ fn no_column<'a>(
     name: &str,
     names: impl Iterator<Item = &'a String>,
 ) -> super::FileError {
-    let names: Vec<String> = names.map(|n| format!("`{n}`")).collect();
+    let names: Vec<&String> = names.collect();
+    // A deleted header line makes the first row the header: its names are numbers.
+    let numbers = names.iter().filter(|n| n.parse::<f64>().is_ok()).count();
+    let hint = if numbers > 0 && 2 * numbers >= names.len() {
+        "; that line holds numbers where a header holds column names: the header line \
+         seems to be missing"
+    } else {
+        ""
+    };
+    let names: Vec<String> = names
+        .iter()
+        .map(|n| format!("`{}`", n.escape_debug()))
+        .collect();
     super::FileError::Table {
         path: at.to_string(),
         message: format!(
-            "no column `{name}`; the header has {}",
+            "no column `{name}`; the header has {}{hint}",
             if names.is_empty() {
                 "none".to_string()
             } else {

@@ -197,17 +197,39 @@ pub fn both<F: Figure + Sync>(
         let final_path = dir.join(format!("{stem}.{ext}"));
         let tmp = dir.join(format!(".{stem}.tmp-{}.{ext}", std::process::id()));
         let res = if ext == "png" {
-            let root = BitMapBackend::new(&tmp, size).into_drawing_area();
-            root.fill(&WHITE)
-                .map_err(e2s)
-                .and_then(|_| fig.draw(&root))
-                .and_then(|_| root.present().map_err(e2s))
+            // Drawn in memory, then encoded and written here, so that a failed write
+            // (a full disk) says its I/O error in words.
+            let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+            let drawn = {
+                let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+                root.fill(&WHITE)
+                    .map_err(e2s)
+                    .and_then(|_| fig.draw(&root))
+                    .and_then(|_| root.present().map_err(e2s))
+            };
+            drawn.and_then(|()| {
+                image::save_buffer_with_format(
+                    &tmp,
+                    &pixels,
+                    size.0,
+                    size.1,
+                    image::ColorType::Rgb8,
+                    image::ImageFormat::Png,
+                )
+                .map_err(|e| format!("could not be written: {e}"))
+            })
         } else {
-            let root = SVGBackend::new(&tmp, size).into_drawing_area();
-            root.fill(&WHITE)
-                .map_err(e2s)
-                .and_then(|_| fig.draw(&root))
-                .and_then(|_| root.present().map_err(e2s))
+            let mut text = String::new();
+            let drawn = {
+                let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
+                root.fill(&WHITE)
+                    .map_err(e2s)
+                    .and_then(|_| fig.draw(&root))
+                    .and_then(|_| root.present().map_err(e2s))
+            };
+            drawn.and_then(|()| {
+                std::fs::write(&tmp, text).map_err(|e| format!("could not be written: {e}"))
+            })
         };
         if let Err(m) = res {
             let _ = std::fs::remove_file(&tmp);
