@@ -41,11 +41,15 @@ impl InputError {
                 field,
                 value,
                 allowed,
-            } if field.starts_with(key) => InputError::Field {
-                field: format!("{flag}{}", &field[key.len()..]),
-                value,
-                allowed,
-            },
+            } if field == key
+                || (field.starts_with(key) && field[key.len()..].starts_with(['[', '.'])) =>
+            {
+                InputError::Field {
+                    field: format!("{flag}{}", &field[key.len()..]),
+                    value,
+                    allowed,
+                }
+            }
             other => other,
         }
     }

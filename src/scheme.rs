@@ -249,9 +249,9 @@ pub enum RunError {
         g: f64,
     },
     #[error(
-        "{}. What may help: another step solver (`--solver proxgrad` and \
-         `newton-no-line-search` certify too), a smaller k (more `--steps`), or, where the law \
-         softens, a stiffer material or a milder softening",
+        "{}. What may help: another step solver (`proxgrad` and `newton-no-line-search` \
+         certify too), a smaller k (more time steps), or, where the law softens, a stiffer \
+         material or a milder softening",
         self.failed_step().unwrap_or_default()
     )]
     Step {

@@ -99,6 +99,70 @@ impl Default for RunSettings {
     }
 }
 
+/// Setters that chain, for a caller outside the crate: `RunSettings::default()
+/// .with_n(32).with_steps(16)`. Each sets one field as it is; the whole is checked
+/// when a [`Simulation`] is built from it.
+///
+/// ```
+/// use evhi::prelude::*;
+/// let settings = RunSettings::default()
+///     .with_n(16)
+///     .with_steps(8)
+///     .with_path(Loop::General);
+/// assert_eq!((settings.n, settings.steps), (16, Some(8)));
+/// // A value the run cannot take is refused when the simulation is built.
+/// let err = Simulation::new(Scenario::load("figure")?, settings.with_threads(3)).unwrap_err();
+/// assert!(err.to_string().contains("`threads`"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+impl RunSettings {
+    /// Segments on the bottom ([`RunSettings::n`]).
+    pub fn with_n(mut self, n: usize) -> Self {
+        self.n = n;
+        self
+    }
+    /// Time steps ([`RunSettings::steps`]).
+    pub fn with_steps(mut self, steps: usize) -> Self {
+        self.steps = Some(steps);
+        self
+    }
+    /// The mesh ([`RunSettings::mesh`]).
+    pub fn with_mesh(mut self, mesh: MeshKind) -> Self {
+        self.mesh = mesh;
+        self
+    }
+    /// The grading exponent of a graded mesh ([`RunSettings::grading`]).
+    pub fn with_grading(mut self, mu: f64) -> Self {
+        self.grading = Some(mu);
+        self
+    }
+    /// The step solver by its registry name ([`RunSettings::solver`]).
+    pub fn with_solver(mut self, name: &str) -> Self {
+        self.solver = Some(name.to_string());
+        self
+    }
+    /// The time loop ([`RunSettings::path`]).
+    pub fn with_path(mut self, path: Loop) -> Self {
+        self.path = path;
+        self
+    }
+    /// The fill-reducing ordering ([`RunSettings::ordering`]).
+    pub fn with_ordering(mut self, ordering: OrderingKind) -> Self {
+        self.ordering = Some(ordering);
+        self
+    }
+    /// Threads of the triangular sweeps ([`RunSettings::threads`]).
+    pub fn with_threads(mut self, threads: u8) -> Self {
+        self.threads = Some(threads);
+        self
+    }
+    /// The certificate's tolerance ([`RunSettings::certificate_tol`]).
+    pub fn with_certificate_tol(mut self, tol: f64) -> Self {
+        self.certificate_tol = tol;
+        self
+    }
+}
+
 /// The grading exponent a graded mesh takes when none is given.
 pub const DEFAULT_GRADING: f64 = 0.4;
 
@@ -172,6 +236,22 @@ pub struct Fallback {
 /// proximal gradient with its own iteration budget still converge.
 pub const FALLBACKS: [&str; 2] = ["newton-no-line-search", "proxgrad"];
 
+impl std::fmt::Debug for Simulation {
+    /// A summary: the scene's name, the level, the steps, the solver, the loop and the
+    /// mesh's size (not its arrays).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Simulation")
+            .field("scenario", &self.scenario.name)
+            .field("n", &self.settings.n)
+            .field("steps", &self.steps())
+            .field("solver", &self.entry.name)
+            .field("reduced", &self.reduced)
+            .field("nodes", &self.mesh.nodes.len())
+            .field("triangles", &self.mesh.triangles.len())
+            .finish_non_exhaustive()
+    }
+}
+
 impl std::fmt::Debug for Solution {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Solution")
@@ -226,6 +306,21 @@ impl Simulation {
     /// `grading` are not used and `grading` is refused; the ordering defaults to AMD
     /// unless the mesh is a grid of the structured kind. The scene's supports,
     /// tractions and $\Gamma_3$ must end on the mesh's boundary nodes.
+    ///
+    /// One mesh graded towards the scene's singular points, shared by two loads:
+    ///
+    /// ```
+    /// use evhi::prelude::*;
+    /// use std::sync::Arc;
+    /// let figure = Scenario::load("figure")?;
+    /// let mesh = Arc::new(figure.graded_mesh(8, 0.4)?);
+    /// let settings = RunSettings::default().with_n(8).with_steps(2);
+    /// for scene in [figure, Scenario::load("literal")?] {
+    ///     let sim = Simulation::on_mesh(scene, settings.clone(), mesh.clone())?;
+    ///     assert!(sim.solve(&mut ())?.max_certificate() <= 1e-10);
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn on_mesh(
         scenario: Scenario,
         settings: RunSettings,
@@ -243,7 +338,7 @@ impl Simulation {
         let s = &settings;
         if !(1e-15..=1e-4).contains(&s.certificate_tol) {
             return Err(InputError::field(
-                "certificate-tol",
+                "certificate_tol",
                 format!("{:e}", s.certificate_tol),
                 "a relative residual in [1e-15, 1e-4] (below 1e-15 rounding alone fails it; \
                  above 1e-4 a step would be certified that is not a solution)",
@@ -255,7 +350,7 @@ impl Simulation {
             return Err(InputError::field(
                 "grading",
                 mu,
-                "nothing without --mesh graded (the exponent of the graded mesh)",
+                "nothing unless the mesh is graded (it is the graded mesh's exponent)",
             ));
         }
         // Nested dissection cuts the lines of a structured grid; any other mesh is
@@ -269,7 +364,7 @@ impl Simulation {
                 let which = if given.is_some() {
                     "a bisected mesh"
                 } else {
-                    "--mesh graded"
+                    "a graded mesh"
                 };
                 return Err(InputError::field(
                     "ordering",
@@ -299,8 +394,8 @@ impl Simulation {
                 return Err(InputError::field(
                     "threads",
                     2,
-                    "1 with --ordering amd (only nested dissection splits the sweeps in two \
-                     halves); use --ordering nd for two threads",
+                    "1 with the AMD ordering (only nested dissection splits the sweeps in two \
+                     halves); order by nested dissection for two threads",
                 ));
             }
             (Some(t), _) => t == 2,
@@ -489,6 +584,20 @@ impl Simulation {
     /// settings' `solver` is not used. An uncertified solver
     /// ([`StepSolver::certified`]) is judged by its own convergence instead of the
     /// certificate.
+    ///
+    /// ```
+    /// use evhi::prelude::*;
+    /// let sim = Simulation::new(
+    ///     Scenario::load("figure")?,
+    ///     RunSettings::default().with_n(8).with_steps(4),
+    /// )?;
+    /// // A solver of the registry, built by the caller and run as it is.
+    /// let mut solver = evhi::step::solver("proxgrad")?.build();
+    /// let solution = sim.solve_with(solver.as_mut(), &mut ())?;
+    /// assert!(solution.fallback.is_none());
+    /// assert!(solution.max_certificate() <= 1e-10);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn solve_with(
         &self,
         solver: &mut dyn StepSolver,
@@ -533,6 +642,36 @@ impl Simulation {
     /// are those of the whole batch. Refused with `path = reduced`, which solves one
     /// scene at a time. The batch has one certificate tolerance: if any solver is
     /// uncertified, no scene's certificate is checked.
+    ///
+    /// Three loads on one step matrix, each scene with its own solver from the
+    /// registry (the explicit `&mut dyn StepSolver` return type of the closure lets
+    /// the boxes lend their solvers for the call's lifetime):
+    ///
+    /// ```
+    /// use evhi::prelude::*;
+    /// let base = Scenario::load("figure")?;
+    /// let scenes = [40.0, 60.0, 80.0]
+    ///     .map(|p| base.clone().with_loads(None, Some([0.0, -p])))
+    ///     .into_iter()
+    ///     .collect::<Result<Vec<_>, _>>()?;
+    /// let sim = Simulation::new(base, RunSettings::default().with_n(8).with_steps(4))?;
+    /// let mut boxes: Vec<Box<dyn StepSolver>> = (0..scenes.len())
+    ///     .map(|_| evhi::step::solver("newton").map(|e| e.build()))
+    ///     .collect::<Result<_, _>>()?;
+    /// let mut solvers: Vec<&mut dyn StepSolver> = boxes
+    ///     .iter_mut()
+    ///     .map(|b| -> &mut dyn StepSolver { b.as_mut() })
+    ///     .collect();
+    /// let mut steps_seen = 0;
+    /// let runs = sim.solve_batch(&scenes, &mut solvers, &mut |_scene, _n, _t, _u, _c| {
+    ///     steps_seen += 1;
+    /// })?;
+    /// assert_eq!((runs.len(), steps_seen), (3, 3 * 4));
+    /// // A heavier traction strains the body more.
+    /// let energy = |r: &evhi::scheme::Run| r.records.last().unwrap().energy_norm;
+    /// assert!(energy(&runs[0]) < energy(&runs[1]) && energy(&runs[1]) < energy(&runs[2]));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn solve_batch(
         &self,
         scenarios: &[Scenario],
@@ -574,6 +713,23 @@ impl Simulation {
 /// [`Observer::restart`]: with [`Simulation::solve`], whose fallback starts the run
 /// again, a closure that keeps steps would keep the failed run's too; use it with
 /// [`Simulation::solve_with`], or write an observer that forgets them.
+///
+/// ```
+/// use evhi::prelude::*;
+/// let sim = Simulation::new(
+///     Scenario::load("figure")?,
+///     RunSettings::default().with_n(8).with_steps(4),
+/// )?;
+/// // The number of contact nodes at the limit g after each step.
+/// let mut at_limit = vec![];
+/// let mut observer = OnStep::new(|_n, _t, _u, contact: &[ContactState]| {
+///     at_limit.push(contact.iter().filter(|c| c.at_limit).count());
+/// });
+/// let mut solver = evhi::step::solver("newton")?.build();
+/// sim.solve_with(solver.as_mut(), &mut observer)?;
+/// assert_eq!(at_limit.len(), 4);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub struct OnStep<F>(F);
 
 impl<F: FnMut(usize, f64, Option<&[f64]>, &[ContactState])> OnStep<F> {

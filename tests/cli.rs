@@ -166,16 +166,16 @@ fn load_histories_from_the_cli_and_the_file() {
 #[test]
 fn bad_arguments_fail_with_the_field_named() {
     for (args, needle) in [
-        ("--n 10", "`n`"),
+        ("--n 10", "`--n`"),
         ("--g -0.1", "`--g`"),
-        ("--steps 0", "`steps`"),
+        ("--steps 0", "`--steps`"),
         ("--scenario nope", "`scenario`"),
         // issue 12: negative counts name their option; absurd tolerances are refused
         ("--n -4", "--n"),
         ("--steps -1", "--steps"),
-        ("--certificate-tol inf", "`certificate-tol`"),
-        ("--certificate-tol 1e300", "`certificate-tol`"),
-        ("--certificate-tol 1e-20", "`certificate-tol`"),
+        ("--certificate-tol inf", "`--certificate-tol`"),
+        ("--certificate-tol 1e300", "`--certificate-tol`"),
+        ("--certificate-tol 1e-20", "`--certificate-tol`"),
         ("--g 1e308", "`--g`"),
         ("--n 4096", "needs about"),
         ("--ramp 1e-300", "`ramp`"),
@@ -373,7 +373,7 @@ fn scenarios_and_show() {
     let err = stderr(&o);
     assert!(err.contains("warning: H(j) fails"), "{err}");
     // A bad mesh is an error naming the option.
-    assert!(failed(&show("figure", "--n 10")).contains("`n`"));
+    assert!(failed(&show("figure", "--n 10")).contains("`--n`"));
 }
 
 /// A user scenario with a five-branch law and a jump, end to end: solve writes its
@@ -736,7 +736,7 @@ fn show_and_out_messages_say_what_is_wrong() {
         text.contains("= 0 (relaxed monotonicity)") && !text.contains("-0"),
         "{text}"
     );
-    failed_with(&show("figure", "--steps 2000000"), "`steps`");
+    failed_with(&show("figure", "--steps 2000000"), "`--steps`");
     std::fs::create_dir(dir.join("real")).unwrap();
     std::os::unix::fs::symlink(dir.join("real"), dir.join("link")).unwrap();
     failed_with(
@@ -798,7 +798,7 @@ fn two_threads_with_amd_are_refused_and_amd_alone_runs_on_one() {
         .output()
         .unwrap();
     let err = failed(&out);
-    assert_contains(&err, &["`threads`", "--ordering amd"]);
+    assert_contains(&err, &["`--threads`", "the AMD ordering"]);
     assert!(!dir.join("run").exists(), "refused before any work");
     succeed(small_solve(&dir.join("run")).args(["--ordering", "amd"]));
     assert!(read(dir.join("run/summary.csv")).contains("amd"));
@@ -876,7 +876,7 @@ fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
         let o = solve(&steady, args, &dir.join("refused")).output().unwrap();
         let err = stderr(&o);
         assert!(!o.status.success(), "{args:?} accepted");
-        assert!(err.contains(&format!("`{field}`")), "{args:?}: {err}");
+        assert!(err.contains(&format!("`--{field}`")), "{args:?}: {err}");
     }
 }
 
@@ -1077,7 +1077,7 @@ fn a_grading_finer_than_double_precision_is_refused_by_name() {
             .output()
             .unwrap()
     };
-    refused(&run("0.05"), &["`grading`", "at least 0.088 at n = 32"]);
+    refused(&run("0.05"), &["`--grading`", "at least 0.088 at n = 32"]);
     assert!(!dir.join("g0.05").exists());
     ok(&run("0.088"));
 }
@@ -1108,7 +1108,7 @@ fn a_gamma3_without_a_free_node_is_refused_by_name() {
 fn a_huge_step_count_is_refused_before_any_allocation() {
     let dir = scratch("huge-steps");
     let o = solve("figure", "--n 4 --steps 4000000000000", &dir.join("run")).output();
-    refused(&o.unwrap(), &["`steps`", "an integer in 1..=1000000"]);
+    refused(&o.unwrap(), &["`--steps`", "an integer in 1..=1000000"]);
 }
 
 /// `plot` refuses a summary or a nodes table that does not describe the run (g NaN,
@@ -1258,11 +1258,14 @@ fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
         // edited summary said).
         (
             &[("g", "0.2")][..],
-            &["column `g` holds `0.2`", "(scenario.toml) has g = 0.1"][..],
+            &[
+                "column `g` holds `0.2`",
+                "contact.csv, written by the same run, states g = 0.1",
+            ][..],
         ),
         (
             &[("g", "inf")][..],
-            &["column `g` holds `inf`", "(scenario.toml) has g = 0.1"][..],
+            &["column `g` holds `inf`", "states g = 0.1"][..],
         ),
     ] {
         std::fs::write(out.join("summary.csv"), with_cells(&summary, 4, edits)).unwrap();
@@ -1274,17 +1277,16 @@ fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
         );
     }
     ok(&plot(&out));
-    // Without its scene, the contact nodes still bound g from below.
-    let scene = read(out.join("scenario.toml"));
-    std::fs::remove_file(out.join("scenario.toml")).unwrap();
-    std::fs::write(
-        out.join("summary.csv"),
-        with_cells(&summary, 4, &[("g", "0.001")]),
-    )
-    .unwrap();
+    // Without the stated g, the contact nodes still bound it from below.
+    let contact = read(out.join("contact.csv"));
+    let unstated = contact.replace("; g = 0.1;", ";");
+    assert_ne!(unstated, contact);
+    std::fs::write(out.join("contact.csv"), unstated).unwrap();
+    let low = with_cells(&summary, 4, &[("g", "0.001")]);
+    std::fs::write(out.join("summary.csv"), low).unwrap();
     refused(&plot(&out), &["column `g` holds `0.001`", "above it"]);
     std::fs::write(out.join("summary.csv"), &summary).unwrap();
-    std::fs::write(out.join("scenario.toml"), scene).unwrap();
+    std::fs::write(out.join("contact.csv"), contact).unwrap();
     ok(&plot(&out));
 
     // A graded run of a level that is no power of two: its nodes do not give n, and
@@ -1651,7 +1653,7 @@ fn an_absurd_n_is_refused_by_the_memory_guard() {
         let o = evhi_with(cmd).output().unwrap();
         let err = stderr(&o);
         assert!(!o.status.success(), "{cmd:?} passed");
-        assert_contains(&err, &["`n`", "fits in memory", "e"]);
+        assert_contains(&err, &["`--n`", "fits in memory", "e"]);
     }
 }
 
@@ -1668,7 +1670,7 @@ fn the_audits_smaller_messages_say_what_holds() {
     succeed(evhi().arg("plot").arg(".").current_dir(&out));
     let mut cmd = small_solve(&dir.join("neg"));
     let err = stderr(&cmd.args(["--certificate-tol", "-1e-10"]).output().unwrap());
-    assert_contains(&err, &["`certificate-tol`", "[1e-15, 1e-4]"]);
+    assert_contains(&err, &["`--certificate-tol`", "[1e-15, 1e-4]"]);
 
     let steady: String = read(FIGURE)
         .lines()
@@ -1685,7 +1687,7 @@ fn the_audits_smaller_messages_say_what_holds() {
     let o = show(&file, "--n 8");
     ok(&o);
     assert!(stdout(&o).contains("steps = 1)"));
-    assert!(failed(&show(&file, "--n 8 --steps 4")).contains("`steps`"));
+    assert!(failed(&show(&file, "--n 8 --steps 4")).contains("`--steps`"));
 
     let shown = stdout(&show(CANTILEVER, ""));
     assert!(!shown.contains("H(j): constant m"), "{shown}");
@@ -1858,7 +1860,7 @@ fn step_records_that_cannot_fit_are_refused() {
         ))
         .output()
         .unwrap();
-    refused(&o, &["`steps`", "records fit in memory"]);
+    refused(&o, &["`--steps`", "records fit in memory"]);
 }
 
 /// The time study's table says what its NaN and inf mean where a scene has them (the

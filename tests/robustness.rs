@@ -367,3 +367,54 @@ proptest! {
         }
     }
 }
+
+/// The library refuses run settings in its own words: the field of `RunSettings`
+/// (`certificate_tol`, `threads`), and nothing of the command line's flags, which the
+/// CLI adds (issue 48: the library spoke of `certificate-tol` and `--ordering amd`).
+#[test]
+fn settings_are_refused_in_the_librarys_words() {
+    use evhi::prelude::*;
+    let scene = || Scenario::load("figure").unwrap();
+    let base = || RunSettings {
+        n: 16,
+        steps: Some(2),
+        ..RunSettings::default()
+    };
+    let cases: [(RunSettings, &str); 4] = [
+        (
+            RunSettings {
+                certificate_tol: 1.0,
+                ..base()
+            },
+            "`certificate_tol`",
+        ),
+        (
+            RunSettings {
+                grading: Some(0.3),
+                ..base()
+            },
+            "`grading`",
+        ),
+        (
+            RunSettings {
+                threads: Some(3),
+                ..base()
+            },
+            "`threads`",
+        ),
+        (
+            RunSettings {
+                mesh: MeshKind::Graded,
+                ordering: Some(evhi::scheme::OrderingKind::NestedDissection),
+                ..base()
+            },
+            "`ordering`",
+        ),
+    ];
+    for (settings, field) in cases {
+        let err = Simulation::new(scene(), settings).err().expect("accepted");
+        let text = err.to_string();
+        assert!(text.contains(field), "{text}");
+        assert!(!text.contains("--"), "a command-line flag in {text}");
+    }
+}

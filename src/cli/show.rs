@@ -18,13 +18,20 @@ pub struct ShowArgs {
 /// Prints the report; a failed hypothesis is a warning, not an error.
 pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
-    crate::mesh::check_n(args.n)?;
-    crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry))?;
+    // Refused as `solve` refuses them, by their options.
+    let flag = super::solve::settings_flag;
+    crate::mesh::check_n(args.n).map_err(flag)?;
+    crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry)).map_err(flag)?;
     // The step count `solve` would take, refused as `solve` refuses it.
     let steps = args
         .steps
         .unwrap_or_else(|| crate::simulation::default_steps(&scn));
-    crate::scheme::check_steps(Some(&scn), &crate::scheme::Settings::new(args.n, steps))?;
+    crate::scheme::check_steps(Some(&scn), &crate::scheme::Settings::new(args.n, steps)).map_err(
+        |e| match e {
+            crate::scheme::RunError::Input(e) => crate::scheme::RunError::Input(flag(e)),
+            other => other,
+        },
+    )?;
     let (text, warnings) = crate::show::report(&scn, args.n, steps);
     crate::term::emit(&text)?;
     if warnings > 0 {

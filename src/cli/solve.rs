@@ -144,7 +144,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(t_r) => scn.with_ramp(t_r)?,
         None => scn,
     };
-    let sim = Simulation::new(scn, settings(&args))?;
+    let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
         .iter()
@@ -202,6 +202,24 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         args.out.display()
     );
     Ok(())
+}
+
+/// The refusal of a run setting named by its option: the library names the field of
+/// [`RunSettings`] (`certificate_tol`), the command line its flag (`--certificate-tol`).
+pub fn settings_flag(e: crate::error::InputError) -> crate::error::InputError {
+    [
+        ("n", "--n"),
+        ("steps", "--steps"),
+        ("mesh", "--mesh"),
+        ("grading", "--grading"),
+        ("solver", "--solver"),
+        ("path", "--path"),
+        ("ordering", "--ordering"),
+        ("threads", "--threads"),
+        ("certificate_tol", "--certificate-tol"),
+    ]
+    .into_iter()
+    .fold(e, |e, (field, flag)| e.for_flag(field, flag))
 }
 
 /// The run settings the options ask for (checked by [`Simulation::new`]).
