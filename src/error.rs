@@ -87,6 +87,16 @@ fn readable(v: String) -> String {
     }
 }
 
+/// A number as a message prints it: in exponent notation where its decimal form
+/// would be long (`1e300` prints 301 digits, `1e-99` about 100).
+pub fn number(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && !(1e-4..1e9).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 /// Magnitude bound of forces, moduli and slopes: beyond it products in the step
 /// problem (stiffness times displacement squared) leave the range where a double
 /// precision solve can be certified.

@@ -1638,7 +1638,10 @@ fn bench_refuses_a_foreign_output_directory() {
     std::fs::remove_file(figures.join("work_precision.png")).unwrap();
     std::fs::remove_file(data.join(".evhi-outputs")).unwrap();
     let before = snapshot(&dir);
-    refused(&from_csv(&dir), &["data", "holds files evhi did not write"]);
+    refused(
+        &from_csv(&dir),
+        &["`--data`", "holds files evhi did not write"],
+    );
     assert!(snapshot(&dir) == before, "a file was written or changed");
 }
 
@@ -1775,7 +1778,7 @@ fn reproduce_refuses_before_it_writes() {
             "{extra:?} made a directory"
         );
     }
-    for (d, f, expect) in [(&file, &figures, "`data`"), (&data, &file, "`figures`")] {
+    for (d, f, expect) in [(&file, &figures, "`--data`"), (&data, &file, "`--figures`")] {
         failed_with(&run("fig2", d, f), expect);
     }
     let _ = std::fs::remove_dir_all(&data);
@@ -1951,5 +1954,48 @@ fn the_h_f_warning_names_its_traction_and_only_for_an_evolution() {
         }
         let out = stdout(&show(base.join(format!("{problem}.toml")), ""));
         assert_eq!(out.contains("not asked"), !warns, "{problem}: {out}");
+    }
+}
+
+/// `bench` refuses at once what it used to refuse or fail on after minutes of
+/// measurement (round four's re-run): a level given twice, a level that is no level
+/// of the paper's scene, no repeat, and a --data without the table1.csv its chart
+/// draws. Nothing is measured or written.
+#[test]
+fn bench_refuses_its_arguments_before_measuring() {
+    let dir = scratch("bench-args");
+    let data = dir.join("data");
+    let figures = dir.join("figures");
+    std::fs::create_dir_all(&data).unwrap();
+    std::fs::copy("data/.evhi-outputs", data.join(".evhi-outputs")).unwrap();
+    let bench = |extra: &str| {
+        let mut cmd = evhi_with(&format!("bench {extra} --data"));
+        cmd.arg(&data).arg("--figures").arg(&figures);
+        output_within(&mut cmd, 60)
+    };
+    let before = snapshot(&dir);
+    for (extra, needles) in [
+        ("--levels 8,8", &["`--levels`", "each level once"][..]),
+        (
+            "--levels 5",
+            &["`--levels`", "a positive multiple of 4"][..],
+        ),
+        (
+            "--solver-levels 0",
+            &["`--solver-levels`", "a positive multiple of 4"][..],
+        ),
+        ("--repeat 0", &["`--repeat`", ">= 1"][..]),
+        (
+            "--levels 8",
+            &["`--data`", "table1.csv", "reproduce table1"][..],
+        ),
+    ] {
+        let start = std::time::Instant::now();
+        refused(&bench(extra), needles);
+        assert!(
+            start.elapsed().as_secs() < 20,
+            "{extra}: refused after work"
+        );
+        assert!(snapshot(&dir) == before, "{extra}: a file was written");
     }
 }

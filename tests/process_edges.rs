@@ -119,9 +119,9 @@ fn reproduce_writes_only_where_it_may() {
             .unwrap()
     };
     for (data, figures, flag) in [
-        (user.clone(), dir.join("figs"), "`data`"),
-        (dir.join("data"), user.clone(), "`figures`"),
-        (std::path::PathBuf::from("/"), dir.join("figs"), "`data`"),
+        (user.clone(), dir.join("figs"), "`--data`"),
+        (dir.join("data"), user.clone(), "`--figures`"),
+        (std::path::PathBuf::from("/"), dir.join("figs"), "`--data`"),
     ] {
         let err = refused(&run(&data, &figures), &[flag, "evhi did not write"]);
         assert!(err.contains(".evhi-outputs"), "{err}");

@@ -115,6 +115,53 @@ fn child_run(
     row
 }
 
+/// Refuses, before any measurement, what the bench would refuse or fail on later: a
+/// level that is no level of the paper's scene (a multiple of 4 up to the largest), a
+/// level given twice (its rows would repeat), no repeat, and, for the full bench, a
+/// --data without the `table1.csv` whose errors the work-precision chart draws.
+fn check_args(args: &BenchArgs, ctx: &crate::study::Ctx) -> Result<(), crate::error::InputError> {
+    use crate::error::InputError;
+    let full = !args.sweeps && !args.scipy;
+    let lists: [(&str, &[usize], bool); 3] = [
+        ("--levels", &args.levels, full),
+        ("--solver-levels", &args.solver_levels, full),
+        ("--scipy-levels", &args.scipy_levels, args.scipy),
+    ];
+    for (flag, levels, _) in lists.into_iter().filter(|l| l.2) {
+        for (i, &n) in levels.iter().enumerate() {
+            crate::mesh::check_n(n).map_err(|e| e.for_flag("n", flag))?;
+            if levels[..i].contains(&n) {
+                return Err(InputError::field(
+                    flag,
+                    n,
+                    "each level once (a level given twice would be measured and written twice)",
+                ));
+            }
+        }
+    }
+    if args.repeat == 0 {
+        return Err(InputError::field(
+            "--repeat",
+            0,
+            "a whole number >= 1 (runs per configuration)",
+        ));
+    }
+    let table1 = ctx.data_path("table1.csv");
+    if full && !table1.is_file() {
+        return Err(InputError::field(
+            "--data",
+            ctx.data.display(),
+            format!(
+                "a directory holding table1.csv, whose errors the work-precision chart draws: \
+                 {} is missing; run `evhi reproduce table1 --data {}` first",
+                table1.display(),
+                ctx.data.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Runs the benchmark and writes its tables and chart.
 pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     use crate::study::Ctx;
@@ -130,6 +177,9 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         experiment: "bench",
         book_table: crate::bench::book_table,
     };
+    if !args.from_csv {
+        check_args(&args, &ctx)?;
+    }
     // The tables and figures replace files of the same names: only in directories
     // evhi wrote (or new ones), one writer at a time.
     let _lock = crate::experiments::reproduce::claim_outputs(&ctx)?;

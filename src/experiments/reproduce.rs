@@ -241,7 +241,7 @@ fn lock_outputs(data: &std::path::Path) -> Result<crate::output::HeldLock, Strin
         .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?
         .ok_or_else(|| {
             format!(
-                "another `evhi reproduce` is writing {} (it holds {}); wait for it to finish",
+                "another `evhi reproduce` or `evhi bench` is writing {} (it holds {}); wait for it to finish",
                 data.display(),
                 path.display()
             )
@@ -298,9 +298,9 @@ fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::erro
     }
     names.sort();
     Err(refuse(format!(
-        "a new or empty directory, or one an earlier `evhi reproduce` wrote (it holds \
+        "a new or empty directory, or one an earlier `evhi reproduce` or `bench` wrote (it holds \
          `{OUTPUTS_MARKER}`): this one holds files evhi did not write (for example `{}`), \
-         and reproduce would replace any of the same names as its tables and figures",
+         and its tables and figures would replace any of the same names",
         names[0]
     )))
 }
@@ -313,10 +313,10 @@ fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::erro
 pub fn claim_outputs(
     ctx: &super::Ctx,
 ) -> Result<crate::output::HeldLock, Box<dyn std::error::Error>> {
-    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
+    for (flag, dir) in [("--data", &ctx.data), ("--figures", &ctx.figures)] {
         check_output_dir(flag, dir)?;
     }
-    for (flag, dir) in [("data", &ctx.data), ("figures", &ctx.figures)] {
+    for (flag, dir) in [("--data", &ctx.data), ("--figures", &ctx.figures)] {
         std::fs::create_dir_all(dir)
             .and_then(|()| {
                 let marker = dir.join(OUTPUTS_MARKER);

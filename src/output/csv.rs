@@ -135,7 +135,7 @@ impl Text {
                         format!(
                             "{column} holds `{}`, with the control or line-breaking character \
                              U+{:04X}, not text a table holds",
-                            f.escape_debug(),
+                            shown(f),
                             c as u32
                         ),
                     ));
@@ -143,13 +143,27 @@ impl Text {
             }
             match &header {
                 None => {
+                    // A deleted header line makes the first row the header: names that
+                    // are mostly numbers.
+                    let numbers = fields.iter().filter(|f| f.parse::<f64>().is_ok()).count();
+                    if numbers > 0 && 2 * numbers >= fields.len() {
+                        return Err(at(
+                            i + 1,
+                            format!(
+                                "{numbers} of its {} fields are numbers where the header's \
+                                 column names belong: the header line seems to be missing",
+                                fields.len()
+                            ),
+                        ));
+                    }
                     if let Some((k, name)) =
                         (fields.iter().enumerate()).find(|(k, name)| fields[..*k].contains(name))
                     {
                         return Err(at(
                             i + 1,
                             format!(
-                                "column `{name}` appears twice in the header (field {})",
+                                "column `{}` appears twice in the header (field {})",
+                                shown(name),
                                 k + 1
                             ),
                         ));
@@ -160,7 +174,7 @@ impl Text {
                     if fields.len() != names.len() {
                         let (n, m) = (fields.len(), names.len());
                         let which = if n > m {
-                            format!("field {}, `{}`, has no column", m + 1, fields[m])
+                            format!("field {}, `{}`, has no column", m + 1, shown(&fields[m]))
                         } else {
                             format!("column `{}` (field {}) has no value", names[n], n + 1)
                         };
@@ -202,8 +216,21 @@ impl Text {
             .map_or("", |v| v.as_str());
         super::FileError::Table {
             path: format!("{}:{line}", self.path),
-            message: format!("column `{column}` holds `{value}`, not {allowed}"),
+            message: format!("column `{column}` holds `{}`, not {allowed}", shown(value)),
         }
+    }
+}
+
+/// A cell as an error echoes it: escaped, a number in exponent notation where its
+/// decimal form is long, and cut to 60 characters (a cell may hold megabytes).
+pub fn shown(cell: &str) -> String {
+    let v = match cell.parse::<f64>() {
+        Ok(x) if x.is_finite() && cell.len() > 24 => format!("{x:e}"),
+        _ => cell.escape_debug().to_string(),
+    };
+    match v.char_indices().nth(60) {
+        None => v,
+        Some((i, _)) => format!("{}… ({} characters)", &v[..i], cell.chars().count()),
     }
 }
 
@@ -214,22 +241,11 @@ fn no_column<'a>(
     names: impl Iterator<Item = &'a String>,
 ) -> super::FileError {
     let names: Vec<&String> = names.collect();
-    // A deleted header line makes the first row the header: its names are numbers.
-    let numbers = names.iter().filter(|n| n.parse::<f64>().is_ok()).count();
-    let hint = if numbers > 0 && 2 * numbers >= names.len() {
-        "; that line holds numbers where a header holds column names: the header line \
-         seems to be missing"
-    } else {
-        ""
-    };
-    let names: Vec<String> = names
-        .iter()
-        .map(|n| format!("`{}`", n.escape_debug()))
-        .collect();
+    let names: Vec<String> = names.iter().map(|n| format!("`{}`", shown(n))).collect();
     super::FileError::Table {
         path: at.to_string(),
         message: format!(
-            "no column `{name}`; the header has {}{hint}",
+            "no column `{name}`; the header has {}",
             if names.is_empty() {
                 "none".to_string()
             } else {

@@ -16,7 +16,7 @@ pub mod vtu;
 /// A table or figure file that could not be read or written.
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
-    #[error("i/o on {path}: {source}")]
+    #[error("{path}: {source}")]
     Io {
         path: String,
         source: std::io::Error,

@@ -83,12 +83,33 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
         - x.iter().copied().fold(f64::INFINITY, f64::min);
     let n = summary.n as f64;
     let cell = width / n;
-    if !dir.join("triangles.csv").exists() {
+    let uniform = summary.mesh == "uniform";
+    if uniform == dir.join("triangles.csv").exists() {
+        return Err(refuse(
+            "mesh",
+            summary.mesh.clone(),
+            if uniform {
+                "the run directory holds triangles.csv, which only a graded run writes".into()
+            } else {
+                "the run directory has no triangles.csv, which a graded run writes".into()
+            },
+        ));
+    }
+    if uniform {
         let mut xs: Vec<f64> = super::rows::ContactRow::read(&dir.join("contact.csv"))?
             .into_iter()
             .map(|r| r.x)
             .collect();
         xs.sort_by(f64::total_cmp);
+        if let Some(w) = xs.windows(2).find(|w| w[0] == w[1]) {
+            return Err(FileError::Table {
+                path: dir.join("contact.csv").display().to_string(),
+                message: format!(
+                    "two contact nodes at x = {}; a run writes each node once",
+                    crate::error::number(w[0])
+                ),
+            });
+        }
         let gaps: Vec<f64> = xs.windows(2).map(|w| w[1] - w[0]).collect();
         // Gaps in cells, a whole number up to rounding in the coordinates.
         let whole = |gap: f64| ((gap / cell) - (gap / cell).round()).abs() < 1e-6;
@@ -99,9 +120,12 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
                 "n",
                 summary.n.to_string(),
                 format!(
-                    "the contact nodes of contact.csv are {closest} apart at the closest, on a \
-                     body {width} wide, which makes n = {}, not cells of {width}/{n}",
-                    (width / closest).round()
+                    "the contact nodes of contact.csv are {} apart at the closest, on a \
+                     body {} wide, which makes n = {}, not cells of {}/{n}",
+                    crate::error::number(closest),
+                    crate::error::number(width),
+                    (width / closest).round(),
+                    crate::error::number(width)
                 ),
             ));
         }
@@ -111,7 +135,11 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
         return Err(refuse(
             "h",
             summary.h.to_string(),
-            format!("the body of nodes.csv is {width} wide, so h = W/(2n) = {h} for n = {n}"),
+            format!(
+                "the body of nodes.csv is {} wide, so h = W/(2n) = {} for n = {n}",
+                crate::error::number(width),
+                crate::error::number(h)
+            ),
         ));
     }
     check_g(dir, summary, &refuse)?;
@@ -156,8 +184,11 @@ fn check_g(
     {
         return Err(refuse(
             "g",
-            g.to_string(),
-            format!("contact.csv, written by the same run, states g = {stated}"),
+            crate::error::number(g),
+            format!(
+                "contact.csv, written by the same run, states g = {}",
+                crate::error::number(stated)
+            ),
         ));
     }
     // The penalty lets u_nu pass g by what the summary records; the others, by what
@@ -175,11 +206,11 @@ fn check_g(
         if off {
             return Err(refuse(
                 "g",
-                g.to_string(),
+                crate::error::number(g),
                 format!(
                     "contact.csv's node at x = {} has u_nu = {} {}",
-                    r.x,
-                    r.u_nu,
+                    crate::error::number(r.x),
+                    crate::error::number(r.u_nu),
                     if at_limit { "at the limit" } else { "above it" }
                 ),
             ));
@@ -219,7 +250,8 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
     let bad = |c: &str, v: f64, allowed: &str| FileError::Table {
         path: summary_at.clone(),
         message: format!(
-            "column `{c}` holds `{v}`, not {allowed} (the table was not written by this run)"
+            "column `{c}` holds `{}`, not {allowed} (the table was not written by this run)",
+            crate::error::number(v)
         ),
     };
     let count = |c: &str, v: u64, max: f64| -> Result<usize, FileError> {
