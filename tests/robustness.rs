@@ -412,7 +412,7 @@ fn settings_are_refused_in_the_librarys_words() {
         ),
     ];
     for (settings, field) in cases {
-        let err = Simulation::new(scene(), settings).err().expect("accepted");
+        let err = Simulation::new(scene(), settings).expect_err("accepted");
         let text = err.to_string();
         assert!(text.contains(field), "{text}");
         assert!(!text.contains("--"), "a command-line flag in {text}");
