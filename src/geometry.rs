@@ -166,6 +166,12 @@ fn segment(side: Side, from: f64, to: f64, hold: Hold, field: &str) -> Segment {
     }
 }
 
+/// The singular points of the paper's scene ([`Geometry::paper`]): the clamp ends
+/// $(0, \tfrac12)$, $(2, \tfrac12)$, then the top corners $(0, 1)$, $(2, 1)$. The book's
+/// graded meshes refine towards them; [`Geometry::singular_points`] finds the same
+/// points from the supports of any scene.
+pub const PAPER_SINGULAR: [[f64; 2]; 4] = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
+
 impl Geometry {
     /// The paper's scene: $(0,2)\times(0,1)$, the sides clamped on $[\tfrac12, 1]$, the
     /// whole bottom in contact.

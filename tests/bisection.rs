@@ -4,8 +4,7 @@
 mod common;
 
 use evhi::bisection::{Forest, Leaves};
-use evhi::experiments::graded::SINGULAR;
-use evhi::geometry::Geometry;
+use evhi::geometry::{Geometry, PAPER_SINGULAR as SINGULAR};
 use evhi::mesh::Mesh;
 use evhi::study::graded::graded_size;
 use std::collections::HashMap;

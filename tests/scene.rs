@@ -347,7 +347,7 @@ fn presets_equal_their_segments() {
 fn singular_points_follow_the_supports() {
     let mut paper = Geometry::paper().singular_points();
     paper.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    let mut expected = evhi::experiments::graded::SINGULAR.to_vec();
+    let mut expected = evhi::geometry::PAPER_SINGULAR.to_vec();
     expected.sort_by(|a, b| a.partial_cmp(b).unwrap());
     assert_eq!(paper, expected);
     assert!(Geometry::rollers().singular_points().is_empty());

@@ -29,11 +29,9 @@
 //! maximum over the level's time grid $t_j = j/n$, with the time where it occurs.
 
 use super::{Ctx, ExpError};
+use crate::geometry::PAPER_SINGULAR as SINGULAR;
 use crate::scenario::Scenario;
 use crate::study::graded::{Graded, MU, Split, compute, draw, plan, units};
-
-/// The singular points of the paper's scene: the clamp ends, then the top corners.
-pub const SINGULAR: [[f64; 2]; 4] = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
 
 /// The families: name, and the points a graded mesh refines towards (none: uniform).
 pub const FAMILIES: [(&str, &[[f64; 2]]); 4] = [
