@@ -9,7 +9,8 @@
 //! drawn or written.
 
 use crate::output::FileError;
-use crate::output::rows::{AT_LEAST_ONE, Allowed, NON_NEGATIVE, POSITIVE, SECONDS, row};
+use crate::output::rows::{AT_LEAST_ONE, Allowed, NON_NEGATIVE, POSITIVE, SECONDS};
+use crate::row;
 use std::path::Path;
 
 /// A time loop `evhi solve` runs.

@@ -3,7 +3,8 @@
 //! ([`TriangleRow`]). Each column is spelled once, in its row's definition; the run
 //! writes its tables from these rows, and `evhi plot`, `evhi bench` and the tests read
 //! them back into the same rows, each cell checked and a wrong one named by its file,
-//! line and column. Other tables define their rows with the same `row!` macro.
+//! line and column. Other tables define their rows with the same macro, [`crate::row!`]
+//! (the bench's tables in the binary do).
 
 use super::FileError;
 use super::csv::{Table, Text};
@@ -114,7 +115,29 @@ pub fn column<T: Cell>(text: &Text, name: &str, rules: &[Allowed<T>]) -> Result<
 
 /// Defines a row struct whose fields are the table's columns (`field: type =>
 /// "column"`, with `if RULE` where the column allows less than its type, see
-/// [`Allowed`]), with its table ([`Table`]), its reader and its numeric columns.
+/// [`output::rows::Allowed`](crate::output::rows::Allowed)), with its table
+/// ([`output::csv::Table`](crate::output::csv::Table)), its reader and its numeric
+/// columns. The rows of [`output::rows`](crate::output::rows) are defined with it.
+///
+/// ```
+/// use evhi::output::rows::POSITIVE;
+///
+/// evhi::row! {
+///     /// One row of a table of timings.
+///     pub struct TimingRow {
+///         /// Segments on the bottom.
+///         n: u64 => "n",
+///         /// Wall time in seconds.
+///         wall_s: f64 => "wall_s" if POSITIVE,
+///     }
+/// }
+///
+/// let rows = [TimingRow { n: 8, wall_s: 0.5 }];
+/// assert_eq!(TimingRow::COLUMNS, ["n", "wall_s"]);
+/// assert_eq!(rows[0].numbers(), [("n", 8.0), ("wall_s", 0.5)]);
+/// let _table = TimingRow::table(&rows);
+/// ```
+#[macro_export]
 macro_rules! row {
     ($(#[$m:meta])* pub struct $name:ident { $( $(#[$fm:meta])* $field:ident : $ty:ty => $col:literal $(if $rule:expr)?, )* }) => {
         $(#[$m])*
@@ -160,8 +183,6 @@ macro_rules! row {
         }
     };
 }
-
-pub(crate) use row;
 
 row! {
     /// One row of `summary.csv`: the run's size, result, data, costs and provenance.
