@@ -29,25 +29,24 @@
 //! [`step`] (per-step solvers) → [`certificate`] → [`output`]. [`diagnostics`] says
 //! which of the paper's hypotheses a solve breaks.
 //!
-//! Above the solver, each user of it has a room: [`cli`] (the commands `solve`,
-//! `show`, `plot`, `bench`), [`study`] (the studies of `evhi study` on any scenario,
-//! and the computations the book's experiments share with them: graded families,
-//! Table 1's families, the time error, stability maps, corner exponents), [`bench`](mod@bench)
-//! (the bench's own measurements) and, on top, [`experiments`] (one module per
-//! experiment of the book, and `evhi reproduce`, which runs them). A room imports
-//! only from rooms below it.
+//! Above the solver, [`study`] holds the studies of `evhi study` on any scenario and
+//! the computations the book's experiments share with them (graded families, Table
+//! 1's families, the time error, stability maps, corner exponents).
+//!
+//! The library's other users are not part of it: the binary `evhi` (`src/main.rs`)
+//! holds the commands (`cli`: `solve`, `show`, `plot`, `bench`), the bench's own
+//! measurements (`bench`) and the book's experiments with `evhi reproduce`
+//! (`experiments`). They call the library through `evhi::…` as any program would, and
+//! the library never names them. A room imports only from rooms below it.
 
 pub mod assembly;
-pub mod bench;
 pub mod bisection;
 pub mod certificate;
-pub mod cli;
 pub mod condense;
 pub mod dense;
 pub mod diagnostics;
 pub mod element;
 pub mod error;
-pub mod experiments;
 pub mod geometry;
 pub mod history;
 pub mod law;

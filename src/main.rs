@@ -1,8 +1,16 @@
 //! The `evhi` command line: parses the arguments and hands each command to its
-//! room in [`evhi::cli`].
+//! room in [`cli`].
+//!
+//! The binary crate holds the library's users that are not part of its product: the
+//! commands ([`cli`]), the bench's own measurements ([`bench`]) and the book's
+//! experiments with `evhi reproduce` ([`experiments`]). They call the library as any
+//! user would, through `evhi::…`; the library never refers to them.
+
+mod bench;
+mod cli;
+mod experiments;
 
 use clap::{Parser, Subcommand};
-use evhi::cli;
 use evhi::scenario::Scenario;
 use evhi::study;
 use std::path::PathBuf;
@@ -36,7 +44,7 @@ enum Command {
     /// Recompute the paper's figures and tables (Figs. 2-5, Table 1) and the studies
     /// beyond it: CSV into data/, PNG and SVG into figures/. With no name, all run
     /// (the experiments are listed under NAMES).
-    Reproduce(evhi::experiments::reproduce::ReproduceArgs),
+    Reproduce(experiments::reproduce::ReproduceArgs),
     /// Time every phase at several levels (each run in a fresh process, medians of
     /// --repeat runs), compare the step solvers, and write data/bench.csv,
     /// data/bench_solvers.csv and the work-precision chart figures/work_precision.png.
@@ -68,7 +76,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Solve(args) => cli::solve::run(args),
-        Command::Reproduce(args) => evhi::experiments::reproduce::run(args),
+        Command::Reproduce(args) => experiments::reproduce::run(args),
         Command::Bench(args) => cli::bench::run(args),
         Command::Scenarios => {
             let mut text = String::new();

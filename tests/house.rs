@@ -49,7 +49,9 @@ fn code(line: &str) -> String {
     out
 }
 
-/// Top-level module -> the top-level modules its code names as `crate::x`.
+/// Top-level module -> the top-level modules its code names as `crate::x`, or, in the
+/// binary's modules (`cli`, `bench`, `experiments`), as `evhi::x`: a room of the binary
+/// sits above every room of the library it names.
 fn imports() -> BTreeMap<String, BTreeSet<String>> {
     let mut files = vec![];
     rust_files(&src(), &mut files);
@@ -73,8 +75,8 @@ fn imports() -> BTreeMap<String, BTreeSet<String>> {
         let deps = map.entry(top.clone()).or_default();
         for line in text.lines() {
             let c = code(line);
-            for (i, _) in c.match_indices("crate::") {
-                let name: String = c[i + 7..]
+            for (i, m) in c.match_indices("crate::").chain(c.match_indices("evhi::")) {
+                let name: String = c[i + m.len()..]
                     .chars()
                     .take_while(|ch| ch.is_alphanumeric() || *ch == '_')
                     .collect();
@@ -205,71 +207,4 @@ fn no_solver_is_picked_by_index() {
         }
     }
     assert!(found.is_empty(), "solvers picked by index: {found:#?}");
-}
-
-/// The registry of experiments is the one place an experiment's name is spelled: the
-/// CLI's values, `reproduce paper`, the scheduling, the dispatcher and every table's
-/// provenance read it. A literal equal to a name elsewhere must be another word that
-/// happens to be spelled alike, listed here with what it means.
-#[test]
-fn experiment_names_are_spelled_in_the_registry_only() {
-    let other_meaning: [(&str, &str); 8] = [
-        ("src/cli/solve.rs", "graded"),          // the mesh kind of --mesh
-        ("src/study/mod.rs", "time"),            // the study `evhi study time`
-        ("src/study/mod.rs", "stability"),       // the study `evhi study stability`
-        ("src/study/convergence.rs", "graded"),  // a mesh family's label
-        ("src/experiments/graded.rs", "graded"), // a mesh family's label
-        ("src/study/stability.rs", "stability"), // the study's figure stem
-        ("src/experiments/forensics/table.rs", "time"), // a column: the reading's time norm
-        ("src/manufactured/run.rs", "exact"),    // a quadrature rule's name
-    ];
-    let mut files = vec![];
-    rust_files(&src(), &mut files);
-    let mut found = vec![];
-    for name in evhi::experiments::registry::names() {
-        let literal = format!("\"{name}\"");
-        for f in &files {
-            let rel = f
-                .strip_prefix(src().parent().unwrap())
-                .unwrap()
-                .display()
-                .to_string();
-            if rel.ends_with("experiments/registry.rs")
-                || other_meaning.contains(&(rel.as_str(), name))
-            {
-                continue;
-            }
-            let text = std::fs::read_to_string(f).unwrap();
-            for (i, line) in text.lines().enumerate() {
-                if !line.trim_start().starts_with("//") && line.contains(&literal) {
-                    found.push(format!("{rel}:{}: {}", i + 1, line.trim()));
-                }
-            }
-        }
-    }
-    assert!(
-        found.is_empty(),
-        "experiment names spelled outside the registry: {found:#?}"
-    );
-}
-
-/// The tables the book shows are listed in the registry, beside the experiment (or the
-/// bench) that writes them: each is named once, and each has its CSV and its Markdown
-/// rendering in `data/`.
-#[test]
-fn book_tables_are_listed_with_their_writers() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut seen = BTreeSet::new();
-    for t in evhi::experiments::registry::book_tables() {
-        assert!(seen.insert(t.file), "{} listed twice", t.file);
-        assert!(t.keys >= 1 && t.cols > t.keys, "{}", t.file);
-        let csv = root.join("data").join(t.file);
-        assert!(csv.exists(), "{} is not in data/", t.file);
-        assert!(
-            csv.with_extension("md").exists(),
-            "{} has no Markdown rendering",
-            t.file
-        );
-    }
-    assert_eq!(seen.len(), 15);
 }

@@ -1,5 +1,8 @@
 #!/usr/bin/env python3
-"""Lists the import cycles among the top-level modules of src/ (code only, not comments)."""
+"""Lists the import cycles among the top-level modules of src/ (code only, not comments).
+
+A module names another as `crate::x`, or, in the binary's modules (cli, bench,
+experiments), as `evhi::x` (the library)."""
 import glob
 import re
 import sys
@@ -11,7 +14,7 @@ for f in glob.glob("src/**/*.rs", recursive=True):
     top = f[4:-3].replace("/mod", "").split("/")[0]
     # Code only: no comments, no string literals.
     code = "\n".join(re.sub(r'"(?:[^"\\]|\\.)*"', '""', l).split("//")[0] for l in open(f))
-    deps = set(re.findall(r"crate::(\w+)", code))
+    deps = set(re.findall(r"\b(?:crate|evhi)::(\w+)", code))
     mods.setdefault(top, set()).update(d for d in deps if d != top)
 
 

@@ -7,7 +7,7 @@ pub mod sweeps;
 pub mod tables;
 pub mod workprec;
 
-use crate::output::markdown::{BookTable, book_table as table};
+use evhi::output::markdown::{BookTable, book_table as table};
 
 /// The tables of `evhi bench` the book shows.
 pub const TABLES: [BookTable; 5] = [
@@ -21,7 +21,7 @@ pub const TABLES: [BookTable; 5] = [
 /// The Markdown layout (key columns, most columns of a part) of `file` if it is one
 /// of the bench's tables the book shows.
 pub fn book_table(file: &str) -> Option<(usize, usize)> {
-    crate::output::markdown::layout(TABLES.iter(), file)
+    evhi::output::markdown::layout(TABLES.iter(), file)
 }
 
 /// `evhi bench --from-csv`: measures nothing; rebuilds `bench_vs_paper.csv`, the
@@ -29,7 +29,7 @@ pub fn book_table(file: &str) -> Option<(usize, usize)> {
 /// `ctx.data`. Every table is read and checked first ([`tables`]), so that a table
 /// the bench cannot have written is refused by file, line and column before anything
 /// is drawn or written.
-pub fn from_csv(ctx: &crate::study::Ctx) -> Result<(), crate::study::ExpError> {
+pub fn from_csv(ctx: &evhi::study::Ctx) -> Result<(), evhi::study::ExpError> {
     let bench: Vec<tables::BenchRow> = tables::read_bench(&ctx.data_path("bench.csv"))?
         .into_iter()
         .map(|(_, r)| r)

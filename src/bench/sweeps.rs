@@ -4,13 +4,13 @@
 //! number of columns varied, beside the machine's streaming bandwidth.
 
 use super::tables::SweepRow;
-use crate::assembly::Pair;
-use crate::linalg::Cholesky;
-use crate::ordering::Ordering;
-use crate::scenario::Scenario;
-use crate::scheme::Discretisation;
-use crate::study::{Ctx, ExpError};
-use crate::timing::median;
+use evhi::assembly::Pair;
+use evhi::linalg::Cholesky;
+use evhi::ordering::Ordering;
+use evhi::scenario::Scenario;
+use evhi::scheme::Discretisation;
+use evhi::study::{Ctx, ExpError};
+use evhi::timing::median;
 use faer::linalg::solvers::SolveCore;
 use std::time::Instant;
 
@@ -78,10 +78,10 @@ fn time_ours(chol: &Cholesky, b: &[f64], columns: usize) -> (f64, f64) {
 pub fn run(ctx: &Ctx, n: usize, machine: &str) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
     let disc = Discretisation::new(&scn, n)?;
-    let k = scn.t_end / n as f64;
+    let k = scn.t_end() / n as f64;
     let kmat = Pair::new(&disc.a, &disc.b)
         .ok_or_else(|| {
-            ExpError::File(crate::output::FileError::Table {
+            ExpError::File(evhi::output::FileError::Table {
                 path: "bench_sweeps".into(),
                 message: "A and B do not share their pattern".into(),
             })
@@ -89,7 +89,7 @@ pub fn run(ctx: &Ctx, n: usize, machine: &str) -> Result<(), ExpError> {
         .lin_comb(1.0, k);
     let b: Vec<f64> = disc.f.iter().map(|f| k * f).collect();
     let fail = |e: String| {
-        ExpError::File(crate::output::FileError::Table {
+        ExpError::File(evhi::output::FileError::Table {
             path: "bench_sweeps".into(),
             message: e,
         })

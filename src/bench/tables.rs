@@ -8,9 +8,9 @@
 //! cannot have written twice is refused by file, line and column before anything is
 //! drawn or written.
 
-use crate::output::FileError;
-use crate::output::rows::{AT_LEAST_ONE, Allowed, NON_NEGATIVE, POSITIVE, SECONDS};
-use crate::row;
+use evhi::output::FileError;
+use evhi::output::rows::{AT_LEAST_ONE, Allowed, NON_NEGATIVE, POSITIVE, SECONDS};
+use evhi::row;
 use std::path::Path;
 
 /// A time loop `evhi solve` runs.
@@ -19,9 +19,9 @@ const LOOP: Allowed<String> = Allowed {
     says: "`general` or `reduced` (the time loop)",
 };
 
-/// A step solver of the registry ([`crate::step::SOLVERS`]).
+/// A step solver of the registry ([`evhi::step::SOLVERS`]).
 const SOLVER: Allowed<String> = Allowed {
-    test: |s| crate::step::SOLVERS.iter().any(|e| e.name == s),
+    test: |s| evhi::step::SOLVERS.iter().any(|e| e.name == s),
     says: "the name of a step solver of the registry (`evhi solve --help` lists them)",
 };
 
@@ -210,8 +210,8 @@ fn paper_dofs<R>(
         let (n, dofs) = n_dofs(r);
         let expected = usize::try_from(n)
             .ok()
-            .and_then(|n| crate::mesh::Mesh::structured(n).ok())
-            .map(|mesh| crate::mesh::Dofs::new(&mesh, true).count as u64);
+            .and_then(|n| evhi::mesh::Mesh::structured(n).ok())
+            .map(|mesh| evhi::mesh::Dofs::new(&mesh, true).count as u64);
         let message = match expected {
             Some(e) if e == dofs => continue,
             Some(e) => format!(
@@ -221,7 +221,7 @@ fn paper_dofs<R>(
             None => format!(
                 "column `n` holds `{n}`, which is not a level of the paper's scene (a \
                  multiple of 4 up to {})",
-                crate::mesh::MAX_N
+                evhi::mesh::MAX_N
             ),
         };
         return Err(at(path, *line, message));

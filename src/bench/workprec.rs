@@ -2,12 +2,12 @@
 //! configurations of the convergence study (`evhi bench` times them).
 
 use super::tables::{BenchRow, PaperRow, REFERENCE, WorkPrecisionRow, read_bench};
-use crate::output::csv;
-use crate::output::plot::{
+use evhi::output::csv;
+use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
 };
-use crate::output::rows::{POSITIVE, column};
-use crate::study::{Ctx, ExpError};
+use evhi::output::rows::{POSITIVE, column};
+use evhi::study::{Ctx, ExpError};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -147,7 +147,7 @@ impl Figure for Chart {
                 .label(format!(
                     "own error of the h = 1/512 mesh, about {f:.1} % (estimate)"
                 ))
-                .legend(move |xy| crate::output::plot::dashed_legend(xy, 8, 6, grey));
+                .legend(move |xy| evhi::output::plot::dashed_legend(xy, 8, 6, grey));
         }
         chart
             .draw_series(

@@ -1,8 +1,8 @@
 //! `evhi bench`: every phase timed at several levels, each run in a fresh process.
 
 use crate::bench::tables::{BenchRow, ScipyRow, SolverRow, WorkPrecisionRow};
-use crate::step::DEFAULT_SOLVER;
-use crate::timing::{machine, median};
+use evhi::step::DEFAULT_SOLVER;
+use evhi::timing::{machine, median};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -94,8 +94,8 @@ fn child_run(
     solve_into(&dir, n, steps, solver, path)?;
     // Both files through their row types (the project's own CSV reader, polars); string
     // columns are skipped.
-    use crate::output::rows::{StepRow, SummaryRow};
-    let read = || -> Result<std::collections::HashMap<String, f64>, crate::output::FileError> {
+    use evhi::output::rows::{StepRow, SummaryRow};
+    let read = || -> Result<std::collections::HashMap<String, f64>, evhi::output::FileError> {
         let summary = SummaryRow::read(&dir.join("summary.csv"))?;
         let mut row: std::collections::HashMap<String, f64> = (summary.first().iter())
             .flat_map(|s| s.numbers())
@@ -119,8 +119,8 @@ fn child_run(
 /// level that is no level of the paper's scene (a multiple of 4 up to the largest), a
 /// level given twice (its rows would repeat), no repeat, and, for the full bench, a
 /// --data without the `table1.csv` whose errors the work-precision chart draws.
-fn check_args(args: &BenchArgs, ctx: &crate::study::Ctx) -> Result<(), crate::error::InputError> {
-    use crate::error::InputError;
+fn check_args(args: &BenchArgs, ctx: &evhi::study::Ctx) -> Result<(), evhi::error::InputError> {
+    use evhi::error::InputError;
     let full = !args.sweeps && !args.scipy;
     let lists: [(&str, &[usize], bool); 3] = [
         ("--levels", &args.levels, full),
@@ -129,7 +129,7 @@ fn check_args(args: &BenchArgs, ctx: &crate::study::Ctx) -> Result<(), crate::er
     ];
     for (flag, levels, _) in lists.into_iter().filter(|l| l.2) {
         for (i, &n) in levels.iter().enumerate() {
-            crate::mesh::check_n(n).map_err(|e| e.for_flag("n", flag))?;
+            evhi::mesh::check_n(n).map_err(|e| e.for_flag("n", flag))?;
             if levels[..i].contains(&n) {
                 return Err(InputError::field(
                     flag,
@@ -164,7 +164,7 @@ fn check_args(args: &BenchArgs, ctx: &crate::study::Ctx) -> Result<(), crate::er
 
 /// Runs the benchmark and writes its tables and chart.
 pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::study::Ctx;
+    use evhi::study::Ctx;
     let ctx = Ctx {
         quick: false,
         data: args.data.clone(),
@@ -187,7 +187,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         return Ok(crate::bench::from_csv(&ctx)?);
     }
     let machine = machine();
-    crate::diag!("bench on {machine}");
+    evhi::diag!("bench on {machine}");
     if args.sweeps {
         crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
         return Ok(());
@@ -208,7 +208,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
             }
             let mut runs = vec![];
             for r in 0..args.repeat.max(1) {
-                crate::diag!("  n = steps = {n}, {path} path, run {}", r + 1);
+                evhi::diag!("  n = steps = {n}, {path} path, run {}", r + 1);
                 runs.push(child_run(n, n, DEFAULT_SOLVER, path)?);
             }
             let m = |k: &str| median(runs.iter().map(|r| f(r, k)).collect());
@@ -238,12 +238,12 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     // Step solvers compared on the same runs.
     let mut rows = vec![];
     for &n in &args.solver_levels {
-        for solver in crate::step::SOLVERS
+        for solver in evhi::step::SOLVERS
             .iter()
             .filter(|e| e.benchmarked)
             .map(|e| e.name)
         {
-            crate::diag!("  solvers: n = steps = {n}, {solver}");
+            evhi::diag!("  solvers: n = steps = {n}, {solver}");
             let runs: Vec<_> = (0..args.repeat.max(1))
                 .map(|_| child_run(n, n, solver, "auto"))
                 .collect::<Result<_, _>>()?;
@@ -271,17 +271,17 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         ),
     )?;
     // Work-precision: every configuration of the convergence study, timed.
-    let table1 = crate::output::csv::read_csv(&ctx.data_path("table1.csv"))?;
-    let sc = crate::output::csv::col_str(&table1, "scenario")?;
-    let fam = crate::output::csv::col_str(&table1, "family")?;
-    let n = crate::output::csv::col_f64(&table1, "n")?;
-    let st = crate::output::csv::col_f64(&table1, "steps")?;
-    let err = crate::output::csv::col_f64(&table1, "rel_err_T_percent")?;
-    let errm = crate::output::csv::col_f64(&table1, "rel_err_max_percent")?;
+    let table1 = evhi::output::csv::read_csv(&ctx.data_path("table1.csv"))?;
+    let sc = evhi::output::csv::col_str(&table1, "scenario")?;
+    let fam = evhi::output::csv::col_str(&table1, "family")?;
+    let n = evhi::output::csv::col_f64(&table1, "n")?;
+    let st = evhi::output::csv::col_f64(&table1, "steps")?;
+    let err = evhi::output::csv::col_f64(&table1, "rel_err_T_percent")?;
+    let errm = evhi::output::csv::col_f64(&table1, "rel_err_max_percent")?;
     let mut wp = vec![];
     for i in (0..sc.len()).filter(|&i| sc[i] == "figure") {
         let (ni, si) = (n[i] as usize, st[i] as usize);
-        crate::diag!("  work-precision: n = {ni}, steps = {si}");
+        evhi::diag!("  work-precision: n = {ni}, steps = {si}");
         let runs: Vec<_> = (0..args.repeat.max(1))
             .map(|_| child_run(ni, si, DEFAULT_SOLVER, "auto"))
             .collect::<Result<_, _>>()?;
@@ -347,7 +347,7 @@ fn scipy_run(
 /// Our two time loops beside the SciPy implementation, run by run in turn:
 /// `data/bench_scipy.csv`.
 fn scipy(
-    ctx: &crate::study::Ctx,
+    ctx: &evhi::study::Ctx,
     args: &BenchArgs,
     machine: &str,
 ) -> Result<(), Box<dyn std::error::Error>> {
@@ -362,7 +362,7 @@ fn scipy(
         solve_into(&check, n, n, DEFAULT_SOLVER, "reduced")?;
         let (mut sp, mut gen_, mut red) = (vec![], vec![], vec![]);
         for r in 0..args.repeat.max(1) {
-            crate::diag!("  scipy comparison: n = steps = {n}, round {}", r + 1);
+            evhi::diag!("  scipy comparison: n = steps = {n}, round {}", r + 1);
             sp.push(scipy_run(n, &check)?);
             gen_.push(child_run(n, n, DEFAULT_SOLVER, "general")?);
             red.push(child_run(n, n, DEFAULT_SOLVER, "reduced")?);

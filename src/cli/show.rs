@@ -1,6 +1,6 @@
 //! `evhi show`: a scenario and the paper's hypotheses for it.
 
-use crate::scenario::Scenario;
+use evhi::scenario::Scenario;
 
 #[derive(clap::Args)]
 pub struct ShowArgs {
@@ -20,22 +20,22 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     // Refused as `solve` refuses them, by their options.
     let flag = super::solve::settings_flag;
-    crate::mesh::check_n(args.n).map_err(flag)?;
-    crate::scheme::check_memory(args.n, crate::mesh::rows(args.n, &scn.geometry)).map_err(flag)?;
+    evhi::mesh::check_n(args.n).map_err(flag)?;
+    evhi::scheme::check_memory(args.n, evhi::mesh::rows(args.n, scn.geometry())).map_err(flag)?;
     // The step count `solve` would take, refused as `solve` refuses it.
     let steps = args
         .steps
-        .unwrap_or_else(|| crate::simulation::default_steps(&scn));
-    crate::scheme::check_steps(Some(&scn), &crate::scheme::Settings::new(args.n, steps)).map_err(
+        .unwrap_or_else(|| evhi::simulation::default_steps(&scn));
+    evhi::scheme::check_steps(Some(&scn), &evhi::scheme::Settings::new(args.n, steps)).map_err(
         |e| match e {
-            crate::scheme::RunError::Input(e) => crate::scheme::RunError::Input(flag(e)),
+            evhi::scheme::RunError::Input(e) => evhi::scheme::RunError::Input(flag(e)),
             other => other,
         },
     )?;
-    let (text, warnings) = crate::show::report(&scn, args.n, steps);
-    crate::term::emit(&text)?;
+    let (text, warnings) = evhi::show::report(&scn, args.n, steps);
+    evhi::term::emit(&text)?;
     if warnings > 0 {
-        crate::diag!("{warnings} warning(s)");
+        evhi::diag!("{warnings} warning(s)");
     }
     Ok(())
 }

@@ -1,12 +1,12 @@
 //! `evhi solve`: one scenario, written as a self-describing run directory.
 
-use crate::certificate::ContactState;
-use crate::diagnostics;
-use crate::output::run::{Provenance, Recorder, Recording};
-use crate::output::rundir::RunDir;
-use crate::scenario::Scenario;
-use crate::scheme::OrderingKind;
-use crate::simulation::{Loop, MeshKind, Observer, RunSettings, Simulation};
+use evhi::certificate::ContactState;
+use evhi::diagnostics;
+use evhi::output::run::{Provenance, Recorder, Recording};
+use evhi::output::rundir::RunDir;
+use evhi::scenario::Scenario;
+use evhi::scheme::OrderingKind;
+use evhi::simulation::{Loop, MeshKind, Observer, RunSettings, Simulation};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -54,7 +54,7 @@ pub struct SolveArgs {
     /// where its line search stalls the run is solved again with `newton-no-line-search`,
     /// then `proxgrad` (a note says which certified it); a solver named here runs as
     /// it is.
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(evhi::step::solver_values()))]
     pub solver: Option<String>,
     /// Override the unilateral limit g (metres, in [1e-12, 1e6]; a scenario file may
     /// also say g = "none", no limit).
@@ -85,7 +85,7 @@ pub struct SolveArgs {
     #[arg(long)]
     pub timings: bool,
     /// Fail a step whose certificate exceeds this relative residual (in [1e-15, 1e-4]).
-    #[arg(long, default_value_t = crate::scheme::CERTIFICATE_TOL, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = evhi::scheme::CERTIFICATE_TOL, allow_hyphen_values = true)]
     pub certificate_tol: f64,
     /// Fill-reducing ordering of A + kB: `nd` (nested dissection of the grid, whose
     /// two halves two threads solve at once; the default on a uniform mesh) or `amd`
@@ -148,7 +148,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
         .iter()
-        .for_each(|l| crate::diag!("{l}"));
+        .for_each(|l| evhi::diag!("{l}"));
     let (mesh, steps) = (sim.mesh().clone(), sim.steps());
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
@@ -171,12 +171,12 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let solution = solution?;
     let (lines, h_s) = diagnostics::after(scn, entry, &solution, args.n, h_s);
-    lines.iter().for_each(|l| crate::diag!("{l}"));
+    lines.iter().for_each(|l| evhi::diag!("{l}"));
     let t_out = Instant::now();
-    let prov = Provenance::of(&sim, &solution, crate::output::run::command_line());
+    let prov = Provenance::of(&sim, &solution, evhi::output::run::command_line());
     let run = &solution.run;
     let seconds = wall.elapsed().as_secs_f64();
-    crate::output::run::write(
+    evhi::output::run::write(
         &out,
         scn,
         &toml,
@@ -187,13 +187,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         &h_s,
     )?;
     // The run's figures, drawn from the tables just written.
-    crate::output::runplot::draw(&out.path(""))?;
+    evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
         let (output, total) = (t_out.elapsed(), wall.elapsed());
-        crate::diag_text!("{}", crate::output::run::timings(&sim, run, output, total));
+        evhi::diag_text!("{}", evhi::output::run::timings(&sim, run, output, total));
     }
-    crate::diag!(
+    evhi::diag!(
         "solved: {} steps, n = {}, largest certificate {:.1e}, {:.2} s wall; run directory {}",
         run.steps,
         run.n,
@@ -206,7 +206,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
 
 /// The refusal of a run setting named by its option: the library names the field of
 /// [`RunSettings`] (`certificate_tol`), the command line its flag (`--certificate-tol`).
-pub fn settings_flag(e: crate::error::InputError) -> crate::error::InputError {
+pub fn settings_flag(e: evhi::error::InputError) -> evhi::error::InputError {
     [
         ("n", "--n"),
         ("steps", "--steps"),
@@ -295,7 +295,7 @@ fn check_vtk_volume(
     nodes: usize,
     steps: usize,
     every: u64,
-) -> Result<(), crate::error::InputError> {
+) -> Result<(), evhi::error::InputError> {
     let nodes = nodes as f64;
     let files = (steps as u64).div_ceil(every) as f64 + 1.0;
     let bytes = 120.0 * nodes * files;
@@ -306,19 +306,19 @@ fn check_vtk_volume(
     );
     let limit = free.map_or(VTK_CAP_BYTES, |f| f.min(VTK_CAP_BYTES));
     if bytes > limit {
-        return Err(crate::error::InputError::field(
+        return Err(evhi::error::InputError::field(
             "vtk-every",
             every,
             format!(
                 "a series that fits: {files} files of about {} each, {} in all, but at most \
                  {} may be written ({}); write fewer snapshots",
-                crate::term::size_text(120.0 * nodes),
-                crate::term::size_text(bytes),
-                crate::term::size_text(limit),
+                evhi::term::size_text(120.0 * nodes),
+                evhi::term::size_text(bytes),
+                evhi::term::size_text(limit),
                 match free {
                     Some(f) if f < VTK_CAP_BYTES =>
-                        format!("the free space there, {}", crate::term::size_text(f)),
-                    _ => format!("the cap of {}", crate::term::size_text(VTK_CAP_BYTES)),
+                        format!("the free space there, {}", evhi::term::size_text(f)),
+                    _ => format!("the cap of {}", evhi::term::size_text(VTK_CAP_BYTES)),
                 }
             ),
         ));

@@ -8,12 +8,12 @@
 //! `softening` is drawn as Fig. 2 draws the paper's (`figures/example_softening_law`).
 
 use super::{Ctx, ExpError};
-use crate::certificate::ContactState;
-use crate::output::run::{Provenance, Recorder, Recording};
-use crate::output::rundir::RunDir;
-use crate::scenario::Scenario;
-use crate::simulation::{Loop, OnStep, RunSettings, Simulation};
-use crate::step::newton::Newton;
+use evhi::certificate::ContactState;
+use evhi::output::run::{Provenance, Recorder, Recording};
+use evhi::output::rundir::RunDir;
+use evhi::scenario::Scenario;
+use evhi::simulation::{Loop, OnStep, RunSettings, Simulation};
+use evhi::step::newton::Newton;
 
 /// The examples: name, TOML (compiled in), its path.
 pub const EXAMPLES: [(&str, &str, &str); 2] = [
@@ -31,7 +31,7 @@ pub const EXAMPLES: [(&str, &str, &str); 2] = [
 
 fn io(path: &std::path::Path) -> impl FnOnce(std::io::Error) -> ExpError + '_ {
     move |source| {
-        ExpError::File(crate::output::FileError::Io {
+        ExpError::File(evhi::output::FileError::Io {
             path: path.display().to_string(),
             source,
         })
@@ -93,7 +93,7 @@ impl Scratch {
             let pid = rest.rsplit('-').next().unwrap_or(rest);
             if pid
                 .parse::<u32>()
-                .is_ok_and(|p| !crate::output::process_alive(p))
+                .is_ok_and(|p| !evhi::output::process_alive(p))
             {
                 let _ = std::fs::remove_dir_all(e.path());
                 let _ = std::fs::remove_file(e.path());
@@ -121,7 +121,7 @@ fn studies(
     toml: &str,
     path: &str,
 ) -> Result<(), ExpError> {
-    use crate::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
+    use evhi::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
     // The studies read the scenario from a file: the compiled-in text, so that the
     // example runs from any working directory (the repository's path named in
     // `path` is what the summaries quote).
@@ -130,7 +130,7 @@ fn studies(
     let scenario = file.display().to_string();
     let scratch = scratch.0.join("studies");
     ctx.add_units(3);
-    let [convergence, time, stability] = crate::study::STUDIES;
+    let [convergence, time, stability] = evhi::study::STUDIES;
     // Each study's figures (stems in its directory) and the names they get here.
     let runs: [(&str, &[Stem], Study); 3] = [
         (
@@ -169,7 +169,7 @@ fn studies(
     for (study, stems, args) in runs {
         let command = format!("study {study} --scenario {path} --quick --out DIR");
         let md = run_as(args, &command).map_err(|e| {
-            ExpError::File(crate::output::FileError::Table {
+            ExpError::File(evhi::output::FileError::Table {
                 path: format!("example_study_{study}.md (`evhi {command}`)"),
                 message: e.to_string(),
             })
@@ -181,7 +181,7 @@ fn studies(
         for (ext, (stem, suffix)) in stems.iter().flat_map(|s| ["png", "svg"].map(|e| (e, *s))) {
             let from = scratch.join(study).join(format!("{stem}.{ext}"));
             let bytes = std::fs::read(&from).map_err(|e| {
-                ExpError::File(crate::output::FileError::Io {
+                ExpError::File(evhi::output::FileError::Io {
                     path: from.display().to_string(),
                     source: e,
                 })
@@ -207,7 +207,7 @@ fn one(
 ) -> Result<(), ExpError> {
     let scn = scn.clone();
     ctx.log(&format!("example: {name}, h = k = 1/{n}"));
-    let (report, _) = crate::show::report(&scn, n, n);
+    let (report, _) = evhi::show::report(&scn, n, n);
     ctx.write_file(
         &ctx.data_path(&format!("example_{name}_show.txt")),
         format!(
@@ -220,7 +220,7 @@ fn one(
     // The run, written exactly as `evhi solve` writes it, in a scratch directory.
     let scratch = scratch.0.join(name);
     let out = RunDir::open(&scratch).map_err(|e| {
-        ExpError::File(crate::output::FileError::Table {
+        ExpError::File(evhi::output::FileError::Table {
             path: scratch.display().to_string(),
             message: e.to_string(),
         })
@@ -248,19 +248,19 @@ fn one(
             if ctx.quick { " --quick" } else { "" }
         ),
     );
-    let h_s = crate::show::Smallness::of(&scn, n)
-        .unwrap_or_else(|_| crate::show::Smallness::unknown(&scn, n));
-    let err = |e: crate::output::rundir::OutError| {
-        ExpError::File(crate::output::FileError::Table {
+    let h_s = evhi::show::Smallness::of(&scn, n)
+        .unwrap_or_else(|_| evhi::show::Smallness::unknown(&scn, n));
+    let err = |e: evhi::output::rundir::OutError| {
+        ExpError::File(evhi::output::FileError::Table {
             path: scratch.display().to_string(),
             message: e.to_string(),
         })
     };
-    crate::output::run::write(&out, &scn, toml, res, rec, &prov, 0.0, &h_s).map_err(err)?;
-    crate::output::runplot::draw(&out.path(""))?;
+    evhi::output::run::write(&out, &scn, toml, res, rec, &prov, 0.0, &h_s).map_err(err)?;
+    evhi::output::runplot::draw(&out.path(""))?;
     out.publish().map_err(err)?;
     // Newton's work per step, without the timing columns of steps.csv.
-    let t = crate::output::run::step_work(&res.records);
+    let t = evhi::output::run::step_work(&res.records);
     ctx.write(
         &format!("example_{name}_iterations.csv"),
         &t,
@@ -346,11 +346,14 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
         mid_sigma: Vec::with_capacity(steps),
     };
     let mid = n / 2;
-    let k = scn.t_end / steps as f64;
+    let k = scn.t_end() / steps as f64;
     let mut last: Option<(f64, Vec<bool>)> = None;
-    let sim = crate::study::runs::simulation(scn, n, steps)?;
+    let sim = crate::experiments::runs::simulation(scn, n, steps)?;
     let mut observer = OnStep::new(|_, t, _: Option<&[f64]>, c: &[ContactState]| {
-        let codes: Vec<i32> = c.iter().map(|s| s.regime_code(&scn.law, scn.g)).collect();
+        let codes: Vec<i32> = c
+            .iter()
+            .map(|s| s.regime_code(scn.law(), scn.g()))
+            .collect();
         if let Some(p) = &prev {
             let back = codes.iter().zip(p).filter(|(a, b)| a < b).count();
             if back > 0 {
@@ -405,7 +408,7 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
 /// the middle node's stiffness with the free nodes condensed out and the limit nodes
 /// held: a finite jump, which the scheme can resolve only with steps shorter than the
 /// time in which the next nodes land.
-fn landing_jump(red: &crate::reduced::Reduced, v: f64, at_limit: &[bool]) -> Result<f64, ExpError> {
+fn landing_jump(red: &evhi::reduced::Reduced, v: f64, at_limit: &[bool]) -> Result<f64, ExpError> {
     let mid = red.disc.mesh.n / 2;
     let s = &red.s_b;
     let free: Vec<usize> = (0..s.nrows())
@@ -416,7 +419,7 @@ fn landing_jump(red: &crate::reduced::Reduced, v: f64, at_limit: &[bool]) -> Res
     let x = sff
         .cholesky()
         .ok_or_else(|| {
-            crate::scheme::RunError::Condense("the free block of S is not positive definite".into())
+            evhi::scheme::RunError::Condense("the free block of S is not positive definite".into())
         })?
         .solve(&sfm);
     let s_eff = s[(mid, mid)] - sfm.dot(&x);
@@ -439,18 +442,18 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
     // The condensed operator of the mesh, once for every row.
     let settings = RunSettings {
         threads: Some(1),
-        ..crate::study::runs::settings(n, n)
+        ..crate::experiments::runs::settings(n, n)
     };
     let sim = Simulation::new(scn.clone(), settings)?;
     let disc = sim.discretisation();
-    let red = sim.reduced_operator(&disc, &mut crate::scheme::Timings::default())?;
+    let red = sim.reduced_operator(&disc, &mut evhi::scheme::Timings::default())?;
     let jumps: Vec<f64> = rows
         .iter()
         .map(|r| landing_jump(&red, r.v_before, &r.at_limit_before))
         .collect::<Result<_, _>>()?;
     let side = |r: &Trace, i: usize| r.landings.get(i).copied().unwrap_or(f64::NAN);
     let after = |r: &Trace| r.mid_sigma_at(r.t_landing + 1.0 / r.steps as f64);
-    let t = crate::output::csv::Table::new()
+    let t = evhi::output::csv::Table::new()
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
         .f64("k", rows.iter().map(|r| 1.0 / r.steps as f64).collect())
         .u64(

@@ -3,9 +3,9 @@
 //! where $-\sigma_\nu = p(g) + \mu$ with any $\mu \ge 0$.
 
 use super::{Ctx, ExpError, col_f64, read_csv};
-use crate::output::csv::Table;
-use crate::output::plot::{Figure, both, e2s, legend};
-use crate::scenario::Scenario;
+use evhi::output::csv::Table;
+use evhi::output::plot::{Figure, both, e2s, legend};
+use evhi::scenario::Scenario;
 use plotters::prelude::*;
 
 /// Okabe–Ito blue and vermillion (safe for colour-blind readers).
@@ -21,7 +21,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         points: "branch points 0, u¹ = 0.05, u² = 0.075, g".into(),
         params: format!(
             "law of scenario `figure` (paper (5.1)-(5.2)), g = {}",
-            scn.g
+            scn.g()
         ),
     };
     draw_in(ctx, &scn, "fig2_law", "fig2_breakpoints", &labels)
@@ -43,10 +43,10 @@ struct Labels {
 pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
     let labels = Labels {
         headroom: 1.5,
-        title: format!("The law of scenario {}, -σν against uν", scn.name),
-        law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law.kind()),
+        title: format!("The law of scenario {}, -σν against uν", scn.name()),
+        law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law().kind()),
         points: "kinks of p and the limit g".into(),
-        params: format!("law of scenario `{}`, g = {}", scn.name, scn.g),
+        params: format!("law of scenario `{}`, g = {}", scn.name(), scn.g()),
     };
     draw_in(ctx, scn, stem, &format!("{stem}_kinks"), &labels)
 }
@@ -60,22 +60,22 @@ fn draw_in(
     points: &str,
     labels: &Labels,
 ) -> Result<(), ExpError> {
-    let g = scn.g;
+    let g = scn.g();
     // The law's own polyline: for a piecewise-affine law its vertices (both sides of
     // a jump), for a smooth one samples.
     let lo = -0.025;
-    let (mut u, mut sig): (Vec<f64>, Vec<f64>) = scn.law.polyline(lo, g).into_iter().unzip();
+    let (mut u, mut sig): (Vec<f64>, Vec<f64>) = scn.law().polyline(lo, g).into_iter().unzip();
     let mut part = vec!["compliance".to_string(); u.len()];
     // The wall at g: -sigma_nu takes every value above p(g).
-    let top = 2.0 * scn.law.p(g).max(1.0);
-    for v in [scn.law.p(g), top] {
+    let top = 2.0 * scn.law().p(g).max(1.0);
+    for v in [scn.law().p(g), top] {
         u.push(g);
         sig.push(v);
         part.push("unilateral".to_string());
     }
-    let mut bp_u = scn.law.kinks().to_vec();
+    let mut bp_u = scn.law().kinks().to_vec();
     bp_u.push(g);
-    let bp_s: Vec<f64> = bp_u.iter().map(|&s| scn.law.p(s)).collect();
+    let bp_s: Vec<f64> = bp_u.iter().map(|&s| scn.law().p(s)).collect();
     let table = Table::new()
         .f64("u_nu", u)
         .f64("minus_sigma_nu", sig)

@@ -3,7 +3,7 @@
 //! must restore order 1 in $N_{dof}^{-1/2}$.
 //!
 //! Both families come from newest-vertex bisection of the structured mesh with
-//! $n_0 = 4$ ([`crate::bisection`]), so every mesh is nested in the reference and
+//! $n_0 = 4$ ([`evhi::bisection`]), so every mesh is nested in the reference and
 //! errors are exact by embedding:
 //! - `uniform`: bisect until every triangle's longest edge is at most $D_n = 2\sqrt2/n$,
 //!   the diagonal of the paper's cell at level $n$;
@@ -29,9 +29,9 @@
 //! maximum over the level's time grid $t_j = j/n$, with the time where it occurs.
 
 use super::{Ctx, ExpError};
-use crate::geometry::PAPER_SINGULAR as SINGULAR;
-use crate::scenario::Scenario;
-use crate::study::graded::{Graded, MU, Split, compute, draw, plan, units};
+use evhi::geometry::PAPER_SINGULAR as SINGULAR;
+use evhi::scenario::Scenario;
+use evhi::study::graded::{Graded, MU, Split, compute, draw, plan, units};
 
 /// The families: name, and the points a graded mesh refines towards (none: uniform).
 pub const FAMILIES: [(&str, &[[f64; 2]]); 4] = [
@@ -57,8 +57,8 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.add_units(units(&plan, families.len()));
     // The exponents the static control names (`singular`): the top corner's real
     // one, the clamp end's real part.
-    use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
-    let kappa_m = 3.0 - 4.0 * scns[0].kappa;
+    use evhi::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
+    let kappa_m = 3.0 - 4.0 * scns[0].kappa();
     let top = wedge_exponents(
         std::f64::consts::FRAC_PI_2,
         kappa_m,

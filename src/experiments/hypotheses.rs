@@ -13,8 +13,8 @@
 //! $\|\iota\|$ from below.
 
 use super::{Ctx, ExpError};
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
@@ -25,11 +25,11 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     };
     let visc = scn.viscosity();
     let elas = scn.elasticity();
-    let m = -scn.law.curvature_min();
+    let m = -scn.law().curvature_min();
     let mut rows = vec![];
     for &n in &levels {
-        let trace_sq = crate::norms::trace_norm_sq(&scn, n).map_err(|message| {
-            ExpError::File(crate::output::FileError::Table {
+        let trace_sq = evhi::norms::trace_norm_sq(&scn, n).map_err(|message| {
+            ExpError::File(evhi::output::FileError::Table {
                 path: format!("{} (trace constant at n = {n})", ctx.experiment),
                 message,
             })
@@ -61,10 +61,15 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
 /// time study ([`super::time::histories`]).
 pub fn compatibility(ctx: &Ctx) -> Result<(), ExpError> {
     let mut rows = vec![];
-    for (name, _) in crate::scenario::BUILTIN {
+    for (name, _) in evhi::scenario::BUILTIN {
         for (label, h) in super::time::histories() {
             let scn = Scenario::load(name)?.with_history(h)?;
-            rows.push((name, label, scn.history.to_string(), scn.time_hypotheses()));
+            rows.push((
+                name,
+                label,
+                scn.history().to_string(),
+                scn.time_hypotheses(),
+            ));
         }
     }
     let t = Table::new()

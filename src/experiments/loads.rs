@@ -9,9 +9,9 @@
 
 use super::scenes::counts;
 use super::{Ctx, ExpError};
-use crate::output::csv::Table;
-use crate::output::plot::REGIMES;
-use crate::scenario::Scenario;
+use evhi::output::csv::Table;
+use evhi::output::plot::REGIMES;
+use evhi::scenario::Scenario;
 
 /// The grid searched: $q_0$ (volume, N/m²) and $q_2$ (top, N/m).
 pub fn grid() -> (Vec<f64>, Vec<f64>) {
@@ -85,14 +85,17 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         );
     let params = format!(
         "scenario figure with f0 = (0,-q0), f2 = (0,-q2); g = {}, h = k = 1/{n}, t = T; chosen = qualifies (q0 > 0, centre at the limit, every branch populated) with the largest least_share",
-        base.g
+        base.g()
     );
     ctx.write("loads_search.csv", &t, &params)?;
     if let Some(i) = best {
         ctx.add_units(1);
         ctx.log(&format!(
             "loads: chosen q0 = {}, q2 = {} (scenario figure has q0 = {}, q2 = {})",
-            rows[i].0, rows[i].1, -base.f0[1], -base.f2[1]
+            rows[i].0,
+            rows[i].1,
+            -base.f0()[1],
+            -base.f2()[1]
         ));
     }
     Ok(())

@@ -17,14 +17,15 @@ pub mod loads;
 pub mod paths;
 pub mod registry;
 pub mod reproduce;
-pub use crate::output::csv::{col_f64, col_str, read_csv};
+pub mod runs;
+pub use evhi::output::csv::{col_f64, col_str, read_csv};
 pub mod scenes;
 pub mod singular;
 pub mod stability;
 pub mod time;
 
-pub(crate) use crate::study::runs::{run_newton, run_newton_batch, run_newton_batch_states};
-pub use crate::study::{Ctx, ExpError};
+pub use evhi::study::{Ctx, ExpError};
+pub use runs::{run_newton, run_newton_batch, run_newton_batch_states};
 
 /// Runs one experiment by name (see [`registry::EXPERIMENTS`]): its tables'
 /// provenance names it.
@@ -38,42 +39,5 @@ pub fn run(name: &str, ctx: &Ctx) -> Result<(), ExpError> {
     (e.run)(&ctx)
 }
 
-/// Rounds every number in CSV text to `sig` significant digits and drops comment
-/// lines: what the snapshot tests compare.
-pub fn rounded_csv(text: &str, sig: usize) -> String {
-    rounded_csv_floor(text, sig, 0.0)
-}
-
-/// As [`rounded_csv`], with numbers of magnitude below `floor` (round-off, such as
-/// the certificate of an exact step) written as `<floor`, so that a snapshot does not
-/// pin the last bits of round-off.
-pub fn rounded_csv_floor(text: &str, sig: usize, floor: f64) -> String {
-    text.lines()
-        .filter(|l| !l.starts_with('#'))
-        .map(|l| {
-            l.split(',')
-                .map(|f| match f.parse::<f64>() {
-                    Ok(x) if x != 0.0 && x.abs() < floor => format!("<{floor:e}"),
-                    Ok(x) if f.contains('.') || f.contains('e') => round_sig(x, sig),
-                    _ => f.to_string(),
-                })
-                .collect::<Vec<_>>()
-                .join(",")
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-/// `x` to `sig` significant digits, in scientific notation (`0` for zero).
-pub fn round_sig(x: f64, sig: usize) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let s = format!("{:.*e}", sig.saturating_sub(1), x);
-    // normalise "-0.0e0" style output
-    if s.starts_with("-0.") && s[1..].chars().all(|c| c == '0' || c == '.' || c == 'e') {
-        s[1..].to_string()
-    } else {
-        s
-    }
-}
+#[cfg(test)]
+mod tests;

@@ -1,6 +1,6 @@
-//! Both time loops on the same runs: the general loop of [`crate::scheme`] (a
+//! Both time loops on the same runs: the general loop of [`evhi::scheme`] (a
 //! forward and a backward sweep with the factor of $A + kB$ per step) and the
-//! reduced loop of [`crate::reduced`] (the contact problem alone per step, for
+//! reduced loop of [`evhi::reduced`] (the contact problem alone per step, for
 //! proportional damping). For the three scenes and a load history at
 //! $h = k = 1/n$: the largest gap between the two in the contact unknowns over all
 //! steps, in the energy norms over all steps and in the field at $T$, each relative
@@ -8,16 +8,16 @@
 //! `data/paths.csv`.
 
 use super::{Ctx, ExpError};
-use crate::certificate::ContactState;
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
-use crate::scheme::Run;
-use crate::simulation::{Loop, OnStep, RunSettings, Simulation};
-use crate::step::newton::Newton;
+use evhi::certificate::ContactState;
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
+use evhi::scheme::Run;
+use evhi::simulation::{Loop, OnStep, RunSettings, Simulation};
+use evhi::step::newton::Newton;
 
 /// $\max|a - b| / \max|a|$.
 fn gap(a: &[f64], b: &[f64]) -> f64 {
-    let scale = crate::dense::inf_norm(a).max(f64::MIN_POSITIVE);
+    let scale = evhi::dense::inf_norm(a).max(f64::MIN_POSITIVE);
     let diff = a
         .iter()
         .zip(b)
@@ -44,7 +44,7 @@ fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
     let mut r = vec![];
     let settings = RunSettings {
         path: Loop::Reduced,
-        ..crate::study::runs::settings(n, n)
+        ..crate::experiments::runs::settings(n, n)
     };
     let sim = Simulation::new(scn.clone(), settings)?;
     let mut observer =

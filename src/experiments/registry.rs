@@ -1,12 +1,12 @@
 //! The experiments of `evhi reproduce`, in one list: each one's name (the only place
-//! it is spelled: `tests/house.rs` checks), what it computes, whether it belongs to
+//! it is spelled: its unit tests, `registry/tests.rs`, check), what it computes, whether it belongs to
 //! the paper's own set, what it costs (the scheduling starts the costliest first),
 //! and the function that runs it. The CLI's value list, `reproduce paper`, the scheduling, the dispatcher
 //! and the provenance lines of every table all read it.
 
 use super::{Ctx, ExpError};
-pub use crate::output::markdown::BookTable;
-use crate::output::markdown::book_table as table;
+pub use evhi::output::markdown::BookTable;
+use evhi::output::markdown::book_table as table;
 
 /// One experiment.
 pub struct Experiment {
@@ -38,7 +38,7 @@ pub fn book_tables() -> impl Iterator<Item = &'static BookTable> {
 /// The Markdown layout (key columns, most columns of a part) of `file` if the book
 /// shows it: the [`super::Ctx::book_table`] of every experiment and the bench.
 pub fn book_table(file: &str) -> Option<(usize, usize)> {
-    crate::output::markdown::layout(book_tables(), file)
+    evhi::output::markdown::layout(book_tables(), file)
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
@@ -194,12 +194,11 @@ pub fn names() -> Vec<&'static str> {
 }
 
 /// The experiment called `name`, or an error listing them.
-pub fn experiment(name: &str) -> Result<&'static Experiment, crate::error::InputError> {
+pub fn experiment(name: &str) -> Result<&'static Experiment, evhi::error::InputError> {
     EXPERIMENTS.iter().find(|e| e.name == name).ok_or_else(|| {
-        crate::error::InputError::field(
-            "experiment",
-            name,
-            format!("one of {}", names().join(", ")),
-        )
+        evhi::error::InputError::field("experiment", name, format!("one of {}", names().join(", ")))
     })
 }
+
+#[cfg(test)]
+mod tests;

@@ -57,13 +57,13 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     // Everything that can be refused is refused before a directory is made.
     let jobs = match args.jobs {
         Some(0) => {
-            return Err(crate::error::InputError::field("jobs", 0, "at least 1").into());
+            return Err(evhi::error::InputError::field("jobs", 0, "at least 1").into());
         }
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(2, |n| n.get()),
     };
     if args.record_times && args.quick {
-        return Err(crate::error::InputError::field(
+        return Err(evhi::error::InputError::field(
             "record-times",
             "with --quick",
             "a full run: the committed table records the full set's times, and quick runs \
@@ -89,7 +89,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         names
     };
     if args.reference.is_some() && !names.iter().any(|n| n == registry::WITH_REFERENCE) {
-        return Err(crate::error::InputError::field(
+        return Err(evhi::error::InputError::field(
             "reference",
             args.reference.unwrap_or_default(),
             format!(
@@ -107,7 +107,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
             dir.as_ref().map(|d| {
                 format!(
                     " {flag} {}",
-                    crate::output::run::quote_args([d.to_string_lossy().into_owned()])
+                    evhi::output::run::quote_args([d.to_string_lossy().into_owned()])
                 )
             })
         })
@@ -135,7 +135,7 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
         names.join("+")
     };
     let total = Instant::now();
-    crate::timing::since_start();
+    evhi::timing::since_start();
     // One progress bar per experiment (drawn only on a terminal), with its ETA.
     let multi = indicatif::MultiProgress::new();
     if args.quiet || args.log {
@@ -199,17 +199,17 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
     let mut failed = vec![];
     for (name, secs, r) in &results {
         match r {
-            Ok(()) if !args.quiet => crate::diag!("  {name}: done in {secs:.1} s"),
+            Ok(()) if !args.quiet => evhi::diag!("  {name}: done in {secs:.1} s"),
             Ok(()) => {}
             Err(e) => {
-                crate::diag!("  {name}: FAILED after {secs:.1} s: {e}");
+                evhi::diag!("  {name}: FAILED after {secs:.1} s: {e}");
                 failed.push(name.clone());
             }
         }
     }
     let wall = total.elapsed().as_secs_f64();
     if !args.quiet {
-        crate::diag!(
+        evhi::diag!(
             "reproduce: {} experiment(s) in {wall:.1} s wall",
             results.len()
         );
@@ -230,14 +230,14 @@ pub fn run(args: ReproduceArgs) -> Result<(), Box<dyn std::error::Error>> {
 }
 
 /// Takes the lock of an output set: `.reproduce.lock` in its data directory, a
-/// [`crate::output::HeldLock`] (removed when the run ends; the kernel releases it if
+/// [`evhi::output::HeldLock`] (removed when the run ends; the kernel releases it if
 /// the process dies). A
 /// second `reproduce` into the same directories fails at once instead of mixing its
 /// tables and figures with the first one's.
 /// The caller has made the directory (and refused a `--data` that is no directory).
-fn lock_outputs(data: &std::path::Path) -> Result<crate::output::HeldLock, String> {
+fn lock_outputs(data: &std::path::Path) -> Result<evhi::output::HeldLock, String> {
     let path = data.join(LOCK_NAME);
-    crate::output::try_lock_file(&path)
+    evhi::output::try_lock_file(&path)
         .map_err(|e| format!("cannot open the lock {}: {e}", path.display()))?
         .ok_or_else(|| {
             format!(
@@ -248,7 +248,7 @@ fn lock_outputs(data: &std::path::Path) -> Result<crate::output::HeldLock, Strin
         })
 }
 
-/// Removes the temporaries `.NAME.tmp-PID` (of [`crate::output::write_atomic`] and the
+/// Removes the temporaries `.NAME.tmp-PID` (of [`evhi::output::write_atomic`] and the
 /// figures) that a killed process left in `dir`: those whose process is gone.
 fn remove_stale_temporaries(dir: &std::path::Path) {
     let Ok(entries) = std::fs::read_dir(dir) else {
@@ -259,7 +259,7 @@ fn remove_stale_temporaries(dir: &std::path::Path) {
         let Some(pid) = temporary_pid(&name) else {
             continue;
         };
-        if !crate::output::process_alive(pid) && entry.path().is_file() {
+        if !evhi::output::process_alive(pid) && entry.path().is_file() {
             let _ = std::fs::remove_file(entry.path());
         }
     }
@@ -277,8 +277,8 @@ that it may write into.\n";
 /// write: one that exists and is not a directory, or holds files but not the mark
 /// [`OUTPUTS_MARKER`] of an earlier run (`/`, a home directory, a mistyped path). The
 /// committed `data/` and `figures/` carry the mark.
-fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::error::InputError> {
-    let refuse = |what: String| crate::error::InputError::field(flag, dir.display(), what);
+fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), evhi::error::InputError> {
+    let refuse = |what: String| evhi::error::InputError::field(flag, dir.display(), what);
     if dir.exists() && !dir.is_dir() {
         return Err(refuse(
             "a directory (created if missing): this path exists and is not one".into(),
@@ -312,7 +312,7 @@ fn check_output_dir(flag: &str, dir: &std::path::Path) -> Result<(), crate::erro
 /// `bench` call it before any work.
 pub fn claim_outputs(
     ctx: &super::Ctx,
-) -> Result<crate::output::HeldLock, Box<dyn std::error::Error>> {
+) -> Result<evhi::output::HeldLock, Box<dyn std::error::Error>> {
     for (flag, dir) in [("--data", &ctx.data), ("--figures", &ctx.figures)] {
         check_output_dir(flag, dir)?;
     }
@@ -323,11 +323,11 @@ pub fn claim_outputs(
                 if marker.exists() {
                     Ok(())
                 } else {
-                    crate::output::write_atomic(&marker, OUTPUTS_MARKER_TEXT.as_bytes())
+                    evhi::output::write_atomic(&marker, OUTPUTS_MARKER_TEXT.as_bytes())
                 }
             })
             .map_err(|e| {
-                crate::error::InputError::field(
+                evhi::error::InputError::field(
                     flag,
                     dir.display(),
                     format!("a directory that can be created and written: {e}"),
@@ -393,7 +393,7 @@ fn record_times(
     wall: f64,
     jobs: usize,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    use crate::output::csv::{col_f64, col_str, read_csv};
+    use evhi::output::csv::{col_f64, col_str, read_csv};
     let path = ctx.data_path(file);
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)
@@ -417,7 +417,7 @@ fn record_times(
         rows.push((set.to_string(), name.clone(), *secs));
     }
     rows.push((set.to_string(), "(total)".to_string(), wall));
-    let t = crate::output::csv::Table::new()
+    let t = evhi::output::csv::Table::new()
         .str("set", rows.iter().map(|r| r.0.clone()).collect())
         .str("experiment", rows.iter().map(|r| r.1.clone()).collect())
         .f64("wall_s", rows.iter().map(|r| r.2).collect());
@@ -437,7 +437,7 @@ fn record_times(
             "wall seconds of `evhi reproduce` by set of experiments (all, paper = {}, or the names run); the rows of a set were measured by `evhi reproduce [SET] {}` (SET left out for all); machine: {}; {} worker(s), costliest first, each experiment timed while the others of its set run beside it",
             paper_set().join(" "),
             if file == RECORDED_TIMES { "--record-times" } else { "" },
-            crate::timing::machine(),
+            evhi::timing::machine(),
             jobs
         ),
     )?;

@@ -3,12 +3,12 @@
 //! ($h = k = 1/128$); Fig. 4 repeats it for several $g$.
 
 use super::{Ctx, ExpError};
-use crate::certificate::ContactState;
-use crate::mesh::{Dofs, Mesh};
-use crate::output::csv::Table;
-use crate::output::plot::{REGIMES, both};
-use crate::output::scene::{Panel, SceneFigure};
-use crate::scenario::Scenario;
+use evhi::certificate::ContactState;
+use evhi::mesh::{Dofs, Mesh};
+use evhi::output::csv::Table;
+use evhi::output::plot::{REGIMES, both};
+use evhi::output::scene::{Panel, SceneFigure};
+use evhi::scenario::Scenario;
 
 /// The state at $t = T$ of one scene.
 pub struct Scene {
@@ -35,14 +35,14 @@ pub fn solve_all(scns: &[Scenario], n: usize) -> Result<Vec<Scene>, ExpError> {
     scns.iter().zip(runs).map(|(s, r)| scene(s, n, r)).collect()
 }
 
-fn scene(scn: &Scenario, n: usize, res: crate::scheme::Run) -> Result<Scene, ExpError> {
+fn scene(scn: &Scenario, n: usize, res: evhi::scheme::Run) -> Result<Scene, ExpError> {
     debug_assert_eq!(res.mesh.n, n);
     let mesh = (*res.mesh).clone();
     let disp = Dofs::new(&mesh, true).expand(&res.u);
     let regimes = res
         .contact
         .iter()
-        .map(|c| c.regime(&scn.law, scn.g))
+        .map(|c| c.regime(scn.law(), scn.g()))
         .collect();
     Ok(Scene {
         mesh,

@@ -15,16 +15,16 @@
 //! $h^{\operatorname{Re}\lambda}$ when $\operatorname{Re}\lambda < 1$.
 
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::assembly::stiffness;
-use crate::linalg::Cholesky;
-use crate::mesh::Dofs;
-use crate::ordering::Ordering;
-use crate::output::csv::Table;
-use crate::output::plot::{
+use evhi::assembly::stiffness;
+use evhi::linalg::Cholesky;
+use evhi::mesh::Dofs;
+use evhi::ordering::Ordering;
+use evhi::output::csv::Table;
+use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five, slope_guides,
 };
-use crate::scenario::Scenario;
-pub use crate::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
+use evhi::scenario::Scenario;
+pub use evhi::study::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use plotters::prelude::*;
 
 /// The scenarios of the control: the paper's supports with both loads, and `smooth`.
@@ -40,9 +40,9 @@ fn energies(scns: &[Scenario], levels: &[usize], ctx: &Ctx) -> Result<Vec<Vec<f6
     for (i, scn) in scns.iter().enumerate() {
         let same = |j: &usize| {
             let o = &scns[*j];
-            o.geometry == scn.geometry
-                && o.pattern == scn.pattern
-                && (o.e, o.kappa) == (scn.e, scn.kappa)
+            o.geometry() == scn.geometry()
+                && o.pattern() == scn.pattern()
+                && (o.e(), o.kappa()) == (scn.e(), scn.kappa())
         };
         match groups.iter_mut().find(|g| same(&g[0])) {
             Some(g) => g.push(i),
@@ -51,7 +51,7 @@ fn energies(scns: &[Scenario], levels: &[usize], ctx: &Ctx) -> Result<Vec<Vec<f6
     }
     let mut out = vec![vec![]; scns.len()];
     for &n in levels {
-        crate::scheme::check_memory(n, n / 2)?;
+        evhi::scheme::check_memory(n, n / 2)?;
         for group in &groups {
             let first = &scns[group[0]];
             let mesh = first.mesh(n)?;
@@ -64,13 +64,13 @@ fn energies(scns: &[Scenario], levels: &[usize], ctx: &Ctx) -> Result<Vec<Vec<f6
                 .collect();
             let order = Ordering::nested_dissection(&mesh, &dofs, &cdofs);
             let chol = Cholesky::factor(&b, &order).map_err(|e| {
-                ExpError::File(crate::output::FileError::Table {
+                ExpError::File(evhi::output::FileError::Table {
                     path: "static_control".into(),
                     message: e.to_string(),
                 })
             })?;
             for &i in group {
-                ctx.log(&format!("static control: {} n = {n}", scns[i].name));
+                ctx.log(&format!("static control: {} n = {n}", scns[i].name()));
                 let f = scns[i].load_vector(&mesh, &dofs);
                 let u = chol.solve(&f);
                 out[i].push(0.5 * f.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>());
@@ -91,7 +91,7 @@ pub fn levels(quick: bool) -> Vec<usize> {
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let levels = levels(ctx.quick);
     let paper = Scenario::load("literal")?;
-    let nu = paper.kappa;
+    let nu = paper.kappa();
     let kappa_m = 3.0 - 4.0 * nu;
     let (re_end, im_end) = clamp_end_exponent(kappa_m);
     let top = wedge_exponents(

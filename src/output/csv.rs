@@ -290,7 +290,7 @@ impl std::ops::Deref for Frame {
     }
 }
 
-/// Reads a CSV written by [`crate::experiments::Ctx::write`] or a run (comment lines
+/// Reads a CSV written by [`crate::study::Ctx::write`] or a run (comment lines
 /// skipped). The text is checked first ([`Text::read`]), so that a row of the wrong
 /// length is named by its line; what the table library still cannot read is said
 /// without its advice, which is for its Python users.

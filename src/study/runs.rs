@@ -1,13 +1,13 @@
-//! Runs of the scheme as the studies and the book's experiments make them, all through
-//! [`Simulation`]: the general loop (every step's field), a Newton step solver (or the
-//! registry's) per scenario, batched where scenarios share the step matrix.
+//! Runs of the scheme as the studies make them, all through [`Simulation`]: the
+//! general loop (every step's field), the registry's step solver per scenario, batched
+//! where scenarios share the step matrix. (The book's experiments, in the binary, make
+//! theirs with Newton in `experiments::runs`.)
 
 use super::ExpError;
 use crate::scenario::Scenario;
-use crate::scheme::{Run, StateObserver};
+use crate::scheme::Run;
 use crate::simulation::{Loop, RunSettings, Simulation};
 use crate::step::StepSolver;
-use crate::step::newton::Newton;
 
 /// The settings of a study's run at level `n` with `steps` steps: the general loop,
 /// the rest as [`RunSettings::default`].
@@ -23,19 +23,6 @@ pub fn settings(n: usize, steps: usize) -> RunSettings {
 /// A simulation of `scn` with [`settings`]`(n, steps)`.
 pub fn simulation(scn: &Scenario, n: usize, steps: usize) -> Result<Simulation, ExpError> {
     Ok(Simulation::new(scn.clone(), settings(n, steps))?)
-}
-
-/// Runs the scheme with the Newton step solver and no observer: the plain solve
-/// most experiments need.
-pub fn run_newton(scn: &Scenario, n: usize, steps: usize) -> Result<Run, ExpError> {
-    let sim = simulation(scn, n, steps)?;
-    Ok(sim.solve_with(&mut Newton::default(), &mut ())?.run)
-}
-
-/// [`run_newton`] for scenarios that share the step matrix, as one batched run
-/// ([`Simulation::solve_batch`]: one factorisation, one sweep per step for all).
-pub fn run_newton_batch(scns: &[Scenario], n: usize, steps: usize) -> Result<Vec<Run>, ExpError> {
-    run_newton_batch_states(scns, n, steps, &mut |_, _, _, _, _| {})
 }
 
 /// A batched run of `scns` on `sim`'s discretisation with the registry's step solver
@@ -56,23 +43,4 @@ pub fn run_batch_with(
     })?;
     drop(solvers);
     Ok(runs)
-}
-
-/// [`run_newton_batch`] with an observer that also sees each step's contact states.
-pub fn run_newton_batch_states(
-    scns: &[Scenario],
-    n: usize,
-    steps: usize,
-    observe: &mut StateObserver<'_>,
-) -> Result<Vec<Run>, ExpError> {
-    let Some(first) = scns.first() else {
-        return Ok(vec![]);
-    };
-    let sim = simulation(first, n, steps)?;
-    let mut newtons: Vec<_> = scns.iter().map(|_| Newton::default()).collect();
-    let mut solvers: Vec<&mut dyn StepSolver> = newtons
-        .iter_mut()
-        .map(|s| s as &mut dyn StepSolver)
-        .collect();
-    Ok(sim.solve_batch(scns, &mut solvers, observe)?)
 }

@@ -519,66 +519,6 @@ fn own_study_stability_cantilever() {
     assert_eq!(iterations("penalty"), iterations("newton"));
 }
 
-/// Table 1 is the convergence study's h, k and h = k split applied to the built-ins:
-/// the study's full split plan on the paper's scene (coarsest n 4) is Table 1's, and
-/// the study in quick mode on `figure` gives the same errors, row by row, as the
-/// `table1` experiment in quick mode with the study's reference (`--reference`; it
-/// runs `figure` in one batch with `literal`): both call
-/// `experiments::convergence::compute`.
-#[test]
-fn own_study_is_table1() {
-    use evhi::study::{ConvergenceArgs, Study, split_plan};
-    let (full, table1_full) = (
-        split_plan(4, false),
-        evhi::experiments::convergence::plan(false),
-    );
-    assert_eq!(
-        (full.levels, full.n_ref),
-        (table1_full.levels, table1_full.n_ref)
-    );
-    let quick = split_plan(4, true);
-    assert_eq!(
-        quick.levels,
-        evhi::experiments::convergence::plan(true).levels
-    );
-    let root = std::env::temp_dir().join(format!("evhi-claim-table1-{}", std::process::id()));
-    let mut ctx = evhi::experiments::Ctx::under(&root, true);
-    // The finer reference's run compares itself with the plain one, which must exist.
-    evhi::experiments::run("table1", &ctx).unwrap();
-    ctx.reference = Some(quick.n_ref);
-    evhi::experiments::run("table1", &ctx).unwrap();
-    let text =
-        std::fs::read_to_string(root.join(format!("data/table1_ref{}.csv", quick.n_ref))).unwrap();
-    let _ = std::fs::remove_dir_all(&root);
-    let table: Vec<_> = super::parse_rows(&text)
-        .into_iter()
-        .filter(|r| r["scenario"] == "figure")
-        .collect();
-    let split = study_rows("figure", "split.csv", |scenario, out| {
-        Study::Convergence(ConvergenceArgs {
-            scenario,
-            quick: true,
-            solver: None,
-            announce: false,
-            out,
-        })
-    });
-    assert_eq!(table.len(), 9, "three families of three levels");
-    assert_eq!(split.len(), table.len());
-    for (a, b) in table.iter().zip(&split) {
-        for key in ["family", "n", "steps"] {
-            assert_eq!(a[key], b[key]);
-        }
-        for key in ["rel_err_T_percent", "rel_err_max_percent"] {
-            let (x, y) = (num(a, key), num(b, key));
-            assert!(
-                (x - y).abs() <= 1e-12 * x.abs(),
-                "{key}: {a:?} against {b:?}"
-            );
-        }
-    }
-}
-
 /// On the worked example (quick), the split resolves no row of the h = k and h
 /// families, in either column, and its k family's errors at T are all more than a
 /// hundred times below the h families': read from the summary `evhi reproduce

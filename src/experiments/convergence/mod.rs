@@ -4,18 +4,21 @@
 //! into its $h$ part ($k$ at the reference value) and its $k$ part ($h$ at the
 //! reference value), and where in $\Omega$ the error sits. The paper does not say at
 //! which time it measures; we report $t = T$ and the maximum over the time levels
-//! shared with the reference. The computation is [`crate::study::split`].
+//! shared with the reference. The computation is [`evhi::study::split`].
 
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::output::csv::Table;
-use crate::output::plot::both;
-use crate::scenario::Scenario;
-use crate::study::split::figure::{COLOURS, Fig5};
-pub use crate::study::split::{Plan, Regions, compute, draw_split, plan};
+use evhi::output::csv::Table;
+use evhi::output::plot::both;
+use evhi::scenario::Scenario;
+use evhi::study::split::figure::{COLOURS, Fig5};
+pub use evhi::study::split::{Plan, Regions, compute, draw_split, plan};
 use plotters::prelude::*;
 
 mod table;
 use table::{write_markdown, write_shift};
+
+#[cfg(test)]
+mod tests;
 
 /// The paper's Table 1 (percent), keyed by $n$ with $h = k = 1/n$ ($h + k = 2/n$).
 pub const PAPER: [(usize, f64); 6] = [
@@ -38,7 +41,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let suffix = match ctx.reference {
         Some(r) => {
             if r <= own || !r.is_multiple_of(grid) {
-                return Err(crate::error::InputError::field(
+                return Err(evhi::error::InputError::field(
                     "reference",
                     r,
                     format!(
@@ -49,7 +52,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 )
                 .into());
             }
-            crate::scheme::check_memory(r, r / 2)?;
+            evhi::scheme::check_memory(r, r / 2)?;
             // The shift compares with table1.csv: it must be there before the work.
             table::check_base(ctx)?;
             plan.n_ref = r;

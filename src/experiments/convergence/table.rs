@@ -11,7 +11,7 @@ pub(super) fn check_base(ctx: &Ctx) -> Result<std::path::PathBuf, ExpError> {
     if base.exists() {
         Ok(base)
     } else {
-        Err(ExpError::File(crate::output::FileError::Table {
+        Err(ExpError::File(evhi::output::FileError::Table {
             path: base.display().to_string(),
             message: format!(
                 "missing: run `evhi reproduce table1{}` (with the same --data) before a finer \
@@ -33,7 +33,7 @@ pub(super) fn write_shift(
     let base = check_base(ctx)?;
     let (old, new) = (read_csv(&base)?, read_csv(path)?);
     // A row is its scenario, family and level: n, or the steps in the k family.
-    let key = |df: &crate::output::csv::Frame| -> Result<Vec<String>, ExpError> {
+    let key = |df: &evhi::output::csv::Frame| -> Result<Vec<String>, ExpError> {
         let (s, f) = (col_str(df, "scenario")?, col_str(df, "family")?);
         let (n, k) = (col_f64(df, "n")?, col_f64(df, "steps")?);
         Ok((0..s.len())
@@ -44,12 +44,12 @@ pub(super) fn write_shift(
             .collect())
     };
     if key(&old)? != key(&new)? {
-        return Err(ExpError::File(crate::output::FileError::Table {
+        return Err(ExpError::File(evhi::output::FileError::Table {
             path: base.display().to_string(),
             message: "its rows are not those of the finer reference's table (quick mode?)".into(),
         }));
     }
-    let col = |df: &crate::output::csv::Frame, c: &str| col_f64(df, c);
+    let col = |df: &evhi::output::csv::Frame, c: &str| col_f64(df, c);
     let (t0, t1) = (
         col(&old, "rel_err_T_percent")?,
         col(&new, "rel_err_T_percent")?,

@@ -2,8 +2,8 @@
 //! family against the truth, the Céa terms of (b), and the regimes (b) visits.
 
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::manufactured::run::REGIMES;
-use crate::output::plot::{
+use evhi::manufactured::run::REGIMES;
+use evhi::output::plot::{
     Figure, LogLogChart, both, e2s, extent, legend, regime_colour, regime_label, slope_guides,
 };
 use plotters::prelude::*;
@@ -204,7 +204,7 @@ const COLOURS: [(&str, &str, RGBColor); 12] = [
 ];
 
 fn label_of(sol: &str) -> &'static str {
-    crate::manufactured::SOLUTIONS
+    evhi::manufactured::SOLUTIONS
         .iter()
         .find(|s| s.name() == sol)
         .map_or("?", |s| s.label())

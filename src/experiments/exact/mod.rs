@@ -1,5 +1,5 @@
 //! The exact-solution study: Corollary 4.1 and the Céa inequality (4.16) observed
-//! against manufactured solutions ([`crate::manufactured`]), every error measured
+//! against manufactured solutions ([`evhi::manufactured`]), every error measured
 //! against the truth.
 //!
 //! For each solution and family of levels $(n, N)$, $h = 1/n$, $k = T/N$, the relative
@@ -16,10 +16,10 @@
 mod figure;
 
 use super::{Ctx, ExpError};
-use crate::manufactured::run::{ExactRun, REGIMES, Rule, run, run_rules};
-use crate::manufactured::{Data, Solution, load_vector};
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
+use evhi::manufactured::run::{ExactRun, REGIMES, Rule, run, run_rules};
+use evhi::manufactured::{Data, Solution, load_vector};
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
 
 /// One family of levels of one solution: (n, N) pairs.
 pub struct Family {
@@ -103,13 +103,13 @@ struct Study {
 
 pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("literal")?;
-    if scn.g != crate::manufactured::G {
-        return Err(crate::error::InputError::field(
+    if scn.g() != evhi::manufactured::G {
+        return Err(evhi::error::InputError::field(
             "g",
-            scn.g,
+            scn.g(),
             format!(
                 "the g = {} the manufactured solutions are built for",
-                crate::manufactured::G
+                evhi::manufactured::G
             ),
         )
         .into());
@@ -220,10 +220,10 @@ fn write_grid(ctx: &Ctx, runs: &[ExactRun]) -> Result<std::path::PathBuf, ExpErr
 
 /// The provenance every table of the study shares.
 fn params() -> String {
-    format!("{PARAMS}; {}", crate::manufactured::parameters())
+    format!("{PARAMS}; {}", evhi::manufactured::parameters())
 }
 
-const PARAMS: &str = "manufactured solutions of crate::manufactured on the paper's domain, supports, material (E = 1000, kappa = 0.4, alpha = 100, beta = 50), law (5.1) and g = 0.1, T = 1; loads derived from u (weak form, 7-point rule per triangle and 5-point Gauss per contact segment, cut where the data are piecewise); Newton with the full certificate every step";
+const PARAMS: &str = "manufactured solutions of evhi::manufactured on the paper's domain, supports, material (E = 1000, kappa = 0.4, alpha = 100, beta = 50), law (5.1) and g = 0.1, T = 1; loads derived from u (weak form, 7-point rule per triangle and 5-point Gauss per contact segment, cut where the data are piecewise); Newton with the full certificate every step";
 
 fn write_convergence(
     ctx: &Ctx,
@@ -349,7 +349,7 @@ fn write_crime(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<(), ExpError> {
         t.f("max_kkt_exact", ex.max_certificate());
     }
     let params = format!(
-        "{}; solution (b) on h = k = 1/n, the same loads solved with the scheme's nodal (trapezoidal) compliance rule and with the exact integral of j(u_h) on Gamma_3 (crate::manufactured::exact_rule, projected Newton, KKT residual max_kkt_exact); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E; crime = max_n ||u_n(nodal) - u_n(exact)||_E / max_n ||u(t_n)||_E; crime_share = crime / rel_err_nodal",
+        "{}; solution (b) on h = k = 1/n, the same loads solved with the scheme's nodal (trapezoidal) compliance rule and with the exact integral of j(u_h) on Gamma_3 (evhi::manufactured::exact_rule, projected Newton, KKT residual max_kkt_exact); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E; crime = max_n ||u_n(nodal) - u_n(exact)||_E / max_n ||u(t_n)||_E; crime_share = crime / rel_err_nodal",
         params()
     );
     ctx.write("exact_crime.csv", &t.table(), &params)?;
@@ -393,7 +393,7 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         &[8, 16, 32, 64, 128]
     };
     let mut t = Cols::default();
-    for sol in crate::manufactured::SOLUTIONS {
+    for sol in evhi::manufactured::SOLUTIONS {
         let data = Data::new(sol, scn);
         let times: &[f64] = if sol.is_static() {
             &[0.0]
@@ -402,7 +402,7 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         };
         for &n in levels {
             let mesh = scn.mesh(n)?;
-            let dofs = crate::mesh::Dofs::new(&mesh, true);
+            let dofs = evhi::mesh::Dofs::new(&mesh, true);
             for &time in times {
                 let f = load_vector(&data, &mesh, &dofs, time, 0);
                 let fine = load_vector(&data, &mesh, &dofs, time, 2);
@@ -433,13 +433,13 @@ fn write_quadrature(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
 /// 4 children, each contact segment into 2 halves).
 fn write_quadrature_effect(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
     let levels: &[usize] = if ctx.quick { &[8] } else { &[8, 16] };
-    ctx.add_units(crate::manufactured::SOLUTIONS.len() * levels.len());
+    ctx.add_units(evhi::manufactured::SOLUTIONS.len() * levels.len());
     let mut t = Cols::default();
-    for sol in crate::manufactured::SOLUTIONS {
+    for sol in evhi::manufactured::SOLUTIONS {
         for &n in levels {
             let steps = if sol.is_static() { 1 } else { n };
-            let plain = crate::manufactured::run::run_refined(sol, scn, n, steps, 0)?;
-            let fine = crate::manufactured::run::run_refined(sol, scn, n, steps, 1)?;
+            let plain = evhi::manufactured::run::run_refined(sol, scn, n, steps, 0)?;
+            let fine = evhi::manufactured::run::run_refined(sol, scn, n, steps, 1)?;
             let (a, b) = (plain.rel_max(), fine.rel_max());
             t.s("solution", sol.name());
             t.u("n", n);

@@ -43,11 +43,11 @@
 //! their fitted exponent, and from it an estimate of the reference's own error.
 
 use super::{Ctx, ExpError};
-use crate::certificate::ContactState;
-use crate::mesh::{Interpolation, Mesh, Pattern};
-use crate::norms::{FieldNorms, NormGeometry, gamma_l2_sq};
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
+use evhi::certificate::ContactState;
+use evhi::mesh::{Interpolation, Mesh, Pattern};
+use evhi::norms::{FieldNorms, NormGeometry, gamma_l2_sq};
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
 use std::collections::BTreeMap;
 
 mod table;
@@ -130,7 +130,7 @@ impl Acc {
 /// thousands of evaluations; meshes are told apart by (n, pattern, triangle
 /// count), which within one study identifies them.
 struct Meter {
-    g: crate::material::Isotropic,
+    g: evhi::material::Isotropic,
     geometry: std::cell::RefCell<Vec<(MeshKey, std::rc::Rc<NormGeometry>)>>,
 }
 
@@ -138,7 +138,7 @@ struct Meter {
 type MeshKey = (usize, Pattern, usize);
 
 impl Meter {
-    fn new(g: crate::material::Isotropic) -> Meter {
+    fn new(g: evhi::material::Isotropic) -> Meter {
         Meter {
             g,
             geometry: Default::default(),
@@ -219,7 +219,7 @@ fn run_level(
     mut keep: impl FnMut(usize, usize, Field),
 ) -> Result<Mesh, ExpError> {
     let scns: Vec<Scenario> = group.loads.iter().map(|(_, s)| s.clone()).collect();
-    let sim = crate::study::runs::simulation(&scns[0], n, steps)?;
+    let sim = crate::experiments::runs::simulation(&scns[0], n, steps)?;
     let disc = sim.discretisation();
     let dofs = &disc.dofs;
     let per = n_ref / steps;
@@ -228,8 +228,8 @@ fn run_level(
         u: dofs.expand(u),
         sigma: states.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect(),
     };
-    if crate::reduced::proportional(&scns[0], &disc).is_some() {
-        let mut timings = crate::scheme::Timings::default();
+    if evhi::reduced::proportional(&scns[0], &disc).is_some() {
+        let mut timings = evhi::scheme::Timings::default();
         let op = sim.reduced_operator(&disc, &mut timings)?;
         for (i, scn) in scns.iter().enumerate() {
             let load = op.load_of(scn);
@@ -238,10 +238,10 @@ fn run_level(
             // arithmetic as alone), in step order. Every step is certified on its
             // condensed problem, whose contact states give sigma; the last step also
             // on the full system (the march's own field).
-            let mut batch: Vec<(usize, crate::reduced::State, Vec<f64>)> = vec![];
-            let flush = |batch: &mut Vec<(usize, crate::reduced::State, Vec<f64>)>,
+            let mut batch: Vec<(usize, evhi::reduced::State, Vec<f64>)> = vec![];
+            let flush = |batch: &mut Vec<(usize, evhi::reduced::State, Vec<f64>)>,
                          keep: &mut dyn FnMut(usize, usize, Field)| {
-                let states: Vec<&crate::reduced::State> = batch.iter().map(|b| &b.1).collect();
+                let states: Vec<&evhi::reduced::State> = batch.iter().map(|b| &b.1).collect();
                 let fields = op.fields(&load, &states);
                 for ((step, _, sigma), u) in batch.drain(..).zip(fields) {
                     keep(
@@ -272,7 +272,7 @@ fn run_level(
                         None => {
                             let sigma = s.contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2);
                             batch.push((s.step, s.state.clone(), sigma.collect()));
-                            if batch.len() == crate::linalg::MAX_BATCH {
+                            if batch.len() == evhi::linalg::MAX_BATCH {
                                 flush(&mut batch, &mut keep);
                             }
                         }
@@ -519,7 +519,7 @@ fn study_group(group: &Group, plan: &Plan, main: bool, ctx: &Ctx) -> Result<Grou
             let ps = contact_interp(&run.mesh, &ref_mesh, interp, &f.sigma);
             let e = meter.diff(&ref_mesh, &truth, &pu, &ps);
             if !e.iter().all(|x| x.is_finite()) {
-                failure = Some(ExpError::File(crate::output::FileError::Table {
+                failure = Some(ExpError::File(evhi::output::FileError::Table {
                     path: "table1_forensics".into(),
                     message: format!("non-finite error at h = 1/{n}, t = {j}/{n_ref}"),
                 }));
@@ -625,9 +625,9 @@ fn groups() -> Result<Vec<Group>, ExpError> {
     let literal = Scenario::load("literal")?;
     let vertical = literal
         .clone()
-        .with_loads(None, Some([0.0, literal.f2[0]]))?;
+        .with_loads(None, Some([0.0, literal.f2()[0]]))?;
     let figure = Scenario::load("figure")?;
-    let (e, kappa) = plane_stress_equivalent(literal.e, literal.kappa);
+    let (e, kappa) = plane_stress_equivalent(literal.e(), literal.kappa());
     Ok(vec![
         Group {
             material: "plane_strain",

@@ -2,9 +2,10 @@
 //! (`data/stability_sweeps.csv`).
 
 use crate::experiments::{Ctx, ExpError};
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
-use crate::study::map::map_cell;
+use evhi::error::InputError;
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
+use evhi::study::map::map_cell;
 
 /// One-parameter sweeps towards the edges of the theory: Young's modulus against the
 /// smallness condition $\beta > m\|\iota\|^2$, the layer thickness $g \to 0$ and the
@@ -12,7 +13,7 @@ use crate::study::map::map_cell;
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let n = if ctx.quick { 8 } else { 16 };
     let base = Scenario::load("figure")?;
-    type Edit = fn(&mut Scenario, f64);
+    type Edit = fn(Scenario, f64) -> Result<Scenario, InputError>;
     let sweeps: [(&str, Vec<f64>, Edit); 3] = [
         (
             "E",
@@ -21,7 +22,10 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             } else {
                 vec![1000.0, 300.0, 100.0, 30.0, 10.0]
             },
-            |s, v| s.e = v,
+            |s, v| {
+                let kappa = s.kappa();
+                s.with_elasticity(v, kappa)
+            },
         ),
         (
             "g",
@@ -30,7 +34,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             } else {
                 vec![0.1, 0.03, 0.01, 1e-3, 1e-4]
             },
-            |s, v| s.g = v,
+            |s, v| s.with_g(v),
         ),
         (
             "kappa",
@@ -39,17 +43,19 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             } else {
                 vec![0.4, 0.45, 0.49, 0.499, 0.4999]
             },
-            |s, v| s.kappa = v,
+            |s, v| {
+                let e = s.e();
+                s.with_elasticity(e, v)
+            },
         ),
     ];
     let mut rows = vec![];
-    let swept = crate::step::SOLVERS.iter().filter(|e| e.swept).count();
+    let swept = evhi::step::SOLVERS.iter().filter(|e| e.swept).count();
     ctx.add_units(sweeps.iter().map(|s| s.1.len() * swept).sum());
     for (param, values, edit) in &sweeps {
         for &v in values {
-            let mut scn = base.clone();
-            edit(&mut scn, v);
-            for solver in crate::step::SOLVERS
+            let scn = edit(base.clone(), v)?;
+            for solver in evhi::step::SOLVERS
                 .iter()
                 .filter(|e| e.swept)
                 .map(|e| e.name)
@@ -92,7 +98,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     ctx.write(
         "stability_sweeps.csv",
         &t,
-        &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e}", crate::step::penalty::RELATIVE_STIFFNESS),
+        &format!("scenario figure, h = k = 1/{n}, one parameter changed at a time; beta_B = coercivity of G (compare m ||iota||^2 in data/hypotheses.csv); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e}", evhi::step::penalty::RELATIVE_STIFFNESS),
     )?;
     Ok(())
 }

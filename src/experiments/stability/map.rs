@@ -2,12 +2,12 @@
 //! the time step and the softening slope of the law (`data/stability_map.csv`, its figure).
 
 use crate::experiments::{Ctx, ExpError};
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
 
-use crate::law::Law;
-use crate::output::plot::both;
-use crate::study::map::{MapFigure, NAN_COLUMNS, map_cell, solvers};
+use evhi::law::Law;
+use evhi::output::plot::both;
+use evhi::study::map::{MapFigure, NAN_COLUMNS, map_cell, solvers};
 
 /// The paper's law with the softening slope `c2`.
 fn law_with_softening(c2: f64) -> Result<Law, ExpError> {
@@ -35,8 +35,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let solvers = solvers();
     ctx.add_units(c2s.len() * steps.len() * solvers.len());
     for &c2 in &c2s {
-        let mut scn = base.clone();
-        scn.law = law_with_softening(c2)?;
+        let scn = base.clone().with_law(law_with_softening(c2)?)?;
         for &st in &steps {
             for &solver in &solvers {
                 ctx.log(&format!(
@@ -84,21 +83,21 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let path = ctx.write(
         "stability_map.csv",
         &t,
-        &format!("scenario figure with softening slope c2, h = 1/{n}, T = 1; hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e} (judged by convergence only); multistart spread: newton from 0, g and r0 besides the warm start; {NAN_COLUMNS}", crate::step::penalty::RELATIVE_STIFFNESS),
+        &format!("scenario figure with softening slope c2, h = 1/{n}, T = 1; hessian_min = lambda_min(S + k diag(w) c_min) (> 0: every step strictly convex); penalty stiffness rho L / (k w_min), L >= lambda_max(S) the step solvers' bound, rho = {:e} (judged by convergence only); multistart spread: newton from 0, g and r0 besides the warm start; {NAN_COLUMNS}", evhi::step::penalty::RELATIVE_STIFFNESS),
     )?;
     draw_map(ctx, &path)
 }
 
 fn draw_map(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
-    let df = crate::output::csv::read_csv(path)?;
-    let solver = crate::output::csv::col_str(&df, "solver")?;
+    let df = evhi::output::csv::read_csv(path)?;
+    let solver = evhi::output::csv::col_str(&df, "solver")?;
     let (k, c2, hmin) = (
-        crate::output::csv::col_f64(&df, "k")?,
-        crate::output::csv::col_f64(&df, "c2")?,
-        crate::output::csv::col_f64(&df, "hessian_min")?,
+        evhi::output::csv::col_f64(&df, "k")?,
+        evhi::output::csv::col_f64(&df, "c2")?,
+        evhi::output::csv::col_f64(&df, "hessian_min")?,
     );
-    let outcome = crate::output::csv::col_str(&df, "outcome")?;
-    let iters = crate::output::csv::col_f64(&df, "mean_iterations")?;
+    let outcome = evhi::output::csv::col_str(&df, "outcome")?;
+    let iters = evhi::output::csv::col_f64(&df, "mean_iterations")?;
     let cells = (0..solver.len())
         .map(|i| {
             (

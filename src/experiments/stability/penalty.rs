@@ -1,12 +1,12 @@
 //! The penalty treatment against the exact bound as the penalty stiffens
 //! (`data/stability_penalty.csv`).
 
-use crate::assembly::stiffness;
 use crate::experiments::{Ctx, ExpError};
-use crate::mesh::Dofs;
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
-use crate::step::penalty::Penalty;
+use evhi::assembly::stiffness;
+use evhi::mesh::Dofs;
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
+use evhi::step::penalty::Penalty;
 
 /// The penalty treatment against the exact bound as the penalty stiffens.
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
@@ -20,7 +20,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mesh = scn.mesh(n)?;
     let dofs = Dofs::new(&mesh, true);
     let b = stiffness(&mesh, &dofs, &scn.elasticity());
-    let k = scn.t_end / n as f64;
+    let k = scn.t_end() / n as f64;
     let kw_max = mesh
         .contact_weights()
         .iter()
@@ -28,20 +28,21 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut rows = vec![];
     // One simulation for every stiffness; the penalty is judged by its own
     // convergence (it is not certified).
-    let sim = crate::study::runs::simulation(&scn, n, n)?;
+    let sim = crate::experiments::runs::simulation(&scn, n, n)?;
     for &s in &stiff {
         let res = sim.solve_with(&mut Penalty::new(s), &mut ())?.run;
         let overshoot = res
             .contact
             .iter()
-            .map(|c| c.u_nu - scn.g)
+            .map(|c| c.u_nu - scn.g())
             .fold(f64::NEG_INFINITY, f64::max);
         let diff: Vec<f64> = res.u.iter().zip(&exact.u).map(|(a, e)| a - e).collect();
-        let rel = crate::norms::energy_norm(&b, &diff) / crate::norms::energy_norm(&b, &exact.u);
+        let rel = evhi::norms::energy_norm(&b, &diff) / evhi::norms::energy_norm(&b, &exact.u);
         // Condition of the Newton matrix on a node pushed past g: (lambda_max(S) + k w (c3 + s)) / lambda_min(S).
-        let cond = (res.s_eigen.1 + kw_max * (scn.law.tangent(scn.g).slope + s)) / res.s_eigen.0;
+        let cond =
+            (res.s_eigen.1 + kw_max * (scn.law().tangent(scn.g()).slope + s)) / res.s_eigen.0;
         let iters = res.records.iter().map(|r| r.iterations as f64).sum::<f64>() / n as f64;
-        rows.push((s, overshoot / scn.g, rel, cond, iters));
+        rows.push((s, overshoot / scn.g(), rel, cond, iters));
     }
     let t = Table::new()
         .f64("penalty_stiffness", rows.iter().map(|r| r.0).collect())

@@ -2,14 +2,14 @@
 //! uniformly in $h$ and $k$, with $\delta u_n = (u_n - u_{n-1})/k$ and
 //! $\|v\|_V^2 = (\varepsilon(v), \varepsilon(v))_{\mathcal H}$ (4.8). Measured as $k \to 0$ at fixed $h$.
 
-use crate::assembly::{quad_form, stiffness};
 use crate::experiments::{Ctx, ExpError};
-use crate::material::Isotropic;
-use crate::mesh::{Dofs, Mesh};
-use crate::output::csv::Table;
-use crate::scenario::Scenario;
-use crate::simulation::OnStep;
-use crate::step::newton::Newton;
+use evhi::assembly::{quad_form, stiffness};
+use evhi::material::Isotropic;
+use evhi::mesh::{Dofs, Mesh};
+use evhi::output::csv::Table;
+use evhi::scenario::Scenario;
+use evhi::simulation::OnStep;
+use evhi::step::newton::Newton;
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let (n, steps): (usize, Vec<usize>) = if ctx.quick {
@@ -25,10 +25,10 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     for name in ["literal", "figure"] {
         let scn = Scenario::load(name)?;
         for &nsteps in &steps {
-            let k = scn.t_end / nsteps as f64;
+            let k = scn.t_end() / nsteps as f64;
             let mut prev = vec![0.0; dofs.count];
             let (mut max_sq, mut sum_sq) = (0.0f64, 0.0f64);
-            let sim = crate::study::runs::simulation(&scn, n, nsteps)?;
+            let sim = crate::experiments::runs::simulation(&scn, n, nsteps)?;
             let mut observer = OnStep::new(|_, _, u: Option<&[f64]>, _: &[_]| {
                 let u = u.expect("the general loop forms every step's field");
                 let du: Vec<f64> = u.iter().zip(&prev).map(|(a, b)| (a - b) / k).collect();

@@ -3,7 +3,7 @@
 
 #[allow(unused_imports)]
 use super::*;
-use crate::output::plot::LogLogChart;
+use evhi::output::plot::LogLogChart;
 
 /// Okabe–Ito colours (safe for colour-blind readers), one per history.
 const COLOURS: [RGBColor; 3] = [
@@ -285,10 +285,10 @@ impl Figure for ControlFig {
         for (k, (title, series)) in self.panels.iter().enumerate() {
             let area = root;
             let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
-            let ((xmin, xmax), (ymin, ymax)) = crate::output::plot::extent(&pts);
+            let ((xmin, xmax), (ymin, ymax)) = evhi::output::plot::extent(&pts);
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
-            let keys = crate::output::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
-            let ykeys = crate::output::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
+            let keys = evhi::output::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
+            let ykeys = evhi::output::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
             let caption = format!("Time error against k/tau: {title}");
             let mut chart = LogLogChart {
                 caption: (&caption, 22),

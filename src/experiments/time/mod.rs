@@ -3,13 +3,13 @@
 //! relaxation time scaled and the limit moved out of reach (`time_controls.csv`),
 //! with their figures and the book's Markdown table. The computation, and why it
 //! matters (the initial layer of relaxation time $\tau = 0.07$ under a load applied
-//! in full at $t = 0$), is [`crate::study::time_error`], which `evhi study time` runs
+//! in full at $t = 0$), is [`evhi::study::time_error`], which `evhi study time` runs
 //! on any scenario.
 
 use super::{Ctx, ExpError, col_f64, col_str, read_csv};
-use crate::history::History;
-use crate::output::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
-use crate::scenario::Scenario;
+use evhi::history::History;
+use evhi::output::plot::{Figure, both, circle_legend, dashed_legend, e2s, legend};
+use evhi::scenario::Scenario;
 
 use plotters::prelude::*;
 
@@ -18,7 +18,7 @@ mod table;
 use figure::{draw, draw_controls};
 use table::write_markdown;
 
-pub use crate::study::time_error::{Plan, Row, plan, scalar_model, sig3, study_of, write_rows};
+pub use evhi::study::time_error::{Plan, Row, plan, scalar_model, sig3, study_of, write_rows};
 
 /// The load scenarios of the study.
 pub const SCENARIOS: [&str; 2] = ["figure", "literal"];
@@ -47,14 +47,14 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let mut rows = vec![];
     let mut materials: Vec<(f64, f64)> = vec![];
     for c in &all {
-        if !materials.contains(&(c.2.alpha, c.2.beta)) {
-            materials.push((c.2.alpha, c.2.beta));
+        if !materials.contains(&(c.2.alpha(), c.2.beta())) {
+            materials.push((c.2.alpha(), c.2.beta()));
         }
     }
     for m in materials {
         let group: Vec<_> = all
             .iter()
-            .filter(|c| (c.2.alpha, c.2.beta) == m)
+            .filter(|c| (c.2.alpha(), c.2.beta()) == m)
             .cloned()
             .collect();
         rows.extend(study_of(&plan, ctx, &group)?);
@@ -68,8 +68,9 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
     let mut scns = vec![];
     for name in SCENARIOS {
         for (label, h) in histories() {
-            let mut s = Scenario::load(name)?.with_history(h)?;
-            s.name = format!("{name}/{label}");
+            let s = Scenario::load(name)?
+                .with_history(h)?
+                .with_name(&format!("{name}/{label}"))?;
             scns.push((name.to_string(), label.to_string(), s));
         }
     }
@@ -86,13 +87,13 @@ pub fn controls() -> Result<Vec<(String, String, Scenario)>, ExpError> {
     let mut out = vec![];
     for name in SCENARIOS {
         for scale in [0.1, 1.0, 10.0] {
-            let mut s = Scenario::load(name)?;
-            s.alpha *= scale;
-            s.beta *= scale;
+            let s = Scenario::load(name)?;
+            let (alpha, beta) = (s.alpha() * scale, s.beta() * scale);
+            let s = s.with_viscosity(alpha, beta)?;
             let tau = s.relaxation_time().unwrap_or(f64::NAN);
             // 0.007, 0.07, 0.7 (rounded: the product is 0.06999... in double precision)
             let label = format!("tau = {}", (tau * 1e6).round() / 1e6);
-            s.name = format!("{name}/{label}");
+            let s = s.with_name(&format!("{name}/{label}"))?;
             out.push((name.to_string(), label, s));
         }
     }
@@ -103,10 +104,10 @@ pub fn controls() -> Result<Vec<(String, String, Scenario)>, ExpError> {
             History::Ramp { t_r: 1.0 },
         ),
     ] {
-        let mut s = Scenario::load("figure")?
+        let s = Scenario::load("figure")?
             .with_g(1.0)?
-            .with_history(history)?;
-        s.name = format!("figure/{label}");
+            .with_history(history)?
+            .with_name(&format!("figure/{label}"))?;
         out.push(("figure".into(), label.into(), s));
     }
     Ok(out)

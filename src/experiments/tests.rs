@@ -1,9 +1,52 @@
 //! Every experiment in quick mode, its CSV output rounded to 6 significant digits
 //! and pinned by an insta snapshot: a change in the numbers fails here.
+//!
+//! The experiments are modules of the binary, so their tests are its unit tests. The
+//! snapshots live in `tests/snapshots/` as `experiments__{name}__{file}.snap`, where
+//! they were when these tests were an integration test, `tests/experiments.rs`.
 
-use evhi::experiments::registry::names;
-use evhi::experiments::{Ctx, rounded_csv_floor, run};
+use crate::experiments::registry::names;
+use crate::experiments::{Ctx, run};
 use std::path::PathBuf;
+
+/// Where the snapshots are, relative to this file.
+const SNAPSHOTS: &str = "../../tests/snapshots";
+
+/// Rounds every number in CSV text to `sig` significant digits and drops comment
+/// lines: what the snapshot tests compare. Numbers of magnitude below `floor`
+/// (round-off, such as the certificate of an exact step) are written as `<floor`, so
+/// that a snapshot does not pin the last bits of round-off (a `floor` of 0 keeps them
+/// all).
+fn rounded_csv_floor(text: &str, sig: usize, floor: f64) -> String {
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .map(|l| {
+            l.split(',')
+                .map(|f| match f.parse::<f64>() {
+                    Ok(x) if x != 0.0 && x.abs() < floor => format!("<{floor:e}"),
+                    Ok(x) if f.contains('.') || f.contains('e') => round_sig(x, sig),
+                    _ => f.to_string(),
+                })
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// `x` to `sig` significant digits, in scientific notation (`0` for zero).
+fn round_sig(x: f64, sig: usize) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let s = format!("{:.*e}", sig.saturating_sub(1), x);
+    // normalise "-0.0e0" style output
+    if s.starts_with("-0.") && s[1..].chars().all(|c| c == '0' || c == '.' || c == 'e') {
+        s[1..].to_string()
+    } else {
+        s
+    }
+}
 
 fn ctx(name: &str) -> Ctx {
     let root = std::env::temp_dir().join(format!("evhi-exp-{name}-{}", std::process::id()));
@@ -26,7 +69,12 @@ fn snapshot_outputs_floor(name: &str, files: &[&str], figures: &[&str], floor: f
             text.starts_with("# produced by evhi"),
             "{f} lacks its provenance line"
         );
-        insta::assert_snapshot!(format!("{name}__{f}"), rounded_csv_floor(&text, 6, floor));
+        insta::with_settings!({snapshot_path => SNAPSHOTS, prepend_module_to_snapshot => false}, {
+            insta::assert_snapshot!(
+                format!("experiments__{name}__{f}"),
+                rounded_csv_floor(&text, 6, floor)
+            );
+        });
     }
     for stem in figures {
         for ext in ["png", "svg"] {
@@ -97,7 +145,7 @@ fn time_study() {
 /// first; the scalar model predicts `literal`'s errors.
 #[test]
 fn time_study_orders_and_plateau() {
-    use evhi::experiments::time::{Plan, plan, study};
+    use crate::experiments::time::{Plan, plan, study};
     let c = ctx("time-orders");
     let p: Plan = plan(true);
     let rows = study(&p, &c).unwrap();
@@ -154,7 +202,7 @@ fn table1_forensics() {
 /// `table1.csv` for `literal` and `figure` at every quick level.
 #[test]
 fn forensics_energy_rows_equal_table1() {
-    use evhi::experiments::{col_f64, col_str, read_csv};
+    use crate::experiments::{col_f64, col_str, read_csv};
     let c = ctx("forensics-vs-table1");
     run("table1", &c).unwrap();
     run("forensics", &c).unwrap();
@@ -212,7 +260,7 @@ fn graded_meshes() {
 /// both loads, and the uniform family's last order stays at most 0.7.
 #[test]
 fn graded_orders() {
-    use evhi::experiments::{col_f64, col_str, read_csv};
+    use crate::experiments::{col_f64, col_str, read_csv};
     let c = ctx("graded-orders");
     run("graded", &c).unwrap();
     let df = read_csv(&c.data.join("graded_convergence.csv")).unwrap();
@@ -249,10 +297,10 @@ fn static_control() {
 #[test]
 fn static_control_orders() {
     let c = ctx("static-orders");
-    evhi::experiments::singular::run(&c).unwrap();
-    let df = evhi::experiments::read_csv(&c.data.join("static_control.csv")).unwrap();
-    let sc = evhi::experiments::col_str(&df, "scenario").unwrap();
-    let od = evhi::experiments::col_f64(&df, "order_diff").unwrap();
+    crate::experiments::singular::run(&c).unwrap();
+    let df = crate::experiments::read_csv(&c.data.join("static_control.csv")).unwrap();
+    let sc = crate::experiments::col_str(&df, "scenario").unwrap();
+    let od = crate::experiments::col_f64(&df, "order_diff").unwrap();
     let last = |s: &str| {
         (0..sc.len())
             .filter(|&i| sc[i] == s && od[i].is_finite())
@@ -334,7 +382,7 @@ fn exact_solutions() {
 /// level: no contact, the three branches and the limit.
 #[test]
 fn exact_orders_and_regimes_quick() {
-    use evhi::experiments::{col_f64, col_str, read_csv};
+    use crate::experiments::{col_f64, col_str, read_csv};
     let c = ctx("exact-check");
     run("exact", &c).unwrap();
     let t = read_csv(&c.data.join("exact_convergence.csv")).unwrap();
@@ -365,7 +413,7 @@ fn exact_orders_and_regimes_quick() {
 #[test]
 fn every_experiment_is_tested_here() {
     // whitespace removed, so formatting cannot hide a call
-    let src: String = include_str!("experiments.rs").split_whitespace().collect();
+    let src: String = include_str!("tests.rs").split_whitespace().collect();
     for name in names() {
         assert!(
             src.contains(&format!("snapshot_outputs(\"{name}\""))
@@ -415,7 +463,7 @@ fn progress_units_match_the_work_done() {
 /// norms and fields to 1e-12 at the quick levels (snapshotted below 1e-11).
 #[test]
 fn paths_agree() {
-    use evhi::experiments::{col_f64, read_csv};
+    use crate::experiments::{col_f64, read_csv};
     snapshot_outputs_floor("paths", &["paths.csv"], &[], 1e-11);
     let c = ctx("paths-check");
     run("paths", &c).unwrap();
