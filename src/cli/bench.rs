@@ -182,7 +182,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     // The tables and figures replace files of the same names: only in directories
     // evhi wrote (or new ones), one writer at a time.
-    let _lock = crate::experiments::reproduce::claim_outputs(&ctx)?;
+    let _lock = super::outputs::claim_outputs(&ctx)?;
     if args.from_csv {
         return Ok(crate::bench::from_csv(&ctx)?);
     }

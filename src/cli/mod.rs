@@ -6,5 +6,6 @@
 //! the experiments.
 
 pub mod bench;
+pub mod outputs;
 pub mod show;
 pub mod solve;
