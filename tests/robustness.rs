@@ -289,12 +289,13 @@ fn without_its_line_search_newton_can_fail_where_the_globalised_one_succeeds() {
         if let Err(e @ RunError::Step { status, .. }) = &plain_run {
             assert_eq!(*status, Status::MaxIterations);
             // A failed step says what may help, with the step's own numbers (issue 41,
-            // item 17).
+            // item 17), in the library's words: no command-line flag (issue 48).
             let msg = e.to_string();
             assert!(
-                msg.contains("What may help") && msg.contains("--steps"),
+                msg.contains("What may help") && msg.contains("more time steps"),
                 "{msg}"
             );
+            assert!(!msg.contains("--"), "{msg}");
             if globalised.is_ok() {
                 shown += 1;
             }
