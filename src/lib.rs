@@ -55,6 +55,7 @@ pub mod manufactured;
 pub mod material;
 pub mod memory;
 pub mod mesh;
+pub mod msh;
 pub mod norms;
 pub mod ordering;
 pub mod output;
