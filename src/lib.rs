@@ -41,6 +41,7 @@
 
 pub mod assembly;
 pub mod bisection;
+pub mod body;
 pub mod certificate;
 pub mod condense;
 pub mod dense;
