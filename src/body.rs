@@ -8,7 +8,19 @@
 //! lacks, a contact part that shares an edge with a held one, a contact part that is
 //! not one open polyline, and supports that leave a rigid motion free
 //! ($\{(a - \theta y, b + \theta x)\}$ not all zero on the held components) are refused
-//! here, when the scene is read. The contact alone does not hold the body: at zero
+//! here, when the scene is read.
+//!
+//! The foundation is a rigid line through a point $x_f$ with outward unit normal $n_f$
+//! (the body's side is $-n_f$; default the paper's $y = 0$, $n_f = (0, -1)$). A contact
+//! node $x_i$ starts at the gap $g_{0,i} = (x_f - x_i)\cdot n_f \ge 0$ from it (a node
+//! behind the line, $g_{0,i} < 0$, is refused), and the contact acts on
+//! $u\cdot n_f - g_{0,i}$ (Kikuchi–Oden's small-deformation contact): with $\Gamma_3$ on
+//! the line and $n_f = (0, -1)$ that is the paper's $u_\nu = -u_y$. This stage solves
+//! that case only: a normal other than $(0, -1)$ (a change of basis at the contact
+//! nodes) and a nonzero initial gap (a shift of the contact unknowns) are refused with
+//! the reason, never ignored.
+//!
+//! The contact alone does not hold the body: at zero
 //! penetration the law's force is zero and the limit only bounds the motion from one
 //! side, so the step problem's matrix $A + kB$ would be singular.
 
@@ -37,6 +49,50 @@ pub struct PartTraction {
     pub field: String,
 }
 
+/// The rigid foundation: the line through `point` with outward unit normal `normal`
+/// (pointing from the body to the foundation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Foundation {
+    pub point: [f64; 2],
+    pub normal: [f64; 2],
+}
+
+impl Default for Foundation {
+    /// The paper's: the line $y = 0$, $n_f = (0, -1)$.
+    fn default() -> Self {
+        Foundation {
+            point: [0.0, 0.0],
+            normal: [0.0, -1.0],
+        }
+    }
+}
+
+impl Foundation {
+    /// A foundation from the scene's numbers: finite, the normal of unit length (to
+    /// 1e-12).
+    pub fn new(point: [f64; 2], normal: [f64; 2]) -> Result<Foundation, InputError> {
+        let len = normal[0].hypot(normal[1]);
+        if !(point.iter().chain(&normal).all(|x| x.is_finite()) && (len - 1.0).abs() <= 1e-12) {
+            return Err(InputError::field(
+                "geometry.foundation",
+                format!(
+                    "point = [{}, {}], normal = [{}, {}]",
+                    point[0], point[1], normal[0], normal[1]
+                ),
+                "a finite point and an outward unit normal (length 1), e.g. { point = [0, 0], \
+                 normal = [0, -1] }, the paper's line y = 0",
+            ));
+        }
+        Ok(Foundation { point, normal })
+    }
+
+    /// $g_0(x) = (x_f - x)\cdot n_f$: how far the foundation lies from `p` along $n_f$
+    /// (negative behind it).
+    pub fn gap0(&self, p: [f64; 2]) -> f64 {
+        (self.point[0] - p[0]) * self.normal[0] + (self.point[1] - p[1]) * self.normal[1]
+    }
+}
+
 /// The mesh file and the roles of its parts.
 #[derive(Clone, PartialEq)]
 pub struct Body {
@@ -48,6 +104,10 @@ pub struct Body {
     pub contact: String,
     /// The contact part's nodes, in order along it (the body on the left).
     pub gamma3: Vec<usize>,
+    /// The rigid foundation.
+    pub foundation: Foundation,
+    /// The initial gap $g_{0,i}$ of each node of `gamma3` (all zero in this stage).
+    pub gap0: Vec<f64>,
     pub tractions: Vec<PartTraction>,
     /// The file's bytes as read: a run directory keeps a copy (`mesh.msh`), so that
     /// an edit or a move of the file during the run cannot change what it records.
@@ -64,6 +124,7 @@ impl std::fmt::Debug for Body {
             .field("supports", &self.supports)
             .field("contact", &self.contact)
             .field("gamma3", &self.gamma3)
+            .field("foundation", &self.foundation)
             .field("tractions", &self.tractions)
             .field("bytes", &self.bytes.len())
             .finish()
@@ -80,6 +141,7 @@ impl Body {
         supports: &[(String, String)],
         contact: &str,
         tractions: Vec<PartTraction>,
+        foundation: Foundation,
         bytes: Vec<u8>,
     ) -> Result<Body, InputError> {
         let group = |field: &str, name: &str| {
@@ -157,6 +219,7 @@ impl Body {
             }
         }
         let gamma3 = chain(&mesh, contact, &g3.edges)?;
+        let gap0 = gaps(&mesh, contact, &gamma3, &foundation)?;
         for t in &tractions {
             let g = group(&format!("{}.on", t.field), &t.part)?;
             if t.part == contact {
@@ -190,6 +253,8 @@ impl Body {
             supports: parts,
             contact: contact.to_string(),
             gamma3,
+            foundation,
+            gap0,
             tractions,
             bytes: Arc::new(bytes),
         };
@@ -304,6 +369,66 @@ impl Body {
         }
         Ok(())
     }
+}
+
+/// The initial gaps of the contact nodes `gamma3` from `f`, refused where a node lies
+/// behind the line, and, in this stage, where the normal is not the paper's or a gap
+/// is not zero (each would need the contact unknowns changed, not only checked).
+fn gaps(
+    mesh: &MshMesh,
+    name: &str,
+    gamma3: &[usize],
+    f: &Foundation,
+) -> Result<Vec<f64>, InputError> {
+    let scale = mesh
+        .nodes
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+        .max(f.point[0].abs().max(f.point[1].abs()));
+    let tol = 1e-12 * scale.max(f64::MIN_POSITIVE);
+    let gap0: Vec<f64> = gamma3.iter().map(|&v| f.gap0(mesh.nodes[v])).collect();
+    let at = |i: usize| mesh.nodes[gamma3[i]];
+    if let Some(i) = gap0.iter().position(|&g| g < -tol) {
+        return Err(InputError::field(
+            "geometry.foundation",
+            format!("{:?}", f),
+            format!(
+                "a foundation that no node of the contact part \"{name}\" lies behind, but the \
+                 node at ({}, {}) is {:e} behind it (the foundation is on the body's outward \
+                 side of Gamma_3, n_f pointing from the body to it): move the line or turn \
+                 its normal",
+                at(i)[0],
+                at(i)[1],
+                -gap0[i]
+            ),
+        ));
+    }
+    if f.normal != [0.0, -1.0] {
+        return Err(InputError::field(
+            "geometry.foundation.normal",
+            format!("[{}, {}]", f.normal[0], f.normal[1]),
+            "[0, -1] in this version: the contact unknown is -u_y at each contact node; \
+             another normal needs a change of basis at the contact nodes, not yet \
+             implemented (turn the mesh so that the foundation lies below it)",
+        ));
+    }
+    if let Some(i) = gap0.iter().position(|&g| g > tol) {
+        return Err(InputError::field(
+            "geometry.foundation",
+            format!("{:?}", f),
+            format!(
+                "a foundation on Gamma_3 in this version, but the node at ({}, {}) of the \
+                 contact part \"{name}\" starts {:e} from it: an initial gap needs the contact \
+                 unknowns shifted by it, not yet implemented (a flat contact part on the line, \
+                 or the line through it)",
+                at(i)[0],
+                at(i)[1],
+                gap0[i]
+            ),
+        ));
+    }
+    Ok(gap0)
 }
 
 /// The nodes of the contact part `name` in order along it: its edges must form one

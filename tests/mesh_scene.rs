@@ -274,3 +274,65 @@ fn a_mesh_scene_s_load_is_the_rectangle_s_on_the_same_triangulation() {
     }
     assert_eq!(mesh.contact_weights(), grid.contact_weights());
 }
+
+#[test]
+fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
+    let with = |f: &str| format!("{HELD}\nfoundation = {f}");
+    // The default, written out, is accepted: Gamma_3 on the line, every gap zero.
+    let scn = scene(
+        "ok.msh",
+        &with("{ point = [5.0, 0.0], normal = [0.0, -1.0] }"),
+        "",
+    )
+    .unwrap();
+    let body = scn.body().unwrap();
+    assert_eq!(body.gap0, vec![0.0; 3]);
+    let written = scene("ok.msh", &with("{ point = [0, 0], normal = [0, -1] }"), "").unwrap();
+    assert_eq!(written, scene("ok.msh", HELD, "").unwrap());
+    // A node behind the line.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [0.0, 0.5], normal = [0.0, -1.0] }"),
+        "",
+        &[
+            "geometry.foundation",
+            "lies behind",
+            "(0, 0) is 5e-1 behind it",
+        ],
+    );
+    // A normal that is not a unit vector.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [0.0, 0.0], normal = [0.0, -2.0] }"),
+        "",
+        &["geometry.foundation", "unit normal"],
+    );
+    // A slanted normal with every node in front: refused until the change of basis.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [3.0, 0.0], normal = [0.6, -0.8] }"),
+        "",
+        &["geometry.foundation.normal", "change of basis"],
+    );
+    // An initial gap: refused until the contact unknowns are shifted by it.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [0.0, -0.5], normal = [0.0, -1.0] }"),
+        "",
+        &["geometry.foundation", "starts 5e-1 from it", "initial gap"],
+    );
+    // The rectangle's foundation is its bottom line.
+    let e = Scenario::from_toml(
+        &read("data/scenarios/figure.toml").replace(
+            "[loads]",
+            "[geometry]\nfoundation = { point = [0.0, 0.0], normal = [0.0, -1.0] }\n[loads]",
+        ),
+        "figure.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("geometry.foundation") && e.contains("the line y = 0"),
+        "{e}"
+    );
+}

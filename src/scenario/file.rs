@@ -3,7 +3,7 @@
 //! allowed), and the step from a file's tables to a validated [`Scenario`].
 
 use super::{Problem, Scenario};
-use crate::body::{Body, PartTraction};
+use crate::body::{Body, Foundation, PartTraction};
 use crate::error::{InputError, bounded, finite, in_range, positive};
 use crate::geometry::Pattern;
 use crate::geometry::{Geometry, Hold, Side, Traction};
@@ -57,6 +57,17 @@ struct RawGeometry {
     contact: Option<toml::Value>,
     #[serde(default)]
     pattern: Option<String>,
+    /// A mesh scene's rigid foundation (default: the line y = 0, normal (0, -1)).
+    #[serde(default)]
+    foundation: Option<RawFoundation>,
+}
+
+/// `[geometry] foundation = { point = [x, y], normal = [nx, ny] }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFoundation {
+    point: Vec<f64>,
+    normal: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -441,6 +452,14 @@ impl Scenario {
             scn.check_load_scale()?;
             return Ok(scn);
         }
+        if rg.is_some_and(|g| g.foundation.is_some()) {
+            return Err(InputError::field(
+                "geometry.foundation",
+                "a value",
+                "nothing on the rectangle, whose foundation is the line y = 0 under Gamma_3 \
+                 (a foundation is given on a mesh scene, [geometry] mesh = \"body.msh\")",
+            ));
+        }
         let contact = match rg.and_then(|g| g.contact.as_ref()) {
             None => None,
             Some(toml::Value::Array(items)) => Some(
@@ -520,6 +539,13 @@ fn body_from(
     loads: &RawLoads,
     f2: [f64; 2],
 ) -> Result<Body, InputError> {
+    let foundation = match &rg.foundation {
+        None => Foundation::default(),
+        Some(f) => Foundation::new(
+            vector("geometry.foundation.point", &f.point)?,
+            vector("geometry.foundation.normal", &f.normal)?,
+        )?,
+    };
     for (key, given) in [
         ("width", rg.width.is_some()),
         ("height", rg.height.is_some()),
@@ -607,5 +633,7 @@ fn body_from(
             field,
         });
     }
-    Body::new(file, mesh, &supports, &contact, tractions, bytes)
+    Body::new(
+        file, mesh, &supports, &contact, tractions, foundation, bytes,
+    )
 }
