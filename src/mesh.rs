@@ -401,6 +401,24 @@ impl Mesh {
             .collect()
     }
 
+    /// The arc length $s$ along $\Gamma_3$ of each contact node, from $\Gamma_3$'s first
+    /// node (its left end on the rectangle, where $s$ is $x$ less that end's).
+    pub fn contact_arc_length(&self) -> Vec<f64> {
+        let mut s = 0.0;
+        let mut at = Vec::with_capacity(self.gamma3.len());
+        for (i, &v) in self.gamma3.iter().enumerate() {
+            if i > 0 {
+                let (p, q) = (self.nodes[self.gamma3[i - 1]], self.nodes[v]);
+                s += (q[0] - p[0]).hypot(q[1] - p[1]);
+            }
+            at.push(s);
+        }
+        (self.gamma3.iter().zip(at))
+            .filter(|&(&v, _)| !self.fixed[v][1])
+            .map(|(_, s)| s)
+            .collect()
+    }
+
     // ANCHOR: weights
     /// Trapezoidal weights of the contact nodes: half the length of the $\Gamma_3$
     /// segments beside each node ($2h$ inside $\Gamma_3$, $h$ at its ends on a grid).

@@ -67,7 +67,8 @@ fn the_paper_mesh_gives_the_built_in_figure_scene_to_1e_12() {
         m.max(r.sigma_nu1.abs()).max(r.sigma_nu2.abs())
     });
     for (a, b) in file_rows.iter().zip(&built_rows) {
-        assert_eq!(a.x, b.x);
+        assert_eq!((a.x, a.y, a.s), (b.x, b.y, b.s));
+        assert_eq!((a.y, a.s), (0.0, a.x), "y and the arc length on the bottom");
         assert_eq!(a.regime, b.regime);
         assert!(
             close(a.u_nu, b.u_nu, scale, 1e-12),
