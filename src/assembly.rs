@@ -270,6 +270,25 @@ pub fn lin_comb(a: f64, x: &SpMat, b: f64, y: &SpMat) -> SpMat {
 impl crate::scenario::Scenario {
     /// The load vector of this scenario's loads on `mesh` (see [`crate::assembly::load`]).
     pub fn load_vector(&self, mesh: &Mesh, dofs: &crate::mesh::Dofs) -> Vec<f64> {
-        crate::assembly::load(mesh, dofs, self.f0, &self.tractions(), self.f0_modulation)
+        let mut f =
+            crate::assembly::load(mesh, dofs, self.f0, &self.tractions(), self.f0_modulation);
+        if let Some(body) = &self.body {
+            // Each edge of a loaded part gives f|e|/2 to each end (exact for constant f).
+            for t in &body.tractions {
+                let part = body.mesh.group(&t.part).expect("checked when read");
+                for e in &part.edges {
+                    let [p, q] = e.map(|v| mesh.nodes[v]);
+                    let len = (q[0] - p[0]).hypot(q[1] - p[1]);
+                    for &v in e {
+                        for c in 0..2 {
+                            if let Some(i) = dofs.of(v, c) {
+                                f[i] += t.f[c] * len / 2.0;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        f
     }
 }

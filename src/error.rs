@@ -18,9 +18,20 @@ pub enum InputError {
         source_name: String,
         message: String,
     },
+    /// A mesh file that cannot be read, or whose mesh or groups cannot make the body
+    /// (see [`crate::msh`]): the message names the element or group and what to change.
+    #[error("cannot use mesh {file}: {message}")]
+    Mesh { file: String, message: String },
 }
 
 impl InputError {
+    /// A refusal of the mesh file `file` (as the scene names it).
+    pub fn mesh(file: impl Display, message: impl Into<String>) -> Self {
+        InputError::Mesh {
+            file: file.to_string(),
+            message: message.into(),
+        }
+    }
     pub fn field(
         field: impl Into<String>,
         value: impl Display,
@@ -57,7 +68,7 @@ impl InputError {
     pub fn field_name(&self) -> Option<&str> {
         match self {
             InputError::Field { field, .. } => Some(field),
-            InputError::Parse { .. } => None,
+            InputError::Parse { .. } | InputError::Mesh { .. } => None,
         }
     }
 }

@@ -67,7 +67,7 @@ impl Hold {
         }
     }
 
-    fn parse(field: &str, s: &str) -> Result<Hold, InputError> {
+    pub(crate) fn parse(field: &str, s: &str) -> Result<Hold, InputError> {
         match s {
             "clamped" => Ok(Hold::Clamped),
             "rollers" => Ok(Hold::Rollers),
@@ -670,6 +670,8 @@ pub enum Pattern {
     /// Not a grid: a mesh of newest-vertex bisection ([`crate::bisection`]), whose
     /// contact segments may differ in length.
     Bisected,
+    /// Not a grid: a mesh read from a file ([`crate::msh`], a mesh scene's body).
+    File,
 }
 
 impl Pattern {
@@ -680,6 +682,13 @@ impl Pattern {
             Pattern::Antidiagonal => "antidiagonal",
             Pattern::CrissCross => "crisscross",
             Pattern::Bisected => "bisected",
+            Pattern::File => "file",
         }
+    }
+
+    /// Whether the mesh is a structured grid (nodes numbered row by row, `n` columns and
+    /// `ny` rows of cells): not a bisected mesh, not a file's.
+    pub fn is_grid(self) -> bool {
+        !matches!(self, Pattern::Bisected | Pattern::File)
     }
 }

@@ -41,6 +41,7 @@
 
 pub mod assembly;
 pub mod bisection;
+pub mod body;
 pub mod certificate;
 pub mod condense;
 pub mod dense;
@@ -55,6 +56,7 @@ pub mod manufactured;
 pub mod material;
 pub mod memory;
 pub mod mesh;
+pub mod msh;
 pub mod norms;
 pub mod ordering;
 pub mod output;

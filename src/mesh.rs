@@ -180,11 +180,11 @@ impl Mesh {
     /// Every end of a support segment and of $\Gamma_3$ must fall on a mesh line.
     pub fn build(n: usize, geo: &Geometry, pattern: Pattern) -> Result<Mesh, InputError> {
         check_n(n)?;
-        if pattern == Pattern::Bisected {
+        if !pattern.is_grid() {
             return Err(InputError::field(
                 "pattern",
-                "bisected",
-                "a grid pattern (bisected meshes come from crate::bisection)",
+                pattern.name(),
+                "a grid pattern (a bisected mesh comes from bisection, a file's from Mesh::from_body)",
             ));
         }
         if n > MAX_N {
@@ -225,7 +225,7 @@ impl Mesh {
                         triangles.push([ll, lr, ul]);
                         triangles.push([lr, ur, ul]);
                     }
-                    Pattern::CrissCross | Pattern::Bisected => {
+                    Pattern::CrissCross | Pattern::Bisected | Pattern::File => {
                         let c = grid + j * nx + i;
                         triangles.push([ll, lr, c]);
                         triangles.push([lr, ur, c]);
@@ -305,6 +305,31 @@ impl Mesh {
         }
     }
 
+    /// The mesh of a mesh scene's body: the file's nodes and triangles, the components
+    /// its supports hold, $\Gamma_3$ the contact part's nodes in order along it. It has
+    /// no sides (`boundary` is empty: the body's tractions act on its named parts);
+    /// `n` is the number of contact segments and `width`, `height` the bounding box's,
+    /// so that $h = W/(2n)$ labels it as it does a grid of the same contact segments.
+    pub fn from_body(body: &crate::body::Body) -> Mesh {
+        let ([width, height], _) = body.bounds();
+        let fixed = body.fixed();
+        let gamma3 = body.gamma3.clone();
+        let contact = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        Mesh {
+            n: body.gamma3.len() - 1,
+            ny: 0,
+            width,
+            height,
+            pattern: Pattern::File,
+            nodes: body.mesh.nodes.clone(),
+            triangles: body.mesh.triangles.clone(),
+            fixed,
+            gamma3,
+            contact,
+            boundary: vec![],
+        }
+    }
+
     /// Refuses a segment of `side` (a support's, a traction's or $\Gamma_3$, `field`)
     /// whose ends are not nodes of this mesh: the check on the mesh a run solves on,
     /// whatever built it.
@@ -376,6 +401,24 @@ impl Mesh {
             .collect()
     }
 
+    /// The arc length $s$ along $\Gamma_3$ of each contact node, from $\Gamma_3$'s first
+    /// node (its left end on the rectangle, where $s$ is $x$ less that end's).
+    pub fn contact_arc_length(&self) -> Vec<f64> {
+        let mut s = 0.0;
+        let mut at = Vec::with_capacity(self.gamma3.len());
+        for (i, &v) in self.gamma3.iter().enumerate() {
+            if i > 0 {
+                let (p, q) = (self.nodes[self.gamma3[i - 1]], self.nodes[v]);
+                s += (q[0] - p[0]).hypot(q[1] - p[1]);
+            }
+            at.push(s);
+        }
+        (self.gamma3.iter().zip(at))
+            .filter(|&(&v, _)| !self.fixed[v][1])
+            .map(|(_, s)| s)
+            .collect()
+    }
+
     // ANCHOR: weights
     /// Trapezoidal weights of the contact nodes: half the length of the $\Gamma_3$
     /// segments beside each node ($2h$ inside $\Gamma_3$, $h$ at its ends on a grid).
@@ -388,7 +431,15 @@ impl Mesh {
         (0..m)
             .filter(|&i| !self.fixed[self.gamma3[i]][1])
             .map(|i| {
-                if self.pattern == Pattern::Bisected {
+                if self.pattern == Pattern::File {
+                    // Half the lengths of the segments beside the node, along the part.
+                    let len = |a: usize, b: usize| {
+                        let (p, q) = (self.nodes[self.gamma3[a]], self.nodes[self.gamma3[b]]);
+                        (q[0] - p[0]).hypot(q[1] - p[1])
+                    };
+                    0.5 * (if i > 0 { len(i - 1, i) } else { 0.0 }
+                        + if i + 1 < m { len(i, i + 1) } else { 0.0 })
+                } else if self.pattern == Pattern::Bisected {
                     0.5 * (x[(i + 1).min(m - 1)] - x[i.saturating_sub(1)])
                 } else if i == 0 || i == m - 1 {
                     h
@@ -628,9 +679,15 @@ impl Interpolation {
 /// A scenario's structured meshes and the checks that its supports, tractions and
 /// $\Gamma_3$ end on nodes.
 impl crate::scenario::Scenario {
+    /// A mesh scene's mesh (`None` on the rectangle, whose meshes have a level $n$).
+    pub fn body_mesh(&self) -> Option<Mesh> {
+        self.body().map(Mesh::from_body)
+    }
+
     /// The mesh with $n$ segments on the bottom and this scenario's geometry and
     /// pattern; every traction's ends must be nodes too.
     pub fn mesh(&self, n: usize) -> Result<Mesh, InputError> {
+        self.refuse_mesh_scene("a mesh of level n")?;
         let mesh = Mesh::build(n, &self.geometry, self.pattern)?;
         self.check_traction_ends(n)?;
         Ok(mesh)
@@ -640,6 +697,7 @@ impl crate::scenario::Scenario {
     /// supports', tractions' and $\Gamma_3$'s ends on grid lines, cells near squares),
     /// without building the mesh.
     pub fn check_grid(&self, n: usize) -> Result<(), InputError> {
+        self.refuse_mesh_scene("a mesh of level n")?;
         crate::mesh::check_grid(n, &self.geometry)?;
         self.check_traction_ends(n)
     }
@@ -658,6 +716,21 @@ impl crate::scenario::Scenario {
     /// traction or $\Gamma_3$ that is not one of its boundary nodes (where that load
     /// or support would act on a shifted segment).
     pub fn check_ends_on(&self, mesh: &Mesh) -> Result<(), InputError> {
+        if let Some(body) = &self.body {
+            if mesh.nodes != body.mesh.nodes || mesh.triangles != body.mesh.triangles {
+                return Err(InputError::field(
+                    "mesh",
+                    format!("a mesh of {} nodes", mesh.nodes.len()),
+                    format!(
+                        "the mesh of the scene's file {} ({} nodes): a mesh scene solves on \
+                         its own mesh",
+                        body.file,
+                        body.mesh.nodes.len()
+                    ),
+                ));
+            }
+            return Ok(());
+        }
         let geo = &self.geometry;
         let supports = geo
             .supports

@@ -24,7 +24,11 @@ pub fn energy_norm_with(bv: &[f64], v: &[f64]) -> f64 {
 /// $\|\iota_h\|^2 = 1/\lambda_{\min}(W^{-1/2} S_V W^{-1/2})$.
 pub fn trace_norm_sq(scn: &crate::scenario::Scenario, n: usize) -> Result<f64, String> {
     use crate::material::Isotropic;
-    let mesh = scn.mesh(n).map_err(|e| e.to_string())?;
+    // A mesh scene has one mesh, its file's (`n` is then its contact segments).
+    let mesh = match scn.body_mesh() {
+        Some(mesh) => mesh,
+        None => scn.mesh(n).map_err(|e| e.to_string())?,
+    };
     let dofs = crate::mesh::Dofs::new(&mesh, true);
     let v = crate::assembly::stiffness(&mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });
     let cdofs: Vec<usize> = mesh
@@ -32,7 +36,11 @@ pub fn trace_norm_sq(scn: &crate::scenario::Scenario, n: usize) -> Result<f64, S
         .iter()
         .map(|&c| dofs.of(c, 1).expect("contact nodes are free"))
         .collect();
-    let order = crate::ordering::Ordering::nested_dissection(&mesh, &dofs, &cdofs);
+    let order = if mesh.pattern.is_grid() {
+        crate::ordering::Ordering::nested_dissection(&mesh, &dofs, &cdofs)
+    } else {
+        crate::ordering::Ordering::amd(&v, &cdofs).map_err(|e| e.to_string())?
+    };
     let chol = crate::linalg::Cholesky::factor(&v, &order).map_err(|e| e.to_string())?;
     let l = chol.l_cc();
     let s = l * l.transpose();
@@ -226,10 +234,14 @@ pub fn max_length(v: &[[f64; 2]]) -> f64 {
 pub fn gamma_l2_sq(mesh: &crate::mesh::Mesh, w: &[f64]) -> f64 {
     let uniform = 2.0 * mesh.h();
     let bisected = mesh.pattern == crate::mesh::Pattern::Bisected;
+    let file = mesh.pattern == crate::mesh::Pattern::File;
     w.windows(2)
         .zip(mesh.contact.windows(2))
         .map(|(p, c)| {
-            let len = if bisected {
+            let len = if file {
+                let (a, b) = (mesh.nodes[c[0]], mesh.nodes[c[1]]);
+                (b[0] - a[0]).hypot(b[1] - a[1])
+            } else if bisected {
                 mesh.nodes[c[1]][0] - mesh.nodes[c[0]][0]
             } else {
                 uniform

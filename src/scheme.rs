@@ -39,8 +39,13 @@ pub struct Discretisation {
 }
 
 impl Discretisation {
+    /// The discretisation of `scn` on its mesh of level `n`; a mesh scene's is its
+    /// file's, whatever `n`.
     pub fn new(scn: &Scenario, n: usize) -> Result<Self, InputError> {
-        Ok(Discretisation::on(scn, scn.mesh(n)?))
+        Ok(match scn.body_mesh() {
+            Some(mesh) => Discretisation::on(scn, mesh),
+            None => Discretisation::on(scn, scn.mesh(n)?),
+        })
     }
 
     /// The discretisation of `scn` on a given mesh.
@@ -704,7 +709,7 @@ pub(crate) fn factorise(
     parallel: bool,
 ) -> Result<(Cholesky, usize), RunError> {
     let cdofs = &disc.contact_dofs;
-    let grid = disc.mesh.pattern != crate::mesh::Pattern::Bisected;
+    let grid = disc.mesh.pattern.is_grid();
     let order = match ordering {
         OrderingKind::NestedDissection if grid => {
             Ordering::nested_dissection(&disc.mesh, &disc.dofs, cdofs)

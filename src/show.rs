@@ -112,7 +112,11 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         },
         preset.unwrap_or("as below")
     );
-    if preset.is_none() {
+    if let Some(body) = &scn.body {
+        for line in body.describe() {
+            let _ = writeln!(s, "{line}");
+        }
+    } else if preset.is_none() {
         for line in geo.describe() {
             let _ = writeln!(s, "{line}");
         }

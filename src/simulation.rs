@@ -356,13 +356,15 @@ impl Simulation {
         // Nested dissection cuts the lines of a structured grid; any other mesh is
         // ordered by AMD.
         let grid = match &given {
-            Some(mesh) => mesh.pattern != crate::geometry::Pattern::Bisected,
-            None => !graded,
+            Some(mesh) => mesh.pattern.is_grid(),
+            None => !graded && scenario.body().is_none(),
         };
         let ordering = match (s.ordering, grid) {
             (Some(OrderingKind::NestedDissection), false) => {
                 let which = if given.is_some() {
                     "a bisected mesh"
+                } else if scenario.body().is_some() {
+                    "a mesh scene's mesh"
                 } else {
                     "a graded mesh"
                 };
@@ -410,9 +412,17 @@ impl Simulation {
         // The mesh: a scene whose segments miss the mesh lines is refused by name. The
         // run takes it as it is; a uniform mesh's building time is counted in the run's
         // assembly time, where the run would otherwise have built it.
-        let (mesh, mesh_s) = match given {
-            Some(mesh) => (mesh, 0.0),
-            None => {
+        if graded {
+            scenario.refuse_mesh_scene("--mesh graded")?;
+        }
+        let (mesh, mesh_s) = match (given, scenario.body_mesh()) {
+            (Some(mesh), _) => (mesh, 0.0),
+            (None, Some(mesh)) => {
+                // The file's mesh: the run's n is its count of contact segments.
+                opt.n = mesh.n;
+                (Arc::new(mesh), 0.0)
+            }
+            (None, None) => {
                 crate::memory::check_memory(s.n, crate::mesh::rows(s.n, &scenario.geometry))?;
                 let clock = std::time::Instant::now();
                 if graded {

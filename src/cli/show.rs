@@ -6,9 +6,10 @@ use evhi::scenario::Scenario;
 pub struct ShowArgs {
     /// A built-in scenario or the path of a scenario TOML file.
     pub scenario: String,
-    /// Contact segments n = 1/h of the run to check (a multiple of 4).
-    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
-    pub n: usize,
+    /// Contact segments n = 1/h of the run to check (a multiple of 4; default 64).
+    /// Refused on a mesh scene, whose mesh is its file's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub n: Option<usize>,
     /// Time steps N of the run to check (default 64, as `solve`; a scenario with
     /// problem = "steady" is one solve, 1 step, the only value accepted).
     #[arg(long, allow_hyphen_values = true)]
@@ -20,19 +21,37 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     // Refused as `solve` refuses them, by their options.
     let flag = super::solve::settings_flag;
-    evhi::mesh::check_n(args.n).map_err(flag)?;
-    evhi::scheme::check_memory(args.n, evhi::mesh::rows(args.n, scn.geometry())).map_err(flag)?;
+    let n = match (scn.body(), args.n) {
+        (Some(body), None) => body.gamma3.len() - 1,
+        (Some(body), Some(n)) => {
+            return Err(evhi::error::InputError::field(
+                "--n",
+                n,
+                format!(
+                    "nothing on a mesh scene: its mesh is the file's ({})",
+                    body.file
+                ),
+            )
+            .into());
+        }
+        (None, n) => {
+            let n = n.unwrap_or(64);
+            evhi::mesh::check_n(n).map_err(flag)?;
+            evhi::scheme::check_memory(n, evhi::mesh::rows(n, scn.geometry())).map_err(flag)?;
+            n
+        }
+    };
     // The step count `solve` would take, refused as `solve` refuses it.
     let steps = args
         .steps
         .unwrap_or_else(|| evhi::simulation::default_steps(&scn));
-    evhi::scheme::check_steps(Some(&scn), &evhi::scheme::Settings::new(args.n, steps)).map_err(
-        |e| match e {
+    evhi::scheme::check_steps(Some(&scn), &evhi::scheme::Settings::new(n, steps)).map_err(|e| {
+        match e {
             evhi::scheme::RunError::Input(e) => evhi::scheme::RunError::Input(flag(e)),
             other => other,
-        },
-    )?;
-    let (text, warnings) = evhi::show::report(&scn, args.n, steps);
+        }
+    })?;
+    let (text, warnings) = evhi::show::report(&scn, n, steps);
     evhi::term::emit(&text)?;
     if warnings > 0 {
         evhi::diag!("{warnings} warning(s)");

@@ -24,9 +24,10 @@ pub struct SolveArgs {
     /// 4, and every end of a support, traction or Γ3 segment must fall on a node; the
     /// paper's Fig. 3 uses 128; at most 4096, and a mesh whose estimated peak memory
     /// exceeds what is available is refused). With `--mesh graded`, the level: the
-    /// grading starts from the cell diagonal of the uniform mesh with this n.
-    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
-    pub n: usize,
+    /// grading starts from the cell diagonal of the uniform mesh with this n. Default 64;
+    /// refused on a mesh scene ([geometry] mesh = "body.msh"), whose mesh is its file's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub n: Option<usize>,
     /// Time steps N, k = T/N (the paper uses N = n). Default 64; a scenario with
     /// problem = "steady" is one solve at t = T (1 step, the only value accepted).
     #[arg(long, allow_hyphen_values = true)]
@@ -144,6 +145,18 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(t_r) => scn.with_ramp(t_r)?,
         None => scn,
     };
+    if let (Some(n), Some(body)) = (args.n, scn.body()) {
+        return Err(evhi::error::InputError::field(
+            "--n",
+            n,
+            format!(
+                "nothing on a mesh scene: its mesh is the file's ({}), with {} contact segments",
+                body.file,
+                body.gamma3.len() - 1
+            ),
+        )
+        .into());
+    }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
@@ -170,7 +183,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         b.finish_and_clear();
     }
     let solution = solution?;
-    let (lines, h_s) = diagnostics::after(scn, entry, &solution, args.n, h_s);
+    let (lines, h_s) = diagnostics::after(scn, entry, &solution, solution.run.n, h_s);
     lines.iter().for_each(|l| evhi::diag!("{l}"));
     let t_out = Instant::now();
     let prov = Provenance::of(&sim, &solution, evhi::output::run::command_line());
@@ -225,7 +238,7 @@ pub fn settings_flag(e: evhi::error::InputError) -> evhi::error::InputError {
 /// The run settings the options ask for (checked by [`Simulation::new`]).
 fn settings(args: &SolveArgs) -> RunSettings {
     RunSettings {
-        n: args.n,
+        n: args.n.unwrap_or(64),
         steps: args.steps,
         mesh: if args.mesh == "graded" {
             MeshKind::Graded

@@ -267,29 +267,37 @@ row! {
     /// One row of `contact.csv`: a contact node at $T$, its $x$, $u_\nu$,
     /// $\sigma_\nu^1 = -p(u_\nu)$ and $\sigma_\nu^2$ (the limit's reaction), the two parts
     /// of the normal stress $\sigma_\nu = \sigma_\nu^1 + \sigma_\nu^2$ (negative in
-    /// compression), and its regime on the law.
+    /// compression), its regime on the law, its $y$ and its arc length $s$ along
+    /// $\Gamma_3$ from $\Gamma_3$'s first node (on a mesh scene's curved or slanted
+    /// contact part, where $x$ alone does not place it).
     pub struct ContactRow {
         x: f64 => "x",
         u_nu: f64 => "u_nu",
         sigma_nu1: f64 => "sigma_nu1",
         sigma_nu2: f64 => "sigma_nu2",
         regime: String => "regime",
+        y: f64 => "y",
+        s: f64 => "s",
     }
 }
 
 impl ContactRow {
     /// The rows of `contact.csv` for a run of `scene`: each contact node at $T$, in the
-    /// order of the mesh's contact nodes (left to right along $\Gamma_3$), with its $x$
-    /// and its regime on the scene's law and limit.
+    /// order of the mesh's contact nodes (along $\Gamma_3$: left to right on the
+    /// rectangle), with its $x$, its regime on the scene's law and limit, its $y$ and
+    /// its arc length $s$.
     pub fn of(run: &crate::scheme::Run, scene: &crate::scenario::Scenario) -> Vec<ContactRow> {
         let mesh = &*run.mesh;
-        (mesh.contact.iter().zip(&run.contact))
-            .map(|(&v, s)| ContactRow {
+        let arc = mesh.contact_arc_length();
+        (mesh.contact.iter().zip(&run.contact).zip(arc))
+            .map(|((&v, s), arc)| ContactRow {
                 x: mesh.nodes[v][0],
                 u_nu: s.u_nu,
                 sigma_nu1: s.sigma_nu1,
                 sigma_nu2: s.sigma_nu2,
                 regime: s.regime(scene.law(), scene.g()),
+                y: mesh.nodes[v][1],
+                s: arc,
             })
             .collect()
     }

@@ -22,7 +22,8 @@ pub struct Provenance {
     pub ordering: String,
     /// The time loop that ran: `general` or `reduced`.
     pub path: String,
-    /// The mesh: `uniform`, or `graded mu = …` (its exponent).
+    /// The mesh: `uniform`, `graded mu = …` (its exponent), or `file PATH` (a mesh
+    /// scene's, as its scenario names it).
     pub mesh: String,
 }
 
@@ -51,12 +52,13 @@ impl Provenance {
                 "general"
             })
             .to_string(),
-            mesh: match s.mesh {
-                MeshKind::Graded => format!(
+            mesh: match (sim.scenario().body(), s.mesh) {
+                (Some(body), _) => format!("file {}", body.file),
+                (None, MeshKind::Graded) => format!(
                     "graded mu = {}",
                     s.grading.unwrap_or(crate::simulation::DEFAULT_GRADING)
                 ),
-                MeshKind::Uniform => "uniform".to_string(),
+                (None, MeshKind::Uniform) => "uniform".to_string(),
             },
         }
     }
@@ -370,7 +372,7 @@ pub fn write(
         kappa: scn.kappa,
         alpha: scn.alpha,
         beta: scn.beta,
-        tractions: scn.tractions.len() as u64,
+        tractions: (scn.tractions.len() + scn.body().map_or(0, |b| b.tractions.len())) as u64,
     };
     out.write_table("summary.csv", &SummaryRow::table(&[summary]), &header)?;
     let disp = dofs.expand(&run.u);
@@ -383,7 +385,7 @@ pub fn write(
         "solution.vtu",
         vtu::vtu(mesh, &disp, &run.contact, &codes).as_bytes(),
     )?;
-    if mesh.pattern == crate::mesh::Pattern::Bisected {
+    if !mesh.pattern.is_grid() {
         // No lattice: every node, and the triangles the figure draws.
         let col = |c: usize| mesh.nodes.iter().map(|p| p[c]).collect();
         let dcol = |c: usize| disp.iter().map(|d| d[c]).collect();
@@ -442,7 +444,15 @@ pub fn write(
         regimes = regimes.u64(&name, col);
     }
     out.write_table("regimes.csv", &regimes, &header)?;
-    // The scenario as solved: its TOML, with the command line that may override it.
+    // The scenario as solved: its TOML, with the command line that may override it. A
+    // mesh scene's run keeps the mesh as read beside it, and its TOML names that copy.
+    let toml = match scn.body() {
+        None => toml.to_string(),
+        Some(body) => {
+            out.write(RUN_MESH, &body.bytes)?;
+            with_mesh(toml, RUN_MESH)
+        }
+    };
     out.write(
         "scenario.toml",
         format!(
@@ -453,6 +463,24 @@ pub fn write(
         .as_bytes(),
     )?;
     Ok(())
+}
+
+/// The copy of a mesh scene's mesh file in its run directory.
+pub const RUN_MESH: &str = "mesh.msh";
+
+/// A mesh scene's TOML with `geometry.mesh` set to `file` (rewritten from its
+/// tables, so the comments are dropped; the values are unchanged).
+fn with_mesh(toml: &str, file: &str) -> String {
+    let Ok(mut table) = toml.parse::<toml::Table>() else {
+        return toml.to_string();
+    };
+    if let Some(toml::Value::Table(geo)) = table.get_mut("geometry") {
+        geo.insert("mesh".into(), toml::Value::String(file.into()));
+    }
+    format!(
+        "# (geometry.mesh names the copy of the mesh file this run read.)\n{}",
+        toml::to_string(&table).unwrap_or_else(|_| toml.to_string())
+    )
 }
 
 /// The stride, in cells, of the lattice a uniform run writes to `nodes.csv`: about

@@ -3,6 +3,7 @@
 //! allowed), and the step from a file's tables to a validated [`Scenario`].
 
 use super::{Problem, Scenario};
+use crate::body::{Body, Foundation, PartTraction};
 use crate::error::{InputError, bounded, finite, in_range, positive};
 use crate::geometry::Pattern;
 use crate::geometry::{Geometry, Hold, Side, Traction};
@@ -17,7 +18,7 @@ pub(super) fn parse(text: &str, source: &str) -> Result<Scenario, InputError> {
         source_name: source.to_string(),
         message: parse_message(text, &e),
     })?;
-    Scenario::validate(raw)
+    Scenario::validate(raw, source)
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -41,27 +42,42 @@ struct RawScenario {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawGeometry {
+    /// A mesh file (Gmsh MSH 4.1), relative to the scenario file: the body is the
+    /// mesh's, its parts are the file's physical groups of curves.
+    #[serde(default)]
+    mesh: Option<String>,
     #[serde(default)]
     width: Option<f64>,
     #[serde(default)]
     height: Option<f64>,
     #[serde(default)]
     supports: Option<toml::Value>,
+    /// `[x0, x1]` on the rectangle's bottom, or the name of a mesh's part.
     #[serde(default)]
-    contact: Option<Vec<f64>>,
-    #[serde(default = "diagonal")]
-    pattern: String,
+    contact: Option<toml::Value>,
+    #[serde(default)]
+    pattern: Option<String>,
+    /// A mesh scene's rigid foundation (default: the line y = 0, normal (0, -1)).
+    #[serde(default)]
+    foundation: Option<RawFoundation>,
 }
 
-fn diagonal() -> String {
-    "diagonal".into()
+/// `[geometry] foundation = { point = [x, y], normal = [nx, ny] }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFoundation {
+    point: Vec<f64>,
+    normal: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawLoads {
     f0: Vec<f64>,
-    f2: Vec<f64>,
+    /// Required on the rectangle; on a mesh scene absent or zero (tractions act on
+    /// named parts there).
+    #[serde(default)]
+    f2: Option<Vec<f64>>,
     #[serde(default)]
     f0_modulation: f64,
     #[serde(default)]
@@ -70,11 +86,15 @@ struct RawLoads {
     traction: Vec<RawTraction>,
 }
 
-/// One `[[loads.traction]]`: a force density on a segment of a side.
+/// One `[[loads.traction]]`: a force density on a segment of a side of the
+/// rectangle, or on a named part of a mesh (`on`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawTraction {
-    side: String,
+    #[serde(default)]
+    side: Option<String>,
+    #[serde(default)]
+    on: Option<String>,
     #[serde(default)]
     from: Option<f64>,
     #[serde(default)]
@@ -234,13 +254,22 @@ fn tractions_from(
     check_traction(geo, &top)?;
     for (i, t) in raw.traction.iter().enumerate() {
         let field = format!("loads.traction[{i}]");
+        if t.on.is_some() {
+            return Err(InputError::field(
+                format!("{field}.on"),
+                "a part's name",
+                "nothing on the rectangle: name a side (side = \"left\", \"right\", \"bottom\" \
+                 or \"top\"); parts are named on a mesh scene ([geometry] mesh = \"body.msh\")",
+            ));
+        }
+        let name = t.side.as_deref().unwrap_or("nothing");
         let side = Side::ALL
             .into_iter()
-            .find(|s| s.name() == t.side)
+            .find(|s| s.name() == name)
             .ok_or_else(|| {
                 InputError::field(
                     format!("{field}.side"),
-                    &t.side,
+                    name,
                     "\"left\", \"right\", \"bottom\" or \"top\"",
                 )
             })?;
@@ -351,7 +380,7 @@ pub(super) fn viscosity(
 }
 
 impl Scenario {
-    fn validate(raw: RawScenario) -> Result<Scenario, InputError> {
+    fn validate(raw: RawScenario, source: &str) -> Result<Scenario, InputError> {
         one_line_text("name", &raw.name, false)?;
         one_line_text("description", &raw.description, true)?;
         let t_end = in_range("T", raw.t_end, 1e-9, 1e9)?;
@@ -374,21 +403,95 @@ impl Scenario {
         let (e, kappa, material_form) = elasticity_from(m)?;
         let (alpha, beta) = viscosity(problem, m.alpha, m.beta)?;
         let f0 = vector("loads.f0", &raw.loads.f0)?;
-        let f2 = vector("loads.f2", &raw.loads.f2)?;
+        let rg = raw.geometry.as_ref();
+        let mesh_file = rg.and_then(|g| g.mesh.as_deref());
+        let f2 = match (&raw.loads.f2, mesh_file) {
+            (Some(v), _) => vector("loads.f2", v)?,
+            (None, Some(_)) => [0.0, 0.0],
+            (None, None) => {
+                return Err(InputError::field(
+                    "loads.f2",
+                    "nothing",
+                    "two components [x, y]: the traction on the whole top (the paper's f2; \
+                     [0, 0] for none)",
+                ));
+            }
+        };
         let history = match &raw.loads.history {
             None => History::Constant,
             Some(v) => History::from_toml("loads.history", v)?,
         };
         history.validate("loads.history", t_end)?;
         let f0_modulation = bounded("loads.f0_modulation", raw.loads.f0_modulation, 1e6)?;
-        let rg = raw.geometry.as_ref();
+        let law = law_from(&raw.law)?;
+        if let Some(file) = mesh_file {
+            let rg = rg.expect("a mesh names a [geometry]");
+            let body = body_from(rg, file, source, &raw.loads, f2)?;
+            let geometry = super::body_geometry(&body);
+            let scn = Scenario {
+                name: raw.name,
+                description: raw.description,
+                t_end,
+                g,
+                problem,
+                e,
+                kappa,
+                material_form,
+                alpha,
+                beta,
+                f0,
+                f2,
+                tractions: vec![],
+                f0_modulation,
+                history,
+                law,
+                geometry,
+                pattern: Pattern::File,
+                body: Some(body),
+            };
+            scn.check_load_scale()?;
+            return Ok(scn);
+        }
+        if rg.is_some_and(|g| g.foundation.is_some()) {
+            return Err(InputError::field(
+                "geometry.foundation",
+                "a value",
+                "nothing on the rectangle, whose foundation is the line y = 0 under Gamma_3 \
+                 (a foundation is given on a mesh scene, [geometry] mesh = \"body.msh\")",
+            ));
+        }
+        let contact = match rg.and_then(|g| g.contact.as_ref()) {
+            None => None,
+            Some(toml::Value::Array(items)) => Some(
+                items
+                    .iter()
+                    .map(|v| match v {
+                        toml::Value::Float(x) => Ok(*x),
+                        toml::Value::Integer(x) => Ok(*x as f64),
+                        other => Err(InputError::field(
+                            "geometry.contact",
+                            other.type_str(),
+                            "two numbers [x0, x1]: Gamma_3 = [x0, x1] x {0} on the bottom",
+                        )),
+                    })
+                    .collect::<Result<Vec<f64>, _>>()?,
+            ),
+            Some(other) => {
+                return Err(InputError::field(
+                    "geometry.contact",
+                    other,
+                    "two numbers [x0, x1] on the rectangle (Gamma_3 = [x0, x1] x {0}); a part's \
+                     name only on a mesh scene ([geometry] mesh = \"body.msh\")",
+                ));
+            }
+        };
         let geometry = Geometry::from_toml(
             rg.and_then(|g| g.width),
             rg.and_then(|g| g.height),
             rg.and_then(|g| g.supports.as_ref()),
-            rg.and_then(|g| g.contact.as_deref()),
+            contact.as_deref(),
         )?;
-        let pattern = match rg.map(|g| g.pattern.as_str()) {
+        let pattern = match rg.and_then(|g| g.pattern.as_deref()) {
             None | Some("diagonal") => Pattern::Diagonal,
             Some("antidiagonal") => Pattern::Antidiagonal,
             Some("crisscross") => Pattern::CrissCross,
@@ -400,7 +503,6 @@ impl Scenario {
                 ));
             }
         };
-        let law = law_from(&raw.law)?;
         let tractions = tractions_from(&raw.loads, f2, &geometry)?;
         let scn = Scenario {
             name: raw.name,
@@ -421,8 +523,117 @@ impl Scenario {
             law,
             geometry,
             pattern,
+            body: None,
         };
         scn.check_load_scale()?;
         Ok(scn)
     }
+}
+
+/// The body of a mesh scene: the file `file` (relative to the scenario file `source`)
+/// read, and its parts given their roles. The rectangle's keys are refused beside it.
+fn body_from(
+    rg: &RawGeometry,
+    file: &str,
+    source: &str,
+    loads: &RawLoads,
+    f2: [f64; 2],
+) -> Result<Body, InputError> {
+    let foundation = match &rg.foundation {
+        None => Foundation::default(),
+        Some(f) => Foundation::new(
+            vector("geometry.foundation.point", &f.point)?,
+            vector("geometry.foundation.normal", &f.normal)?,
+        )?,
+    };
+    for (key, given) in [
+        ("width", rg.width.is_some()),
+        ("height", rg.height.is_some()),
+        ("pattern", rg.pattern.is_some()),
+    ] {
+        if given {
+            return Err(InputError::field(
+                format!("geometry.{key}"),
+                "a value",
+                "nothing beside geometry.mesh: the mesh file gives the body and its triangles",
+            ));
+        }
+    }
+    if f2 != [0.0, 0.0] {
+        return Err(InputError::field(
+            "loads.f2",
+            format!("[{}, {}]", f2[0], f2[1]),
+            "nothing (or [0, 0]) on a mesh scene, which has no \"top\" of its own: name the \
+             part, [[loads.traction]] on = \"top\", f = [...]",
+        ));
+    }
+    let path = match std::path::Path::new(source).parent() {
+        Some(dir) if !std::path::Path::new(file).is_absolute() => dir.join(file),
+        _ => std::path::PathBuf::from(file),
+    };
+    let bytes = crate::msh::read_bytes(&path, file)?;
+    let mesh = crate::msh::parse(&bytes, file)?;
+    let supports = match &rg.supports {
+        None => vec![],
+        Some(toml::Value::Table(t)) => t
+            .iter()
+            .map(|(k, v)| match v {
+                toml::Value::String(s) => Ok((k.clone(), s.clone())),
+                other => Err(InputError::field(
+                    format!("geometry.supports.{k}"),
+                    other.type_str(),
+                    "\"clamped\", \"rollers\" or \"free\": a mesh's part is held whole",
+                )),
+            })
+            .collect::<Result<_, _>>()?,
+        Some(other) => {
+            return Err(InputError::field(
+                "geometry.supports",
+                other.type_str(),
+                "a table of the mesh's parts, { part = \"clamped\" | \"rollers\" | \"free\" } \
+                 (the presets are the rectangle's)",
+            ));
+        }
+    };
+    let contact = match &rg.contact {
+        Some(toml::Value::String(s)) => s.clone(),
+        other => {
+            return Err(InputError::field(
+                "geometry.contact",
+                other
+                    .as_ref()
+                    .map_or("nothing".to_string(), |v| v.to_string()),
+                format!(
+                    "the name of the mesh's part in contact, one of its groups ({})",
+                    mesh.group_names()
+                ),
+            ));
+        }
+    };
+    let mut tractions = vec![];
+    for (i, t) in loads.traction.iter().enumerate() {
+        let field = format!("loads.traction[{i}]");
+        if t.side.is_some() || t.from.is_some() || t.to.is_some() {
+            return Err(InputError::field(
+                &field,
+                "side, from or to",
+                "on = \"PART\" on a mesh scene: a traction acts on a whole named part",
+            ));
+        }
+        let Some(part) = &t.on else {
+            return Err(InputError::field(
+                format!("{field}.on"),
+                "nothing",
+                format!("the name of a part of the mesh ({})", mesh.group_names()),
+            ));
+        };
+        tractions.push(PartTraction {
+            part: part.clone(),
+            f: vector(&format!("{field}.f"), &t.f)?,
+            field,
+        });
+    }
+    Body::new(
+        file, mesh, &supports, &contact, tractions, foundation, bytes,
+    )
 }

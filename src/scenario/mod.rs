@@ -12,6 +12,7 @@
 mod file;
 use file::{check_traction, limit};
 
+use crate::body::Body;
 use crate::error::{InputError, finite, positive};
 use crate::geometry::Pattern;
 use crate::geometry::{Geometry, Side, Traction};
@@ -88,8 +89,11 @@ pub struct Scenario {
     pub(crate) law: Law,
     /// The rectangle, its supports and $\Gamma_3$.
     pub(crate) geometry: Geometry,
-    /// How the mesh cuts its cells (the paper's diagonal unless a study varies it).
+    /// How the mesh cuts its cells (the paper's diagonal unless a study varies it;
+    /// [`Pattern::File`] on a mesh scene).
     pub(crate) pattern: Pattern,
+    /// A mesh scene's body: the mesh file and its parts' roles (`None`: the rectangle).
+    pub(crate) body: Option<Body>,
 }
 
 /// The data's hypotheses at $t = 0$: see [`Scenario::time_hypotheses`].
@@ -235,6 +239,41 @@ impl Scenario {
     pub fn pattern(&self) -> Pattern {
         self.pattern
     }
+    /// A mesh scene's body (`None` on the rectangle).
+    pub fn body(&self) -> Option<&Body> {
+        self.body.as_ref()
+    }
+
+    /// Refuses a mesh scene where `what` needs the rectangle's structured meshes of a
+    /// level $n$ (uniform refinement, grading towards the rectangle's corners).
+    pub fn refuse_mesh_scene(&self, what: &str) -> Result<(), InputError> {
+        match &self.body {
+            None => Ok(()),
+            Some(b) => Err(InputError::field(
+                "geometry.mesh",
+                &b.file,
+                format!(
+                    "a rectangle scene (no geometry.mesh) for {what}: it builds the \
+                     rectangle's structured meshes of level n, and a mesh scene has one mesh, \
+                     its file's (refining a mesh file is not supported yet)"
+                ),
+            )),
+        }
+    }
+}
+
+/// The rectangle that bounds a mesh scene's body, with no supports: what the
+/// rectangle's code reads of it (sizes for tolerances and figures). The body's own
+/// supports and contact part are [`Scenario::body`]'s.
+pub(crate) fn body_geometry(body: &Body) -> Geometry {
+    let (size, lo) = body.bounds();
+    Geometry {
+        width: size[0],
+        height: size[1],
+        supports: vec![],
+        contact: [lo[0], lo[0] + size[0]],
+        preset: None,
+    }
 }
 
 impl Scenario {
@@ -317,6 +356,11 @@ impl Scenario {
         let largest = [self.f0, self.f2]
             .into_iter()
             .chain(self.tractions.iter().map(|t| t.f))
+            .chain(
+                self.body
+                    .iter()
+                    .flat_map(|b| b.tractions.iter().map(|t| t.f)),
+            )
             .flatten()
             .fold(0.0f64, |m, x| m.max(x.abs()));
         if largest > 0.0 && largest < MIN_LOAD_SCALE {
@@ -378,6 +422,19 @@ impl Scenario {
         if let Some(v) = f0 {
             self.f0 = v;
         }
+        if let (Some(v), Some(b)) = (f2, &self.body)
+            && v != [0.0, 0.0]
+        {
+            return Err(InputError::field(
+                "loads.f2",
+                format!("[{}, {}]", v[0], v[1]),
+                format!(
+                    "[0, 0] on the mesh scene of {}, which has no \"top\" of its own: its \
+                     tractions act on named parts ([[loads.traction]] on = \"PART\")",
+                    b.file
+                ),
+            ));
+        }
         if let Some(v) = f2 {
             check_traction(
                 &self.geometry,
@@ -420,28 +477,35 @@ impl Scenario {
     /// so it holds exactly when H(f)'s two conditions hold and $0 \in \partial_{Cl} j(0)$.
     pub fn time_hypotheses(&self) -> TimeHypotheses {
         let phi0 = self.history.phi(0.0);
-        let traction_at_0 = self
-            .tractions()
-            .into_iter()
-            .find(|t| t.f.iter().any(|&c| phi0 * c != 0.0))
-            .map(|t| t.field);
+        let parts = self.body.iter().flat_map(|b| &b.tractions);
+        let traction_at_0 = (self.tractions().into_iter())
+            .map(|t| (t.f, t.field))
+            .chain(parts.map(|t| (t.f, t.field.clone())))
+            .find(|(f, _)| f.iter().any(|&c| phi0 * c != 0.0))
+            .map(|(_, field)| field);
         let f2_zero = traction_at_0.is_none();
         // The body force is smooth in x; it lies in V when it vanishes on the
         // components each support holds: sampled at each held segment's ends and middle
         // (the force varies only with x, so on a side it is constant and on the top or
         // bottom it vanishes on a segment only if its factor does).
         let shape = |x: f64| 1.0 + self.f0_modulation * (std::f64::consts::PI * x).cos();
-        let f0_in_v = self.geometry.supports.iter().all(|s| {
-            let fixed = s.hold.fixes(s.side);
-            [s.from, 0.5 * (s.from + s.to), s.to].iter().all(|&a| {
-                let x = match s.side {
-                    Side::Left => 0.0,
-                    Side::Right => self.geometry.width,
-                    Side::Bottom | Side::Top => a,
-                };
-                (0..2).all(|c| !fixed[c] || phi0 * self.f0[c] * shape(x) == 0.0)
+        let f0_in_v = if let Some(body) = &self.body {
+            let fixed = body.fixed();
+            (body.mesh.nodes.iter().zip(&fixed))
+                .all(|(p, f)| (0..2).all(|c| !f[c] || phi0 * self.f0[c] * shape(p[0]) == 0.0))
+        } else {
+            self.geometry.supports.iter().all(|s| {
+                let fixed = s.hold.fixes(s.side);
+                [s.from, 0.5 * (s.from + s.to), s.to].iter().all(|&a| {
+                    let x = match s.side {
+                        Side::Left => 0.0,
+                        Side::Right => self.geometry.width,
+                        Side::Bottom | Side::Top => a,
+                    };
+                    (0..2).all(|c| !fixed[c] || phi0 * self.f0[c] * shape(x) == 0.0)
+                })
             })
-        });
+        };
         let zero_in_clarke = {
             let d = self.law.clarke(0.0);
             d.lo <= 0.0 && 0.0 <= d.hi
@@ -461,6 +525,8 @@ impl Scenario {
     pub fn same_operator(&self, other: &Scenario) -> bool {
         self.geometry == other.geometry
             && self.pattern == other.pattern
+            && self.body.as_ref().map(|b| (&b.mesh, &b.supports))
+                == other.body.as_ref().map(|b| (&b.mesh, &b.supports))
             && [self.e, self.kappa, self.alpha, self.beta, self.t_end]
                 == [other.e, other.kappa, other.alpha, other.beta, other.t_end]
     }

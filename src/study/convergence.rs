@@ -201,6 +201,7 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::split;
     let (scn, text) = Scenario::read(&args.scenario)?;
+    scn.refuse_mesh_scene("`study convergence`")?;
     let solver = super::study_solver(args.solver.as_deref())?;
     let Plans {
         plan,

@@ -27,6 +27,7 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::map::{MapFigure, map_cell, solvers};
     let (scn, text) = Scenario::read(&args.scenario)?;
+    scn.refuse_mesh_scene("`study stability`")?;
     let steady = scn.problem == crate::scenario::Problem::Steady;
     let multiples: &[usize] = if args.quick { &[1, 2] } else { &[1, 2, 4] };
     let n0 = coarsest(&scn, multiples, 8)?;

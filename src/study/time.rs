@@ -11,6 +11,7 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::time_error as time;
     let (scn, text) = Scenario::read(&args.scenario)?;
+    scn.refuse_mesh_scene("`study time`")?;
     if scn.problem != crate::scenario::Problem::Viscoelastic {
         return Err(crate::error::InputError::field(
             "scenario",

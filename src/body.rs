@@ -1,0 +1,482 @@
+//! A body of the scene's own: a triangulated mesh file ([`crate::msh`]) and the roles
+//! the scene gives its named boundary parts (the file's physical groups of curves).
+//!
+//! $\Gamma_1$ is the union of the parts the scene holds (`clamped`: $u = 0$;
+//! `rollers`: the normal component zero, on a straight part parallel to an axis),
+//! $\Gamma_2$ the parts with a traction (and the rest of the boundary, traction free),
+//! $\Gamma_3$ the one contact part. A part is asked for by its name; a name the file
+//! lacks, a contact part that shares an edge with a held one, a contact part that is
+//! not one open polyline, and supports that leave a rigid motion free
+//! ($\{(a - \theta y, b + \theta x)\}$ not all zero on the held components) are refused
+//! here, when the scene is read.
+//!
+//! The foundation is a rigid line through a point $x_f$ with outward unit normal $n_f$
+//! (the body's side is $-n_f$; default the paper's $y = 0$, $n_f = (0, -1)$). A contact
+//! node $x_i$ starts at the gap $g_{0,i} = (x_f - x_i)\cdot n_f \ge 0$ from it (a node
+//! behind the line, $g_{0,i} < 0$, is refused), and the contact acts on
+//! $u\cdot n_f - g_{0,i}$ (Kikuchi–Oden's small-deformation contact): with $\Gamma_3$ on
+//! the line and $n_f = (0, -1)$ that is the paper's $u_\nu = -u_y$. This stage solves
+//! that case only: a normal other than $(0, -1)$ (a change of basis at the contact
+//! nodes) and a nonzero initial gap (a shift of the contact unknowns) are refused with
+//! the reason, never ignored.
+//!
+//! The contact alone does not hold the body: at zero
+//! penetration the law's force is zero and the limit only bounds the motion from one
+//! side, so the step problem's matrix $A + kB$ would be singular.
+
+use crate::error::InputError;
+use crate::geometry::Hold;
+use crate::msh::MshMesh;
+use std::sync::Arc;
+
+/// A support on a named part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartSupport {
+    pub part: String,
+    pub hold: Hold,
+    /// The components it fixes at each node of the part (x, y).
+    pub fixes: [bool; 2],
+    /// Where the scenario says it, for messages.
+    pub field: String,
+}
+
+/// A constant force density `f` (N/m) on a named part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartTraction {
+    pub part: String,
+    pub f: [f64; 2],
+    /// Where the scenario says it (`loads.traction[0]`), for messages.
+    pub field: String,
+}
+
+/// The rigid foundation: the line through `point` with outward unit normal `normal`
+/// (pointing from the body to the foundation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Foundation {
+    pub point: [f64; 2],
+    pub normal: [f64; 2],
+}
+
+impl Default for Foundation {
+    /// The paper's: the line $y = 0$, $n_f = (0, -1)$.
+    fn default() -> Self {
+        Foundation {
+            point: [0.0, 0.0],
+            normal: [0.0, -1.0],
+        }
+    }
+}
+
+impl Foundation {
+    /// A foundation from the scene's numbers: finite, the normal of unit length (to
+    /// 1e-12).
+    pub fn new(point: [f64; 2], normal: [f64; 2]) -> Result<Foundation, InputError> {
+        let len = normal[0].hypot(normal[1]);
+        if !(point.iter().chain(&normal).all(|x| x.is_finite()) && (len - 1.0).abs() <= 1e-12) {
+            return Err(InputError::field(
+                "geometry.foundation",
+                format!(
+                    "point = [{}, {}], normal = [{}, {}]",
+                    point[0], point[1], normal[0], normal[1]
+                ),
+                "a finite point and an outward unit normal (length 1), e.g. { point = [0, 0], \
+                 normal = [0, -1] }, the paper's line y = 0",
+            ));
+        }
+        Ok(Foundation { point, normal })
+    }
+
+    /// $g_0(x) = (x_f - x)\cdot n_f$: how far the foundation lies from `p` along $n_f$
+    /// (negative behind it).
+    pub fn gap0(&self, p: [f64; 2]) -> f64 {
+        (self.point[0] - p[0]) * self.normal[0] + (self.point[1] - p[1]) * self.normal[1]
+    }
+}
+
+/// The mesh file and the roles of its parts.
+#[derive(Clone, PartialEq)]
+pub struct Body {
+    /// The file as the scenario names it (`geometry.mesh`).
+    pub file: String,
+    pub mesh: Arc<MshMesh>,
+    pub supports: Vec<PartSupport>,
+    /// The contact part's name.
+    pub contact: String,
+    /// The contact part's nodes, in order along it (the body on the left).
+    pub gamma3: Vec<usize>,
+    /// The rigid foundation.
+    pub foundation: Foundation,
+    /// The initial gap $g_{0,i}$ of each node of `gamma3` (all zero in this stage).
+    pub gap0: Vec<f64>,
+    pub tractions: Vec<PartTraction>,
+    /// The file's bytes as read: a run directory keeps a copy (`mesh.msh`), so that
+    /// an edit or a move of the file during the run cannot change what it records.
+    pub bytes: Arc<Vec<u8>>,
+}
+
+impl std::fmt::Debug for Body {
+    /// The fields, the file's bytes by their count.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Body")
+            .field("file", &self.file)
+            .field("nodes", &self.mesh.nodes.len())
+            .field("triangles", &self.mesh.triangles.len())
+            .field("supports", &self.supports)
+            .field("contact", &self.contact)
+            .field("gamma3", &self.gamma3)
+            .field("foundation", &self.foundation)
+            .field("tractions", &self.tractions)
+            .field("bytes", &self.bytes.len())
+            .finish()
+    }
+}
+
+impl Body {
+    /// The body of `mesh` with its supports (part name to `"clamped"`, `"rollers"` or
+    /// `"free"`), its contact part and its tractions, and the file's `bytes`; refused as
+    /// the module says.
+    pub fn new(
+        file: &str,
+        mesh: MshMesh,
+        supports: &[(String, String)],
+        contact: &str,
+        tractions: Vec<PartTraction>,
+        foundation: Foundation,
+        bytes: Vec<u8>,
+    ) -> Result<Body, InputError> {
+        let group = |field: &str, name: &str| {
+            mesh.group(name).ok_or_else(|| {
+                InputError::field(
+                    field,
+                    format!("\"{name}\""),
+                    format!(
+                        "the name of a physical group of curves of {file} (it has {}): add the \
+                         group in Gmsh (Physical Curve(\"{name}\") = {{...}};) or name one it has",
+                        mesh.group_names()
+                    ),
+                )
+            })
+        };
+        let mut parts = vec![];
+        for (name, kind) in supports {
+            let field = format!("geometry.supports.{name}");
+            let g = group(&field, name)?;
+            let hold = Hold::parse(&field, kind)?;
+            let fixes = match hold {
+                Hold::Clamped => [true; 2],
+                Hold::Free => [false; 2],
+                Hold::Rollers => {
+                    let along = |c: usize| {
+                        let v0 = mesh.nodes[g.edges[0][0]][c];
+                        g.edges.iter().flatten().all(|&v| mesh.nodes[v][c] == v0)
+                    };
+                    if along(0) {
+                        [true, false]
+                    } else if along(1) {
+                        [false, true]
+                    } else {
+                        return Err(InputError::field(
+                            field,
+                            "\"rollers\"",
+                            format!(
+                                "\"clamped\" or \"free\" on part \"{name}\", which is not a \
+                                 straight line x = const or y = const: rollers hold the normal \
+                                 component, taken here in x or y (a slanted or curved roller \
+                                 needs a local basis, not yet supported); or split the part"
+                            ),
+                        ));
+                    }
+                }
+            };
+            parts.push(PartSupport {
+                part: name.clone(),
+                hold,
+                fixes,
+                field,
+            });
+        }
+        let g3 = group("geometry.contact", contact)?;
+        for s in parts.iter().filter(|s| s.hold != Hold::Free) {
+            let held = &mesh.group(&s.part).expect("checked").edges;
+            if let Some(e) = g3.edges.iter().find(|e| held.contains(e)) {
+                let [a, b] = [mesh.nodes[e[0]], mesh.nodes[e[1]]];
+                return Err(InputError::field(
+                    "geometry.contact",
+                    format!("\"{contact}\""),
+                    format!(
+                        "a contact part that shares no edge with a held part, but \"{contact}\" \
+                         and the {} part \"{}\" ({}) share the edge from ({}, {}) to ({}, {}): \
+                         Gamma_3 must be free to move normally; make the groups disjoint in Gmsh",
+                        s.hold.name(),
+                        s.part,
+                        s.field,
+                        a[0],
+                        a[1],
+                        b[0],
+                        b[1]
+                    ),
+                ));
+            }
+        }
+        let gamma3 = chain(&mesh, contact, &g3.edges)?;
+        let gap0 = gaps(&mesh, contact, &gamma3, &foundation)?;
+        for t in &tractions {
+            let g = group(&format!("{}.on", t.field), &t.part)?;
+            if t.part == contact {
+                return Err(InputError::field(
+                    format!("{}.on", t.field),
+                    format!("\"{}\"", t.part),
+                    "a part other than the contact part (the contact boundary's force is the law's)",
+                ));
+            }
+            for s in parts.iter().filter(|s| s.part == t.part) {
+                let c = s.fixes;
+                if (c[0] && t.f[0] != 0.0) || (c[1] && t.f[1] != 0.0) {
+                    return Err(InputError::field(
+                        &t.field,
+                        format!("[{}, {}]", t.f[0], t.f[1]),
+                        format!(
+                            "a zero component where {} ({}) holds part \"{}\": a traction there \
+                             would have no effect (load only a free part, or move the support)",
+                            s.field,
+                            s.hold.name(),
+                            t.part
+                        ),
+                    ));
+                }
+            }
+            let _ = g;
+        }
+        let body = Body {
+            file: file.to_string(),
+            mesh: Arc::new(mesh),
+            supports: parts,
+            contact: contact.to_string(),
+            gamma3,
+            foundation,
+            gap0,
+            tractions,
+            bytes: Arc::new(bytes),
+        };
+        body.check_rigid_motions()?;
+        Ok(body)
+    }
+
+    /// The body in words, one line each: the file and its size, the supports, the
+    /// contact part, the tractions.
+    pub fn describe(&self) -> Vec<String> {
+        let ([w, h], lo) = self.bounds();
+        let held: Vec<String> = (self.supports.iter())
+            .map(|s| format!("\"{}\" {}", s.part, s.hold.name()))
+            .collect();
+        let mut out = vec![
+            format!(
+                "  geometry: mesh {} ({} nodes, {} triangles, within [{}, {}] x [{}, {}]); parts: {}",
+                self.file,
+                self.mesh.nodes.len(),
+                self.mesh.triangles.len(),
+                lo[0],
+                lo[0] + w,
+                lo[1],
+                lo[1] + h,
+                self.mesh.group_names()
+            ),
+            format!(
+                "  supports: {}; the rest of the boundary free",
+                if held.is_empty() {
+                    "none".to_string()
+                } else {
+                    held.join(", ")
+                }
+            ),
+            format!(
+                "  Gamma_3: part \"{}\", {} nodes along it",
+                self.contact,
+                self.gamma3.len()
+            ),
+        ];
+        for t in &self.tractions {
+            out.push(format!(
+                "  traction {}: [{}, {}] on part \"{}\"",
+                t.field, t.f[0], t.f[1], t.part
+            ));
+        }
+        out
+    }
+
+    /// The components held fixed at each node.
+    pub fn fixed(&self) -> Vec<[bool; 2]> {
+        let mut fixed = vec![[false; 2]; self.mesh.nodes.len()];
+        for s in &self.supports {
+            let g = self.mesh.group(&s.part).expect("checked when built");
+            for &v in g.edges.iter().flatten() {
+                fixed[v] = [fixed[v][0] || s.fixes[0], fixed[v][1] || s.fixes[1]];
+            }
+        }
+        fixed
+    }
+
+    /// The width and height of the body's bounding box, and its lower-left corner.
+    pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
+        let mut lo = [f64::INFINITY; 2];
+        let mut hi = [f64::NEG_INFINITY; 2];
+        for p in &self.mesh.nodes {
+            for c in 0..2 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        ([hi[0] - lo[0], hi[1] - lo[1]], lo)
+    }
+
+    /// Refuses supports that leave a rigid motion $r(p) = (a - \theta y, b + \theta x)$
+    /// free: the rows $(1, 0, -y)$ for each held $x$ and $(0, 1, x)$ for each held $y$
+    /// (coordinates from the body's centre) must have rank 3.
+    fn check_rigid_motions(&self) -> Result<(), InputError> {
+        let fixed = self.fixed();
+        let (size, lo) = self.bounds();
+        let centre = [lo[0] + size[0] / 2.0, lo[1] + size[1] / 2.0];
+        let scale = size[0].max(size[1]);
+        let mut m = nalgebra::Matrix3::<f64>::zeros();
+        for (p, f) in self.mesh.nodes.iter().zip(&fixed) {
+            let (x, y) = ((p[0] - centre[0]) / scale, (p[1] - centre[1]) / scale);
+            for (c, row) in [(0, [1.0, 0.0, -y]), (1, [0.0, 1.0, x])] {
+                if f[c] {
+                    let r = nalgebra::Vector3::from(row);
+                    m += r * r.transpose();
+                }
+            }
+        }
+        let eig = m.symmetric_eigenvalues();
+        let (lo, hi) = (eig.min(), eig.max());
+        if !(hi > 0.0 && lo > 1e-10 * hi) {
+            let held: Vec<String> = (self.supports.iter())
+                .filter(|s| s.hold != Hold::Free)
+                .map(|s| format!("\"{}\" {}", s.part, s.hold.name()))
+                .collect();
+            return Err(InputError::field(
+                "geometry.supports",
+                if held.is_empty() {
+                    "nothing held".to_string()
+                } else {
+                    held.join(", ")
+                },
+                "supports that hold the body against every rigid motion (both translations \
+                 and the rotation): a clamped part, or rollers on two parts that are not \
+                 parallel plus one more; the contact alone does not hold it (its force is zero \
+                 at no penetration), so the elasticity operator would be singular",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The initial gaps of the contact nodes `gamma3` from `f`, refused where a node lies
+/// behind the line, and, in this stage, where the normal is not the paper's or a gap
+/// is not zero (each would need the contact unknowns changed, not only checked).
+fn gaps(
+    mesh: &MshMesh,
+    name: &str,
+    gamma3: &[usize],
+    f: &Foundation,
+) -> Result<Vec<f64>, InputError> {
+    let scale = mesh
+        .nodes
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+        .max(f.point[0].abs().max(f.point[1].abs()));
+    let tol = 1e-12 * scale.max(f64::MIN_POSITIVE);
+    let gap0: Vec<f64> = gamma3.iter().map(|&v| f.gap0(mesh.nodes[v])).collect();
+    let at = |i: usize| mesh.nodes[gamma3[i]];
+    if let Some(i) = gap0.iter().position(|&g| g < -tol) {
+        return Err(InputError::field(
+            "geometry.foundation",
+            format!("{:?}", f),
+            format!(
+                "a foundation that no node of the contact part \"{name}\" lies behind, but the \
+                 node at ({}, {}) is {:e} behind it (the foundation is on the body's outward \
+                 side of Gamma_3, n_f pointing from the body to it): move the line or turn \
+                 its normal",
+                at(i)[0],
+                at(i)[1],
+                -gap0[i]
+            ),
+        ));
+    }
+    if f.normal != [0.0, -1.0] {
+        return Err(InputError::field(
+            "geometry.foundation.normal",
+            format!("[{}, {}]", f.normal[0], f.normal[1]),
+            "[0, -1] in this version: the contact unknown is -u_y at each contact node; \
+             another normal needs a change of basis at the contact nodes, not yet \
+             implemented (turn the mesh so that the foundation lies below it)",
+        ));
+    }
+    if let Some(i) = gap0.iter().position(|&g| g > tol) {
+        return Err(InputError::field(
+            "geometry.foundation",
+            format!("{:?}", f),
+            format!(
+                "a foundation on Gamma_3 in this version, but the node at ({}, {}) of the \
+                 contact part \"{name}\" starts {:e} from it: an initial gap needs the contact \
+                 unknowns shifted by it, not yet implemented (a flat contact part on the line, \
+                 or the line through it)",
+                at(i)[0],
+                at(i)[1],
+                gap0[i]
+            ),
+        ));
+    }
+    Ok(gap0)
+}
+
+/// The nodes of the contact part `name` in order along it: its edges must form one
+/// open polyline.
+fn chain(mesh: &MshMesh, name: &str, edges: &[[usize; 2]]) -> Result<Vec<usize>, InputError> {
+    let refuse = |why: String| {
+        InputError::field(
+            "geometry.contact",
+            format!("\"{name}\""),
+            format!(
+                "a part whose edges form one open polyline (Gamma_3 is ordered along it): {why}; \
+                 split it into groups in Gmsh and name one"
+            ),
+        )
+    };
+    let mut next = std::collections::HashMap::with_capacity(edges.len());
+    let mut has_prev = std::collections::HashSet::with_capacity(edges.len());
+    for e in edges {
+        if next.insert(e[0], e[1]).is_some() || !has_prev.insert(e[1]) {
+            let p = mesh.nodes[e[0]];
+            return Err(refuse(format!("it branches at ({}, {})", p[0], p[1])));
+        }
+    }
+    let starts: Vec<usize> = edges
+        .iter()
+        .map(|e| e[0])
+        .filter(|v| !has_prev.contains(v))
+        .collect();
+    match starts.as_slice() {
+        [] => Err(refuse("it is closed".into())),
+        [s] => {
+            let mut out = vec![*s];
+            while let Some(&v) = next.get(out.last().expect("one")) {
+                out.push(v);
+            }
+            if out.len() != edges.len() + 1 {
+                return Err(refuse("it has a closed piece beside an open one".into()));
+            }
+            Ok(out)
+        }
+        many => {
+            let p = mesh.nodes[many[1]];
+            Err(refuse(format!(
+                "it has {} pieces (one starts at ({}, {}))",
+                many.len(),
+                p[0],
+                p[1]
+            )))
+        }
+    }
+}

@@ -1,0 +1,339 @@
+//! A mesh as the body (`[geometry] mesh = "body.msh"`, `src/body.rs`): the paper's
+//! rectangle read from data/meshes/paper_n16.msh gives the built-in scene's numbers, and
+//! each scene the body cannot make is refused by its key, before anything is written.
+
+mod common;
+use common::*;
+use evhi::scenario::Scenario;
+use evhi::simulation::{RunSettings, Simulation};
+use std::path::Path;
+
+const PAPER_MESH: &str = "data/scenarios/examples/paper_mesh.toml";
+
+/// A scene on tests/data/msh/`mesh` (the path resolves beside the test files), with
+/// the `geometry` lines given and the `figure` material, law and body force.
+fn scene(mesh: &str, geometry: &str, loads: &str) -> Result<Scenario, String> {
+    let text = format!(
+        "name = \"t\"\nT = 1.0\ng = 0.1\n[geometry]\nmesh = \"{mesh}\"\n{geometry}\n\
+         [material]\nE = 1000.0\nkappa = 0.4\nalpha = 100.0\nbeta = 50.0\n\
+         [loads]\nf0 = [0.0, -5.0]\n{loads}\n\
+         [law]\nbreakpoints = [0.0, 0.05, 0.075]\nslopes = [0.0, 200.0, -100.0, 300.0]\n"
+    );
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/msh/scene.toml");
+    Scenario::from_toml(&text, &source.display().to_string()).map_err(|e| e.to_string())
+}
+
+const HELD: &str = "supports = { left = \"clamped\", right = \"clamped\" }\ncontact = \"bottom\"";
+
+fn refused_scene(mesh: &str, geometry: &str, loads: &str, needles: &[&str]) {
+    let e = scene(mesh, geometry, loads).expect_err("refused");
+    for n in needles {
+        assert!(e.contains(n), "no `{n}` in: {e}");
+    }
+}
+
+/// Within `rel` of each other, relative to the larger size (or to `scale`).
+fn close(a: f64, b: f64, scale: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs()).max(scale)
+}
+
+#[test]
+fn the_paper_mesh_gives_the_built_in_figure_scene_to_1e_12() {
+    let settings = RunSettings {
+        n: 16,
+        steps: Some(16),
+        ..RunSettings::default()
+    };
+    let solve = |scn: Scenario| {
+        let sim = Simulation::new(scn, settings.clone()).unwrap();
+        let sol = sim.solve(&mut ()).unwrap();
+        let rows = sol.contact_rows(sim.scenario());
+        (sol, rows)
+    };
+    let (file, file_rows) = solve(Scenario::load(PAPER_MESH).unwrap());
+    let (built, built_rows) = solve(Scenario::load("figure").unwrap());
+    assert_eq!(file.run.n, 16);
+    assert_eq!(file.run.mesh.nodes, built.run.mesh.nodes);
+    assert_eq!(file.run.mesh.triangles, built.run.mesh.triangles);
+    // u at T, dof by dof (the same nodes and supports, so the same dofs).
+    let scale = built.run.u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert_eq!(file.run.u.len(), built.run.u.len());
+    for (a, b) in file.run.u.iter().zip(&built.run.u) {
+        assert!(close(*a, *b, scale, 1e-12), "u: {a} against {b}");
+    }
+    // contact.csv's rows and summary.csv's energy norm.
+    assert_eq!(file_rows.len(), built_rows.len());
+    let stress = built_rows.iter().fold(0.0f64, |m, r| {
+        m.max(r.sigma_nu1.abs()).max(r.sigma_nu2.abs())
+    });
+    for (a, b) in file_rows.iter().zip(&built_rows) {
+        assert_eq!((a.x, a.y, a.s), (b.x, b.y, b.s));
+        assert_eq!((a.y, a.s), (0.0, a.x), "y and the arc length on the bottom");
+        assert_eq!(a.regime, b.regime);
+        assert!(
+            close(a.u_nu, b.u_nu, scale, 1e-12),
+            "u_nu {} {}",
+            a.u_nu,
+            b.u_nu
+        );
+        assert!(close(a.sigma_nu1, b.sigma_nu1, stress, 1e-12));
+        assert!(close(a.sigma_nu2, b.sigma_nu2, stress, 1e-12));
+    }
+    let (ea, eb) = (file.energy_norm_t(), built.energy_norm_t());
+    assert!(close(ea, eb, 0.0, 1e-12), "energy norm {ea} against {eb}");
+    assert!(file.max_certificate() < 1e-10);
+}
+
+#[test]
+fn a_mesh_scene_solves_from_the_command_line_and_keeps_its_mesh() {
+    let dir = scratch("mesh-scene-solve");
+    let out = dir.join("run");
+    let o = succeed(
+        evhi_with("solve --steps 4 --scenario")
+            .arg(PAPER_MESH)
+            .arg("--out")
+            .arg(&out),
+    );
+    let _ = o;
+    let summary = Csv::read(out.join("summary.csv"));
+    assert_eq!(summary.get(0, "mesh"), "file ../../meshes/paper_n16.msh");
+    assert_eq!(summary.get(0, "ordering"), "amd");
+    assert_eq!(summary.get(0, "tractions"), "1");
+    // The run keeps the mesh it read, and its scenario.toml names that copy.
+    assert_eq!(
+        std::fs::read(out.join("mesh.msh")).unwrap(),
+        std::fs::read("data/meshes/paper_n16.msh").unwrap()
+    );
+    let again = Scenario::load(&out.join("scenario.toml").display().to_string()).unwrap();
+    assert_eq!(again.body().unwrap().file, "mesh.msh");
+    assert!(out.join("triangles.csv").exists());
+    // What needs the rectangle's levels is refused with the reason.
+    let o = evhi_with("solve --n 32 --scenario")
+        .arg(PAPER_MESH)
+        .arg("--out")
+        .arg(dir.join("n"))
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &["--n", "nothing on a mesh scene", "16 contact segments"],
+    );
+    assert!(!dir.join("n").exists());
+    let o = evhi_with("solve --mesh graded --scenario")
+        .arg(PAPER_MESH)
+        .arg("--out")
+        .arg(dir.join("g"))
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &["geometry.mesh", "--mesh graded", "one mesh, its file's"],
+    );
+    for study in ["convergence", "time", "stability"] {
+        let o = evhi_with(&format!("study {study} --quick --scenario"))
+            .arg(PAPER_MESH)
+            .arg("--out")
+            .arg(dir.join(study))
+            .output()
+            .unwrap();
+        refused(&o, &["geometry.mesh", &format!("`study {study}`")]);
+        assert!(!dir.join(study).exists());
+    }
+}
+
+#[test]
+fn a_group_the_scene_names_but_the_file_lacks_is_refused() {
+    refused_scene(
+        "ok.msh",
+        "supports = { left = \"clamped\", right = \"clamped\" }\ncontact = \"floor\"",
+        "",
+        &[
+            "geometry.contact",
+            "\"floor\"",
+            "\"bottom\", \"top\", \"left\", \"right\"",
+        ],
+    );
+    refused_scene(
+        "ok.msh",
+        "supports = { wall = \"clamped\" }\ncontact = \"bottom\"",
+        "",
+        &["geometry.supports.wall", "Physical Curve(\"wall\")"],
+    );
+    refused_scene(
+        "ok.msh",
+        HELD,
+        "[[loads.traction]]\non = \"roof\"\nf = [0.0, -1.0]",
+        &["loads.traction[0].on", "\"roof\""],
+    );
+}
+
+#[test]
+fn a_contact_part_overlapping_a_clamped_part_is_refused() {
+    refused_scene(
+        "contact_clamp_overlap.msh",
+        "supports = { clamped = \"clamped\", right = \"clamped\" }\ncontact = \"bottom\"",
+        "",
+        &[
+            "geometry.contact",
+            "the clamped part \"clamped\"",
+            "edge from (0, 0) to (1, 0)",
+        ],
+    );
+}
+
+#[test]
+fn supports_that_leave_a_rigid_motion_free_are_refused() {
+    let needles = ["geometry.supports", "every rigid motion", "contact alone"];
+    refused_scene("ok.msh", "contact = \"bottom\"", "", &needles);
+    // Rollers on both sides hold x only: the body may still move in y.
+    refused_scene(
+        "ok.msh",
+        "supports = { left = \"rollers\", right = \"rollers\" }\ncontact = \"bottom\"",
+        "",
+        &needles,
+    );
+    // Rollers on the left side and on the top hold it: accepted.
+    scene(
+        "ok.msh",
+        "supports = { left = \"rollers\", top = \"rollers\" }\ncontact = \"bottom\"",
+        "",
+    )
+    .unwrap();
+}
+
+#[test]
+fn other_scenes_a_body_cannot_make_are_refused_by_their_key() {
+    // Rollers on a slanted part.
+    refused_scene(
+        "slanted.msh",
+        "supports = { left = \"clamped\", right = \"rollers\" }\ncontact = \"bottom\"",
+        "",
+        &["geometry.supports.right", "not a straight line"],
+    );
+    // A traction on the contact part, on a clamped part, and the rectangle's keys.
+    refused_scene(
+        "ok.msh",
+        HELD,
+        "[[loads.traction]]\non = \"bottom\"\nf = [0.0, -1.0]",
+        &["loads.traction[0].on", "other than the contact part"],
+    );
+    refused_scene(
+        "ok.msh",
+        HELD,
+        "[[loads.traction]]\non = \"left\"\nf = [1.0, 0.0]",
+        &["loads.traction[0]", "no effect"],
+    );
+    refused_scene(
+        "ok.msh",
+        HELD,
+        "[[loads.traction]]\nside = \"top\"\nf = [0.0, -1.0]",
+        &["loads.traction[0]", "a traction acts on a whole named part"],
+    );
+    refused_scene(
+        "ok.msh",
+        HELD,
+        "f2 = [0.0, -1.0]",
+        &["loads.f2", "no \"top\" of its own"],
+    );
+    refused_scene(
+        "ok.msh",
+        &format!("{HELD}\nwidth = 2.0"),
+        "",
+        &["geometry.width", "nothing beside geometry.mesh"],
+    );
+    refused_scene(
+        "ok.msh",
+        "supports = { left = \"clamped\", right = \"clamped\" }",
+        "",
+        &["geometry.contact", "the name of the mesh's part in contact"],
+    );
+    refused_scene("no_such.msh", HELD, "", &["no_such.msh", "cannot read it"]);
+    // The built-in scene keeps refusing a missing f2 by its key.
+    let e = Scenario::from_toml(
+        "name = \"t\"\nT = 1.0\ng = 0.1\n[material]\nE = 1.0\nkappa = 0.3\nalpha = 1.0\n\
+         beta = 1.0\n[loads]\nf0 = [0.0, 0.0]\n[law]\nbreakpoints = [0.0]\nslopes = [0.0, 1.0]\n",
+        "t",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("loads.f2"), "{e}");
+}
+
+#[test]
+fn a_mesh_scene_s_load_is_the_rectangle_s_on_the_same_triangulation() {
+    // The traction on the part "top" gives the load vector of f2 on the top side.
+    let file = Scenario::load(PAPER_MESH).unwrap();
+    let built = Scenario::load("figure").unwrap();
+    let mesh = file.body_mesh().unwrap();
+    let grid = built.mesh(16).unwrap();
+    let dofs = evhi::mesh::Dofs::new(&mesh, true);
+    let a = file.load_vector(&mesh, &dofs);
+    let b = built.load_vector(&grid, &evhi::mesh::Dofs::new(&grid, true));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        assert!(close(*x, *y, 1.0, 1e-14), "{x} against {y}");
+    }
+    assert_eq!(mesh.contact_weights(), grid.contact_weights());
+}
+
+#[test]
+fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
+    let with = |f: &str| format!("{HELD}\nfoundation = {f}");
+    // The default, written out, is accepted: Gamma_3 on the line, every gap zero.
+    let scn = scene(
+        "ok.msh",
+        &with("{ point = [5.0, 0.0], normal = [0.0, -1.0] }"),
+        "",
+    )
+    .unwrap();
+    let body = scn.body().unwrap();
+    assert_eq!(body.gap0, vec![0.0; 3]);
+    let written = scene("ok.msh", &with("{ point = [0, 0], normal = [0, -1] }"), "").unwrap();
+    assert_eq!(written, scene("ok.msh", HELD, "").unwrap());
+    // A node behind the line.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [0.0, 0.5], normal = [0.0, -1.0] }"),
+        "",
+        &[
+            "geometry.foundation",
+            "lies behind",
+            "(0, 0) is 5e-1 behind it",
+        ],
+    );
+    // A normal that is not a unit vector.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [0.0, 0.0], normal = [0.0, -2.0] }"),
+        "",
+        &["geometry.foundation", "unit normal"],
+    );
+    // A slanted normal with every node in front: refused until the change of basis.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [3.0, 0.0], normal = [0.6, -0.8] }"),
+        "",
+        &["geometry.foundation.normal", "change of basis"],
+    );
+    // An initial gap: refused until the contact unknowns are shifted by it.
+    refused_scene(
+        "ok.msh",
+        &with("{ point = [0.0, -0.5], normal = [0.0, -1.0] }"),
+        "",
+        &["geometry.foundation", "starts 5e-1 from it", "initial gap"],
+    );
+    // The rectangle's foundation is its bottom line.
+    let e = Scenario::from_toml(
+        &read("data/scenarios/figure.toml").replace(
+            "[loads]",
+            "[geometry]\nfoundation = { point = [0.0, 0.0], normal = [0.0, -1.0] }\n[loads]",
+        ),
+        "figure.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("geometry.foundation") && e.contains("the line y = 0"),
+        "{e}"
+    );
+}
