@@ -450,3 +450,31 @@ fn the_builders_refuse_what_the_file_refuses_in_the_same_words() {
         .unwrap();
     assert_eq!((s.alpha(), s.beta(), s.g()), (60.0, 30.0, 0.2));
 }
+
+/// The README's own scene is shipped as the file its commands run
+/// (`data/scenarios/examples/block.toml`), and the README shows that file's TOML: the
+/// two cannot drift apart, and the file reads as a scene.
+#[test]
+fn the_readme_scene_is_the_shipped_file() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let shown = readme
+        .split("```toml\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("a TOML block in the README");
+    let path = root.join("data/scenarios/examples/block.toml");
+    let file = std::fs::read_to_string(&path).unwrap();
+    let body: String = file
+        .lines()
+        .skip_while(|l| l.starts_with('#'))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_eq!(
+        body, shown,
+        "the README's TOML is not the shipped block.toml"
+    );
+    assert!(readme.contains("--scenario data/scenarios/examples/block.toml"));
+    let scene = evhi::scenario::Scenario::load(&path.display().to_string()).unwrap();
+    assert_eq!(scene.name(), "block");
+}
