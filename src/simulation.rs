@@ -116,6 +116,15 @@ impl Default for RunSettings {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 impl RunSettings {
+    /// The general loop at level `n` with `steps` steps, the rest as
+    /// [`RunSettings::default`]: the runs the studies and the book's experiments make
+    /// (every step's field formed).
+    pub fn general(n: usize, steps: usize) -> Self {
+        RunSettings::default()
+            .with_n(n)
+            .with_steps(steps)
+            .with_path(Loop::General)
+    }
     /// Segments on the bottom ([`RunSettings::n`]).
     pub fn with_n(mut self, n: usize) -> Self {
         self.n = n;

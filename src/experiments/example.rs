@@ -442,7 +442,7 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
     // The condensed operator of the mesh, once for every row.
     let settings = RunSettings {
         threads: Some(1),
-        ..crate::experiments::runs::settings(n, n)
+        ..evhi::simulation::RunSettings::general(n, n)
     };
     let sim = Simulation::new(scn.clone(), settings)?;
     let disc = sim.discretisation();

@@ -44,7 +44,7 @@ fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
     let mut r = vec![];
     let settings = RunSettings {
         path: Loop::Reduced,
-        ..crate::experiments::runs::settings(n, n)
+        ..evhi::simulation::RunSettings::general(n, n)
     };
     let sim = Simulation::new(scn.clone(), settings)?;
     let mut observer =

@@ -4,25 +4,17 @@
 
 use evhi::scenario::Scenario;
 use evhi::scheme::{Run, StateObserver};
-use evhi::simulation::{Loop, RunSettings, Simulation};
+use evhi::simulation::{RunSettings, Simulation};
 use evhi::step::StepSolver;
 use evhi::step::newton::Newton;
 use evhi::study::ExpError;
 
-/// The settings of an experiment's run at level `n` with `steps` steps: the general
-/// loop, the rest as [`RunSettings::default`].
-pub fn settings(n: usize, steps: usize) -> RunSettings {
-    RunSettings {
-        n,
-        steps: Some(steps),
-        path: Loop::General,
-        ..RunSettings::default()
-    }
-}
-
-/// A simulation of `scn` with [`settings`]`(n, steps)`.
+/// A simulation of `scn` with [`RunSettings::general`]`(n, steps)`.
 pub fn simulation(scn: &Scenario, n: usize, steps: usize) -> Result<Simulation, ExpError> {
-    Ok(Simulation::new(scn.clone(), settings(n, steps))?)
+    Ok(Simulation::new(
+        scn.clone(),
+        RunSettings::general(n, steps),
+    )?)
 }
 
 /// Runs the scheme with the Newton step solver and no observer: the plain solve

@@ -180,7 +180,7 @@ fn solve_steps(
     let Some(first) = scns.first() else {
         return Ok(fields);
     };
-    let settings = super::runs::settings(n, steps);
+    let settings = crate::simulation::RunSettings::general(n, steps);
     let sim = crate::simulation::Simulation::on_mesh(first.clone(), settings, mesh.clone())?;
     super::runs::run_batch_with(&sim, scns, solver, &mut |i, step, _, u| {
         if keep(step) {
@@ -203,7 +203,7 @@ fn reference_at_t(
     steps: usize,
     solver: &crate::step::SolverEntry,
 ) -> Result<Vec<Vec<f64>>, ExpError> {
-    let settings = super::runs::settings(n, steps);
+    let settings = crate::simulation::RunSettings::general(n, steps);
     let sim = crate::simulation::Simulation::on_mesh(scns[0].clone(), settings, mesh.clone())?;
     let disc = sim.discretisation();
     if crate::reduced::proportional(&scns[0], &disc).is_none() {

@@ -38,7 +38,10 @@ pub fn map_cell(scn: &Scenario, c2: f64, n: usize, steps: usize, solver: &'stati
     let entry = crate::step::solver(solver).expect("the map's solvers are registered");
     // An uncertified solver (the penalty overshoots g by design) is judged by its own
     // convergence.
-    let sim = crate::simulation::Simulation::new(scn.clone(), super::runs::settings(n, steps));
+    let sim = crate::simulation::Simulation::new(
+        scn.clone(),
+        crate::simulation::RunSettings::general(n, steps),
+    );
     let (res, spread) = match sim {
         Err(e) => (Err(e.into()), f64::NAN),
         Ok(sim) if entry.name == crate::step::DEFAULT_SOLVER => {

@@ -6,23 +6,15 @@
 use super::ExpError;
 use crate::scenario::Scenario;
 use crate::scheme::Run;
-use crate::simulation::{Loop, RunSettings, Simulation};
+use crate::simulation::{RunSettings, Simulation};
 use crate::step::StepSolver;
 
-/// The settings of a study's run at level `n` with `steps` steps: the general loop,
-/// the rest as [`RunSettings::default`].
-pub fn settings(n: usize, steps: usize) -> RunSettings {
-    RunSettings {
-        n,
-        steps: Some(steps),
-        path: Loop::General,
-        ..RunSettings::default()
-    }
-}
-
-/// A simulation of `scn` with [`settings`]`(n, steps)`.
+/// A simulation of `scn` with [`RunSettings::general`]`(n, steps)`.
 pub fn simulation(scn: &Scenario, n: usize, steps: usize) -> Result<Simulation, ExpError> {
-    Ok(Simulation::new(scn.clone(), settings(n, steps))?)
+    Ok(Simulation::new(
+        scn.clone(),
+        RunSettings::general(n, steps),
+    )?)
 }
 
 /// A batched run of `scns` on `sim`'s discretisation with the registry's step solver
