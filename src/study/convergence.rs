@@ -485,19 +485,21 @@ const QUICK_BUDGET_S: f64 = 10.0;
 const QUICK_CUTS: usize = 2;
 
 /// The rates of [`Candidate::cost`] on a two-core AMD EPYC: seconds per unknown and
-/// time step, and (below) per cube of a step's contact nodes. Fitted to two runs: the
-/// quick study of issue 47's `K2` scene (a 3 x 1 rectangle, six singular points, the
-/// general loop; its reference at n = 512 has 1.04e6 unknowns, the estimate's 1.12e6,
-/// and 768 contact nodes by the estimate, for 512 steps) took 84 to 88 s idle, and a
-/// general-loop `solve` of a 64 x 1 strip at n = 512 (9198 unknowns, 513 contact
-/// nodes, 512 steps) took 13 s of CPU where that study took 164 s, both on the same
-/// loaded machine. The estimate errs large on the reduced loop, which the paper's scene's
-/// quick study runs (estimated 1.4 s, measured 1.0 s of CPU).
-const SECONDS_PER_UNKNOWN_STEP: f64 = 1.1e-7;
+/// time step, and (below) per cube of a step's contact nodes. Fitted on a quiet machine
+/// (load under 0.3) to two whole quick studies of issue 47's `K2` scene (a 3 x 1
+/// rectangle, six singular points, the general loop), whose cost is almost all the
+/// reference's: the plan cut to a reference at n = 256 (260 339 unknowns, 256 steps)
+/// took 19.5 s of CPU, and the uncut plan, reference at n = 512 (1 042 695 unknowns,
+/// 512 steps), 154 s. The two points fit a linear rate that covers the step's two
+/// triangular solves, the certificate and the factorisation, with a contact term too
+/// small to measure at these sizes (the fit gives 9e-12 s per cube). A `solve --timings`
+/// of the n = 256 reference spends 13.1 s in its steps, 2.0e-7 s per unknown and step.
+/// The rate errs large on the reduced loop, which the paper's scene's quick study runs.
+const SECONDS_PER_UNKNOWN_STEP: f64 = 2.6e-7;
 
 /// The rate of [`Candidate::cost`] per cube of a step's contact nodes (see
 /// [`SECONDS_PER_UNKNOWN_STEP`]).
-const SECONDS_PER_CONTACT_CUBE: f64 = 1.0e-10;
+const SECONDS_PER_CONTACT_CUBE: f64 = 1.0e-11;
 
 /// The largest uniform mesh, in unknowns, at level $2 n_0$ whose graded counterpart
 /// [`Candidate::cost`] builds for its estimate (a fraction of a second).

@@ -126,7 +126,8 @@ pub struct ConvergenceArgs {
     pub scenario: String,
     /// Four levels per family and a reference at 32 times the coarsest n, the split
     /// on three levels against 16 times, within a budget of about 10 s of work (the
-    /// paper's scene's quick study is estimated at 2 s): where the estimate is larger,
+    /// paper's scene's quick study is estimated at 3 s and takes under 1 s, on the
+    /// reduced loop): where the estimate is larger,
     /// the plan drops a level at a time, its references with it, down to two levels per
     /// family, and a scene still above the budget is refused before any work, with what
     /// it would take. Without
