@@ -15,12 +15,12 @@ use faer::{Accum, MatMut, MatRef, Par};
 /// Sparse symmetric matrix stored with both triangles.
 pub type SpMat = SparseColMat<usize, f64>;
 
-// ANCHOR: assemble
 /// Assembles $(\mathcal T\varepsilon(u), \varepsilon(v))_\Omega$ over the free dofs
 /// for each tensor of `tensors`, on one pattern. The pattern comes from the mesh
 /// (dofs couple when their nodes share a triangle), so no index pairs are sorted:
 /// each element matrix is added into its columns in place. Entries are summed in
 /// the order of the triangles, as a sort of triplets would sum them.
+// ANCHOR: assemble
 pub fn stiffness_all<const T: usize>(
     mesh: &Mesh,
     dofs: &Dofs,
@@ -53,8 +53,8 @@ pub fn stiffness_all<const T: usize>(
     vals.map(|v| SparseColMat::new(symbolic.clone(), v))
 }
 
-/// The pattern of the P1 operators on the free dofs: column $(v, c)$ holds both
-/// components of every node that shares a triangle with $v$, in dof order.
+/// The pattern of the P1 operators on the free dofs: column (v, c) holds both
+/// components of every node that shares a triangle with v, in dof order.
 fn pattern(mesh: &Mesh, dofs: &Dofs) -> SymbolicSparseColMat<usize> {
     let mut nbr: Vec<Vec<usize>> = vec![Vec::with_capacity(8); mesh.nodes.len()];
     for tri in &mesh.triangles {

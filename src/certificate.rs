@@ -30,23 +30,23 @@ pub struct NodeSplit {
     pub complementarity: f64,
 }
 
-// ANCHOR: split
 /// Relative distance to $g$ below which a node counts as on the unilateral limit.
+// ANCHOR: split
 pub const ON_LIMIT: f64 = 1e-8;
 
-/// Distance, relative to the displacement scale $\max(g, \|u\|_\infty)$, below which a
+/// Distance, relative to the displacement scale max(g, ‖u‖∞), below which a
 /// node counts as sitting on a breakpoint of the law or on the limit: the recovery
 /// solve returns a node that the step solver put exactly there a few units of
-/// rounding times $\|u\|$ away (about $10^{-17}$ at $\|u\| = 0.1$).
+/// rounding times ‖u‖ away (about 1e-17 at ‖u‖ = 0.1).
 pub const ROUNDING: f64 = 1e-13;
 
-/// Splits the pressure $\zeta$ at a node with normal displacement $s$ into
-/// $\xi \in \partial_{Cl} j(s)$ and $\mu \ge 0$; `delta` is the rounding tolerance in
+/// Splits the pressure ζ at a node with normal displacement s into
+/// ξ ∈ ∂Cl j(s) and μ ≥ 0; `delta` is the rounding tolerance in
 /// displacement ([`ROUNDING`] times the displacement scale). Off the limit
-/// ($g - s > \max(10^{-8} g, \delta)$) $\mu = 0$ and all of $\zeta$ must lie in
-/// $\partial_{Cl} j$ at $s$ (widened by the breakpoints within $\delta$); on it, the excess
-/// $\mu = (\zeta - \xi)^+$ is the unilateral pressure, paid for in
-/// complementarity by $\mu\,|g - s|$.
+/// (g − s > max(1e-8 g, δ)) μ = 0 and all of ζ must lie in
+/// ∂Cl j at s (widened by the breakpoints within δ); on it, the excess
+/// μ = (ζ − ξ)⁺ is the unilateral pressure, paid for in
+/// complementarity by μ |g − s|.
 pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64, delta: f64) -> NodeSplit {
     let sub = law.clarke_near(s, delta);
     let xi = sub.clamp(zeta);

@@ -17,8 +17,8 @@ pub struct Condensed {
     pub lambda_min: f64,
 }
 
-// ANCHOR: condense
 /// Builds $S = L_{CC}L_{CC}^\top$ from a factor whose trailing block belongs to the contact dofs.
+// ANCHOR: condense
 pub fn condense(chol: &Cholesky) -> Result<Condensed, String> {
     let l = chol.l_cc();
     let s = l * l.transpose();

@@ -27,8 +27,8 @@ pub fn strain_matrix(p: [[f64; 2]; 3]) -> (f64, SMatrix<f64, 3, 6>) {
     (0.5 * det, bm)
 }
 
-// ANCHOR: element_matrix
 /// The element matrix $|T|\,\mathbb B^\top D\,\mathbb B$ for a Voigt tensor `d`.
+// ANCHOR: element_matrix
 pub fn element_matrix(p: [[f64; 2]; 3], d: &Matrix3<f64>) -> SMatrix<f64, 6, 6> {
     let (area, bm) = strain_matrix(p);
     bm.transpose() * d * bm * area

@@ -11,21 +11,21 @@
 use crate::error::InputError;
 use std::fmt;
 
-// ANCHOR: history
 /// The factor $\varphi(t)$ of a load history.
+// ANCHOR: history
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum History {
-    /// $\varphi \equiv 1$: the load acts in full from $t = 0$ (the paper's scenes).
+    /// φ ≡ 1: the load acts in full from t = 0 (the paper's scenes).
     #[default]
     Constant,
-    /// $\varphi(t) = \min(t / t_r, 1)$: a linear ramp to the full load at $t_r$.
+    /// φ(t) = min(t / t_r, 1): a linear ramp to the full load at t_r.
     Ramp { t_r: f64 },
-    /// $\varphi$ piecewise linear through $(t_i, \varphi_i)$, $t_i$ strictly increasing.
+    /// φ piecewise linear through (t_i, φ_i), t_i strictly increasing.
     Table { points: Vec<(f64, f64)> },
 }
 
 impl History {
-    /// $\varphi(t)$.
+    /// φ(t).
     pub fn phi(&self, t: f64) -> f64 {
         match self {
             History::Constant => 1.0,

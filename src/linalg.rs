@@ -488,26 +488,26 @@ impl Cholesky {
         self.split = None;
     }
 
-    // ANCHOR: forward
     /// Forward solve $x = L^{-1}\Pi b$ ($\Pi$ the fill-reducing permutation).
+    // ANCHOR: forward
     pub fn forward(&self, b: &[f64]) -> Vec<f64> {
         self.forward_many(&[b]).pop().expect("one column")
     }
 
-    /// Forward solves of several right-hand sides: one sweep over $L$ per group of
+    /// Forward solves of several right-hand sides: one sweep over L per group of
     /// up to four (the sweep costs memory traffic, which the columns share).
     pub fn forward_many(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
         self.forward_groups(bs, Sweep::Forward)
     }
 
     /// [`Cholesky::forward_many`] for right-hand sides that vanish off the contact
-    /// dofs (the last $m$ rows of the ordering), as a field's contact reactions do:
+    /// dofs (the last m rows of the ordering), as a field's contact reactions do:
     /// the sweep starts at the first supernode that holds a contact column. Every
-    /// supernode before it only divides and multiplies zeros (its values stay $+0$)
-    /// and subtracts $+0$ from the rows it updates, which leaves their values as they
+    /// supernode before it only divides and multiplies zeros (its values stay +0)
+    /// and subtracts +0 from the rows it updates, which leaves their values as they
     /// are: the result is [`Cholesky::forward_many`]'s, to the bit but for the sign
     /// of a zero entry of the right-hand side (the full sweep's split halves add
-    /// $+0$ to it), for the cost of the separator's supernodes (`tests/linalg.rs`).
+    /// +0 to it), for the cost of the separator's supernodes (`tests/linalg.rs`).
     pub fn forward_many_contact(&self, bs: &[&[f64]]) -> Vec<Vec<f64>> {
         debug_assert!(bs.iter().all(|b| {
             let first = self.dim() - self.l_cc.nrows();

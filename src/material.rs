@@ -29,9 +29,9 @@ impl Isotropic {
         Isotropic { a: alpha, b: beta }
     }
 
-    // ANCHOR: voigt
     /// The tensor in Voigt form for strains $(\varepsilon_{11}, \varepsilon_{22}, 2\varepsilon_{12})$,
     /// so that $e^\top D e = a(\operatorname{tr}\varepsilon)^2 + b\,\varepsilon:\varepsilon$.
+    // ANCHOR: voigt
     pub fn voigt(&self) -> Matrix3<f64> {
         let (a, b) = (self.a, self.b);
         Matrix3::new(a + b, a, 0.0, a, a + b, 0.0, 0.0, 0.0, 0.5 * b)

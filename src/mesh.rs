@@ -419,11 +419,11 @@ impl Mesh {
             .collect()
     }
 
-    // ANCHOR: weights
     /// Trapezoidal weights of the contact nodes: half the length of the $\Gamma_3$
     /// segments beside each node ($2h$ inside $\Gamma_3$, $h$ at its ends on a grid).
     /// A node of $\Gamma_3$ whose normal component a support holds is no contact node:
     /// its term of the contact functional is a constant.
+    // ANCHOR: weights
     pub fn contact_weights(&self) -> Vec<f64> {
         let m = self.gamma3.len();
         let x: Vec<f64> = self.gamma3.iter().map(|&c| self.nodes[c][0]).collect();

@@ -810,11 +810,11 @@ impl<'d> StepOperator<'d> {
         })
     }
 
-    // ANCHOR: step
     /// One batched step: one forward sweep for all right-hand sides $b_n$, each
     /// scenario's condensed contact problem from $r_0 = PK^{-1}b_n$ (warm-started at
     /// `r`), the recovery of $u_n = K^{-1}(b_n + E_C^\top z)$ with $z = S(r_0 - r)$, and
     /// one backward sweep for all.
+    // ANCHOR: step
     pub fn step(
         &self,
         b: &[Vec<f64>],

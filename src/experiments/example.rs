@@ -396,7 +396,6 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
     Ok(tr)
 }
 
-// ANCHOR: landing_jump
 /// The jump of the middle node's reaction when it lands, from the space-discrete,
 /// time-continuous problem on the contact nodes. With proportional damping ($A = \tau B$)
 /// it reads $\tau S\dot r + S r + W(p(r) + \lambda) = F(t)$, $S$ the condensed stiffness,
@@ -408,6 +407,7 @@ fn trace(scn: &Scenario, n: usize, steps: usize) -> Result<Trace, ExpError> {
 /// the middle node's stiffness with the free nodes condensed out and the limit nodes
 /// held: a finite jump, which the scheme can resolve only with steps shorter than the
 /// time in which the next nodes land.
+// ANCHOR: landing_jump
 fn landing_jump(red: &evhi::reduced::Reduced, v: f64, at_limit: &[bool]) -> Result<f64, ExpError> {
     let mid = red.disc.mesh.n / 2;
     let s = &red.s_b;

@@ -38,9 +38,9 @@ pub struct Affine {
     prim_zero: f64,
 }
 
-// ANCHOR: law_paper
 /// The paper's law (5.1): $p = 0$ for $s \le 0$, slope $c_1 = 200$ up to
 /// $u_1 = 0.05$, slope $c_2 = -100$ up to $u_2 = 0.075$, slope $c_3 = 300$ beyond.
+// ANCHOR: law_paper
 pub fn paper_law() -> super::Law {
     super::Law::new(
         &[0.0, 0.05, 0.075],
@@ -176,9 +176,9 @@ impl Affine {
         self.p_on(self.branch(s), s)
     }
 
-    // ANCHOR: clarke
     /// Clarke's subdifferential $\partial_{Cl} j(s)$: the interval spanned by the
     /// one-sided limits of $p$ at $s$ (a point where $p$ is continuous).
+    // ANCHOR: clarke
     pub fn clarke(&self, s: f64) -> Interval {
         let (a, b) = self.p_sides(s);
         Interval {
@@ -253,12 +253,12 @@ impl Affine {
         self.breaks.iter().any(|&b| (s - b).abs() <= tol)
     }
 
-    // ANCHOR: convex_split
     /// The convex part $j_\cup$ of the convex–concave split $j = j_\cup + j_\cap$
     /// below the limit $g$, with $j_\cap(s) = \tfrac12 c_{\min} s^2$ plus the downward
     /// jumps of $p$ (so that $j_\cup'' = c_b - c_{\min} \ge 0$ on every branch):
     /// the anchor $a$ (the first breakpoint below $g$) and, from it, the runs of
     /// $j_\cup$ on which a node's cost is linear plus quadratic.
+    // ANCHOR: convex_split
     pub fn convex_runs(&self, g: f64) -> (f64, Vec<ConvexRun>) {
         let cmin = self.min_slope();
         let down = self.down_jumps();
@@ -294,7 +294,7 @@ impl Affine {
         (a, out)
     }
 
-    /// A supergradient of $j_\cap$ at $s$.
+    /// A supergradient of j∩ at s.
     pub fn concave_slope(&self, s: f64) -> f64 {
         self.min_slope() * s
             + self
@@ -369,12 +369,12 @@ impl Affine {
 }
 
 impl Affine {
-    // ANCHOR: prox
     /// $\operatorname{prox}$ of $\gamma\,kw\,j$ restricted to $s \le g$, at $v$: on each
     /// branch (cut at $g$) the objective $kw\, j(s) + (s - v)^2/(2\gamma)$ is a strictly
     /// convex quadratic; its minimiser clamped to the branch is the branch's best
     /// point, and the best branch wins. Returns the point, the slope of the prox
     /// there (0 when clamped to a branch end, i.e. pinned) and the branch.
+    // ANCHOR: prox
     pub fn prox(&self, v: f64, gamma: f64, kw: f64, g: f64) -> super::Prox {
         let law = self;
         let bps = law.breakpoints();

@@ -63,9 +63,9 @@ pub fn strains(sol: Solution, x: f64, y: f64, t: f64) -> Strains {
     }
 }
 
-// ANCHOR: strains
 /// $\varepsilon(u)$ and $\varepsilon(\dot u)$ at $(x, y, t)$, exact: one hyper-dual
 /// evaluation per space direction, with $\varepsilon_1$ along it and $\varepsilon_2$ along $t$.
+// ANCHOR: strains
 pub fn strains_evaluated(sol: Solution, x: f64, y: f64, t: f64) -> Strains {
     let d = |dir: usize| {
         let (e1x, e1y) = if dir == 0 { (1.0, 0.0) } else { (0.0, 1.0) };
@@ -212,9 +212,9 @@ impl<'a> Data<'a> {
         [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
     }
 
-    // ANCHOR: gamma3_load
     /// $f_3 = \sigma_\tau + (\sigma_\nu + p(u_\nu) + \lambda)\nu$ on $\Gamma_3$ ($\nu = (0, -1)$:
     /// $\sigma_\nu = \sigma_{22}$, $\sigma_\tau = (-\sigma_{12}, 0)$).
+    // ANCHOR: gamma3_load
     pub fn gamma3_load(&self, x: f64, t: f64) -> [f64; 2] {
         let s = self.sigma(x, 0.0, t);
         let normal = s[1] + self.law.p(self.u_nu(x, t)) + self.sol.reaction(x, t);
@@ -338,11 +338,11 @@ fn hat(a: f64, b: f64, x: f64, from_a: bool) -> f64 {
     }
 }
 
-// ANCHOR: load_vector
 /// $\langle f(t), \varphi_i\rangle$ for every free dof, by the weak form
 /// $\int_\Omega \sigma(u) : \varepsilon(\varphi_i) + \int_{\Gamma_3}(p(u_\nu) + \lambda)\varphi_{i,\nu}$;
 /// `refine` $> 0$ applies each rule on $4^{\rm refine}$ children of every triangle and
 /// $2^{\rm refine}$ parts of every contact segment (the study uses 0).
+// ANCHOR: load_vector
 pub fn load_vector(data: &Data, mesh: &Mesh, dofs: &Dofs, t: f64, refine: usize) -> Vec<f64> {
     let mut out = vec![0.0; dofs.count];
     let cuts = data.sol.cuts(t);

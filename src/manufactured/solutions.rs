@@ -273,9 +273,9 @@ impl Solution {
         }
     }
 
-    // ANCHOR: u
     /// The exact displacement $u(x, y, t)$: the shape [`Solution::shape`] times the
     /// load factor $\rho(t)$ (the steady solution has none).
+    // ANCHOR: u
     pub fn u<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
         let s = self.shape(x, y, t);
         if self.is_static() {
@@ -287,8 +287,8 @@ impl Solution {
         [s[0] * rho, s[1] * rho]
     }
 
-    /// $u / \rho$: a function of $(x, y)$ alone except for (d), whose plateau grows
-    /// with $t$. (The steady solution has no factor: this is $u$.)
+    /// u / ρ: a function of (x, y) alone except for (d), whose plateau grows
+    /// with t. (The steady solution has no factor: this is u.)
     pub fn shape<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
         let ux = (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
         let u_nu = match self {

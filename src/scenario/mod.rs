@@ -466,7 +466,6 @@ impl Scenario {
         Ok(self)
     }
 
-    // ANCHOR: time_hypotheses
     /// The paper's hypotheses on the data at $t = 0$ (§4 H(f), §2 H(0) with $u_0 = 0$).
     ///
     /// With $f(0) = \varphi(0)(f_0, f_2)$: H(f) asks $f_2(0) = 0$ and $f_0(0) \in V$, i.e.
@@ -475,6 +474,7 @@ impl Scenario {
     /// $\iota^*\xi_0 + \eta_0 - f(0) \in V$; since $g > 0$, $\partial\Phi(0) = \{0\}$, and a
     /// nonzero $\xi_0$ is a functional on $\Gamma_3$ that no element of $V$ represents,
     /// so it holds exactly when H(f)'s two conditions hold and $0 \in \partial_{Cl} j(0)$.
+    // ANCHOR: time_hypotheses
     pub fn time_hypotheses(&self) -> TimeHypotheses {
         let phi0 = self.history.phi(0.0);
         let parts = self.body.iter().flat_map(|b| &b.tractions);

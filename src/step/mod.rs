@@ -382,12 +382,12 @@ impl StepProblem<'_> {
         Some(eig.into_iter().fold(f64::INFINITY, f64::min))
     }
 
-    // ANCHOR: pieces
     /// Solves the step exactly once each node's piece is known: a free node
     /// satisfies $(S(r - r_0))_i + k w_i\, p_b(r_i) = 0$ with $p_b$ the tangent of its
     /// piece (the law itself on an affine piece, so the answer is exact for a
     /// piecewise-affine law); a pinned node (at $g$ or at a jump of $p$) sits at its
     /// pin. This is one symmetric linear system in the free nodes.
+    // ANCHOR: pieces
     pub fn solve_on_pieces(&self, pieces: &[Piece]) -> Option<Vec<f64>> {
         let m = self.m();
         let mut r = vec![0.0; m];

@@ -11,13 +11,13 @@ pub enum Edge {
     Free,
 }
 
-// ANCHOR: wedge
 /// The real $4\times4$ matrix of the edge conditions on the wedge $0 < \theta < \omega$
 /// for the Kolosov–Muskhelishvili potentials $\varphi = A z^\lambda$, $\psi = B z^\lambda$
 /// (unknowns $\operatorname{Re}A, \operatorname{Im}A, \operatorname{Re}B, \operatorname{Im}B$),
 /// real $\lambda$, with $\kappa_M = 3 - 4\kappa$ (plane strain, $\kappa$ the Poisson ratio). On a ray $\theta$:
 /// $2\mu(u_x + i u_y) = r^\lambda(\kappa_M A e^{i\lambda\theta} - \lambda\bar A e^{i(2-\lambda)\theta} - \bar B e^{-i\lambda\theta})$ and
 /// $\sigma_{\theta\theta} + i\sigma_{r\theta} = \lambda r^{\lambda-1}(\lambda A e^{i(\lambda-1)\theta} + \bar A e^{-i(\lambda-1)\theta} + B e^{i(\lambda+1)\theta})$.
+// ANCHOR: wedge
 fn edge_matrix(lambda: f64, omega: f64, kappa_m: f64, edges: [Edge; 2]) -> nalgebra::Matrix4<f64> {
     type C = nalgebra::Complex<f64>;
     let e = |x: f64| C::new(x.cos(), x.sin());
@@ -53,9 +53,9 @@ fn edge_matrix(lambda: f64, omega: f64, kappa_m: f64, edges: [Edge; 2]) -> nalge
     m
 }
 
-/// The real exponents $\lambda \in (0, 1)$ of a wedge of opening $\omega$ with the given
+/// The real exponents λ ∈ (0, 1) of a wedge of opening ω with the given
 /// edges: the sign changes of the determinant on a fine grid, refined by bisection.
-/// A corner with no real root in $(0, 1)$ has either complex roots there (the clamp
+/// A corner with no real root in (0, 1) has either complex roots there (the clamp
 /// ending on a straight edge, [`clamp_end_exponent`]) or none below 1.
 pub fn wedge_exponents(omega: f64, kappa_m: f64, edges: [Edge; 2]) -> Vec<f64> {
     let det = |l: f64| edge_matrix(l, omega, kappa_m, edges).determinant();
@@ -79,9 +79,9 @@ pub fn wedge_exponents(omega: f64, kappa_m: f64, edges: [Edge; 2]) -> Vec<f64> {
     roots
 }
 
-/// Where the clamp ends on a straight edge ($\omega = \pi$, clamped–free) the same
-/// equations reduce to $e^{-2i\pi\lambda} = -\kappa_M$, so
-/// $\lambda = \tfrac12 + i\,\ln\kappa_M/(2\pi)$: real part exactly $\tfrac12$, with a slow
+/// Where the clamp ends on a straight edge (ω = π, clamped–free) the same
+/// equations reduce to e^(−2iπλ) = −κ_M, so
+/// λ = ½ + i ln κ_M / (2π): real part exactly ½, with a slow
 /// oscillation. Returns (real part, imaginary part).
 pub fn clamp_end_exponent(kappa_m: f64) -> (f64, f64) {
     (0.5, kappa_m.ln() / (2.0 * std::f64::consts::PI))

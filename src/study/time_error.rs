@@ -62,12 +62,12 @@ pub fn plan(quick: bool) -> Plan {
     }
 }
 
-// ANCHOR: scalar_model
 /// The scalar model of the layer: $\tau\dot y + y = \varphi(t)$, $y(0) = 0$, by backward
 /// Euler with $N$ steps on $[0, T]$, $y_n = (\tau y_{n-1} + k\varphi(t_n))/(\tau + k)$,
 /// against the same model with $N_{\text{ref}}$ steps, measured as the study measures
 /// the field: (max over the level's times of the error) / (max of the reference there),
 /// and the error at $T$ over $y_{\text{ref}}(T)$.
+// ANCHOR: scalar_model
 pub fn scalar_model(tau: f64, history: &History, t_end: f64, n: usize, n_ref: usize) -> (f64, f64) {
     let path = |steps: usize| -> Vec<f64> {
         let k = t_end / steps as f64;
