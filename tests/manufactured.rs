@@ -92,7 +92,11 @@ fn separable_strains_are_the_evaluated_ones_bit_for_bit() {
             Solution::OffNode
         ]
     );
-    assert!(!Solution::Moving.separable() && !Solution::Steady.separable());
+    assert!(
+        !Solution::Moving.separable()
+            && !Solution::Steady.separable()
+            && !Solution::Hold.separable()
+    );
     let mut compared = 0;
     for sol in separable {
         for i in 0..=40 {
@@ -312,4 +316,45 @@ fn landing_lands_at_speed_and_p1limit_at_rest() {
             assert!(after.abs() < 1e-12, "{sol:?} at {x}: {after}");
         }
     }
+}
+
+/// (i) is (f) plus a sideways motion: the same normal displacement on $\Gamma_3$, the same
+/// reaction, the same field before the hold, and a horizontal displacement that keeps
+/// changing while the plateau sits at $g$ (so the time error accrues there).
+#[test]
+fn hold_is_p1limit_sliding_sideways_on_the_hold() {
+    let scn = paper();
+    let (f, i) = (
+        Data::new(Solution::P1Limit, &scn),
+        Data::new(Solution::Hold, &scn),
+    );
+    for j in 0..=100 {
+        let t = j as f64 / 100.0;
+        for k in 0..=80 {
+            let x = k as f64 / 40.0;
+            assert_eq!(f.u_nu(x, t), i.u_nu(x, t), "u_nu at ({x}, {t})");
+            assert_eq!(
+                Solution::P1Limit.reaction(x, t),
+                Solution::Hold.reaction(x, t)
+            );
+            for y in [0.0, 0.25, 0.5, 1.0] {
+                let (a, b) = (Solution::P1Limit.u(x, y, t), Solution::Hold.u(x, y, t));
+                assert_eq!(a[1], b[1]);
+                if t <= 0.4 {
+                    assert_eq!(a[0], b[0], "before the hold at ({x}, {y}, {t})");
+                }
+            }
+        }
+    }
+    // On the hold, at a point where W is not zero, u_x moves while u_nu = g.
+    let (x, y) = (0.5, 0.5);
+    let ux = |t: f64| Solution::Hold.u(x, y, t)[0];
+    assert!(
+        ux(0.45) < ux(0.55) && ux(0.55) < ux(0.65),
+        "{} {} {}",
+        ux(0.45),
+        ux(0.55),
+        ux(0.65)
+    );
+    assert_eq!(i.u_nu(1.0, 0.55), scn.g());
 }

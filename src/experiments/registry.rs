@@ -162,6 +162,7 @@ pub const EXPERIMENTS: [Experiment; 14] = [
             table("exact_convergence.csv", 4, 6),
             table("exact_cea.csv", 3, 5),
             table("exact_crime.csv", 2, 4),
+            table("exact_hold.csv", 5, 9),
         ],
     },
 ];

@@ -366,6 +366,7 @@ fn exact_solutions() {
             "exact_quadrature.csv",
             "exact_grid.csv",
             "exact_quadrature_effect.csv",
+            "exact_hold.csv",
         ],
         &[
             "exact_convergence",

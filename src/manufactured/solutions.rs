@@ -40,6 +40,11 @@
 //!     $1 \pm R$ are nodes of no mesh), $L = 1 - R$ (so $w(0) = g - G_0$ as in (b)), and a
 //!     reaction $\lambda = \Lambda\mu(t)$ constant on the plateau: it does not vanish at
 //!     the zone's ends, so $R_n(\Pi^h u_n) \ne 0$ in the cells the ends cut.
+//! (i) `hold`: (f) plus $\sigma(t)\,W$, $W = (\Pi_4(A\sin(\pi x)(1+y)/2),\, 0)$ (the
+//!     horizontal part of (f)'s field) and $\sigma(t) = \Sigma\,S((t - 0.4)/0.3)$: the body
+//!     slides sideways while the plateau holds at $g$ ($W_\nu = 0$, so $u_\nu$, the
+//!     regimes and the reaction are (f)'s), so the scheme's time error keeps accruing
+//!     on the hold, where (f)'s only relaxes. In every $V^h$ like (f); not separable.
 
 use super::Scalar;
 
@@ -65,10 +70,12 @@ pub enum Solution {
     Landing,
     /// (h) (b) with zone ends on no node and a reaction that does not vanish there.
     OffNode,
+    /// (i) (f) sliding sideways while its plateau holds at the limit.
+    Hold,
 }
 
 /// The solutions, in the book's order.
-pub const SOLUTIONS: [Solution; 8] = [
+pub const SOLUTIONS: [Solution; 9] = [
     Solution::Branch1,
     Solution::Regimes,
     Solution::Steady,
@@ -77,6 +84,7 @@ pub const SOLUTIONS: [Solution; 8] = [
     Solution::P1Limit,
     Solution::Landing,
     Solution::OffNode,
+    Solution::Hold,
 ];
 
 const A: f64 = 0.02;
@@ -102,6 +110,8 @@ const L_OFF: f64 = 1.0 - R_OFF;
 /// The hold $[T_1, T_2]$ of (b) and (d).
 const T1: f64 = 0.4;
 const T2: f64 = 0.7;
+/// (i): the amplitude $\Sigma$ of the sideways motion on the hold.
+const SIGMA: f64 = 4.0;
 
 fn c<D: Scalar>(v: f64) -> D {
     D::from(v)
@@ -138,12 +148,12 @@ fn dist<D: Scalar>(x: D, r: D) -> D {
 /// upper-right) of $(A\sin(\pi x)(1+y)/2,\; -u_\nu(x)\,\eta(y))$, where `u_nu` gives the
 /// normal displacement at the coarse nodes of $\Gamma_3$.
 fn coarse_p1<D: Scalar>(x: D, y: D, u_nu: fn(f64) -> f64) -> [D; 2] {
+    // sin(pi x) at the coarse nodes x = 0, 1/2, ..., 2, exactly: the library's
+    // sin(2 pi) is -2.4e-16, not the 0 that u = 0 on Gamma_1 needs.
+    const SIN: [f64; 5] = [0.0, 1.0, 0.0, -1.0, 0.0];
     let node = |i: usize, j: usize| -> [f64; 2] {
         let (xn, yn) = (0.5 * i as f64, 0.5 * j as f64);
-        [
-            A / 2.0 * (std::f64::consts::PI * xn).sin() * (1.0 + yn),
-            -u_nu(xn) * eta(yn),
-        ]
+        [A / 2.0 * SIN[i] * (1.0 + yn), -u_nu(xn) * eta(yn)]
     };
     let (i, j) = (
         ((x.re() / 0.5).floor() as usize).min(3),
@@ -194,13 +204,15 @@ pub fn parameters() -> String {
          (e) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -{P1_SCALE} w eta); \
          (f) rho of (b) times the P1 interpolant on n = 4 of (A sin(pi x) (1 + y)/2, -w4 eta), w4 = g - G0 ((|x - 1| - {R4})_+/{L4})^2 (g at x = 0.5, 1, 1.5), reaction of (b) with R = {R4}; \
          (g) (f) with rho = (t/{T1})^2 before t = {T1} (lands at normal speed 2g/{T1}); \
-         (h) (b) with R = sqrt(2)/4, L = 1 - R, reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) on |x - 1| < R",
+         (h) (b) with R = sqrt(2)/4, L = 1 - R, reaction {LAMBDA} sin^2(pi (t - {T1})/{:.1}) on |x - 1| < R; \
+         (i) (f) plus sigma(t) (W_x, 0), W_x the horizontal part of (f)'s P1 field, sigma = {SIGMA} S((t - {T1})/{:.1})",
         1.0 - T2,
         G - G0,
         1.0 - R0,
         1.0 + R0,
         T2 - T1,
         crate::law::paper_law().p(DELTA),
+        T2 - T1,
         T2 - T1,
         T2 - T1,
     )
@@ -218,6 +230,7 @@ impl Solution {
             Solution::P1Limit => "p1limit",
             Solution::Landing => "landing",
             Solution::OffNode => "offnode",
+            Solution::Hold => "hold",
         }
     }
 
@@ -232,6 +245,7 @@ impl Solution {
             Solution::P1Limit => "(f) P1 in space, at the limit",
             Solution::Landing => "(g) (f) landing at speed",
             Solution::OffNode => "(h) zone ends on no node",
+            Solution::Hold => "(i) (f) sliding on the hold",
         }
     }
 
@@ -249,7 +263,8 @@ impl Solution {
             | Solution::Moving
             | Solution::P1
             | Solution::P1Limit
-            | Solution::OffNode => smoothstep(t / T1) - fall,
+            | Solution::OffNode
+            | Solution::Hold => smoothstep(t / T1) - fall,
             Solution::Landing => {
                 let rise = if t.re() < T1 {
                     let s = t / T1;
@@ -267,14 +282,15 @@ impl Solution {
     fn half_width<D: Scalar>(self, t: D) -> D {
         match self {
             Solution::Moving => c::<D>(R0) + smoothstep((t - T1) / (T2 - T1)) * GROW,
-            Solution::P1Limit | Solution::Landing => c(R4),
+            Solution::P1Limit | Solution::Landing | Solution::Hold => c(R4),
             Solution::OffNode => c(R_OFF),
             _ => c(R0),
         }
     }
 
     /// The exact displacement $u(x, y, t)$: the shape [`Solution::shape`] times the
-    /// load factor $\rho(t)$ (the steady solution has none).
+    /// load factor $\rho(t)$ (the steady solution has none), and for (i) its sideways
+    /// motion $\sigma(t)\,W$ added.
     // ANCHOR: u
     pub fn u<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
         let s = self.shape(x, y, t);
@@ -284,11 +300,17 @@ impl Solution {
         // The factor last: a separable solution's derivatives in space are then the
         // shape's times rho, bit for bit (`super::scaled_strains`).
         let rho = self.rho(t);
+        if self == Solution::Hold {
+            // (i): plus the sideways motion sigma(t) (W_x, 0), W_x = the shape's x part.
+            let sigma = smoothstep((t - T1) / (T2 - T1)) * SIGMA;
+            return [s[0] * rho + s[0] * sigma, s[1] * rho];
+        }
         [s[0] * rho, s[1] * rho]
     }
 
     /// u / ρ: a function of (x, y) alone except for (d), whose plateau grows
-    /// with t. (The steady solution has no factor: this is u.)
+    /// with t, and (i), whose sideways motion `u` adds. (The steady solution has no
+    /// factor: this is u.)
     pub fn shape<D: Scalar>(self, x: D, y: D, t: D) -> [D; 2] {
         let ux = (x * std::f64::consts::PI).sin() * (y + 1.0) * (A / 2.0);
         let u_nu = match self {
@@ -306,7 +328,9 @@ impl Solution {
             }
             Solution::Steady => return [c(0.0), -eta(y) * DELTA],
             Solution::P1 => return coarse_p1(x, y, p1_nodes),
-            Solution::P1Limit | Solution::Landing => return coarse_p1(x, y, p1_limit_nodes),
+            Solution::P1Limit | Solution::Landing | Solution::Hold => {
+                return coarse_p1(x, y, p1_limit_nodes);
+            }
         };
         [ux, -u_nu * eta(y)]
     }
@@ -316,7 +340,7 @@ impl Solution {
     /// Whether $u = \rho(t)\,U(x, y)$ with fixed quadrature cuts, so that the strains
     /// at a point are its shape's times $\rho(t)$ and $\dot\rho(t)$.
     pub fn separable(self) -> bool {
-        !matches!(self, Solution::Steady | Solution::Moving)
+        !matches!(self, Solution::Steady | Solution::Moving | Solution::Hold)
     }
 
     /// $(\rho(t), \dot\rho(t))$, exact: the time part of the hyper-dual evaluation
@@ -335,6 +359,7 @@ impl Solution {
             | Solution::P1Limit
             | Solution::Landing
             | Solution::OffNode
+            | Solution::Hold
                 if (T1..=T2).contains(&t) =>
             {
                 let r = self.half_width(t);

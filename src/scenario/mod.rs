@@ -406,6 +406,12 @@ impl Scenario {
         Ok(self)
     }
 
+    /// Removes the unilateral limit: $g = +\infty$, as the file's `g = "none"`.
+    pub fn without_limit(mut self) -> Self {
+        self.g = f64::INFINITY;
+        self
+    }
+
     /// Overrides the loads (validated).
     pub fn with_loads(
         mut self,

@@ -14,6 +14,7 @@
 //! regime counts per step; the quadrature's own error.
 
 mod figure;
+mod hold;
 
 use super::{Ctx, ExpError};
 use evhi::manufactured::run::{ExactRun, REGIMES, Rule, run, run_rules};
@@ -149,6 +150,7 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     let regimes = write_regimes(ctx, &fams, &study)?;
     write_quadrature(ctx, &scn)?;
     write_quadrature_effect(ctx, &scn)?;
+    hold::write_hold(ctx, &scn)?;
     let grid = write_grid(ctx, &grid)?;
     figure::draw_all(ctx, &conv, &cea, &regimes)?;
     figure::draw_grid(ctx, &grid)
