@@ -42,7 +42,7 @@ fn levels(quick: bool) -> (usize, Vec<usize>) {
 /// where it is reached (the first, on a tie).
 fn rel_hold(r: &ExactRun) -> (f64, f64) {
     let top = r.rows.iter().map(|w| w.exact_e).fold(0.0, f64::max);
-    let on = |t: f64| t >= HOLD[0] - 1e-12 && t <= HOLD[1] + 1e-12;
+    let on = |t: f64| (HOLD[0] - 1e-12..=HOLD[1] + 1e-12).contains(&t);
     let at = r
         .rows
         .iter()
