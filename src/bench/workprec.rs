@@ -3,6 +3,7 @@
 
 use super::tables::{BenchRow, PaperRow, REFERENCE, WorkPrecisionRow, read_bench};
 use evhi::output::csv;
+use evhi::output::plot::FONT;
 use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
 };
@@ -151,8 +152,7 @@ impl Figure for Chart {
         }
         chart
             .draw_series(
-                (placed.into_iter())
-                    .map(|(text, at)| Text::new(text, at, ("sans-serif", 14).into_font())),
+                (placed.into_iter()).map(|(text, at)| Text::new(text, at, (FONT, 14).into_font())),
             )
             .map_err(e2s)?;
         legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)?;

@@ -4,6 +4,7 @@
 
 use super::{Ctx, ExpError, col_f64, read_csv};
 use evhi::output::csv::Table;
+use evhi::output::plot::FONT;
 use evhi::output::plot::{Figure, both, e2s, legend};
 use evhi::scenario::Scenario;
 use plotters::prelude::*;
@@ -122,7 +123,7 @@ impl Figure for Fig2 {
         let ymax = self.s.iter().fold(0.0f64, |a, &b| a.max(b)) * self.headroom;
         let xmin = self.u.iter().fold(0.0f64, |a, &b| a.min(b));
         let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 26))
+            .caption(&self.title, (FONT, 26))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70)
@@ -132,7 +133,7 @@ impl Figure for Fig2 {
             .configure_mesh()
             .x_desc("normal displacement uν [m]")
             .y_desc("-σν [N/m]")
-            .label_style(("sans-serif", 18))
+            .label_style((FONT, 18))
             .draw()
             .map_err(e2s)?;
         let comp: Vec<(f64, f64)> = self

@@ -4,6 +4,7 @@
 //! file or the new one, never half of one.
 
 pub mod csv;
+pub mod glyphs;
 pub mod markdown;
 pub mod plot;
 pub mod rows;

@@ -1,7 +1,9 @@
-//! Drawing helpers shared by the figures (plotters, with an embedded DejaVu Sans
-//! so that no system font is needed).
+//! Drawing helpers shared by the figures (plotters, with the DejaVu Sans shipped in
+//! `assets/fonts/`, so that no system font is needed: PNG text is drawn by
+//! [`super::glyphs::Glyphs`], SVG text names [`FONT`]).
 
 use super::FileError;
+use super::glyphs::Glyphs;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
@@ -9,16 +11,17 @@ use plotters::style::{FontStyle, register_font};
 use std::path::Path;
 use std::sync::Once;
 
-static FONT: Once = Once::new();
+static REGISTERED: Once = Once::new();
 
-/// Registers the embedded font once.
+/// The font family of every figure's text. An SVG names it as is (DejaVu Sans where
+/// the viewer has it, else its sans-serif); plotters measures text with the shipped
+/// DejaVu Sans registered under this name, and the PNGs draw with it.
+pub const FONT: &str = "DejaVu Sans, sans-serif";
+
+/// Registers the shipped font under [`FONT`] once.
 pub fn init_font() {
-    FONT.call_once(|| {
-        let _ = register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            include_bytes!("../../assets/fonts/DejaVuSans.ttf"),
-        );
+    REGISTERED.call_once(|| {
+        let _ = register_font(FONT, FontStyle::Normal, super::glyphs::DEJAVU_SANS);
     });
 }
 
@@ -91,7 +94,7 @@ where
     chart
         .configure_series_labels()
         .position(position)
-        .label_font(("sans-serif", font))
+        .label_font((FONT, font))
         .background_style(WHITE.mix(opacity))
         .border_style(BLACK)
         .draw()
@@ -111,7 +114,7 @@ pub fn fit_title<DB: DrawingBackend>(
     let fits = |lines: &[&str], s: u32| -> Result<bool, String> {
         for l in lines {
             if root
-                .estimate_text_size(l, &("sans-serif", s).into_text_style(root))
+                .estimate_text_size(l, &(FONT, s).into_text_style(root))
                 .map_err(e2s)?
                 .0
                 > room
@@ -139,7 +142,7 @@ pub fn fit_title<DB: DrawingBackend>(
     }
     let mut area = root.clone();
     for l in lines {
-        area = area.titled(l, ("sans-serif", s)).map_err(e2s)?;
+        area = area.titled(l, (FONT, s)).map_err(e2s)?;
     }
     Ok(area)
 }
@@ -168,7 +171,7 @@ pub fn side_legend<DB: DrawingBackend>(
         area.draw(&Text::new(
             label.clone(),
             (36, y - font as i32 / 2),
-            ("sans-serif", font).into_font(),
+            (FONT, font).into_font(),
         ))
         .map_err(e2s)?;
     }
@@ -201,11 +204,14 @@ pub fn both<F: Figure + Sync>(
             // (a full disk) says its I/O error in words.
             let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
             let drawn = {
-                let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
-                root.fill(&WHITE)
-                    .map_err(e2s)
-                    .and_then(|_| fig.draw(&root))
-                    .and_then(|_| root.present().map_err(e2s))
+                let root = Glyphs::new(BitMapBackend::with_buffer(&mut pixels, size))
+                    .map(|b| b.into_drawing_area());
+                root.and_then(|root| {
+                    root.fill(&WHITE)
+                        .map_err(e2s)
+                        .and_then(|_| fig.draw(&root))
+                        .and_then(|_| root.present().map_err(e2s))
+                })
             };
             drawn.and_then(|()| {
                 image::save_buffer_with_format(
@@ -409,7 +415,7 @@ impl<'t> LogLogChart<'t> {
         log_range(self.desc.0, x.range())?;
         log_range(self.desc.1, y.range())?;
         let mut chart = ChartBuilder::on(area)
-            .caption(self.caption.0, ("sans-serif", self.caption.1))
+            .caption(self.caption.0, (FONT, self.caption.1))
             .margin(self.margin)
             .x_label_area_size(self.label_areas.0)
             .y_label_area_size(self.label_areas.1)
@@ -418,7 +424,7 @@ impl<'t> LogLogChart<'t> {
         let mut mesh = chart.configure_mesh();
         mesh.x_desc(self.desc.0)
             .y_desc(self.desc.1)
-            .label_style(("sans-serif", self.fonts.0));
+            .label_style((FONT, self.fonts.0));
         if let Some(f) = self.format.0 {
             mesh.x_label_formatter(f);
         }
@@ -426,7 +432,7 @@ impl<'t> LogLogChart<'t> {
             mesh.y_label_formatter(f);
         }
         if let Some(size) = self.fonts.1 {
-            mesh.axis_desc_style(("sans-serif", size));
+            mesh.axis_desc_style((FONT, size));
         }
         mesh.draw().map_err(e2s)?;
         Ok(chart)

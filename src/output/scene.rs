@@ -8,6 +8,7 @@ use super::FileError;
 use super::csv::{Frame, Text, col_f64, col_str, read_csv};
 use super::rows::{TriangleRow, column};
 use crate::certificate::regime_order;
+use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
@@ -246,7 +247,7 @@ fn draw_mesh<DB: DrawingBackend>(
             .join(", ")
     );
     let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 18))
+        .caption(caption, (FONT, 18))
         .margin(8)
         .x_label_area_size(48)
         .y_label_area_size(50)
@@ -258,7 +259,7 @@ fn draw_mesh<DB: DrawingBackend>(
         .disable_mesh()
         .x_desc("x [m]")
         .y_desc("y [m]")
-        .label_style(("sans-serif", 16))
+        .label_style((FONT, 16))
         .draw()
         .map_err(e2s)?;
     // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g;
@@ -345,7 +346,7 @@ fn draw_forces<DB: DrawingBackend>(
     let total: Vec<f64> = p.s1.iter().zip(&p.s2).map(|(a, b)| -(a + b)).collect();
     let ymax = total.iter().fold(1.0f64, |a, &b| a.max(b)) * 1.1;
     let mut chart = ChartBuilder::on(area)
-        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)", ("sans-serif", 17))
+        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)", (FONT, 17))
         .margin(8)
         .x_label_area_size(48)
         .y_label_area_size(62)
@@ -356,7 +357,7 @@ fn draw_forces<DB: DrawingBackend>(
         .disable_x_mesh()
         .x_desc("x [m]")
         .y_desc("-σν [N/m]")
-        .label_style(("sans-serif", 16))
+        .label_style((FONT, 16))
         .draw()
         .map_err(e2s)?;
     let w = if p.cx.len() > 1 {

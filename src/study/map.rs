@@ -3,6 +3,7 @@
 //! Newton, the spread of several starts), the solvers a map shows, and the map's
 //! figure. The book's map (`stability`) and `evhi study stability` draw theirs with it.
 
+use crate::output::plot::FONT;
 use crate::scenario::Scenario;
 
 /// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
@@ -149,7 +150,7 @@ impl Figure for MapFigure {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let root = root.titled(&self.title, ("sans-serif", 19)).map_err(e2s)?;
+        let root = root.titled(&self.title, (FONT, 19)).map_err(e2s)?;
         let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
         ks.sort_by(f64::total_cmp);
         ks.dedup();
@@ -167,7 +168,7 @@ impl Figure for MapFigure {
         let panels = top.split_evenly((solvers.len().div_ceil(2), 2));
         for (solver, area) in solvers.iter().zip(panels.iter()) {
             let mut chart = ChartBuilder::on(area)
-                .caption(*solver, ("sans-serif", 20))
+                .caption(*solver, (FONT, 20))
                 .margin(10)
                 .x_label_area_size(45)
                 .y_label_area_size(70)
@@ -196,8 +197,8 @@ impl Figure for MapFigure {
                 })
                 .x_desc("time step k")
                 .y_desc(&self.row_desc)
-                .label_style(("sans-serif", 16))
-                .axis_desc_style(("sans-serif", 16))
+                .label_style((FONT, 16))
+                .axis_desc_style((FONT, 16))
                 .draw()
                 .map_err(e2s)?;
             for c in self.cells.iter().filter(|c| c.0 == *solver) {
@@ -229,7 +230,7 @@ impl Figure for MapFigure {
                     .draw_series(std::iter::once(Text::new(
                         label,
                         (x - 0.25, y + 0.12),
-                        ("sans-serif", 16),
+                        (FONT, 16),
                     )))
                     .map_err(e2s)?;
             }
@@ -253,7 +254,7 @@ impl Figure for MapFigure {
             let (x, y) = (20 + 540 * (i % 2) as i32, y0 + 30 * (i / 2) as i32);
             root.draw(&Rectangle::new([(x, y), (x + 18, y + 18)], colour.filled()))
                 .map_err(e2s)?;
-            root.draw(&Text::new(*text, (x + 26, y + 1), ("sans-serif", 17)))
+            root.draw(&Text::new(*text, (x + 26, y + 1), (FONT, 17)))
                 .map_err(e2s)?;
         }
         Ok(())

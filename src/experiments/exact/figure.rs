@@ -3,6 +3,7 @@
 
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use evhi::manufactured::run::REGIMES;
+use evhi::output::plot::FONT;
 use evhi::output::plot::{
     Figure, LogLogChart, both, e2s, extent, legend, regime_colour, regime_label, slope_guides,
 };
@@ -157,7 +158,7 @@ impl Figure for Regimes {
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
         let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 24))
+            .caption(&self.title, (FONT, 24))
             .margin(15)
             .x_label_area_size(55)
             .y_label_area_size(70)
@@ -169,8 +170,8 @@ impl Figure for Regimes {
             .y_desc("contact nodes")
             .light_line_style(TRANSPARENT)
             .y_label_formatter(&|y| format!("{y:.0}"))
-            .label_style(("sans-serif", 18))
-            .axis_desc_style(("sans-serif", 18))
+            .label_style((FONT, 18))
+            .axis_desc_style((FONT, 18))
             .draw()
             .map_err(e2s)?;
         for (regime, pts) in &self.series {
@@ -416,7 +417,7 @@ impl Figure for Grid {
             };
             let (ns, steps) = (levels(|c| c.0), levels(|c| c.1));
             let mut chart = ChartBuilder::on(area)
-                .caption(title, ("sans-serif", 22))
+                .caption(title, (FONT, 22))
                 .margin(15)
                 .x_label_area_size(60)
                 .y_label_area_size(80)
@@ -436,8 +437,8 @@ impl Figure for Grid {
                 .y_label_formatter(&|y| name(&steps, *y))
                 .x_desc("n = 1/h")
                 .y_desc("N = T/k")
-                .label_style(("sans-serif", 18))
-                .axis_desc_style(("sans-serif", 18))
+                .label_style((FONT, 18))
+                .axis_desc_style((FONT, 18))
                 .draw()
                 .map_err(e2s)?;
             let logs = cells.iter().map(|c| c.2.log10());
@@ -458,12 +459,14 @@ impl Figure for Grid {
                     )))
                     .map_err(e2s)?;
                 let ink = if shade > 0.55 { WHITE } else { BLACK };
-                let style = ("sans-serif", 17).into_font().color(&ink).pos(
-                    plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Center,
-                        plotters::style::text_anchor::VPos::Center,
-                    ),
-                );
+                let style =
+                    (FONT, 17)
+                        .into_font()
+                        .color(&ink)
+                        .pos(plotters::style::text_anchor::Pos::new(
+                            plotters::style::text_anchor::HPos::Center,
+                            plotters::style::text_anchor::VPos::Center,
+                        ));
                 chart
                     .draw_series(std::iter::once(Text::new(
                         if v >= 0.01 {

@@ -1,8 +1,9 @@
 //! The time study's figures: the error against k (maximum over time and at T), and
 //! the controls against k/τ.
 
-#[allow(unused_imports)]
 use super::*;
+#[allow(unused_imports)]
+use evhi::output::plot::FONT;
 use evhi::output::plot::LogLogChart;
 
 /// Okabe–Ito colours (safe for colour-blind readers), one per history.
@@ -188,7 +189,7 @@ impl Figure for TimeFig {
             .draw_series(std::iter::once(Text::new(
                 "k = tau",
                 (tau * 1.05, y0 * 1.6),
-                ("sans-serif", 18).into_font().color(&RGBColor(90, 90, 90)),
+                (FONT, 18).into_font().color(&RGBColor(90, 90, 90)),
             )))
             .map_err(e2s)?;
         // Slope-1 guide through the last point of the first compatible series.

@@ -1,8 +1,9 @@
 //! The log–log panel of Fig. 5, and the error split into its h and k parts drawn
 //! from a table of [`super::compute`].
 
-#[allow(unused_imports)]
 use super::*;
+#[allow(unused_imports)]
+use crate::output::plot::FONT;
 use crate::output::plot::{LogLogChart, extent, one_two_five};
 
 /// A plotted series: label, points, colour, and whether it is the second
@@ -81,7 +82,7 @@ impl Figure for Fig5Split {
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
         let root = root
-            .titled("Error split: the h part and the k part", ("sans-serif", 26))
+            .titled("Error split: the h part and the k part", (FONT, 26))
             .map_err(e2s)?;
         let areas = root.split_evenly((2, 1));
         for (area, panel) in areas.iter().zip(&self.panels) {
