@@ -46,7 +46,11 @@ pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
         headroom: 1.5,
         title: format!("The law of scenario {}, -σν against uν", scn.name()),
         law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law().kind()),
-        points: "kinks of p and the limit g".into(),
+        points: match scn.law().kinks() {
+            [] => "the limit g".into(),
+            [k] => format!("kink of p at uν = {k} and the limit g"),
+            _ => "kinks of p and the limit g".into(),
+        },
         params: format!("law of scenario `{}`, g = {}", scn.name(), scn.g()),
     };
     draw_in(ctx, scn, stem, &format!("{stem}_kinks"), &labels)

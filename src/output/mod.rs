@@ -4,9 +4,9 @@
 //! file or the new one, never half of one.
 
 pub mod csv;
-pub mod glyphs;
 pub mod markdown;
 pub mod plot;
+pub mod raster;
 pub mod rows;
 pub mod run;
 pub mod rundir;

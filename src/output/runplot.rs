@@ -478,6 +478,8 @@ impl Figure for Evolution {
                 .configure_mesh()
                 .x_desc("t [s]")
                 .y_desc(ylabel)
+                .x_label_formatter(&crate::output::plot::plain)
+                .y_label_formatter(&crate::output::plot::plain)
                 .label_style((FONT, 18))
                 .axis_desc_style((FONT, 18))
                 .draw()
@@ -527,6 +529,15 @@ impl Figure for Evolution {
             .configure_mesh()
             .x_desc("t [s]")
             .y_desc("nodes")
+            .x_label_formatter(&crate::output::plot::plain)
+            // A count: whole numbers.
+            .y_label_formatter(&|y| {
+                if y.fract().abs() < 1e-9 {
+                    format!("{y:.0}")
+                } else {
+                    String::new()
+                }
+            })
             .label_style((FONT, 18))
             .axis_desc_style((FONT, 18))
             .draw()

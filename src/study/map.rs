@@ -8,9 +8,11 @@ use crate::scenario::Scenario;
 
 /// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
 /// cell also says "fail").
-const CONVEX: RGBColor = RGBColor(86, 180, 233);
-const NOT_CONVEX: RGBColor = RGBColor(190, 225, 245);
-const SEVERAL: RGBColor = RGBColor(230, 159, 0);
+/// Convex and not convex differ in lightness (dark blue, pale grey), the two that
+/// warn in hue and lightness (yellow, vermillion).
+const CONVEX: RGBColor = RGBColor(0, 114, 178);
+const NOT_CONVEX: RGBColor = RGBColor(222, 226, 232);
+const SEVERAL: RGBColor = RGBColor(240, 228, 66);
 const FAILED: RGBColor = RGBColor(213, 94, 0);
 /// The penalty converged but let u_nu pass g (Okabe–Ito bluish green).
 const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
@@ -20,6 +22,7 @@ use crate::output::plot::{Figure, e2s};
 use crate::step::Status;
 use crate::step::multistart::MultiStart;
 use plotters::prelude::*;
+use plotters::style::text_anchor::Pos;
 
 pub struct Cell {
     pub solver: &'static str,
@@ -226,12 +229,18 @@ impl Figure for MapFigure {
                 } else {
                     "fail".into()
                 };
+                // Centred in the cell; white on the dark cells.
+                let ink = if colour == CONVEX || colour == OVERSHOOT {
+                    WHITE
+                } else {
+                    BLACK
+                };
+                let style = (FONT, 16).into_font().color(&ink).pos(Pos::new(
+                    plotters::style::text_anchor::HPos::Center,
+                    plotters::style::text_anchor::VPos::Center,
+                ));
                 chart
-                    .draw_series(std::iter::once(Text::new(
-                        label,
-                        (x - 0.25, y + 0.12),
-                        (FONT, 16),
-                    )))
+                    .draw_series(std::iter::once(Text::new(label, (x, y), style)))
                     .map_err(e2s)?;
             }
         }
@@ -246,7 +255,7 @@ impl Figure for MapFigure {
             ),
             ("several solutions (multistart)", SEVERAL),
             ("failed", FAILED),
-            ("penalty converged, u_nu past g (no certificate)", OVERSHOOT),
+            ("penalty converged, uν past g (no certificate)", OVERSHOOT),
         ];
         // Legend rows of two entries under the panels.
         let y0 = root.dim_in_pixel().1 as i32 - band as i32 + 8;

@@ -117,12 +117,22 @@ impl Figure for Fig5 {
         let mut keys: Vec<f64> = pts.iter().map(|p| p.0).collect();
         keys.sort_by(f64::total_cmp);
         keys.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-        let ykeys = one_two_five((ymin * 0.5, ymax * 2.0), -6..=3);
+        // 1, 2 and 5 of each decade over up to three decades; beyond, the decades only
+        // (their labels would crowd).
+        let yr = (ymin * 0.5, ymax * 2.0);
+        let ykeys = if yr.1 / yr.0 <= 1e3 {
+            one_two_five(yr, -6..=3)
+        } else {
+            crate::output::plot::keys_within(yr, (-6..=3).map(|e| 10f64.powi(e)))
+        };
         let mut chart = LogLogChart {
             caption: (&self.title, 24),
             label_areas: (55, 80),
             desc: (&self.x_desc, "relative energy error, %"),
-            format: (Some(&|x| reciprocal_label(*x)), Some(&|y| format!("{y}"))),
+            format: (
+                Some(&|x| reciprocal_label(*x)),
+                Some(&crate::output::plot::plain),
+            ),
             fonts: (18, Some(20)),
             ..LogLogChart::default()
         }

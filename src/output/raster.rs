@@ -1,6 +1,7 @@
-//! Text on a bitmap, each glyph at its own place, in the font shipped with the crate.
+//! What the PNG figures draw differently from plotters' bitmap backend: text glyph by
+//! glyph in the font shipped with the crate, and thick lines segment by segment.
 //!
-//! A line of text is laid along a pen: glyph $i$ starts at
+//! **Text.** //! A line of text is laid along a pen: glyph $i$ starts at
 //! $x_i = \sum_{j<i} \left(a_j + k_{j,j+1}\right)$, with $a_j$ the advance of glyph $j$ and
 //! $k_{j,j+1}$ the kerning of the pair, and its outline is drawn at $x_i$ plus its own left
 //! side bearing, in sub-pixel units (rounded only when rasterised). The baseline sits so
@@ -9,14 +10,22 @@
 //! looks centred.
 //!
 //! plotters 0.3.7 draws `ab_glyph` text with each outline at the whole-pixel pen, without
-//! its bearing: "mesh" came out as "m esh", "0.583" as "0.5 83". [`Glyphs`] wraps a
-//! bitmap backend and draws text the way above; everything else passes through. The SVG
-//! figures name the font family and leave the glyphs to the viewer.
+//! its bearing: "mesh" came out as "m esh", "0.583" as "0.5 83". [`Raster`] wraps a
+//! bitmap backend and draws text the way above. The SVG figures name the font family and
+//! leave the glyphs to the viewer.
+//!
+//! **Thick lines.** A path of width $w > 1$ is filled as one quadrilateral of width $w$
+//! per segment, with a disc of diameter $w$ at each inner vertex (round joins).
+//! plotters fills the whole path as one polygon whose mitred corners are rounded to
+//! whole pixels, so a finely sampled smooth curve (a segment of a few pixels) came out
+//! jagged. A translucent path passes through unchanged (the overlaps would darken).
+//! Everything else passes through.
 
 use ab_glyph::{Font, FontRef, Glyph, PxScale, ScaleFont, point};
 use plotters_backend::text_anchor::{HPos, VPos};
 use plotters_backend::{
     BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingBackend, DrawingErrorKind,
+    rasterizer,
 };
 
 /// DejaVu Sans (Book), the one font of every figure; its licence is
@@ -25,17 +34,17 @@ pub static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.tt
 
 /// A backend that draws text glyph by glyph (see the module's docs) and passes every
 /// other call to `inner`.
-pub struct Glyphs<B> {
+pub struct Raster<B> {
     inner: B,
     font: FontRef<'static>,
 }
 
-impl<B: DrawingBackend> Glyphs<B> {
+impl<B: DrawingBackend> Raster<B> {
     /// Wraps `inner`; fails only if the shipped font does not parse.
     pub fn new(inner: B) -> Result<Self, String> {
         let font = FontRef::try_from_slice(DEJAVU_SANS)
             .map_err(|e| format!("the shipped font DejaVu Sans does not parse: {e}"))?;
-        Ok(Glyphs { inner, font })
+        Ok(Raster { inner, font })
     }
 
     /// The glyphs of `text` at size `size`, positioned on a baseline at $y = 0$ from
@@ -92,7 +101,7 @@ impl<B: DrawingBackend> Glyphs<B> {
     }
 }
 
-impl<B: DrawingBackend> DrawingBackend for Glyphs<B> {
+impl<B: DrawingBackend> DrawingBackend for Raster<B> {
     type ErrorType = B::ErrorType;
 
     fn get_size(&self) -> (u32, u32) {
@@ -139,7 +148,20 @@ impl<B: DrawingBackend> DrawingBackend for Glyphs<B> {
         path: I,
         style: &S,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        self.inner.draw_path(path, style)
+        let (w, colour) = (style.stroke_width(), style.color());
+        if w <= 1 || colour.alpha < 1.0 {
+            return self.inner.draw_path(path, style);
+        }
+        let mut points: Vec<BackendCoord> = path.into_iter().collect();
+        points.dedup();
+        for segment in points.windows(2) {
+            self.inner
+                .fill_polygon(rasterizer::polygonize(segment, w), &colour)?;
+        }
+        for &p in points.iter().skip(1).take(points.len().saturating_sub(2)) {
+            self.inner.draw_circle(p, w / 2, &colour, true)?;
+        }
+        Ok(())
     }
 
     fn draw_circle<S: BackendStyle>(
@@ -230,7 +252,7 @@ mod tests {
         let (w, h) = (400u32, 60u32);
         let mut buf = vec![255u8; (3 * w * h) as usize];
         {
-            let g = Glyphs::new(BitMapBackend::with_buffer(&mut buf, (w, h))).unwrap();
+            let g = Raster::new(BitMapBackend::with_buffer(&mut buf, (w, h))).unwrap();
             let (pixels, _) = g.pixels(text, 40.0);
             for (x, y, c) in pixels {
                 if c > 0.5 && (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
