@@ -250,14 +250,15 @@ mod tests {
     /// column, whether any pixel in it is darker than mid-grey.
     fn ink(text: &str) -> Vec<bool> {
         let (w, h) = (400u32, 60u32);
+        let pixels = {
+            let mut scratch = [0u8; 3];
+            let g = Raster::new(BitMapBackend::with_buffer(&mut scratch, (1, 1))).unwrap();
+            g.pixels(text, 40.0).0
+        };
         let mut buf = vec![255u8; (3 * w * h) as usize];
-        {
-            let g = Raster::new(BitMapBackend::with_buffer(&mut buf, (w, h))).unwrap();
-            let (pixels, _) = g.pixels(text, 40.0);
-            for (x, y, c) in pixels {
-                if c > 0.5 && (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
-                    buf[3 * (y as usize * w as usize + x as usize)] = 0;
-                }
+        for (x, y, c) in pixels {
+            if c > 0.5 && (0..w as i32).contains(&x) && (0..h as i32).contains(&y) {
+                buf[3 * (y as usize * w as usize + x as usize)] = 0;
             }
         }
         (0..w as usize)
