@@ -32,6 +32,9 @@ use plotters_backend::{
 /// `assets/fonts/DejaVu-LICENSE.txt`.
 pub static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
+/// A pixel of text and how much of it the glyph covers (0 to 1).
+pub type Coverage = (i32, i32, f32);
+
 /// A backend that draws text glyph by glyph (see the module's docs) and passes every
 /// other call to `inner`.
 pub struct Raster<B> {
@@ -81,7 +84,7 @@ impl<B: DrawingBackend> Raster<B> {
 
     /// The pixels of `text` at size `size` with coverage: its box's top left corner at
     /// $(0, 0)$, the box as wide as the pen's run and $\lfloor s/1.24 \rfloor$ tall.
-    pub fn pixels(&self, text: &str, size: f64) -> (Vec<(i32, i32, f32)>, (i32, i32)) {
+    pub fn pixels(&self, text: &str, size: f64) -> (Vec<Coverage>, (i32, i32)) {
         let (glyphs, width) = self.layout(text, size);
         let height = (size / 1.24) as i32;
         let baseline = (height as f32 + self.cap_height(size)) / 2.0;
