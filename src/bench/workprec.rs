@@ -3,6 +3,7 @@
 
 use super::tables::{BenchRow, PaperRow, REFERENCE, WorkPrecisionRow, read_bench};
 use evhi::output::csv;
+use evhi::output::plot::FONT;
 use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
 };
@@ -109,16 +110,28 @@ impl Figure for Chart {
                 "wall time of the whole run [s] (median)",
                 "relative error, max over t [%]",
             ),
-            format: (Some(&|x| format!("{x:.3}")), Some(&|y| format!("{y}"))),
+            format: (
+                Some(&evhi::output::plot::plain),
+                Some(&evhi::output::plot::plain),
+            ),
             fonts: (16, None),
             ..LogLogChart::default()
         }
         .build(
             root,
-            (xmin * 0.7..xmax * 1.5).log_scale(),
+            (xmin * 0.7..xmax * 1.5)
+                .log_scale()
+                .with_key_points(evhi::output::plot::keys_within(
+                    (xmin * 0.7, xmax * 1.5),
+                    (-6..=6).map(|e| 10f64.powi(e)),
+                )),
             (ymin * 0.6..ymax * 1.6).log_scale().with_key_points(ykeys),
         )?;
-        let placed = place_labels(|x, y| chart.backend_coord(&(x, y)), &self.series);
+        let placed = place_labels(
+            |x, y| chart.backend_coord(&(x, y)),
+            &self.series,
+            self.floor,
+        );
         for (label, s, c) in &self.series {
             let c = *c;
             let line: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
@@ -151,8 +164,7 @@ impl Figure for Chart {
         }
         chart
             .draw_series(
-                (placed.into_iter())
-                    .map(|(text, at)| Text::new(text, at, ("sans-serif", 14).into_font())),
+                (placed.into_iter()).map(|(text, at)| Text::new(text, at, (FONT, 14).into_font())),
             )
             .map_err(e2s)?;
         legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)?;
@@ -160,21 +172,41 @@ impl Figure for Chart {
     }
 }
 
-/// Where each point's label goes: beside its point, at the first of eight
-/// positions (right or left, above or below, near or farther) whose box, in
-/// pixels, overlaps neither an earlier label nor a point. Returns (text, the
-/// label's top-left corner in data coordinates).
+/// Where each point's label goes: beside its point, at the first of twelve
+/// positions (right or left; above, level or below; near or farther) whose box, in
+/// pixels, overlaps no earlier label, point, line of a series or the `floor` line.
+/// Returns (text, the label's top-left corner in data coordinates).
 /// `at` maps a point to pixels; both axes are logarithmic.
 fn place_labels(
     at: impl Fn(f64, f64) -> (i32, i32),
     series: &[Family],
+    floor: Option<f64>,
 ) -> Vec<(String, (f64, f64))> {
     // Pixels per decade on each axis, to turn a pixel offset into a data factor.
     let (p0, p1) = (at(1.0, 1.0), at(10.0, 10.0));
     let (dx, dy) = ((p1.0 - p0.0) as f64, (p1.1 - p0.1) as f64);
-    let points: Vec<(i32, i32)> = (series.iter())
+    let mut points: Vec<(i32, i32)> = (series.iter())
         .flat_map(|(_, s, _)| s.iter().map(|p| at(p.0, p.1)))
         .collect();
+    // The lines between points, as points every 4 pixels (the markers' boxes are 10
+    // pixels wide, so a box catches the line between two of them).
+    let mut lines: Vec<(i32, i32)> = vec![];
+    for (_, s, _) in series {
+        for w in s.windows(2) {
+            let (a, b) = (at(w[0].0, w[0].1), at(w[1].0, w[1].1));
+            let len = f64::from((b.0 - a.0).pow(2) + (b.1 - a.1).pow(2)).sqrt();
+            let steps = (len / 4.0).ceil() as i32;
+            for i in 1..steps {
+                let t = f64::from(i) / f64::from(steps);
+                lines.push((
+                    a.0 + (t * f64::from(b.0 - a.0)) as i32,
+                    a.1 + (t * f64::from(b.1 - a.1)) as i32,
+                ));
+            }
+        }
+    }
+    points.extend(lines);
+    let floor_y = floor.map(|f| at(1.0, f).1);
     let overlaps = |a: (i32, i32, i32, i32), b: (i32, i32, i32, i32)| {
         a.0 < b.0 + b.2 && b.0 < a.0 + a.2 && a.1 < b.1 + b.3 && b.1 < a.1 + a.3
     };
@@ -189,13 +221,18 @@ fn place_labels(
                 (8, 4),
                 (-8 - w, -h - 2),
                 (-8 - w, 4),
+                (10, -h / 2),
+                (-10 - w, -h / 2),
                 (8, -2 * h - 4),
                 (8, h + 6),
                 (-8 - w, -2 * h - 4),
                 (-8 - w, h + 6),
+                (24, -h / 2),
+                (-24 - w, -h / 2),
             ];
             let free = |b: (i32, i32, i32, i32)| {
                 !boxes.iter().any(|&o| overlaps(b, o))
+                    && floor_y.is_none_or(|y| !overlaps(b, (b.0, y - 3, b.2, 6)))
                     && !points
                         .iter()
                         .any(|&q| overlaps(b, (q.0 - 5, q.1 - 5, 10, 10)))

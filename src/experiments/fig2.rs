@@ -4,6 +4,7 @@
 
 use super::{Ctx, ExpError, col_f64, read_csv};
 use evhi::output::csv::Table;
+use evhi::output::plot::FONT;
 use evhi::output::plot::{Figure, both, e2s, legend};
 use evhi::scenario::Scenario;
 use plotters::prelude::*;
@@ -45,7 +46,11 @@ pub fn draw_law(ctx: &Ctx, scn: &Scenario, stem: &str) -> Result<(), ExpError> {
         headroom: 1.5,
         title: format!("The law of scenario {}, -σν against uν", scn.name()),
         law: format!("normal compliance -σν¹ = p(uν) ({} law)", scn.law().kind()),
-        points: "kinks of p and the limit g".into(),
+        points: match scn.law().kinks() {
+            [] => "the limit g".into(),
+            [k] => format!("kink of p at uν = {k} and the limit g"),
+            _ => "kinks of p and the limit g".into(),
+        },
         params: format!("law of scenario `{}`, g = {}", scn.name(), scn.g()),
     };
     draw_in(ctx, scn, stem, &format!("{stem}_kinks"), &labels)
@@ -122,7 +127,7 @@ impl Figure for Fig2 {
         let ymax = self.s.iter().fold(0.0f64, |a, &b| a.max(b)) * self.headroom;
         let xmin = self.u.iter().fold(0.0f64, |a, &b| a.min(b));
         let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 26))
+            .caption(&self.title, (FONT, 26))
             .margin(15)
             .x_label_area_size(50)
             .y_label_area_size(70)
@@ -132,7 +137,7 @@ impl Figure for Fig2 {
             .configure_mesh()
             .x_desc("normal displacement uν [m]")
             .y_desc("-σν [N/m]")
-            .label_style(("sans-serif", 18))
+            .label_style((FONT, 18))
             .draw()
             .map_err(e2s)?;
         let comp: Vec<(f64, f64)> = self

@@ -130,6 +130,7 @@ pub fn run_fig3(ctx: &Ctx) -> Result<(), ExpError> {
             title: format!(
                 "Fig. 3: deformed body at t = T (true scale), forces on Γ3; h = k = 1/{n}"
             ),
+            columns: 1,
         },
     )?)
 }
@@ -173,11 +174,15 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     Ok(both(
         &ctx.figures,
         "fig4_several_g",
-        (1000, 3760),
+        (1400, 1460),
         &SceneFigure {
             paper_law: true,
             panels,
-            title: format!("Fig. 4: several g, h = k = 1/{n} (mesh lines every {stride} cells)"),
+            title: format!(
+                "Fig. 4: several g, deformed mesh (true scale) and forces, h = k = 1/{n} \
+                 (mesh lines every {stride} cells)"
+            ),
+            columns: 2,
         },
     )?)
 }

@@ -317,7 +317,14 @@ impl Figure for StaticFig {
         }
         // Slope guides through the first point of the first series, below it.
         if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
-            slope_guides(&mut chart, &self.guides, start, xmax, 0.5)?;
+            slope_guides(
+                &mut chart,
+                &self.guides,
+                &evhi::output::plot::DISTINCT_DASHES,
+                start,
+                xmax,
+                0.5,
+            )?;
         }
         legend(&mut chart, SeriesLabelPosition::UpperRight, 18, 0.9)?;
         Ok(())

@@ -332,7 +332,6 @@ fn example_five_branch() {
         &[
             "example_five_branch_deformed",
             "example_five_branch_evolution",
-            "example_softening_deformed",
             "example_softening_evolution",
             "example_softening_law",
         ],

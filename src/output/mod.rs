@@ -6,6 +6,7 @@
 pub mod csv;
 pub mod markdown;
 pub mod plot;
+pub mod raster;
 pub mod rows;
 pub mod run;
 pub mod rundir;

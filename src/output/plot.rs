@@ -1,7 +1,9 @@
-//! Drawing helpers shared by the figures (plotters, with an embedded DejaVu Sans
-//! so that no system font is needed).
+//! Drawing helpers shared by the figures (plotters, with the DejaVu Sans shipped in
+//! `assets/fonts/`, so that no system font is needed: PNG text is drawn by
+//! [`super::raster::Raster`], SVG text names [`FONT`]).
 
 use super::FileError;
+use super::raster::Raster;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::element::ComposedElement;
 use plotters::prelude::*;
@@ -9,16 +11,17 @@ use plotters::style::{FontStyle, register_font};
 use std::path::Path;
 use std::sync::Once;
 
-static FONT: Once = Once::new();
+static REGISTERED: Once = Once::new();
 
-/// Registers the embedded font once.
+/// The font family of every figure's text. An SVG names it as is (DejaVu Sans where
+/// the viewer has it, else its sans-serif); plotters measures text with the shipped
+/// DejaVu Sans registered under this name, and the PNGs draw with it.
+pub const FONT: &str = "DejaVu Sans, sans-serif";
+
+/// Registers the shipped font under [`FONT`] once.
 pub fn init_font() {
-    FONT.call_once(|| {
-        let _ = register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            include_bytes!("../../assets/fonts/DejaVuSans.ttf"),
-        );
+    REGISTERED.call_once(|| {
+        let _ = register_font(FONT, FontStyle::Normal, super::raster::DEJAVU_SANS);
     });
 }
 
@@ -91,7 +94,7 @@ where
     chart
         .configure_series_labels()
         .position(position)
-        .label_font(("sans-serif", font))
+        .label_font((FONT, font))
         .background_style(WHITE.mix(opacity))
         .border_style(BLACK)
         .draw()
@@ -111,7 +114,7 @@ pub fn fit_title<DB: DrawingBackend>(
     let fits = |lines: &[&str], s: u32| -> Result<bool, String> {
         for l in lines {
             if root
-                .estimate_text_size(l, &("sans-serif", s).into_text_style(root))
+                .estimate_text_size(l, &(FONT, s).into_text_style(root))
                 .map_err(e2s)?
                 .0
                 > room
@@ -139,7 +142,7 @@ pub fn fit_title<DB: DrawingBackend>(
     }
     let mut area = root.clone();
     for l in lines {
-        area = area.titled(l, ("sans-serif", s)).map_err(e2s)?;
+        area = area.titled(l, (FONT, s)).map_err(e2s)?;
     }
     Ok(area)
 }
@@ -168,7 +171,7 @@ pub fn side_legend<DB: DrawingBackend>(
         area.draw(&Text::new(
             label.clone(),
             (36, y - font as i32 / 2),
-            ("sans-serif", font).into_font(),
+            (FONT, font).into_font(),
         ))
         .map_err(e2s)?;
     }
@@ -201,11 +204,14 @@ pub fn both<F: Figure + Sync>(
             // (a full disk) says its I/O error in words.
             let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
             let drawn = {
-                let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
-                root.fill(&WHITE)
-                    .map_err(e2s)
-                    .and_then(|_| fig.draw(&root))
-                    .and_then(|_| root.present().map_err(e2s))
+                let root = Raster::new(BitMapBackend::with_buffer(&mut pixels, size))
+                    .map(|b| b.into_drawing_area());
+                root.and_then(|root| {
+                    root.fill(&WHITE)
+                        .map_err(e2s)
+                        .and_then(|_| fig.draw(&root))
+                        .and_then(|_| root.present().map_err(e2s))
+                })
             };
             drawn.and_then(|()| {
                 image::save_buffer_with_format(
@@ -301,12 +307,20 @@ pub fn slope_guides_low(slopes: &[f64], start: (f64, f64), xmax: f64, step: f64)
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Dash patterns (dash, gap in pixels) of slope guides told apart at a glance: long
+/// dashes, short dashes with wide gaps, dots.
+pub const DISTINCT_DASHES: [(i32, i32); 3] = [(18, 5), (5, 8), (2, 4)];
+
+/// The dash patterns the exact study's guides keep (long, medium, dots).
+pub const EXACT_DASHES: [(i32, i32); 3] = [(14, 6), (6, 5), (2, 5)];
+
 /// Dashed slope guides $y \propto x^{-\text{slope}}$ from `x0` to `xmax`, the $i$-th starting at
-/// $y_0\,\text{step}^{i+1}$ (below the series it is compared with), each with its own dash
-/// pattern (long, medium, dots), shown in the legend as drawn.
+/// $y_0\,\text{step}^{i+1}$ (below the series it is compared with), the $i$-th in dash
+/// pattern `dashes[i]` (cycled), shown in the legend as drawn.
 pub fn slope_guides<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
     guides: &[(f64, String)],
+    dashes: &[(i32, i32)],
     start: (f64, f64),
     xmax: f64,
     step: f64,
@@ -315,11 +329,10 @@ where
     DB: DrawingBackend + 'a,
     CT: plotters::coord::CoordTranslate<From = (f64, f64)>,
 {
-    const DASHES: [(i32, i32); 3] = [(14, 6), (6, 5), (2, 5)];
     for (i, (slope, label)) in guides.iter().enumerate() {
         let pts = guide_ends(i, *slope, start, xmax, step).to_vec();
         let grey = RGBColor(50, 50, 50);
-        let (dash, gap) = DASHES[i % DASHES.len()];
+        let (dash, gap) = dashes[i % dashes.len()];
         chart
             .draw_series(DashedLineSeries::new(
                 pts,
@@ -409,7 +422,7 @@ impl<'t> LogLogChart<'t> {
         log_range(self.desc.0, x.range())?;
         log_range(self.desc.1, y.range())?;
         let mut chart = ChartBuilder::on(area)
-            .caption(self.caption.0, ("sans-serif", self.caption.1))
+            .caption(self.caption.0, (FONT, self.caption.1))
             .margin(self.margin)
             .x_label_area_size(self.label_areas.0)
             .y_label_area_size(self.label_areas.1)
@@ -418,7 +431,7 @@ impl<'t> LogLogChart<'t> {
         let mut mesh = chart.configure_mesh();
         mesh.x_desc(self.desc.0)
             .y_desc(self.desc.1)
-            .label_style(("sans-serif", self.fonts.0));
+            .label_style((FONT, self.fonts.0));
         if let Some(f) = self.format.0 {
             mesh.x_label_formatter(f);
         }
@@ -426,7 +439,7 @@ impl<'t> LogLogChart<'t> {
             mesh.y_label_formatter(f);
         }
         if let Some(size) = self.fonts.1 {
-            mesh.axis_desc_style(("sans-serif", size));
+            mesh.axis_desc_style((FONT, size));
         }
         mesh.draw().map_err(e2s)?;
         Ok(chart)
@@ -480,4 +493,33 @@ pub fn one_two_five(range: (f64, f64), exponents: std::ops::RangeInclusive<i32>)
         range,
         exponents.flat_map(|e| [1.0, 2.0, 5.0].map(|m| m * 10f64.powi(e))),
     )
+}
+
+/// A tick label in plain decimals, to 6 significant digits, without an exponent:
+/// "0.001", "0.5", "20", "1000".
+pub fn plain(v: &f64) -> String {
+    if *v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let digits = 5 - v.abs().log10().floor() as i32;
+    let scale = 10f64.powi(digits);
+    format!("{}", (v * scale).round() / scale)
+}
+
+/// A tick label of a log axis over many decades: a power of ten as "10⁻⁴" (Unicode
+/// superscripts), any other value in [`plain`] decimals.
+pub fn power_of_ten(v: &f64) -> String {
+    let e = v.log10().round();
+    if v.is_finite() && *v > 0.0 && (v / 10f64.powf(e) - 1.0).abs() < 1e-9 {
+        let sup: String = format!("{}", e as i32)
+            .chars()
+            .map(|c| match c {
+                '-' => '⁻',
+                d => ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'][d as usize - '0' as usize],
+            })
+            .collect();
+        format!("10{sup}")
+    } else {
+        plain(v)
+    }
 }

@@ -7,6 +7,7 @@ use super::FileError;
 use super::csv::{Text, col_f64, read_csv};
 use super::rows::SummaryRow;
 use crate::certificate::regime_order;
+use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use plotters::prelude::*;
 use std::path::Path;
@@ -467,7 +468,7 @@ impl Figure for Evolution {
             let pad = 0.08 * (hi - lo).max(1e-300);
             (lo, hi) = (lo - pad, hi + pad);
             let mut chart = ChartBuilder::on(&plot)
-                .caption(caption, ("sans-serif", 22))
+                .caption(caption, (FONT, 22))
                 .margin(12)
                 .x_label_area_size(50)
                 .y_label_area_size(95)
@@ -477,8 +478,10 @@ impl Figure for Evolution {
                 .configure_mesh()
                 .x_desc("t [s]")
                 .y_desc(ylabel)
-                .label_style(("sans-serif", 18))
-                .axis_desc_style(("sans-serif", 18))
+                .x_label_formatter(&crate::output::plot::plain)
+                .y_label_formatter(&crate::output::plot::plain)
+                .label_style((FONT, 18))
+                .axis_desc_style((FONT, 18))
                 .draw()
                 .map_err(e2s)?;
             let mut entries = vec![];
@@ -516,7 +519,7 @@ impl Figure for Evolution {
             .fold(1.0, f64::max);
         let (plot, key) = split(&panels[2]);
         let mut chart = ChartBuilder::on(&plot)
-            .caption("contact nodes in each regime", ("sans-serif", 22))
+            .caption("contact nodes in each regime", (FONT, 22))
             .margin(12)
             .x_label_area_size(50)
             .y_label_area_size(95)
@@ -526,8 +529,17 @@ impl Figure for Evolution {
             .configure_mesh()
             .x_desc("t [s]")
             .y_desc("nodes")
-            .label_style(("sans-serif", 18))
-            .axis_desc_style(("sans-serif", 18))
+            .x_label_formatter(&crate::output::plot::plain)
+            // A count: whole numbers.
+            .y_label_formatter(&|y| {
+                if y.fract().abs() < 1e-9 {
+                    format!("{y:.0}")
+                } else {
+                    String::new()
+                }
+            })
+            .label_style((FONT, 18))
+            .axis_desc_style((FONT, 18))
             .draw()
             .map_err(e2s)?;
         let mut entries = vec![];

@@ -8,6 +8,7 @@ use super::FileError;
 use super::csv::{Frame, Text, col_f64, col_str, read_csv};
 use super::rows::{TriangleRow, column};
 use crate::certificate::regime_order;
+use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
@@ -60,6 +61,7 @@ pub fn draw_run(
             panels,
             title,
             paper_law: false,
+            columns: 1,
         },
     )
 }
@@ -178,6 +180,12 @@ impl Panel {
         }
     }
 
+    /// The top of the force axis: a tenth above the largest total force (at least 1).
+    fn force_top(&self) -> f64 {
+        let total = self.s1.iter().zip(&self.s2).map(|(a, b)| -(a + b));
+        total.fold(1.0f64, f64::max) * 1.1
+    }
+
     /// The rectangle's width and height: the lattice's extent.
     fn width(&self) -> f64 {
         self.x.iter().copied().fold(0.0, f64::max)
@@ -199,6 +207,10 @@ pub struct SceneFigure {
     pub title: String,
     /// Label the branches with the paper's law (5.1); otherwise "branch b".
     pub paper_law: bool,
+    /// Panels side by side in a row (1: one under the other, each with its own force
+    /// axis and legend; more: a grid whose force axes share one range, under one
+    /// legend for all).
+    pub columns: usize,
 }
 
 impl Figure for SceneFigure {
@@ -207,7 +219,17 @@ impl Figure for SceneFigure {
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
         let root = fit_title(root, &self.title, 24)?;
-        let rows = root.split_evenly((self.panels.len(), 1));
+        let columns = self.columns.max(1);
+        let grid = columns > 1;
+        let (root, key) = if grid {
+            let (key, rest) = root.split_vertically(KEY_HEIGHT);
+            (rest, Some(key))
+        } else {
+            (root, None)
+        };
+        // One force range for every panel of a grid, so that their bars compare.
+        let shared = grid.then(|| self.panels.iter().map(Panel::force_top).fold(1.0, f64::max));
+        let rows = root.split_evenly((self.panels.len().div_ceil(columns), columns));
         for (p, area) in self.panels.iter().zip(rows.iter()) {
             // The mesh panel tall enough to show x in [-0.05, W + 0.05] and y in
             // [-0.16, H + 0.02] at true aspect (plus its caption and labels); the
@@ -216,11 +238,63 @@ impl Figure for SceneFigure {
             let plot_w = w.saturating_sub(MESH_FRAME.0) as f64;
             let need = (plot_w * p.y_span() / p.x_span()) as u32 + MESH_FRAME.1;
             let (top, bottom) = area.split_vertically(need.min(h * 3 / 4));
-            draw_mesh(p, &top)?;
-            draw_forces(p, &bottom, self.paper_law)?;
+            draw_mesh(p, &top, grid)?;
+            draw_forces(p, &bottom, self.paper_law, shared)?;
+        }
+        if let Some(key) = key {
+            let mut regimes: Vec<String> = self
+                .panels
+                .iter()
+                .flat_map(|p| p.regime.iter().cloned())
+                .collect();
+            regimes.sort();
+            regimes.dedup();
+            let mut entries: Vec<(String, RGBColor)> = regime_order(&regimes)
+                .into_iter()
+                .map(|r| {
+                    let label = format!("-σν¹: {}", regime_label(&r));
+                    (label, regime_colour(&r))
+                })
+                .collect();
+            entries.push(("-σν²: unilateral part".into(), UNILATERAL));
+            key_row(&key, &entries, 17)?;
         }
         Ok(())
     }
+}
+
+/// The height of a grid's legend rows under its title, pixels.
+const KEY_HEIGHT: u32 = 64;
+
+/// The colour of the unilateral part of the force.
+const UNILATERAL: RGBColor = RGBColor(120, 0, 0);
+
+/// Legend entries (a filled square and its label) left to right in rows across
+/// `area`, a new row where the next would not fit.
+fn key_row<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(String, RGBColor)],
+    font: u32,
+) -> Result<(), String> {
+    let (width, _) = area.dim_in_pixel();
+    let style = TextStyle::from((FONT, font).into_font());
+    let (mut x, mut y) = (20i32, 6i32);
+    for (label, colour) in entries {
+        let w = area.estimate_text_size(label, &style).map_err(e2s)?.0 as i32 + 52;
+        if x + w > width as i32 && x > 20 {
+            (x, y) = (20, y + 28);
+        }
+        area.draw(&Rectangle::new([(x, y), (x + 16, y + 16)], colour.filled()))
+            .map_err(e2s)?;
+        area.draw(&plotters::element::Text::new(
+            label.clone(),
+            (x + 24, y),
+            style.clone(),
+        ))
+        .map_err(e2s)?;
+        x += w;
+    }
+    Ok(())
 }
 
 /// The mesh panel's x span, the y span it must show, and its frame (pixels
@@ -231,13 +305,19 @@ const MESH_FRAME: (u32, u32) = (66, 92);
 fn draw_mesh<DB: DrawingBackend>(
     p: &Panel,
     area: &DrawingArea<DB, plotters::coord::Shift>,
+    compact: bool,
 ) -> Result<(), String> {
     let caption = format!(
-        "{}: deformed mesh (true scale); contact nodes: {}",
+        "{}: {}contact nodes: {}",
         if p.g.is_finite() {
             format!("g = {}", p.g)
         } else {
             "no limit".to_string()
+        },
+        if compact {
+            ""
+        } else {
+            "deformed mesh (true scale); "
         },
         regime_order(&p.regime)
             .iter()
@@ -246,7 +326,7 @@ fn draw_mesh<DB: DrawingBackend>(
             .join(", ")
     );
     let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", 18))
+        .caption(caption, (FONT, if compact { 17 } else { 18 }))
         .margin(8)
         .x_label_area_size(48)
         .y_label_area_size(50)
@@ -258,7 +338,7 @@ fn draw_mesh<DB: DrawingBackend>(
         .disable_mesh()
         .x_desc("x [m]")
         .y_desc("y [m]")
-        .label_style(("sans-serif", 16))
+        .label_style((FONT, 16))
         .draw()
         .map_err(e2s)?;
     // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g;
@@ -337,15 +417,22 @@ fn aspect_span<DB: DrawingBackend>(
     (p.x_span() * plot_h / plot_w).max(p.y_span())
 }
 
+/// The force panel of `p`, its axis up to `shared` (a grid's common top) or its own
+/// top; its own legend only without a shared top (a grid has one for all).
 fn draw_forces<DB: DrawingBackend>(
     p: &Panel,
     area: &DrawingArea<DB, plotters::coord::Shift>,
     paper_law: bool,
+    shared: Option<f64>,
 ) -> Result<(), String> {
-    let total: Vec<f64> = p.s1.iter().zip(&p.s2).map(|(a, b)| -(a + b)).collect();
-    let ymax = total.iter().fold(1.0f64, |a, &b| a.max(b)) * 1.1;
+    let ymax = shared.unwrap_or_else(|| p.force_top());
+    let caption = if shared.is_some() {
+        "interface force -σν = -σν¹ - σν² on Γ3"
+    } else {
+        "interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)"
+    };
     let mut chart = ChartBuilder::on(area)
-        .caption("interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)", ("sans-serif", 17))
+        .caption(caption, (FONT, 17))
         .margin(8)
         .x_label_area_size(48)
         .y_label_area_size(62)
@@ -356,7 +443,9 @@ fn draw_forces<DB: DrawingBackend>(
         .disable_x_mesh()
         .x_desc("x [m]")
         .y_desc("-σν [N/m]")
-        .label_style(("sans-serif", 16))
+        .x_label_formatter(&crate::output::plot::plain)
+        .y_label_formatter(&crate::output::plot::plain)
+        .label_style((FONT, 16))
         .draw()
         .map_err(e2s)?;
     let w = if p.cx.len() > 1 {
@@ -377,10 +466,13 @@ fn draw_forces<DB: DrawingBackend>(
             chart
                 .draw_series(std::iter::once(Rectangle::new(
                     [(x - w, a), (x + w, b)],
-                    RGBColor(120, 0, 0).filled(),
+                    UNILATERAL.filled(),
                 )))
                 .map_err(e2s)?;
         }
+    }
+    if shared.is_some() {
+        return Ok(());
     }
     for r in regime_order(&p.regime) {
         {

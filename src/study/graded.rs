@@ -18,7 +18,7 @@ use crate::geometry::Geometry;
 use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::output::csv::{col_f64, col_str, read_csv};
-use crate::output::plot::{Figure, LogLogChart, both, e2s, keys_within, legend, slope_guides};
+use crate::output::plot::{Figure, LogLogChart, both, e2s, keys_within, slope_guides};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 use std::sync::Arc;
@@ -640,8 +640,9 @@ fn corner_table(
         .f64("strength", strength)
 }
 
-/// A series: label, (unknowns, value) points, colour, and its family's index.
-type Series = (String, Vec<(f64, f64)>, RGBColor, usize);
+/// A series: label, (unknowns, value) points, colour, its family's index and its
+/// load's.
+type Series = (String, Vec<(f64, f64)>, RGBColor, usize, usize);
 
 /// Two panels: the error at T against the reference, and the largest increment
 /// over time to the next level (no reference).
@@ -650,7 +651,9 @@ struct GradedFig {
 }
 
 /// Draws the table at `path` (of [`compute`]) into `dir` as `stem`.png and .svg: a
-/// colour per load (in the order of `loads`), a marker per family.
+/// colour and a marker per family, a line style per load (solid and filled markers
+/// for the first of `loads`, dashed and open for the second), one legend under both
+/// panels.
 pub fn draw(
     dir: &std::path::Path,
     stem: &str,
@@ -661,9 +664,13 @@ pub fn draw(
     let df = read_csv(path)?;
     let (load, family) = (col_str(&df, "load")?, col_str(&df, "family")?);
     let dofs = col_f64(&df, "dofs")?;
-    // Colour-blind-safe (Okabe–Ito): blue and vermillion by load; the marker says
-    // the family.
-    let colours = [RGBColor(0, 114, 178), RGBColor(213, 94, 0)];
+    // Colour-blind-safe (Okabe–Ito), one per family, which its marker says too.
+    let colours = [
+        RGBColor(0, 0, 0),
+        RGBColor(0, 114, 178),
+        RGBColor(213, 94, 0),
+        RGBColor(0, 158, 115),
+    ];
     let panel = |col: &str| -> Result<Vec<Series>, ExpError> {
         let v = col_f64(&df, col)?;
         let mut series = vec![];
@@ -673,7 +680,7 @@ pub fn draw(
                     .filter(|&i| load[i] == *l && family[i] == *f && v[i].is_finite())
                     .map(|i| (dofs[i], v[i]))
                     .collect();
-                series.push((format!("{l}, {f}"), pts, colours[li], fi));
+                series.push((format!("{l}, {f}"), pts, colours[fi % 4], fi, li));
             }
         }
         Ok(series)
@@ -692,7 +699,20 @@ pub fn draw(
             ),
         ],
     };
-    Ok(both(dir, stem, (1500, 700), &fig)?)
+    Ok(both(
+        dir,
+        stem,
+        (1500, 700 + key_height(fig.panels[0].2.len())),
+        &fig,
+    )?)
+}
+
+/// The legend's columns and the height of one of its rows, pixels.
+const KEY: (usize, u32) = (4, 30);
+
+/// The height of the legend under the panels for `series` series and the two guides.
+fn key_height(series: usize) -> u32 {
+    ((series + 2).div_ceil(KEY.0) as u32) * KEY.1 + 16
 }
 
 /// The outline of family `f`'s marker: square (uniform), octagon (graded towards all
@@ -720,11 +740,14 @@ impl Figure for GradedFig {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let (w, _) = root.dim_in_pixel();
-        let areas = root.split_horizontally(w / 2);
-        for (k, (area, (title, ydesc, series))) in
-            [areas.0, areas.1].iter().zip(&self.panels).enumerate()
-        {
+        let (w, h) = root.dim_in_pixel();
+        let (charts, key) = root.split_vertically(h - key_height(self.panels[0].2.len()));
+        let areas = charts.split_horizontally(w / 2);
+        let guides = [
+            (0.5, "N^(-1/2): order 1 in h".to_string()),
+            (0.25, "N^(-1/4): order 1/2 in h".to_string()),
+        ];
+        for (area, (title, ydesc, series)) in [areas.0, areas.1].iter().zip(&self.panels) {
             let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
             let ((xmin, xmax), (ymin, ymax)) = crate::output::plot::extent(&pts);
             // Room below the data for the whole of each slope guide.
@@ -738,12 +761,20 @@ impl Figure for GradedFig {
                 (xmin / 1.5, xmax * 1.5),
                 ((ymin / 2.0).min(guides_low / 1.3), ymax * 2.0),
             );
-            let keys = keys_within(xr, (1..=7).map(|e| 10f64.powi(e)));
+            // 1, 2 and 5 of each decade over up to three decades, else the decades.
+            let keys = if xr.1 / xr.0 <= 1e3 {
+                crate::output::plot::one_two_five(xr, 0..=7)
+            } else {
+                keys_within(xr, (1..=7).map(|e| 10f64.powi(e)))
+            };
             let ykeys = keys_within(yr, [0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
             let mut chart = LogLogChart {
                 caption: (title, 24),
                 desc: ("unknowns N", ydesc),
-                format: (Some(&|x| format!("{x:.0e}")), Some(&|y| format!("{y}"))),
+                format: (
+                    Some(&crate::output::plot::plain),
+                    Some(&crate::output::plot::plain),
+                ),
                 fonts: (20, Some(22)),
                 ..LogLogChart::default()
             }
@@ -752,47 +783,115 @@ impl Figure for GradedFig {
                 (xr.0..xr.1).log_scale().with_key_points(keys),
                 (yr.0..yr.1).log_scale().with_key_points(ykeys),
             )?;
-            for (label, s, c, f) in series {
+            for (_, s, c, f, l) in series {
                 let (c, f) = (*c, *f);
-                let style = if f == 0 {
-                    c.mix(0.8).stroke_width(2)
+                if *l == 0 {
+                    chart
+                        .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
+                        .map_err(e2s)?;
                 } else {
-                    c.stroke_width(3)
-                };
+                    chart
+                        .draw_series(DashedLineSeries::new(s.clone(), 10, 6, c.stroke_width(2)))
+                        .map_err(e2s)?;
+                }
                 chart
-                    .draw_series(LineSeries::new(s.clone(), style))
-                    .map_err(e2s)?;
-                // The uniform family's markers pale, the graded ones solid.
-                let fill = if f == 0 {
-                    c.mix(0.45).filled()
-                } else {
-                    c.filled()
-                };
-                let drawn = chart
                     .draw_series(
                         s.iter()
-                            .map(|&p| EmptyElement::at(p) + Polygon::new(shape(f), fill)),
+                            .map(|&p| EmptyElement::at(p) + Polygon::new(shape(f), c.filled())),
                     )
                     .map_err(e2s)?;
-                if k == 0 {
-                    drawn.label(label.clone()).legend(move |(x, y)| {
-                        EmptyElement::at((x + 12, y))
-                            + PathElement::new(vec![(-12, 0), (12, 0)], style)
-                            + Polygon::new(shape(f), fill)
-                    });
+                if *l > 0 {
+                    chart
+                        .draw_series(
+                            s.iter().map(|&p| {
+                                EmptyElement::at(p) + Polygon::new(hole(f), WHITE.filled())
+                            }),
+                        )
+                        .map_err(e2s)?;
                 }
             }
             // Slope guides N^(-1/2) (order 1 in h) and N^(-1/4) (order 1/2), from the
             // first graded point of the first load, below the data.
             if let Some(&start) = series.get(1).and_then(|s| s.1.first()) {
-                let guides = [
-                    (0.5, "N^(-1/2): order 1 in h".to_string()),
-                    (0.25, "N^(-1/4): order 1/2 in h".to_string()),
-                ];
-                slope_guides(&mut chart, &guides, start, xmax, 0.45)?;
+                slope_guides(
+                    &mut chart,
+                    &guides,
+                    &crate::output::plot::DISTINCT_DASHES,
+                    start,
+                    xmax,
+                    0.45,
+                )?;
             }
-            legend(&mut chart, SeriesLabelPosition::LowerLeft, 19, 0.9)?;
+        }
+        // One legend for both panels, under them.
+        let (kw, _) = key.dim_in_pixel();
+        let col = kw as i32 / KEY.0 as i32;
+        let font = TextStyle::from((crate::output::plot::FONT, 19).into_font());
+        let grey = RGBColor(50, 50, 50);
+        let entries = self.panels[0].2.len() + guides.len();
+        for i in 0..entries {
+            let (x, y) = (
+                20 + col * (i % KEY.0) as i32,
+                14 + KEY.1 as i32 * (i / KEY.0) as i32,
+            );
+            let label = match self.panels[0].2.get(i) {
+                Some((label, _, c, f, l)) => {
+                    let (c, f) = (*c, *f);
+                    if *l == 0 {
+                        key.draw(&PathElement::new(
+                            vec![(x, y), (x + 36, y)],
+                            c.stroke_width(3),
+                        ))
+                        .map_err(e2s)?;
+                    } else {
+                        for a in [0, 16] {
+                            key.draw(&PathElement::new(
+                                vec![(x + a, y), (x + a + 10, y)],
+                                c.stroke_width(2),
+                            ))
+                            .map_err(e2s)?;
+                        }
+                    }
+                    key.draw(&(EmptyElement::at((x + 18, y)) + Polygon::new(shape(f), c.filled())))
+                        .map_err(e2s)?;
+                    if *l > 0 {
+                        key.draw(
+                            &(EmptyElement::at((x + 18, y))
+                                + Polygon::new(hole(f), WHITE.filled())),
+                        )
+                        .map_err(e2s)?;
+                    }
+                    label.clone()
+                }
+                None => {
+                    let g = i - self.panels[0].2.len();
+                    let (dash, gap) = crate::output::plot::DISTINCT_DASHES[g];
+                    key.draw(&crate::output::plot::dashed_legend(
+                        (x, y),
+                        dash,
+                        gap,
+                        grey.stroke_width(2),
+                    ))
+                    .map_err(e2s)?;
+                    guides[g].1.clone()
+                }
+            };
+            key.draw(&Text::new(
+                label,
+                (x + 46, y),
+                font.clone().pos(plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Left,
+                    plotters::style::text_anchor::VPos::Center,
+                )),
+            ))
+            .map_err(e2s)?;
         }
         Ok(())
     }
+}
+
+/// The white inside of family `f`'s open marker (the second load's): its shape at
+/// half size.
+fn hole(f: usize) -> Vec<(i32, i32)> {
+    shape(f).into_iter().map(|(x, y)| (x / 2, y / 2)).collect()
 }

@@ -3,13 +3,16 @@
 //! Newton, the spread of several starts), the solvers a map shows, and the map's
 //! figure. The book's map (`stability`) and `evhi study stability` draw theirs with it.
 
+use crate::output::plot::FONT;
 use crate::scenario::Scenario;
 
 /// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
 /// cell also says "fail").
-const CONVEX: RGBColor = RGBColor(86, 180, 233);
-const NOT_CONVEX: RGBColor = RGBColor(190, 225, 245);
-const SEVERAL: RGBColor = RGBColor(230, 159, 0);
+/// Convex and not convex differ in lightness (dark blue, pale grey), the two that
+/// warn in hue and lightness (yellow, vermillion).
+const CONVEX: RGBColor = RGBColor(0, 114, 178);
+const NOT_CONVEX: RGBColor = RGBColor(222, 226, 232);
+const SEVERAL: RGBColor = RGBColor(240, 228, 66);
 const FAILED: RGBColor = RGBColor(213, 94, 0);
 /// The penalty converged but let u_nu pass g (Okabe–Ito bluish green).
 const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
@@ -19,6 +22,7 @@ use crate::output::plot::{Figure, e2s};
 use crate::step::Status;
 use crate::step::multistart::MultiStart;
 use plotters::prelude::*;
+use plotters::style::text_anchor::Pos;
 
 pub struct Cell {
     pub solver: &'static str,
@@ -149,7 +153,7 @@ impl Figure for MapFigure {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let root = root.titled(&self.title, ("sans-serif", 19)).map_err(e2s)?;
+        let root = root.titled(&self.title, (FONT, 19)).map_err(e2s)?;
         let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
         ks.sort_by(f64::total_cmp);
         ks.dedup();
@@ -167,7 +171,7 @@ impl Figure for MapFigure {
         let panels = top.split_evenly((solvers.len().div_ceil(2), 2));
         for (solver, area) in solvers.iter().zip(panels.iter()) {
             let mut chart = ChartBuilder::on(area)
-                .caption(*solver, ("sans-serif", 20))
+                .caption(*solver, (FONT, 20))
                 .margin(10)
                 .x_label_area_size(45)
                 .y_label_area_size(70)
@@ -196,8 +200,8 @@ impl Figure for MapFigure {
                 })
                 .x_desc("time step k")
                 .y_desc(&self.row_desc)
-                .label_style(("sans-serif", 16))
-                .axis_desc_style(("sans-serif", 16))
+                .label_style((FONT, 16))
+                .axis_desc_style((FONT, 16))
                 .draw()
                 .map_err(e2s)?;
             for c in self.cells.iter().filter(|c| c.0 == *solver) {
@@ -225,12 +229,18 @@ impl Figure for MapFigure {
                 } else {
                     "fail".into()
                 };
+                // Centred in the cell; white on the dark cells.
+                let ink = if colour == CONVEX || colour == OVERSHOOT {
+                    WHITE
+                } else {
+                    BLACK
+                };
+                let style = (FONT, 16).into_font().color(&ink).pos(Pos::new(
+                    plotters::style::text_anchor::HPos::Center,
+                    plotters::style::text_anchor::VPos::Center,
+                ));
                 chart
-                    .draw_series(std::iter::once(Text::new(
-                        label,
-                        (x - 0.25, y + 0.12),
-                        ("sans-serif", 16),
-                    )))
+                    .draw_series(std::iter::once(Text::new(label, (x, y), style)))
                     .map_err(e2s)?;
             }
         }
@@ -245,7 +255,7 @@ impl Figure for MapFigure {
             ),
             ("several solutions (multistart)", SEVERAL),
             ("failed", FAILED),
-            ("penalty converged, u_nu past g (no certificate)", OVERSHOOT),
+            ("penalty converged, uν past g (no certificate)", OVERSHOOT),
         ];
         // Legend rows of two entries under the panels.
         let y0 = root.dim_in_pixel().1 as i32 - band as i32 + 8;
@@ -253,7 +263,7 @@ impl Figure for MapFigure {
             let (x, y) = (20 + 540 * (i % 2) as i32, y0 + 30 * (i / 2) as i32);
             root.draw(&Rectangle::new([(x, y), (x + 18, y + 18)], colour.filled()))
                 .map_err(e2s)?;
-            root.draw(&Text::new(*text, (x + 26, y + 1), ("sans-serif", 17)))
+            root.draw(&Text::new(*text, (x + 26, y + 1), (FONT, 17)))
                 .map_err(e2s)?;
         }
         Ok(())

@@ -79,17 +79,15 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
     let df = read_csv(path)?;
     let (sc, fam) = (col_str(&df, "scenario")?, col_str(&df, "family")?);
     let (n, steps) = (col_f64(&df, "n")?, col_f64(&df, "steps")?);
-    let (hk, et, em, pp) = (
-        col_f64(&df, "h_plus_k")?,
+    let (et, em, pp) = (
         col_f64(&df, "rel_err_T_percent")?,
         col_f64(&df, "rel_err_max_percent")?,
         col_f64(&df, "paper_percent")?,
     );
-    // x: h + k for the h = k family; the varying h = 1/n or k = 1/N for the split.
+    // x: h = k = 1/n for the h = k family; the varying h = 1/n or k = 1/N for the split.
     let x_of = |i: usize| match fam[i].as_str() {
-        "h" => 1.0 / n[i],
         "k" => 1.0 / steps[i],
-        _ => hk[i],
+        _ => 1.0 / n[i],
     };
     let pick = |s: &str, f: &str, v: &[f64]| -> Vec<(f64, f64)> {
         (0..sc.len())
@@ -123,7 +121,7 @@ fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
         (1000, 750),
         &Fig5 {
             title: "Fig. 5: relative error in energy norm, h = k".into(),
-            x_desc: "h + k".into(),
+            x_desc: "h = k = 1/n".into(),
             series: main,
         },
     )?;

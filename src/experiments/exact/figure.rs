@@ -3,8 +3,10 @@
 
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use evhi::manufactured::run::REGIMES;
+use evhi::output::plot::FONT;
 use evhi::output::plot::{
-    Figure, LogLogChart, both, e2s, extent, legend, regime_colour, regime_label, slope_guides,
+    Figure, LogLogChart, both, e2s, extent, fit_title, legend, regime_colour, regime_label,
+    slope_guides,
 };
 use plotters::prelude::*;
 use std::path::Path;
@@ -107,7 +109,14 @@ impl LogLog {
                 .legend(move |(x, y)| marker::<(i32, i32), DB>(m, (x + 12, y), c, 12));
         }
         if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
-            slope_guides(&mut chart, &self.guides, start, xmax, 0.4)?;
+            slope_guides(
+                &mut chart,
+                &self.guides,
+                &evhi::output::plot::EXACT_DASHES,
+                start,
+                xmax,
+                0.4,
+            )?;
         }
         legend(&mut chart, self.legend_at.clone(), 19, 0.9)?;
         Ok(())
@@ -157,7 +166,7 @@ impl Figure for Regimes {
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
         let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 24))
+            .caption(&self.title, (FONT, 24))
             .margin(15)
             .x_label_area_size(55)
             .y_label_area_size(70)
@@ -169,8 +178,8 @@ impl Figure for Regimes {
             .y_desc("contact nodes")
             .light_line_style(TRANSPARENT)
             .y_label_formatter(&|y| format!("{y:.0}"))
-            .label_style(("sans-serif", 18))
-            .axis_desc_style(("sans-serif", 18))
+            .label_style((FONT, 18))
+            .axis_desc_style((FONT, 18))
             .draw()
             .map_err(e2s)?;
         for (regime, pts) in &self.series {
@@ -327,7 +336,7 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
         &LogLog {
             title: "The Céa inequality (4.16) term by term, h = k = 1/n".into(),
             x_desc: "n = 1/h = 1/k".into(),
-            y_desc: "term".into(),
+            y_desc: "value of each term of (4.16)".into(),
             series,
             guides: vec![(2.0, "slope -2 (h², k²)".into())],
             // The terms fall to the right; the lower left is empty.
@@ -406,8 +415,17 @@ impl Figure for Grid {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
+        let root = fit_title(
+            root,
+            "C = L/(h² + k²), L = max ‖e_n‖²_V + k Σ ‖e_n‖²_V (the left side of (4.24)); \
+             colour: log C, each panel on its own scale",
+            22,
+        )?;
         let panels = root.split_evenly((1, self.panels.len()));
-        for (area, (title, cells)) in panels.iter().zip(&self.panels) {
+        for (whole, (title, cells)) in panels.iter().zip(&self.panels) {
+            // The colour bar at the right of each panel.
+            let (wide, _) = whole.dim_in_pixel();
+            let (area, bar) = whole.split_horizontally(wide.saturating_sub(110));
             let levels = |pick: fn(&(f64, f64, f64)) -> f64| {
                 let mut v: Vec<f64> = cells.iter().map(pick).collect();
                 v.sort_by(f64::total_cmp);
@@ -415,8 +433,8 @@ impl Figure for Grid {
                 v
             };
             let (ns, steps) = (levels(|c| c.0), levels(|c| c.1));
-            let mut chart = ChartBuilder::on(area)
-                .caption(title, ("sans-serif", 22))
+            let mut chart = ChartBuilder::on(&area)
+                .caption(title, (FONT, 22))
                 .margin(15)
                 .x_label_area_size(60)
                 .y_label_area_size(80)
@@ -436,8 +454,8 @@ impl Figure for Grid {
                 .y_label_formatter(&|y| name(&steps, *y))
                 .x_desc("n = 1/h")
                 .y_desc("N = T/k")
-                .label_style(("sans-serif", 18))
-                .axis_desc_style(("sans-serif", 18))
+                .label_style((FONT, 18))
+                .axis_desc_style((FONT, 18))
                 .draw()
                 .map_err(e2s)?;
             let logs = cells.iter().map(|c| c.2.log10());
@@ -445,6 +463,7 @@ impl Figure for Grid {
                 logs.clone().fold(f64::INFINITY, f64::min),
                 logs.fold(f64::NEG_INFINITY, f64::max),
             );
+            colour_bar(&bar, lo, hi.max(lo + 1e-12))?;
             for &(n, s, v) in cells {
                 let (i, j) = (
                     ns.iter().position(|&x| x == n).unwrap_or(0) as f64,
@@ -458,12 +477,14 @@ impl Figure for Grid {
                     )))
                     .map_err(e2s)?;
                 let ink = if shade > 0.55 { WHITE } else { BLACK };
-                let style = ("sans-serif", 17).into_font().color(&ink).pos(
-                    plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Center,
-                        plotters::style::text_anchor::VPos::Center,
-                    ),
-                );
+                let style =
+                    (FONT, 17)
+                        .into_font()
+                        .color(&ink)
+                        .pos(plotters::style::text_anchor::Pos::new(
+                            plotters::style::text_anchor::HPos::Center,
+                            plotters::style::text_anchor::VPos::Center,
+                        ));
                 chart
                     .draw_series(std::iter::once(Text::new(
                         if v >= 0.01 {
@@ -479,6 +500,44 @@ impl Figure for Grid {
         }
         Ok(())
     }
+}
+
+/// A vertical colour bar on `area` for $\log_{10} C$ from `lo` to `hi`: the
+/// [`sequential`] scale with the values of $C$ at its ticks.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    lo: f64,
+    hi: f64,
+) -> Result<(), String> {
+    let (a, b) = (10f64.powf(lo), 10f64.powf(hi));
+    let keys = evhi::output::plot::one_two_five((a, b), -12..=6);
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(52)
+        .margin_bottom(75)
+        .margin_right(8)
+        .y_label_area_size(70)
+        .build_cartesian_2d(0.0..1.0, (a..b).log_scale().with_key_points(keys))
+        .map_err(e2s)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_label_formatter(&|v| evhi::output::plot::plain(v))
+        .label_style((FONT, 16))
+        .draw()
+        .map_err(e2s)?;
+    const STEPS: usize = 60;
+    let at = |s: f64| 10f64.powf(lo + s * (hi - lo));
+    chart
+        .draw_series((0..STEPS).map(|i| {
+            let (s0, s1) = (i as f64 / STEPS as f64, (i + 1) as f64 / STEPS as f64);
+            Rectangle::new(
+                [(0.0, at(s0)), (1.0, at(s1))],
+                sequential((s0 + s1) / 2.0).filled(),
+            )
+        }))
+        .map_err(e2s)?;
+    Ok(())
 }
 
 /// The heat map of the $(h, k)$ grid ([`super::grid`]) from `exact_grid.csv`.
@@ -499,13 +558,13 @@ pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
                 .filter(|&i| sol[i] == s)
                 .map(|i| (n[i], steps[i], c[i]))
                 .collect();
-            (format!("{}: LHS/(h² + k²), h = 1/n", label_of(s)), cells)
+            (format!("{}: C, h = 1/n, k = T/N", label_of(s)), cells)
         })
         .collect();
     Ok(both(
         &ctx.figures,
         "exact_grid",
-        (1400, 640),
+        (1500, 700),
         &Grid { panels },
     )?)
 }

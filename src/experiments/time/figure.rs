@@ -1,8 +1,9 @@
 //! The time study's figures: the error against k (maximum over time and at T), and
 //! the controls against k/τ.
 
-#[allow(unused_imports)]
 use super::*;
+#[allow(unused_imports)]
+use evhi::output::plot::FONT;
 use evhi::output::plot::LogLogChart;
 
 /// Okabe–Ito colours (safe for colour-blind readers), one per history.
@@ -43,13 +44,7 @@ pub(super) fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
                     .filter(|&i| sc[i] == *s && hi[i] == *label && e[i] > 0.0)
                     .map(|i| (k[i], e[i]))
                     .collect();
-                series.push((
-                    format!("{s}, {}", label.replace('_', ") ")),
-                    pts,
-                    hi_i,
-                    si,
-                    false,
-                ));
+                series.push((format!("{s}, {}", in_words(label)), pts, hi_i, si, false));
             }
         }
         for (hi_i, (label, _)) in histories().iter().enumerate() {
@@ -58,7 +53,7 @@ pub(super) fn draw(ctx: &Ctx, path: &std::path::Path) -> Result<(), ExpError> {
                 .map(|i| (k[i], m[i]))
                 .collect();
             let name = if hi_i == 0 {
-                "scalar model (dashed), tau = 0.07".to_string()
+                "scalar model (dashed), τ = 0.07".to_string()
             } else {
                 String::new()
             };
@@ -105,13 +100,7 @@ impl Figure for TimeFig {
             desc: ("time step k", "relative error in energy norm [%]"),
             format: (
                 Some(&|x| format!("1/{}", (1.0 / x).round())),
-                Some(&|y| {
-                    if (1e-3..1e3).contains(y) {
-                        format!("{}", (y * 1e6).round() / 1e6)
-                    } else {
-                        format!("{y:.0e}")
-                    }
-                }),
+                Some(&evhi::output::plot::power_of_ten),
             ),
             fonts: (20, Some(22)),
             ..LogLogChart::default()
@@ -186,9 +175,9 @@ impl Figure for TimeFig {
             .map_err(e2s)?;
         chart
             .draw_series(std::iter::once(Text::new(
-                "k = tau",
+                "k = τ",
                 (tau * 1.05, y0 * 1.6),
-                ("sans-serif", 18).into_font().color(&RGBColor(90, 90, 90)),
+                (FONT, 18).into_font().color(&RGBColor(90, 90, 90)),
             )))
             .map_err(e2s)?;
         // Slope-1 guide through the last point of the first compatible series.
@@ -207,6 +196,20 @@ impl Figure for TimeFig {
         }
         legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())
+    }
+}
+
+/// The colour of the scalar model's band in the controls' figure.
+const MODEL_BAND: RGBColor = RGBColor(200, 200, 200);
+
+/// A load history's label (`a_constant`, `b_ramp1`, ...) in words.
+fn in_words(label: &str) -> String {
+    match label.split_once('_').map_or(label, |(_, rest)| rest) {
+        "constant" => "constant load".into(),
+        other => match other.strip_prefix("ramp") {
+            Some(t) => format!("load ramped in over [0, {t}]"),
+            None => other.to_string(),
+        },
     }
 }
 
@@ -254,7 +257,13 @@ pub(super) fn draw_controls(ctx: &Ctx, path: &std::path::Path) -> Result<(), Exp
                     .map(|i| (x[i], e[i]))
                     .collect();
                 if !pts.is_empty() {
-                    series.push((format!("{s}, {v}"), pts, colour(v, vi), si, false));
+                    series.push((
+                        format!("{s}, {}", v.replace("tau", "τ")),
+                        pts,
+                        colour(v, vi),
+                        si,
+                        false,
+                    ));
                 }
             }
             let pts: Vec<(f64, f64)> = (0..x.len())
@@ -289,11 +298,14 @@ impl Figure for ControlFig {
             let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 3.0, ymax * 4.0));
             let keys = evhi::output::plot::keys_within(xr, (-4..=3).map(|e| 10f64.powi(e)));
             let ykeys = evhi::output::plot::keys_within(yr, (-8..=3).map(|e| 10f64.powi(e)));
-            let caption = format!("Time error against k/tau: {title}");
+            let caption = format!("Time error against k/τ: {title}");
             let mut chart = LogLogChart {
                 caption: (&caption, 22),
-                desc: ("k / tau", "relative error in energy norm, %"),
-                format: (Some(&|x| format!("{x:e}")), Some(&|y| format!("{y:e}"))),
+                desc: ("k / τ", "relative error in energy norm, %"),
+                format: (
+                    Some(&evhi::output::plot::plain),
+                    Some(&evhi::output::plot::plain),
+                ),
                 fonts: (17, Some(19)),
                 ..LogLogChart::default()
             }
@@ -302,12 +314,18 @@ impl Figure for ControlFig {
                 (xr.0..xr.1).log_scale().with_key_points(keys),
                 (yr.0..yr.1).log_scale().with_key_points(ykeys),
             )?;
+            // The scalar model first, as a wide pale band under the measured series
+            // that lie on it (a dashed line there was hidden by `literal`'s).
+            for (_, pts, _, _, dashed) in series {
+                if *dashed {
+                    chart
+                        .draw_series(LineSeries::new(pts.clone(), MODEL_BAND.stroke_width(11)))
+                        .map_err(e2s)?;
+                }
+            }
             for (label, pts, c, marker, dashed) in series {
                 let (c, m) = (*c, *marker);
                 if *dashed {
-                    chart
-                        .draw_series(DashedLineSeries::new(pts.clone(), 8, 6, c.stroke_width(2)))
-                        .map_err(e2s)?;
                     continue;
                 }
                 let style = c.stroke_width(if m == 0 { 3 } else { 1 });
@@ -338,16 +356,12 @@ impl Figure for ControlFig {
                 }
             }
             if k == 0 {
-                let grey = RGBColor(60, 60, 60).stroke_width(2);
+                let band = MODEL_BAND.stroke_width(11);
                 chart
-                    .draw_series(std::iter::once(PathElement::new(vec![], grey)))
+                    .draw_series(std::iter::once(PathElement::new(vec![], band)))
                     .map_err(e2s)?
-                    .label("scalar model (grey dashed), one line per tau")
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (10, 0)], grey)
-                            + PathElement::new(vec![(16, 0), (24, 0)], grey)
-                    });
+                    .label("scalar model (wide grey band), one per τ")
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], band));
             }
             legend(&mut chart, SeriesLabelPosition::UpperLeft, 15, 0.9)?;
         }

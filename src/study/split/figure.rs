@@ -1,8 +1,9 @@
 //! The log–log panel of Fig. 5, and the error split into its h and k parts drawn
 //! from a table of [`super::compute`].
 
-#[allow(unused_imports)]
 use super::*;
+#[allow(unused_imports)]
+use crate::output::plot::FONT;
 use crate::output::plot::{LogLogChart, extent, one_two_five};
 
 /// A plotted series: label, points, colour, and whether it is the second
@@ -81,7 +82,7 @@ impl Figure for Fig5Split {
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
         let root = root
-            .titled("Error split: the h part and the k part", ("sans-serif", 26))
+            .titled("Error split: the h part and the k part", (FONT, 26))
             .map_err(e2s)?;
         let areas = root.split_evenly((2, 1));
         for (area, panel) in areas.iter().zip(&self.panels) {
@@ -116,12 +117,22 @@ impl Figure for Fig5 {
         let mut keys: Vec<f64> = pts.iter().map(|p| p.0).collect();
         keys.sort_by(f64::total_cmp);
         keys.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-        let ykeys = one_two_five((ymin * 0.5, ymax * 2.0), -6..=3);
+        // 1, 2 and 5 of each decade over up to three decades; beyond, the decades only
+        // (their labels would crowd).
+        let yr = (ymin * 0.5, ymax * 2.0);
+        let ykeys = if yr.1 / yr.0 <= 1e3 {
+            one_two_five(yr, -6..=3)
+        } else {
+            crate::output::plot::keys_within(yr, (-6..=3).map(|e| 10f64.powi(e)))
+        };
         let mut chart = LogLogChart {
             caption: (&self.title, 24),
             label_areas: (55, 80),
             desc: (&self.x_desc, "relative energy error, %"),
-            format: (Some(&|x| reciprocal_label(*x)), Some(&|y| format!("{y}"))),
+            format: (
+                Some(&|x| reciprocal_label(*x)),
+                Some(&crate::output::plot::plain),
+            ),
             fonts: (18, Some(20)),
             ..LogLogChart::default()
         }
