@@ -37,7 +37,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Solve one scenario and write its run directory: contact.csv, summary.csv, steps.csv, solution.vtu, nodes.csv, evolution.csv, regimes.csv, scenario.toml and two figures (the book's chapter "evhi: the paper, reproduced and checked", section "One solve", lists every file and column).
+    /// Solve one scenario and write its run directory: contact.csv, summary.csv, steps.csv, solution.vtu, nodes.csv, evolution.csv, regimes.csv, scenario.toml and two figures (the book's chapter "Commands, files and one run", section "One solve", lists every file and column).
     ///
     /// Example: evhi solve --scenario figure --n 64 --steps 64 --out runs/fig64
     Solve(cli::solve::SolveArgs),

@@ -770,6 +770,12 @@ fn exact_hold_k_order() {
     // The bar: 0.95 over the last two levels, passed at fixed times, and by the
     // maximum over the hold at the last level only.
     assert!(a[1] >= 0.95 && a[2] >= 0.95 && b[1] >= 0.95 && b[2] >= 0.95);
+    // "0.956 to 0.995 at t = 0.5 and 0.625 over the last two levels".
+    let two = [a[1], a[2], b[1], b[2]];
+    assert_eq!(
+        (fix(super::min(&two), 3), fix(super::max(&two), 3)),
+        ("0.956".into(), "0.995".into())
+    );
     let [p, q]: [f64; 2] = last(&o);
     assert!(p < 0.95 && q >= 0.95, "{p} {q}");
 }
