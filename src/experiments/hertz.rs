@@ -271,7 +271,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         profiles.push((n, s));
     }
     let params = format!(
-        "Hertz's cylinder on a rigid plane, half model: data/scenarios/examples/hertz.toml on data/meshes/hertz_MESH.msh (tools/meshes/hertz.py; MESH elements across 0.1 R), R = {R}, flat face pressed by {PRESS}; P = twice the half model's contact force; a_hertz, p0_hertz from P; a_fem from p^2 extrapolated to zero through the last two nodes in contact; p0_fem the pressure at x = 0; pressures per unit x (nodal force over the node's share of the x axis); rel_err_p_l2 over [0, max(a_hertz, first node out of contact)]; total_force_rel_err = |contact force - flat face's reaction| / reaction; penetration_over_g = max(u_nu - g0 - g) / g"
+        "Hertz's cylinder on a rigid plane, half model: data/scenarios/examples/hertz.toml on data/meshes/hertz_MESH.msh (tools/meshes/hertz.py; MESH elements across 0.1 R), R = {R}, flat face pressed by {PRESS}; P = twice the half model's contact force; a_hertz, p0_hertz from P; a_fem from p^2 extrapolated to zero through the last two nodes in contact; p0_fem the pressure at x = 0; pressures per unit x (nodal force over the node's share of the x axis); rel_err_p_l2 over [0, max(a_hertz, first node out of contact)]; total_force_rel_err = |contact force + flat face's reaction| / |reaction| (the two balance); penetration_over_g = max(u_nu - g0 - g) / g"
     );
     ctx.write("hertz.csv", &HertzRow::table(&rows), &params)?;
     // The finest mesh's pressure (and the coarsest's) beside Hertz's.

@@ -170,7 +170,7 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         paper: false,
         cost: 10.0,
         run: super::hertz::run,
-        tables: &[table("hertz.csv", 1, 8)],
+        tables: &[table("hertz.csv", 1, 8), table("hertz_split.csv", 3, 8)],
     },
 ];
 

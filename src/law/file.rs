@@ -9,7 +9,7 @@
 //! positive definite, so it has exactly one solution on every scene that is accepted
 //! (the supports must hold the body against the rigid motions,
 //! [`crate::body::Body`] and [`crate::geometry`]). With `g = "none"` as well nothing
-//! would act on $\Gamma_3$ at all; that is refused ([`check_none`]).
+//! would act on $\Gamma_3$ at all; that is refused when the scene is read.
 
 use crate::error::{InputError, MIN_MAGNITUDE, bounded, in_range};
 use crate::law::Law;
