@@ -318,11 +318,25 @@ impl Body {
                 }
             ),
             format!(
-                "  Gamma_3: part \"{}\", {} nodes along it",
+                "  Gamma_3: part \"{}\", {} nodes along it, initial gaps g0 from {:e} to {:e} \
+                 from the foundation through ({}, {}) with normal ({}, {})",
                 self.contact,
-                self.gamma3.len()
+                self.gamma3.len(),
+                self.gap0.iter().copied().fold(f64::INFINITY, f64::min),
+                self.gap0.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                self.foundation.point[0],
+                self.foundation.point[1],
+                self.foundation.normal[0],
+                self.foundation.normal[1]
             ),
         ];
+        if let Some(d) = &self.displacement {
+            out.push(format!(
+                "  displacement: [{}, {}] prescribed on part \"{}\" (solved as a rigid shift \
+                 of the body, which moves the gaps by d.n_f)",
+                d.u[0], d.u[1], d.part
+            ));
+        }
         for t in &self.tractions {
             out.push(format!(
                 "  traction {}: [{}, {}] on part \"{}\"",

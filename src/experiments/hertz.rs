@@ -101,15 +101,8 @@ pub fn solve(n: usize, press: f64) -> Result<Solved, ExpError> {
     let mesh: &Mesh = &run.mesh;
     let x: Vec<f64> = mesh.contact.iter().map(|&v| mesh.nodes[v][0]).collect();
     let w = mesh.contact_weights();
-    // The node's share of the x axis: half the x-extent of the segments beside it.
     let m = x.len();
-    let wx: Vec<f64> = (0..m)
-        .map(|i| {
-            let l = if i > 0 { x[i] - x[i - 1] } else { 0.0 };
-            let r = if i + 1 < m { x[i + 1] - x[i] } else { 0.0 };
-            0.5 * (l.abs() + r.abs())
-        })
-        .collect();
+    let wx = x_shares(&x);
     // Nodal forces: the contact stress -sigma_nu = xi + mu per unit length of Gamma_3.
     let force: Vec<f64> = (run.contact.iter().zip(&w))
         .map(|(c, wi)| -(c.sigma_nu1 + c.sigma_nu2) * wi)
@@ -140,19 +133,7 @@ pub fn solve(n: usize, press: f64) -> Result<Solved, ExpError> {
     let e_star = scn.e() / (1.0 - scn.kappa() * scn.kappa());
     let a_h = 2.0 * (big_p * R / (PI * e_star)).sqrt();
     let p0_h = 2.0 * big_p / (PI * a_h);
-    // The edge: p^2 through the last two nodes in contact, extrapolated to zero.
-    let last = p.iter().rposition(|&v| v > 0.0).unwrap_or(0);
-    let a_fem = if last >= 1 {
-        let (x1, x2) = (x[last - 1], x[last]);
-        let (q1, q2) = (p[last - 1].powi(2), p[last].powi(2));
-        if q1 > q2 {
-            x2 + q2 * (x2 - x1) / (q1 - q2)
-        } else {
-            x2
-        }
-    } else {
-        f64::NAN
-    };
+    let (a_fem, last) = edge(&x, &p);
     let p0_fem = p[0];
     let hertz = |t: f64| {
         if t.abs() < a_h {
@@ -190,6 +171,37 @@ pub fn solve(n: usize, press: f64) -> Result<Solved, ExpError> {
         elements_across: a_fem / h_min,
     };
     Ok(Solved { row, x, p })
+}
+
+/// The edge of contact from the nodal pressures `p` at `x`: $p^2$ through the last two
+/// nodes in contact, extrapolated to zero ($p \propto \sqrt{a - x}$ there); with the
+/// index of the last node in contact.
+fn edge(x: &[f64], p: &[f64]) -> (f64, usize) {
+    let last = p.iter().rposition(|&v| v > 0.0).unwrap_or(0);
+    let a = if last >= 1 {
+        let (x1, x2) = (x[last - 1], x[last]);
+        let (q1, q2) = (p[last - 1].powi(2), p[last].powi(2));
+        if q1 > q2 {
+            x2 + q2 * (x2 - x1) / (q1 - q2)
+        } else {
+            x2
+        }
+    } else {
+        f64::NAN
+    };
+    (a, last)
+}
+
+/// The nodes' shares of the $x$ axis: half the $x$-extent of the segments beside each.
+fn x_shares(x: &[f64]) -> Vec<f64> {
+    let m = x.len();
+    (0..m)
+        .map(|i| {
+            let l = if i > 0 { x[i] - x[i - 1] } else { 0.0 };
+            let r = if i + 1 < m { x[i + 1] - x[i] } else { 0.0 };
+            0.5 * (l.abs() + r.abs())
+        })
+        .collect()
 }
 
 /// $\|p_h - p\|_{L^2(0, L)} / \|p\|_{L^2(0, L)}$ with $p_h$ the piecewise-linear

@@ -329,6 +329,13 @@ impl Law {
 
     /// The law in words, one line each, for `evhi show`.
     pub fn describe(&self) -> Vec<String> {
+        if self.is_none() {
+            return vec![
+                "law: none (p = 0: the unilateral limit g alone, frictionless contact with a \
+                 rigid foundation)"
+                    .to_string(),
+            ];
+        }
         match self {
             Law::Affine(l) => l.describe(),
             Law::Softening(l) => l.describe(),
