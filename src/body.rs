@@ -14,15 +14,26 @@
 //! (the body's side is $-n_f$; default the paper's $y = 0$, $n_f = (0, -1)$). A contact
 //! node $x_i$ starts at the gap $g_{0,i} = (x_f - x_i)\cdot n_f \ge 0$ from it (a node
 //! behind the line, $g_{0,i} < 0$, is refused), and the contact acts on
-//! $u\cdot n_f - g_{0,i}$ (Kikuchi–Oden's small-deformation contact): with $\Gamma_3$ on
-//! the line and $n_f = (0, -1)$ that is the paper's $u_\nu = -u_y$. This stage solves
-//! that case only: a normal other than $(0, -1)$ (a change of basis at the contact
-//! nodes) and a nonzero initial gap (a shift of the contact unknowns) are refused with
-//! the reason, never ignored.
+//! $u\cdot n_f - g_{0,i}$ (Kikuchi–Oden's small-deformation contact): the law $p$ on it and
+//! the limit $u\cdot n_f - g_{0,i} \le g$. With $\Gamma_3$ on the line and
+//! $n_f = (0, -1)$ that is the paper's $u_\nu = -u_y$. The gaps go with the contact
+//! nodes ([`crate::mesh::Mesh::gap`]); the step solvers see the contact variables
+//! $s_i = u_\nu - g_{0,i}$. A normal other than $(0, -1)$ (a change of basis at the
+//! contact nodes) is refused with the reason, never ignored.
+//!
+//! A part may be pressed by a prescribed displacement $d$ (uniform, `displacement = { on
+//! = "part", u = [dx, dy] }`) in the components its support holds. It is solved as a
+//! rigid shift: $u = w + d$ with $w$ zero on every held component, which is exact
+//! because a translation has no strain ($Ad = Bd = 0$), provided no other part holds a
+//! component in which $d$ is nonzero (refused otherwise). The contact then acts on
+//! $w\cdot n_f - (g_{0,i} - d\cdot n_f)$: the shift only changes the gaps.
 //!
 //! The contact alone does not hold the body: at zero
 //! penetration the law's force is zero and the limit only bounds the motion from one
-//! side, so the step problem's matrix $A + kB$ would be singular.
+//! side, so the step problem's matrix $A + kB$ would be singular (its factorisation,
+//! and the condensed $S$ the step solvers work on, need it positive definite). Such a
+//! body is refused; it is pressed onto the foundation by a prescribed displacement of
+//! a held part instead (the Hertz experiment does so).
 
 use crate::error::InputError;
 use crate::geometry::Hold;
@@ -46,6 +57,16 @@ pub struct PartTraction {
     pub part: String,
     pub f: [f64; 2],
     /// Where the scenario says it (`loads.traction[0]`), for messages.
+    pub field: String,
+}
+
+/// A uniform displacement `u` prescribed on a named part (in the components its
+/// support holds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PartDisplacement {
+    pub part: String,
+    pub u: [f64; 2],
+    /// Where the scenario says it (`geometry.displacement`), for messages.
     pub field: String,
 }
 
@@ -106,9 +127,11 @@ pub struct Body {
     pub gamma3: Vec<usize>,
     /// The rigid foundation.
     pub foundation: Foundation,
-    /// The initial gap $g_{0,i}$ of each node of `gamma3` (all zero in this stage).
+    /// The initial gap $g_{0,i}$ of each node of `gamma3`.
     pub gap0: Vec<f64>,
     pub tractions: Vec<PartTraction>,
+    /// A prescribed displacement of a held part, if any.
+    pub displacement: Option<PartDisplacement>,
     /// The file's bytes as read: a run directory keeps a copy (`mesh.msh`), so that
     /// an edit or a move of the file during the run cannot change what it records.
     pub bytes: Arc<Vec<u8>>,
@@ -126,6 +149,7 @@ impl std::fmt::Debug for Body {
             .field("gamma3", &self.gamma3)
             .field("foundation", &self.foundation)
             .field("tractions", &self.tractions)
+            .field("displacement", &self.displacement)
             .field("bytes", &self.bytes.len())
             .finish()
     }
@@ -133,8 +157,9 @@ impl std::fmt::Debug for Body {
 
 impl Body {
     /// The body of `mesh` with its supports (part name to `"clamped"`, `"rollers"` or
-    /// `"free"`), its contact part and its tractions, and the file's `bytes`; refused as
-    /// the module says.
+    /// `"free"`), its contact part, its tractions, its prescribed displacement, and the
+    /// file's `bytes`; refused as the module says.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         file: &str,
         mesh: MshMesh,
@@ -142,6 +167,7 @@ impl Body {
         contact: &str,
         tractions: Vec<PartTraction>,
         foundation: Foundation,
+        displacement: Option<PartDisplacement>,
         bytes: Vec<u8>,
     ) -> Result<Body, InputError> {
         let group = |field: &str, name: &str| {
@@ -256,9 +282,11 @@ impl Body {
             foundation,
             gap0,
             tractions,
+            displacement,
             bytes: Arc::new(bytes),
         };
         body.check_rigid_motions()?;
+        body.check_displacement()?;
         Ok(body)
     }
 
@@ -290,11 +318,25 @@ impl Body {
                 }
             ),
             format!(
-                "  Gamma_3: part \"{}\", {} nodes along it",
+                "  Gamma_3: part \"{}\", {} nodes along it, initial gaps g0 from {:e} to {:e} \
+                 from the foundation through ({}, {}) with normal ({}, {})",
                 self.contact,
-                self.gamma3.len()
+                self.gamma3.len(),
+                self.gap0.iter().copied().fold(f64::INFINITY, f64::min),
+                self.gap0.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                self.foundation.point[0],
+                self.foundation.point[1],
+                self.foundation.normal[0],
+                self.foundation.normal[1]
             ),
         ];
+        if let Some(d) = &self.displacement {
+            out.push(format!(
+                "  displacement: [{}, {}] prescribed on part \"{}\" (solved as a rigid shift \
+                 of the body, which moves the gaps by d.n_f)",
+                d.u[0], d.u[1], d.part
+            ));
+        }
         for t in &self.tractions {
             out.push(format!(
                 "  traction {}: [{}, {}] on part \"{}\"",
@@ -302,6 +344,76 @@ impl Body {
             ));
         }
         out
+    }
+
+    /// The rigid translation $d$ that the prescribed displacement adds to the computed
+    /// field ($[0, 0]$ without one).
+    pub fn shift(&self) -> [f64; 2] {
+        self.displacement.as_ref().map_or([0.0; 2], |d| d.u)
+    }
+
+    /// The gap of each node of `gamma3` that the contact variable is measured from:
+    /// $g_{0,i} - d\cdot n_f$ (the module's rigid shift).
+    pub fn gap(&self) -> Vec<f64> {
+        let [dx, dy] = self.shift();
+        let n = self.foundation.normal;
+        let dn = dx * n[0] + dy * n[1];
+        self.gap0.iter().map(|g| g - dn).collect()
+    }
+
+    /// Refuses a prescribed displacement that the rigid shift cannot carry: a part the
+    /// file lacks, a component it sets that the part's support does not hold, or one
+    /// that another part holds too (at zero, which the shift would move).
+    fn check_displacement(&self) -> Result<(), InputError> {
+        let Some(d) = &self.displacement else {
+            return Ok(());
+        };
+        let Some(g) = self.mesh.group(&d.part) else {
+            return Err(InputError::field(
+                format!("{}.on", d.field),
+                format!("\"{}\"", d.part),
+                format!(
+                    "the name of a physical group of curves of {} (it has {})",
+                    self.file,
+                    self.mesh.group_names()
+                ),
+            ));
+        };
+        let on: std::collections::HashSet<usize> = g.edges.iter().flatten().copied().collect();
+        let held = |c: usize| self.supports.iter().any(|s| s.part == d.part && s.fixes[c]);
+        let fixed = self.fixed();
+        for c in 0..2 {
+            if d.u[c] == 0.0 {
+                continue;
+            }
+            let axis = ["x", "y"][c];
+            if !held(c) {
+                return Err(InputError::field(
+                    format!("{}.u", d.field),
+                    format!("[{}, {}]", d.u[0], d.u[1]),
+                    format!(
+                        "a zero {axis} component, or a support on part \"{}\" that holds {axis} \
+                         (geometry.supports.{} = \"clamped\", or \"rollers\" on a line normal to \
+                         {axis}): a displacement is prescribed where the part is held",
+                        d.part, d.part
+                    ),
+                ));
+            }
+            if let Some(v) = (0..fixed.len()).find(|&v| fixed[v][c] && !on.contains(&v)) {
+                let p = self.mesh.nodes[v];
+                return Err(InputError::field(
+                    format!("{}.u", d.field),
+                    format!("[{}, {}]", d.u[0], d.u[1]),
+                    format!(
+                        "a zero {axis} component: the node at ({}, {}) off part \"{}\" is held \
+                         in {axis} at zero by another support, and a displacement is solved as a \
+                         rigid shift of the body (exact only when every held {axis} moves by it)",
+                        p[0], p[1], d.part
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The components held fixed at each node.
@@ -364,7 +476,9 @@ impl Body {
                 "supports that hold the body against every rigid motion (both translations \
                  and the rotation): a clamped part, or rollers on two parts that are not \
                  parallel plus one more; the contact alone does not hold it (its force is zero \
-                 at no penetration), so the elasticity operator would be singular",
+                 at no penetration), so the elasticity operator would be singular; to press \
+                 a body onto the foundation, hold a part and prescribe its displacement \
+                 (geometry.displacement = { on = \"part\", u = [dx, dy] })",
             ));
         }
         Ok(())
@@ -372,8 +486,8 @@ impl Body {
 }
 
 /// The initial gaps of the contact nodes `gamma3` from `f`, refused where a node lies
-/// behind the line, and, in this stage, where the normal is not the paper's or a gap
-/// is not zero (each would need the contact unknowns changed, not only checked).
+/// behind the line, and, in this version, where the normal is not the paper's (that
+/// would need a change of basis at the contact nodes, not only a check).
 fn gaps(
     mesh: &MshMesh,
     name: &str,
@@ -411,21 +525,6 @@ fn gaps(
             "[0, -1] in this version: the contact unknown is -u_y at each contact node; \
              another normal needs a change of basis at the contact nodes, not yet \
              implemented (turn the mesh so that the foundation lies below it)",
-        ));
-    }
-    if let Some(i) = gap0.iter().position(|&g| g > tol) {
-        return Err(InputError::field(
-            "geometry.foundation",
-            format!("{:?}", f),
-            format!(
-                "a foundation on Gamma_3 in this version, but the node at ({}, {}) of the \
-                 contact part \"{name}\" starts {:e} from it: an initial gap needs the contact \
-                 unknowns shifted by it, not yet implemented (a flat contact part on the line, \
-                 or the line through it)",
-                at(i)[0],
-                at(i)[1],
-                gap0[i]
-            ),
         ));
     }
     Ok(gap0)

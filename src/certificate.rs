@@ -148,7 +148,9 @@ pub struct ContactState {
 // ANCHOR: certify
 /// Certifies $u$ as a solution of the step with the product `ku` $= Ku$ (formed
 /// by the caller from the assembled operators, $Ku = Au + kBu$), right-hand side `b`,
-/// contact normal dofs `contact_dofs` (where $u_\nu = -u_y$) and weights `kw` $= k w_i$.
+/// contact normal dofs `contact_dofs` (where $u_\nu = -u_y$), their gaps `gap` (the
+/// contact variable is $s_i = u_{\nu,i} - \text{gap}_i$, [`crate::mesh::Mesh::gap`]) and
+/// weights `kw` $= k w_i$.
 ///
 /// `ku_abs` $= \|\,|K|\,|u|\,\|_\infty$ scales the stationarity residual. A
 /// backward-stable solve (Cholesky is one) leaves a residual of a few units of
@@ -164,6 +166,7 @@ pub fn certify(
     b: &[f64],
     u: &[f64],
     contact_dofs: &[usize],
+    gap: &[f64],
     kw: &[f64],
     law: &Law,
     g: f64,
@@ -176,7 +179,7 @@ pub fn certify(
         abs_product: ku_abs,
         solution: u_norm,
     };
-    let nodes = contact_dofs.iter().map(|&d| (-u[d], d));
+    let nodes = contact_dofs.iter().zip(gap).map(|(&d, gi)| (-u[d] - gi, d));
     certify_residual(rho, nodes, kw, law, g, scales)
 }
 
@@ -263,7 +266,8 @@ fn contact_conditions(
 /// $z = S(r_0 - r)$ the contact reactions, $z_i / (k w_i)$ must split as in
 /// [`certify`]. The scales are those of [`certify`] with $S$, $r_0$, $r$ in place
 /// of $K$, $b$, $u$: stationarity is relative to $\max(\|Sr_0\|_\infty, \|\,|S|\,|r|\,\|_\infty)$.
-/// It says nothing of the eliminated equations: they hold by construction of
+/// `r0` and `r` are contact variables $s = u_\nu - \text{gap}$ (the shift cancels in
+/// $r_0 - r$). It says nothing of the eliminated equations: they hold by construction of
 /// $S$ and $r_0$, which only a certificate on the full system checks.
 pub fn certify_condensed(
     s: faer::MatRef<'_, f64>,

@@ -33,6 +33,16 @@ pub struct Mesh {
     /// The contact nodes: those of $\Gamma_3$ whose normal component is free (all of
     /// them unless a clamp or roller ends on $\Gamma_3$'s end).
     pub contact: Vec<usize>,
+    /// The gap of each contact node (in `contact` order) that its contact variable is
+    /// measured from: the contact acts on $u\cdot n_f - \text{gap}_i$. It is the node's
+    /// initial gap $g_{0,i}$ less the normal component of a prescribed displacement
+    /// ([`crate::body::Body::shift`]); zero on the rectangle, whose $\Gamma_3$ lies on
+    /// the foundation.
+    pub gap: Vec<f64>,
+    /// The rigid translation $d$ added to the computed field to give the body's
+    /// displacement ([`crate::body::Body::shift`]); zero unless a mesh scene prescribes a
+    /// displacement.
+    pub shift: [f64; 2],
     /// The boundary edges and their sides, each ordered along its side.
     pub boundary: Vec<([usize; 2], Side)>,
 }
@@ -289,10 +299,12 @@ impl Mesh {
             })
             .collect();
         gamma3.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
-        let contact = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        let contact: Vec<usize> = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
         Mesh {
             n,
             ny,
+            gap: vec![0.0; contact.len()],
+            shift: [0.0; 2],
             width: geo.width,
             height: geo.height,
             pattern,
@@ -314,9 +326,15 @@ impl Mesh {
         let ([width, height], _) = body.bounds();
         let fixed = body.fixed();
         let gamma3 = body.gamma3.clone();
-        let contact = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        let contact: Vec<usize> = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        let gap = (body.gamma3.iter().zip(body.gap()))
+            .filter(|&(&v, _)| !fixed[v][1])
+            .map(|(_, g)| g)
+            .collect();
         Mesh {
             n: body.gamma3.len() - 1,
+            gap,
+            shift: body.shift(),
             ny: 0,
             width,
             height,
@@ -398,6 +416,15 @@ impl Mesh {
             .iter()
             .filter(|(_, s)| *s == Side::Top)
             .map(|(e, _)| *e)
+            .collect()
+    }
+
+    /// The body's displacement at each node from the computed dofs `u`: `u` expanded
+    /// by `dofs` plus the rigid [`Mesh::shift`] of a prescribed displacement.
+    pub fn displacement(&self, dofs: &Dofs, u: &[f64]) -> Vec<[f64; 2]> {
+        let [dx, dy] = self.shift;
+        (dofs.expand(u).into_iter())
+            .map(|[x, y]| [x + dx, y + dy])
             .collect()
     }
 

@@ -246,7 +246,17 @@ impl<'d> Reduced<'d> {
             .collect();
         // |K| = (c + k)|B| on a proportional pattern.
         let ku_abs = (self.c + at.k) * abs_matvec_norm(&d.b, u);
-        certify(&ku, ku_abs, &b, u, &d.contact_dofs, &at.kw, &scn.law, scn.g)
+        certify(
+            &ku,
+            ku_abs,
+            &b,
+            u,
+            &d.contact_dofs,
+            &d.gap,
+            &at.kw,
+            &scn.law,
+            scn.g,
+        )
     }
 
     /// [`Reduced::march`] with Newton's method at the certificate tolerance of every
@@ -312,9 +322,14 @@ impl<'d> Reduced<'d> {
             let r0: Vec<f64> = (st.r.iter().zip(&load.q))
                 .map(|(rp, qi)| a * rp + beta * qi)
                 .collect();
+            // The step problem is posed in the contact variables s = r - gap.
+            let gap = &self.disc.gap;
+            let shift = |v: &[f64]| -> Vec<f64> { v.iter().zip(gap).map(|(x, g)| x - g).collect() };
+            let s0 = shift(&r0);
+            let mut s = shift(&st.r);
             let prob = StepProblem {
                 s: at.s.as_ref(),
-                r0: &r0,
+                r0: &s0,
                 kw: &at.kw,
                 law: &scn.law,
                 g: scn.g,
@@ -322,7 +337,10 @@ impl<'d> Reduced<'d> {
                 curvature_min: at.hessian_min,
             };
             let prev = want_field(step).then(|| st.clone());
-            let mut info = timed(&mut timings.step_solver, || solver.solve(&prob, &mut st.r));
+            let mut info = timed(&mut timings.step_solver, || solver.solve(&prob, &mut s));
+            for ((r, si), g) in st.r.iter_mut().zip(&s).zip(gap) {
+                *r = si + g;
+            }
             info.time_s = t0.elapsed().as_secs_f64();
             // The contact reactions z = S_K (r_0 - r) enter W; Y follows the load.
             let diff: Vec<f64> = r0.iter().zip(&st.r).map(|(x, y)| x - y).collect();
@@ -333,7 +351,7 @@ impl<'d> Reduced<'d> {
             st.y = a * st.y + beta;
             // ANCHOR_END: reduced_step
             let ((mut certificate, mut contact), field) = timed(&mut timings.certificates, || {
-                let cond = certify_condensed(at.s.as_ref(), &r0, &st.r, &at.kw, &scn.law, scn.g);
+                let cond = certify_condensed(at.s.as_ref(), &s0, &s, &at.kw, &scn.law, scn.g);
                 let field = prev.map(|p| match last.take() {
                     // u_{n-1} was formed at the step before: one solve.
                     Some((n, u_prev)) if n + 1 == step => (u_prev, self.field(load, &st)),

@@ -36,6 +36,9 @@ pub struct Discretisation {
     pub contact_dofs: Vec<usize>,
     /// Trapezoidal weights $w_i$.
     pub weights: Vec<f64>,
+    /// The gap of each contact node ([`Mesh::gap`]): the contact variable is
+    /// $s_i = u_{\nu,i} - \text{gap}_i$, with $u_{\nu,i} = -u_{y,i}$.
+    pub gap: Vec<f64>,
 }
 
 impl Discretisation {
@@ -60,7 +63,9 @@ impl Discretisation {
             .map(|&v| dofs.of(v, 1).expect("contact nodes are free"))
             .collect();
         let weights = mesh.contact_weights();
+        let gap = mesh.gap.clone();
         Discretisation {
+            gap,
             mesh,
             dofs,
             a,
@@ -748,6 +753,8 @@ pub struct StepOperator<'d> {
     pub hessian_min: f64,
     /// The contact normal dofs.
     pub cdofs: Vec<usize>,
+    /// Their gaps ([`Discretisation::gap`]).
+    pub gap: Vec<f64>,
 }
 
 impl<'d> StepOperator<'d> {
@@ -799,6 +806,7 @@ impl<'d> StepOperator<'d> {
             kw,
             hessian_min,
             cdofs,
+            gap: disc.gap.clone(),
         })
     }
 
@@ -831,7 +839,8 @@ impl<'d> StepOperator<'d> {
         for i in 0..b.len() {
             let mut y_c = x[i][nd - m..].to_vec();
             chol.contact_backward(&mut y_c);
-            let r0: Vec<f64> = y_c.iter().map(|y| -y).collect();
+            // The free response's contact variables s = u_nu - gap (r holds s too).
+            let r0: Vec<f64> = y_c.iter().zip(&self.gap).map(|(y, g)| -y - g).collect();
             let prob = StepProblem {
                 s: self.s.as_ref(),
                 r0: &r0,
@@ -884,8 +893,17 @@ impl<'d> StepOperator<'d> {
             ),
         };
         let ku: Vec<f64> = au.iter().zip(&bu).map(|(a, b)| a + k * b).collect();
-        let (certificate, states) =
-            certify(&ku, ku_abs, b, u, &self.cdofs, &self.kw, &scn.law, scn.g);
+        let (certificate, states) = certify(
+            &ku,
+            ku_abs,
+            b,
+            u,
+            &self.cdofs,
+            &self.gap,
+            &self.kw,
+            &scn.law,
+            scn.g,
+        );
         let rec = StepRecord {
             step,
             t,

@@ -17,6 +17,8 @@ mod beyond;
 mod errata;
 #[path = "claims/exact.rs"]
 mod exact;
+#[path = "claims/hertz.rs"]
+mod hertz;
 #[path = "claims/own.rs"]
 mod own;
 #[path = "claims/results.rs"]

@@ -315,13 +315,14 @@ fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
         "",
         &["geometry.foundation.normal", "change of basis"],
     );
-    // An initial gap: refused until the contact unknowns are shifted by it.
-    refused_scene(
+    // An initial gap is accepted (tests/contact_gap.rs solves with one).
+    let lifted = scene(
         "ok.msh",
         &with("{ point = [0.0, -0.5], normal = [0.0, -1.0] }"),
         "",
-        &["geometry.foundation", "starts 5e-1 from it", "initial gap"],
-    );
+    )
+    .unwrap();
+    assert_eq!(lifted.body().unwrap().gap0, vec![0.5; 3]);
     // The rectangle's foundation is its bottom line.
     let e = Scenario::from_toml(
         &read("data/scenarios/figure.toml").replace(

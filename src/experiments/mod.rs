@@ -12,6 +12,7 @@ pub mod example;
 pub mod fig2;
 pub mod forensics;
 pub mod graded;
+pub mod hertz;
 pub mod hypotheses;
 pub mod loads;
 pub mod paths;

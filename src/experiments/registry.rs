@@ -42,7 +42,7 @@ pub fn book_table(file: &str) -> Option<(usize, usize)> {
 }
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const EXPERIMENTS: [Experiment; 14] = [
+pub const EXPERIMENTS: [Experiment; 15] = [
     Experiment {
         name: "hypotheses",
         about: "the constants of H(A)...H(s) and H(f)/H(0) for the shipped scenarios",
@@ -164,6 +164,14 @@ pub const EXPERIMENTS: [Experiment; 14] = [
             table("exact_crime.csv", 2, 4),
             table("exact_hold.csv", 5, 9),
         ],
+    },
+    Experiment {
+        name: "hertz",
+        about: "Hertz's cylinder on a rigid plane against the formula, on four graded meshes",
+        paper: false,
+        cost: 10.0,
+        run: super::hertz::run,
+        tables: &[table("hertz.csv", 1, 8), table("hertz_split.csv", 3, 8)],
     },
 ];
 

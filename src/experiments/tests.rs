@@ -478,3 +478,34 @@ fn paths_agree() {
     }
     std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
 }
+
+#[test]
+fn hertz_pressure() {
+    snapshot_outputs(
+        "hertz",
+        &["hertz.csv", "hertz_pressure.csv"],
+        &["hertz_pressure"],
+    );
+}
+
+/// On the two coarsest meshes the errors against Hertz fall with h and are already
+/// within the stated bounds; the contact force balances the flat face's reaction.
+#[test]
+fn hertz_errors_fall_with_h() {
+    use crate::experiments::hertz::{PRESS, solve};
+    let a = solve(12, PRESS).unwrap().row;
+    let b = solve(25, PRESS).unwrap().row;
+    assert!(b.rel_err_p_l2 < a.rel_err_p_l2, "{a:?}\n{b:?}");
+    assert!(b.rel_err_a.abs() < a.rel_err_a.abs(), "{a:?}\n{b:?}");
+    assert!(b.rel_err_p0.abs() < a.rel_err_p0.abs(), "{a:?}\n{b:?}");
+    for r in [&a, &b] {
+        // a/R about 0.1, as the scene is pressed for
+        assert!((r.a_hertz - 0.1).abs() < 0.01, "{r:?}");
+        assert!(r.rel_err_a.abs() < 0.015, "{r:?}");
+        assert!(r.rel_err_p0.abs() < 0.005, "{r:?}");
+        assert!(r.rel_err_p_l2 < 0.03, "{r:?}");
+        assert!(r.total_force_rel_err < 1e-6, "{r:?}");
+        assert!(r.penetration < 1e-6, "{r:?}");
+        assert!(r.elements_across > 12.0, "{r:?}");
+    }
+}

@@ -1,5 +1,15 @@
 //! The `[law]` table of a scenario file: each family's fields, read and checked.
 //! A new family adds its fields and its arm here and its own module beside.
+//!
+//! `law = "none"` in place of the table is the zero law, $p \equiv 0$: the contact is
+//! then the limit alone, $u_\nu - g_0 \le g$ with the reaction $\mu \ge 0$ where it
+//! holds, frictionless unilateral contact with a rigid foundation at depth $g$
+//! (Signorini's problem when $g \to 0$). Its step problem is
+//! $\min_{s \le g} \tfrac12 (s - r_0)^\top S (s - r_0)$, strictly convex with $S$
+//! positive definite, so it has exactly one solution on every scene that is accepted
+//! (the supports must hold the body against the rigid motions,
+//! [`crate::body::Body`] and [`crate::geometry`]). With `g = "none"` as well nothing
+//! would act on $\Gamma_3$ at all; that is refused when the scene is read.
 
 use crate::error::{InputError, MIN_MAGNITUDE, bounded, in_range};
 use crate::law::Law;
@@ -13,6 +23,63 @@ pub const MAX_LAW: f64 = 1e9;
 /// Bound on the law's jumps and `p_left` (pressures): measured the same way, a
 /// jump of -1e9 leaves a certificate of 5e-10, -1e6 passes.
 pub const MAX_LAW_VALUE: f64 = 1e6;
+
+/// What a scenario file may give as its law: `law = "none"` or a `[law]` table.
+#[derive(Debug, Clone)]
+pub(crate) enum LawEntry {
+    Named(String),
+    Table(RawLaw),
+}
+
+impl<'de> Deserialize<'de> for LawEntry {
+    /// A string as a name, a table as [`RawLaw`] (read in place, so that its errors
+    /// keep their line and column).
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = LawEntry;
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str("law = \"none\" or a [law] table")
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<LawEntry, E> {
+                Ok(LawEntry::Named(v.to_string()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<LawEntry, A::Error> {
+                RawLaw::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(LawEntry::Table)
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
+}
+
+/// The law of a file's entry: `"none"` ([`Law::none`]) or a table ([`law_from`]).
+pub(crate) fn law_of(entry: &LawEntry) -> Result<Law, InputError> {
+    match entry {
+        LawEntry::Table(raw) => law_from(raw),
+        LawEntry::Named(name) if name == "none" => Ok(Law::none()),
+        LawEntry::Named(other) => Err(InputError::field(
+            "law",
+            format!("\"{other}\""),
+            "\"none\" (no normal compliance: the unilateral limit g alone, Signorini's \
+             contact) or a [law] table (kind = \"piecewise\" or \"softening\")",
+        )),
+    }
+}
+
+/// Refuses the zero law without a limit (`g = "none"`): nothing would then act on
+/// $\Gamma_3$, which is traction free, and the scene has no contact left.
+pub(crate) fn check_none(law: &Law, g: f64) -> Result<(), InputError> {
+    if law.is_none() && !g.is_finite() {
+        return Err(InputError::field(
+            "g",
+            "\"none\"",
+            "a thickness in [1e-12, 1e6] with law = \"none\": with neither a law nor a limit \
+             nothing acts on Gamma_3 (give a limit, the depth of the rigid foundation, or a law)",
+        ));
+    }
+    Ok(())
+}
 
 /// The `[law]` table: `kind = "piecewise"` (the default: `breakpoints`, `slopes`,
 /// optional `jumps` and `p_left`) or `kind = "softening"` (`stiffness`, `length`).

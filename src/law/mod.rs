@@ -60,6 +60,20 @@ pub enum Law {
     Softening(Softening),
 }
 
+impl Law {
+    /// The zero law, $p \equiv 0$ (`law = "none"`): one breakpoint at 0 and zero
+    /// slopes, so that its regimes are no contact ($s < 0$), the free layer and the
+    /// limit.
+    pub fn none() -> Law {
+        Law::Affine(Affine::new(&[0.0], &[0.0, 0.0], &[0.0], 0.0).expect("the zero law is valid"))
+    }
+
+    /// Whether this is the zero law of [`Law::none`].
+    pub fn is_none(&self) -> bool {
+        *self == Law::none()
+    }
+}
+
 /// The tangent of $p$ on the piece holding a point: $p(s) \approx$ `at_zero` $+$
 /// `slope` $\cdot s$ there (exact on an affine piece).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -315,6 +329,13 @@ impl Law {
 
     /// The law in words, one line each, for `evhi show`.
     pub fn describe(&self) -> Vec<String> {
+        if self.is_none() {
+            return vec![
+                "law: none (p = 0: the unilateral limit g alone, frictionless contact with a \
+                 rigid foundation)"
+                    .to_string(),
+            ];
+        }
         match self {
             Law::Affine(l) => l.describe(),
             Law::Softening(l) => l.describe(),

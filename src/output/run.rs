@@ -289,7 +289,7 @@ impl Recorder {
                 .iter()
                 .map(|c| c.regime_code(&self.law, self.g))
                 .collect();
-            let text = vtu::vtu(mesh, &dofs.expand(u), contact, &codes);
+            let text = vtu::vtu(mesh, &mesh.displacement(dofs, u), contact, &codes);
             match out.write(&file, text.as_bytes()) {
                 Ok(()) => self.series.push((t, file)),
                 Err(e) => self.error = Some(e),
@@ -375,7 +375,7 @@ pub fn write(
         tractions: (scn.tractions.len() + scn.body().map_or(0, |b| b.tractions.len())) as u64,
     };
     out.write_table("summary.csv", &SummaryRow::table(&[summary]), &header)?;
-    let disp = dofs.expand(&run.u);
+    let disp = run.mesh.displacement(&dofs, &run.u);
     let codes: Vec<i32> = run
         .contact
         .iter()

@@ -3,12 +3,12 @@
 //! allowed), and the step from a file's tables to a validated [`Scenario`].
 
 use super::{Problem, Scenario};
-use crate::body::{Body, Foundation, PartTraction};
+use crate::body::{Body, Foundation, PartDisplacement, PartTraction};
 use crate::error::{InputError, bounded, finite, in_range, positive};
 use crate::geometry::Pattern;
 use crate::geometry::{Geometry, Hold, Side, Traction};
 use crate::history::History;
-use crate::law::file::{RawLaw, law_from};
+use crate::law::file::{LawEntry, check_none, law_of};
 use crate::material::{RawMaterial, elasticity_from};
 use serde::Deserialize;
 
@@ -34,7 +34,7 @@ struct RawScenario {
     problem: Option<String>,
     material: RawMaterial,
     loads: RawLoads,
-    law: RawLaw,
+    law: LawEntry,
     #[serde(default)]
     geometry: Option<RawGeometry>,
 }
@@ -60,6 +60,17 @@ struct RawGeometry {
     /// A mesh scene's rigid foundation (default: the line y = 0, normal (0, -1)).
     #[serde(default)]
     foundation: Option<RawFoundation>,
+    /// A mesh scene's prescribed displacement of a held part.
+    #[serde(default)]
+    displacement: Option<RawDisplacement>,
+}
+
+/// `[geometry] displacement = { on = "part", u = [dx, dy] }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDisplacement {
+    on: String,
+    u: Vec<f64>,
 }
 
 /// `[geometry] foundation = { point = [x, y], normal = [nx, ny] }`.
@@ -423,7 +434,8 @@ impl Scenario {
         };
         history.validate("loads.history", t_end)?;
         let f0_modulation = bounded("loads.f0_modulation", raw.loads.f0_modulation, 1e6)?;
-        let law = law_from(&raw.law)?;
+        let law = law_of(&raw.law)?;
+        check_none(&law, g)?;
         if let Some(file) = mesh_file {
             let rg = rg.expect("a mesh names a [geometry]");
             let body = body_from(rg, file, source, &raw.loads, f2)?;
@@ -458,6 +470,14 @@ impl Scenario {
                 "a value",
                 "nothing on the rectangle, whose foundation is the line y = 0 under Gamma_3 \
                  (a foundation is given on a mesh scene, [geometry] mesh = \"body.msh\")",
+            ));
+        }
+        if rg.is_some_and(|g| g.displacement.is_some()) {
+            return Err(InputError::field(
+                "geometry.displacement",
+                "a value",
+                "nothing on the rectangle (a displacement is prescribed on a named part of a \
+                 mesh scene, [geometry] mesh = \"body.msh\")",
             ));
         }
         let contact = match rg.and_then(|g| g.contact.as_ref()) {
@@ -633,7 +653,22 @@ fn body_from(
             field,
         });
     }
+    let displacement = match &rg.displacement {
+        None => None,
+        Some(d) => Some(PartDisplacement {
+            part: d.on.clone(),
+            u: vector("geometry.displacement.u", &d.u)?,
+            field: "geometry.displacement".into(),
+        }),
+    };
     Body::new(
-        file, mesh, &supports, &contact, tractions, foundation, bytes,
+        file,
+        mesh,
+        &supports,
+        &contact,
+        tractions,
+        foundation,
+        displacement,
+        bytes,
     )
 }

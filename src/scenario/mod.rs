@@ -578,6 +578,7 @@ impl Scenario {
     /// ([`MAX_LAW`], [`MAX_LAW_VALUE`]).
     pub fn with_law(mut self, law: Law) -> Result<Self, InputError> {
         crate::law::file::check_bounds(&law)?;
+        crate::law::file::check_none(&law, self.g)?;
         self.law = law;
         Ok(self)
     }

@@ -331,10 +331,8 @@ fn general_measures(
             refs[i].push(u.to_vec());
         }
         if first_limit[i].is_nan()
-            && disc
-                .contact_dofs
-                .iter()
-                .any(|&d| at_limit(batch[i].g, -u[d]))
+            && (disc.contact_dofs.iter().zip(&disc.gap))
+                .any(|(&d, gap)| at_limit(batch[i].g, -u[d] - gap))
         {
             first_limit[i] = t;
         }
