@@ -467,3 +467,67 @@ fn the_paper_mesh_refined_twice_gives_the_built_in_scene_at_n_64_to_1e_12() {
     let (ea, eb) = (file.energy_norm_t(), built.energy_norm_t());
     assert!(close(ea, eb, 0.0, 1e-12), "energy norm {ea} against {eb}");
 }
+
+/// The page "A body of your own" (book/src/body.md) runs as written: its three `evhi`
+/// commands, run from the repository root (their `runs/` redirected to a scratch
+/// directory), print what the page shows: `evhi show` word for word, `evhi solve` but
+/// its wall time, and the study's table rows.
+#[test]
+fn the_body_page_runs_as_written() {
+    let page = read("book/src/body.md");
+    let fenced = |tag: &str| -> Vec<String> {
+        (page.split(&format!("```{tag}\n")).skip(1))
+            .map(|b| b.split("```").next().unwrap().to_string())
+            .collect()
+    };
+    let commands: Vec<String> = (fenced("sh").iter())
+        .flat_map(|b| b.lines().map(str::to_string).collect::<Vec<_>>())
+        .filter(|l| l.starts_with("evhi "))
+        .collect();
+    assert_eq!(commands.len(), 3, "{commands:?}");
+    let shown = fenced("text");
+    let shown_for = |first: &str| {
+        shown
+            .iter()
+            .find(|b| b.lines().any(|l| l.starts_with(first)))
+            .unwrap_or_else(|| panic!("no output block with `{first}`"))
+            .clone()
+    };
+    let dir = scratch("body-page");
+    let run = |cmd: &str| {
+        let words = cmd
+            .strip_prefix("evhi ")
+            .unwrap()
+            .replace(" runs/", &format!(" {}/", dir.display()));
+        let o = evhi_with(&words).output().unwrap();
+        assert!(o.status.success(), "{cmd}: {}", stderr(&o));
+        (String::from_utf8(o.stdout.clone()).unwrap(), stderr(&o))
+    };
+    // The scene shown word for word (its warnings count on stderr).
+    assert!(commands[0].starts_with("evhi show data/scenarios/examples/holed_block.toml"));
+    let (out, err) = run(&commands[0]);
+    assert_eq!(format!("{out}{err}"), shown_for("scenario `holed_block`"));
+    // The run: every line, the wall time aside.
+    assert!(commands[1].contains("--scenario data/scenarios/examples/holed_block.toml"));
+    let (_, err) = run(&commands[1]);
+    let want = shown_for("solved:");
+    let got: Vec<&str> = err.lines().collect();
+    assert_eq!(got.len(), want.lines().count(), "{err}");
+    for (g, w) in got.iter().zip(want.lines()) {
+        match w.split_once(", largest certificate") {
+            Some((head, _)) => assert!(g.starts_with(&format!("{head}, largest")), "{g}"),
+            None => assert_eq!(*g, w),
+        }
+    }
+    assert!(dir.join("holed_block/deformed.png").exists());
+    // The study's rows.
+    let (out, err) = run(&commands[2]);
+    let printed = format!("{out}{err}");
+    let rows = shown_for("| level |");
+    for row in rows.lines().filter(|l| l.starts_with("| ")) {
+        assert!(
+            printed.lines().any(|l| l == row),
+            "`{row}` not in:\n{printed}"
+        );
+    }
+}
