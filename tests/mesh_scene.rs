@@ -225,7 +225,7 @@ fn study_time_and_stability_run_on_a_mesh_scene() {
     let mut ns = s.column_f64("n");
     ns.dedup();
     assert_eq!(ns, [16.0, 32.0]);
-    assert!(s.column_str("outcome").iter().any(|o| *o == "certified"));
+    assert!(s.column_str("outcome").contains(&"certified"));
 }
 
 #[test]
