@@ -63,6 +63,7 @@ pub mod output;
 pub mod prelude;
 pub mod quadrature;
 pub mod reduced;
+pub mod refine;
 pub mod scenario;
 pub mod scheme;
 pub mod show;

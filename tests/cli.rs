@@ -212,6 +212,40 @@ fn bench_sweeps_writes_every_variant() {
     assert!(failed(&o).contains("`n`"));
 }
 
+/// `bench --mesh-read`: the paper mesh refined to the level, written, read back into
+/// a body and its mesh, timed; a level that is no refinement of it is refused.
+#[test]
+fn bench_mesh_read_times_the_refined_paper_mesh() {
+    let dir = scratch("bench-mesh");
+    succeed(evhi_with("bench --mesh-read --mesh-read-levels 32,64 --repeat 1 --data").arg(&dir));
+    let csv = Csv::read(dir.join("bench_mesh.csv"));
+    assert_eq!(csv.column_f64("triangles"), [1024.0, 4096.0]);
+    assert_eq!(csv.column_f64("nodes"), [561.0, 2145.0]);
+    for t in csv.column_f64("total_s") {
+        assert!(t > 0.0 && t < 10.0, "{t}");
+    }
+    let o = evhi_with("bench --mesh-read --mesh-read-levels 48 --data")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(failed(&o).contains("--mesh-read-levels"));
+    // A table the bench cannot have written is refused by --from-csv.
+    let data = dir.join("copy/data");
+    std::fs::create_dir_all(&data).unwrap();
+    for f in BENCH_TABLES.iter().chain([&".evhi-outputs"]) {
+        std::fs::copy(Path::new("data").join(f), data.join(f)).unwrap();
+    }
+    let text = read(data.join("bench_mesh.csv"));
+    std::fs::write(
+        data.join("bench_mesh.csv"),
+        text.replace(",262144,", ",262143,"),
+    )
+    .unwrap();
+    let o = from_csv(&dir.join("copy"));
+    let e = failed(&o);
+    assert!(e.contains("bench_mesh.csv") && e.contains("262144"), "{e}");
+}
+
 /// Issue 12's cases that used to look right and were not, or were refused though valid.
 #[test]
 fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
@@ -1391,8 +1425,9 @@ fn plot_names_the_file_line_and_column_of_an_edited_table() {
 }
 
 /// The bench's tables `bench --from-csv` reads, as committed.
-const BENCH_TABLES: [&str; 7] = [
+const BENCH_TABLES: [&str; 8] = [
     "bench.csv",
+    "bench_mesh.csv",
     "work_precision.csv",
     "bench_solvers.csv",
     "bench_scipy.csv",

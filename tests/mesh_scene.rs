@@ -129,16 +129,103 @@ fn a_mesh_scene_solves_from_the_command_line_and_keeps_its_mesh() {
         &o,
         &["geometry.mesh", "--mesh graded", "one mesh, its file's"],
     );
-    for study in ["convergence", "time", "stability"] {
-        let o = evhi_with(&format!("study {study} --quick --scenario"))
+    // What a study cannot set on a mesh scene is refused, before anything is written.
+    let o = evhi_with("study time --quick --n 32 --scenario")
+        .arg(PAPER_MESH)
+        .arg("--out")
+        .arg(dir.join("t"))
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &["--n", "nothing on a mesh scene", "16 contact segments"],
+    );
+    assert!(!dir.join("t").exists());
+}
+
+/// `study convergence` on a mesh scene: the uniform family by refinement, each level's
+/// error against the reference falling at about order 1 in h (the paper's scene has
+/// corner singularities that slow it), the geometry's resolution said in the summary.
+#[test]
+fn study_convergence_on_a_mesh_scene_refines_its_mesh_uniformly() {
+    let dir = scratch("mesh-study-convergence");
+    let out = dir.join("conv");
+    let o = succeed(
+        evhi_with("study convergence --quick --scenario")
             .arg(PAPER_MESH)
             .arg("--out")
-            .arg(dir.join(study))
-            .output()
-            .unwrap();
-        refused(&o, &["geometry.mesh", &format!("`study {study}`")]);
-        assert!(!dir.join(study).exists());
+            .arg(&out),
+    );
+    let _ = o;
+    let t = Csv::read(out.join("convergence.csv"));
+    assert_eq!(t.len(), 3);
+    assert_eq!(t.column_f64("triangles"), [256.0, 1024.0, 4096.0]);
+    assert_eq!(t.column_f64("steps"), [4.0, 8.0, 16.0]);
+    let err = t.column_f64("rel_err_T_percent");
+    assert!(err.windows(2).all(|w| w[1] < w[0]), "{err:?}");
+    let orders = t.column_f64("order_h");
+    assert!(orders[0].is_nan());
+    for p in &orders[1..] {
+        assert!((0.5..1.5).contains(p), "order {p} ({orders:?})");
     }
+    let h = t.column_f64("h_max");
+    assert!(h.windows(2).all(|w| (w[0] / w[1] - 2.0).abs() < 1e-12));
+    let md = read(out.join("convergence.md"));
+    for needle in [
+        "coarse mesh's resolution",
+        "graded family",
+        "refined 3 times",
+    ] {
+        assert!(md.contains(needle), "no `{needle}` in {md}");
+    }
+}
+
+/// `study time` and `study stability` run unchanged on a mesh scene: the time study
+/// on the file's mesh (n its contact segments), the stability map on the mesh and
+/// its uniform refinement.
+#[test]
+fn study_time_and_stability_run_on_a_mesh_scene() {
+    let dir = scratch("mesh-study-time-stability");
+    succeed(
+        evhi_with("study time --quick --scenario")
+            .arg(PAPER_MESH)
+            .arg("--out")
+            .arg(dir.join("time")),
+    );
+    let md = read(dir.join("time/time_study.md"));
+    assert!(md.contains("at n = 16"), "{md}");
+    // The same mesh as the built-in scene's at n = 16: the same time errors, to 1e-12
+    // of the solution's norm (100 %: the two runs order the unknowns differently, and
+    // an error of 1e-4 % is a difference of two fields that agree to rounding).
+    succeed(
+        evhi_with("study time --quick --n 16 --scenario figure --out")
+            .arg(dir.join("time_built_in")),
+    );
+    let t = Csv::read(dir.join("time/time_study.csv"));
+    let b = Csv::read(dir.join("time_built_in/time_study.csv"));
+    for col in ["rel_err_T_percent", "rel_err_max_percent"] {
+        let (x, y) = (t.column_f64(col), b.column_f64(col));
+        assert_eq!(x.len(), y.len());
+        for (a, b) in x.iter().zip(&y) {
+            assert!(close(*a, *b, 100.0, 1e-12), "{col}: {a} against {b}");
+        }
+    }
+    let err = t.column_f64("rel_err_T_percent");
+    assert!(
+        err.len() >= 2 && err.windows(2).all(|w| w[1] < w[0]),
+        "{err:?}"
+    );
+    succeed(
+        evhi_with("study stability --quick --scenario")
+            .arg(PAPER_MESH)
+            .arg("--out")
+            .arg(dir.join("stab")),
+    );
+    let s = Csv::read(dir.join("stab/stability.csv"));
+    let mut ns = s.column_f64("n");
+    ns.dedup();
+    assert_eq!(ns, [16.0, 32.0]);
+    assert!(s.column_str("outcome").contains(&"certified"));
 }
 
 #[test]
@@ -337,4 +424,111 @@ fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
         e.contains("geometry.foundation") && e.contains("the line y = 0"),
         "{e}"
     );
+}
+
+/// The paper mesh refined uniformly twice is the built-in diagonal mesh at n = 64 (its
+/// nodes in another order): the same scene, the same numbers to 1e-12, node by node.
+#[test]
+fn the_paper_mesh_refined_twice_gives_the_built_in_scene_at_n_64_to_1e_12() {
+    let settings = RunSettings {
+        n: 64,
+        steps: Some(8),
+        ..RunSettings::default()
+    };
+    let solve = |scn: Scenario| {
+        let sim = Simulation::new(scn, settings.clone()).unwrap();
+        let sol = sim.solve(&mut ()).unwrap();
+        let mesh = sol.run.mesh.clone();
+        let u = evhi::mesh::Dofs::new(&mesh, true).expand(&sol.run.u);
+        (sol, mesh, u)
+    };
+    let (once, _) = Scenario::load(PAPER_MESH).unwrap().refined().unwrap();
+    let (twice, _) = once.refined().unwrap();
+    let (file, fmesh, fu) = solve(twice);
+    let (built, bmesh, bu) = solve(Scenario::load("figure").unwrap());
+    assert_eq!(file.run.n, 64);
+    assert_eq!(fmesh.nodes.len(), bmesh.nodes.len());
+    assert_eq!(file.run.dofs, built.run.dofs);
+    let key = |p: [f64; 2]| (p[0].to_bits(), p[1].to_bits());
+    let at: std::collections::HashMap<_, usize> = (bmesh.nodes.iter().enumerate())
+        .map(|(i, &p)| (key(p), i))
+        .collect();
+    let scale = bu.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (i, &p) in fmesh.nodes.iter().enumerate() {
+        let j = at[&key(p)];
+        for c in 0..2 {
+            assert!(
+                close(fu[i][c], bu[j][c], scale, 1e-12),
+                "u at {p:?}: {} against {}",
+                fu[i][c],
+                bu[j][c]
+            );
+        }
+    }
+    let (ea, eb) = (file.energy_norm_t(), built.energy_norm_t());
+    assert!(close(ea, eb, 0.0, 1e-12), "energy norm {ea} against {eb}");
+}
+
+/// The page "A body of your own" (book/src/body.md) runs as written: its three `evhi`
+/// commands, run from the repository root (their `runs/` redirected to a scratch
+/// directory), print what the page shows: `evhi show` word for word, `evhi solve` but
+/// its wall time, and the study's table rows.
+#[test]
+fn the_body_page_runs_as_written() {
+    let page = read("book/src/body.md");
+    let fenced = |tag: &str| -> Vec<String> {
+        (page.split(&format!("```{tag}\n")).skip(1))
+            .map(|b| b.split("```").next().unwrap().to_string())
+            .collect()
+    };
+    let commands: Vec<String> = (fenced("sh").iter())
+        .flat_map(|b| b.lines().map(str::to_string).collect::<Vec<_>>())
+        .filter(|l| l.starts_with("evhi "))
+        .collect();
+    assert_eq!(commands.len(), 3, "{commands:?}");
+    let shown = fenced("text");
+    let shown_for = |first: &str| {
+        shown
+            .iter()
+            .find(|b| b.lines().any(|l| l.starts_with(first)))
+            .unwrap_or_else(|| panic!("no output block with `{first}`"))
+            .clone()
+    };
+    let dir = scratch("body-page");
+    let run = |cmd: &str| {
+        let words = cmd
+            .strip_prefix("evhi ")
+            .unwrap()
+            .replace(" runs/", &format!(" {}/", dir.display()));
+        let o = evhi_with(&words).output().unwrap();
+        assert!(o.status.success(), "{cmd}: {}", stderr(&o));
+        (String::from_utf8(o.stdout.clone()).unwrap(), stderr(&o))
+    };
+    // The scene shown word for word (its warnings count on stderr).
+    assert!(commands[0].starts_with("evhi show data/scenarios/examples/holed_block.toml"));
+    let (out, err) = run(&commands[0]);
+    assert_eq!(format!("{out}{err}"), shown_for("scenario `holed_block`"));
+    // The run: every line, the wall time aside.
+    assert!(commands[1].contains("--scenario data/scenarios/examples/holed_block.toml"));
+    let (_, err) = run(&commands[1]);
+    let want = shown_for("solved:");
+    let got: Vec<&str> = err.lines().collect();
+    assert_eq!(got.len(), want.lines().count(), "{err}");
+    for (g, w) in got.iter().zip(want.lines()) {
+        match w.split_once(", largest certificate") {
+            Some((head, _)) => assert!(g.starts_with(&format!("{head}, largest")), "{g}"),
+            None => assert_eq!(*g, w),
+        }
+    }
+    assert!(dir.join("holed_block/deformed.png").exists());
+    // The study's rows.
+    let (out, err) = run(&commands[2]);
+    let printed = format!("{out}{err}");
+    let rows = shown_for("| level |");
+    for row in rows.lines().filter(|l| l.starts_with("| ")) {
+        assert!(
+            printed.lines().any(|l| l == row),
+            "`{row}` not in:\n{printed}"
+        );
+    }
 }

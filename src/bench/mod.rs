@@ -1,8 +1,9 @@
 //! What `evhi bench` measures beyond the phases of a solve: the triangular sweeps
 //! against a ready-made factorisation (`sweeps`), and the paper's and our work against
-//! the precision reached (`workprec`), with the tables of the bench (`tables`) and
+//! the precision reached (`workprec`), the time to read a mesh scene (`meshread`), with the tables of the bench (`tables`) and
 //! the ones the book shows.
 
+pub mod meshread;
 pub mod sweeps;
 pub mod tables;
 pub mod workprec;
@@ -38,6 +39,7 @@ pub fn from_csv(ctx: &evhi::study::Ctx) -> Result<(), evhi::study::ExpError> {
     tables::read_solvers(&ctx.data_path("bench_solvers.csv"))?;
     tables::read_scipy(&ctx.data_path("bench_scipy.csv"))?;
     tables::read_sweeps(&ctx.data_path("bench_sweeps.csv"))?;
+    tables::read_mesh(&ctx.data_path("bench_mesh.csv"))?;
     chart.draw(ctx)?;
     workprec::write_paper_comparison(ctx, &bench)?;
     for t in &TABLES {

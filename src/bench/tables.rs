@@ -319,3 +319,40 @@ pub fn read_sweeps(path: &Path) -> Result<Vec<(usize, SweepRow)>, FileError> {
     })?;
     Ok(rows)
 }
+
+row! {
+    /// One row of `bench_mesh.csv`: reading a generated mesh file of the paper's
+    /// rectangle at one size into a body and its mesh (median seconds of each part).
+    pub struct MeshReadRow {
+        n: u64 => "n" if AT_LEAST_ONE,
+        triangles: u64 => "triangles" if AT_LEAST_ONE,
+        nodes: u64 => "nodes" if AT_LEAST_ONE,
+        file_mb: f64 => "file_mb" if POSITIVE,
+        read_s: f64 => "read_s" if SECONDS,
+        body_s: f64 => "body_s" if SECONDS,
+        mesh_s: f64 => "mesh_s" if SECONDS,
+        total_s: f64 => "total_s" if SECONDS,
+    }
+}
+
+/// The rows of `bench_mesh.csv`, checked: at least one, each n once, and each the
+/// refined paper mesh's counts at its n (`2 n^2 / 2` triangles, `(n+1)(n/2+1)` nodes).
+pub fn read_mesh(path: &Path) -> Result<Vec<(usize, MeshReadRow)>, FileError> {
+    let rows = MeshReadRow::read_lines(path)?;
+    some(path, &rows)?;
+    once(path, &rows, |r| format!("n = {}", r.n))?;
+    for (line, r) in &rows {
+        let (t, v) = (r.n * r.n, (r.n + 1) * (r.n / 2 + 1));
+        if r.triangles != t || r.nodes != v {
+            return Err(at(
+                path,
+                *line,
+                format!(
+                    "{} triangles and {} nodes, where the paper's mesh at n = {} has {t} and {v}",
+                    r.triangles, r.nodes, r.n
+                ),
+            ));
+        }
+    }
+    Ok(rows)
+}

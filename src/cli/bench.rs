@@ -48,6 +48,15 @@ pub struct BenchArgs {
     /// root (it calls tools/scipy_reference/run.sh by that path).
     #[arg(long)]
     pub scipy: bool,
+    /// Only the mesh-reading rows: the paper mesh refined to each of
+    /// --mesh-read-levels, written as MSH 4.1, read into a body and its mesh
+    /// (data/bench_mesh.csv; the full bench ends with it).
+    #[arg(long)]
+    pub mesh_read: bool,
+    /// Levels n of the mesh-reading rows (16 times a power of two; n = 512 has
+    /// 262 144 triangles).
+    #[arg(long, value_delimiter = ',', default_value = "128,256,512")]
+    pub mesh_read_levels: Vec<usize>,
     /// Levels n = steps of the SciPy comparison.
     #[arg(long, value_delimiter = ',', default_value = "32,64,128")]
     pub scipy_levels: Vec<usize>,
@@ -121,7 +130,14 @@ fn child_run(
 /// --data without the `table1.csv` whose errors the work-precision chart draws.
 fn check_args(args: &BenchArgs, ctx: &evhi::study::Ctx) -> Result<(), evhi::error::InputError> {
     use evhi::error::InputError;
-    let full = !args.sweeps && !args.scipy;
+    let full = !args.sweeps && !args.scipy && !args.mesh_read;
+    for &n in args
+        .mesh_read_levels
+        .iter()
+        .filter(|_| full || args.mesh_read)
+    {
+        crate::bench::meshread::check_level(n)?;
+    }
     let lists: [(&str, &[usize], bool); 3] = [
         ("--levels", &args.levels, full),
         ("--solver-levels", &args.solver_levels, full),
@@ -194,6 +210,10 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     if args.scipy {
         return scipy(&ctx, &args, &machine);
+    }
+    if args.mesh_read {
+        crate::bench::meshread::run(&ctx, &args.mesh_read_levels, args.repeat, &machine)?;
+        return Ok(());
     }
     let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
         row.get(k).copied().unwrap_or(f64::NAN)
@@ -298,6 +318,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     let path = ctx.write_as("work_precision.csv", &tw, "bench", &format!("machine: {machine}; scenario figure, solver newton; errors from data/table1.csv (reference h = k = 1/512); wall time median of {} runs", args.repeat))?;
     crate::bench::workprec::draw(&ctx, &path)?;
     crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
+    crate::bench::meshread::run(&ctx, &args.mesh_read_levels, args.repeat, &machine)?;
     Ok(())
 }
 

@@ -245,7 +245,7 @@ impl Scenario {
     }
 
     /// Refuses a mesh scene where `what` needs the rectangle's structured meshes of a
-    /// level $n$ (uniform refinement, grading towards the rectangle's corners).
+    /// level $n$ (meshes of any level, grading towards the rectangle's corners).
     pub fn refuse_mesh_scene(&self, what: &str) -> Result<(), InputError> {
         match &self.body {
             None => Ok(()),
@@ -255,7 +255,8 @@ impl Scenario {
                 format!(
                     "a rectangle scene (no geometry.mesh) for {what}: it builds the \
                      rectangle's structured meshes of level n, and a mesh scene has one mesh, \
-                     its file's (refining a mesh file is not supported yet)"
+                     its file's (`study convergence` refines it uniformly, each triangle into \
+                     four)"
                 ),
             )),
         }

@@ -201,7 +201,9 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::split;
     let (scn, text) = Scenario::read(&args.scenario)?;
-    scn.refuse_mesh_scene("`study convergence`")?;
+    if scn.body().is_some() {
+        return super::refined::run(args, scn, text, command);
+    }
     let solver = super::study_solver(args.solver.as_deref())?;
     let Plans {
         plan,

@@ -196,7 +196,7 @@ fn solve_steps(
 /// general loop would sweep the factor of $A + kB$ at every step. The two loops agree
 /// to rounding (`data/paths.csv`: at most $5\cdot10^{-10}$ relative in the field at
 /// $T$ on the paper's scene at $h = k = 1/512$).
-fn reference_at_t(
+pub(super) fn reference_at_t(
     scns: &[Scenario],
     mesh: &Arc<Mesh>,
     n: usize,

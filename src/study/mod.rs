@@ -21,6 +21,7 @@ pub mod ctx;
 mod error;
 pub mod graded;
 pub mod map;
+pub mod refined;
 pub(crate) mod runs;
 pub mod split;
 mod stability;

@@ -27,11 +27,27 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::map::{MapFigure, map_cell, solvers};
     let (scn, text) = Scenario::read(&args.scenario)?;
-    scn.refuse_mesh_scene("`study stability`")?;
     let steady = scn.problem == crate::scenario::Problem::Steady;
     let multiples: &[usize] = if args.quick { &[1, 2] } else { &[1, 2, 4] };
-    let n0 = coarsest(&scn, multiples, 8)?;
-    let levels: Vec<usize> = multiples.iter().map(|m| m * n0).collect();
+    // Each level's scene: the rectangle's at n0 times the multiples, or a mesh
+    // scene's body refined uniformly once per doubling (its n is then its count of
+    // contact segments).
+    let scenes: Vec<(usize, Scenario)> = match scn.body_mesh() {
+        None => {
+            let n0 = coarsest(&scn, multiples, 8)?;
+            multiples.iter().map(|m| (m * n0, scn.clone())).collect()
+        }
+        Some(mesh) => {
+            let mut out = vec![(mesh.n, scn.clone())];
+            while out.len() < multiples.len() {
+                let (fine, _) = out.last().expect("one").1.refined()?;
+                let n = fine.body_mesh().expect("a mesh scene").n;
+                out.push((n, fine));
+            }
+            out
+        }
+    };
+    let levels: Vec<usize> = scenes.iter().map(|s| s.0).collect();
     let steps: Vec<usize> = if steady {
         vec![1]
     } else if args.quick {
@@ -69,15 +85,16 @@ pub(super) fn run(
     let progress = bar((levels.len() * steps.len() * (solvers.len() + 1)) as u64);
     let mut cells = vec![];
     let mut hyp = vec![];
-    for &n in &levels {
+    for (n, scn) in &scenes {
+        let n = *n;
         for &st in &steps {
-            let h_s = crate::show::Smallness::of(&scn, n)?;
-            let curvature = crate::scheme::step_curvature(&scn, n, st)?;
+            let h_s = crate::show::Smallness::of(scn, n)?;
+            let curvature = crate::scheme::step_curvature(scn, n, st)?;
             hyp.push((n, st, h_s, curvature));
             progress.inc(1);
             for &solver in &solvers {
                 progress.set_message(format!("n = {n}, steps = {st}, {solver}"));
-                cells.push((n, map_cell(&scn, f64::NAN, n, st, solver)));
+                cells.push((n, map_cell(scn, f64::NAN, n, st, solver)));
                 progress.inc(1);
             }
         }

@@ -11,7 +11,6 @@ pub(super) fn run(
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::time_error as time;
     let (scn, text) = Scenario::read(&args.scenario)?;
-    scn.refuse_mesh_scene("`study time`")?;
     if scn.problem != crate::scenario::Problem::Viscoelastic {
         return Err(crate::error::InputError::field(
             "scenario",
@@ -30,11 +29,30 @@ pub(super) fn run(
         .into());
     }
     let mut plan = time::plan(args.quick);
-    if let Some(n) = args.n {
-        plan.n = n;
+    match (args.n, scn.body_mesh()) {
+        // A mesh scene's mesh is its file's: n is its count of contact segments.
+        (None, Some(mesh)) => plan.n = mesh.n,
+        (Some(n), Some(mesh)) => {
+            return Err(crate::error::InputError::field(
+                "--n",
+                n,
+                format!(
+                    "nothing on a mesh scene, whose mesh is its file's ({} contact segments)",
+                    mesh.n
+                ),
+            )
+            .into());
+        }
+        (n, None) => {
+            if let Some(n) = n {
+                plan.n = n;
+            }
+        }
     }
     plan.solver = super::study_solver(args.solver.as_deref())?;
-    scn.mesh(plan.n)?;
+    if scn.body().is_none() {
+        scn.mesh(plan.n)?;
+    }
     let out = RunDir::open(&args.out)?;
     let progress = bar(0);
     let ctx = study_ctx(&out, args.quick, &progress, command);
