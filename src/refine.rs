@@ -114,6 +114,7 @@ impl Scenario {
             &body.contact,
             body.tractions.clone(),
             body.foundation,
+            body.displacement.clone(),
             crate::msh::write(&r.mesh).into_bytes(),
         )?;
         let mut scn = self.clone();

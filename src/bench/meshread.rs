@@ -70,6 +70,7 @@ pub fn run(ctx: &Ctx, levels: &[usize], repeat: usize, machine: &str) -> Result<
                     field: "loads.traction[0]".into(),
                 }],
                 Foundation::default(),
+                None,
                 bytes,
             )?;
             body.push(t.elapsed().as_secs_f64());
