@@ -114,6 +114,16 @@ impl<'d> Reduced<'d> {
         parallel: bool,
         timings: &mut Timings,
     ) -> Result<Reduced<'d>, RunError> {
+        if let Some((field, hold)) = scn.supports_with_stiffness().into_iter().next() {
+            return Err(InputError::field(
+                field,
+                hold,
+                "a support without a boundary stiffness for the reduced loop, which needs \
+                 A = cB: this support adds its term to the elasticity B alone (it has no \
+                 dashpot), so the general loop solves the scene",
+            )
+            .into());
+        }
         let Some(c) = proportional(scn, disc) else {
             return Err(InputError::field(
                 "material",

@@ -28,7 +28,7 @@ pub struct Discretisation {
     pub dofs: Dofs,
     /// Viscosity operator $A$.
     pub a: SpMat,
-    /// Elasticity operator $B$.
+    /// Elasticity operator $B$, with the supports' boundary terms ([`crate::support`]).
     pub b: SpMat,
     /// Load vector $f$ of the loads $(f_0, f_2)$; step $n$ uses $\varphi(t_n) f$.
     pub f: Vec<f64>,
@@ -52,7 +52,9 @@ impl Discretisation {
     pub fn on(scn: &Scenario, mesh: impl Into<std::sync::Arc<Mesh>>) -> Self {
         let mesh: std::sync::Arc<Mesh> = mesh.into();
         let dofs = Dofs::new(&mesh, true);
-        let [a, b] = assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
+        let [a, mut b] =
+            assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
+        assembly::add_boundary_terms(&mut b, &mesh, &dofs);
         let f = scn.load_vector(&mesh, &dofs);
         let contact_dofs = mesh
             .contact
