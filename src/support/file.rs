@@ -20,7 +20,7 @@ pub(crate) struct Piece {
 
 /// The kinds as messages list them.
 const KINDS: &str = "\"clamped\" (both components zero), \"rollers\" (the normal component \
-                     zero) or \"free\"";
+                     zero), \"free\" or { spring = k_s } (sigma nu = -k_s u, k_s in N/m^3)";
 
 /// A support kind written at `field`; `otherwise` says what else the place takes when
 /// `v` is no kind at all.
@@ -32,6 +32,31 @@ pub(crate) fn kind(field: &str, v: &toml::Value, otherwise: &str) -> Result<Hold
             "free" => Ok(Hold::Free),
             other => Err(InputError::field(field, other, KINDS)),
         },
+        toml::Value::Table(t) => {
+            if let Some(key) = t.keys().find(|k| *k != "spring") {
+                return Err(InputError::field(
+                    format!("{field}.{key}"),
+                    "a value",
+                    "nothing: a support table has spring = k_s only",
+                ));
+            }
+            let f = format!("{field}.spring");
+            let k = match t.get("spring") {
+                Some(toml::Value::Float(x)) => *x,
+                Some(toml::Value::Integer(x)) => *x as f64,
+                Some(other) => {
+                    return Err(InputError::field(
+                        &f,
+                        other.type_str(),
+                        "a number, k_s in N/m^3",
+                    ));
+                }
+                None => {
+                    return Err(InputError::field(&f, "nothing", "a number, k_s in N/m^3"));
+                }
+            };
+            Ok(Hold::Spring(crate::error::positive(&f, k)?))
+        }
         other => Err(InputError::field(field, other.type_str(), otherwise)),
     }
 }
@@ -45,7 +70,7 @@ pub(crate) fn side(field: &str, v: &toml::Value) -> Result<Vec<Piece>, InputErro
         let hold = kind(
             field,
             v,
-            "\"clamped\", \"rollers\", \"free\" or a list of { from, to, kind } segments",
+            "\"clamped\", \"rollers\", \"free\", { spring = k_s } or a list of { from, to, kind } segments",
         )?;
         return Ok(if hold == Hold::Free {
             vec![]
@@ -65,7 +90,7 @@ pub(crate) fn side(field: &str, v: &toml::Value) -> Result<Vec<Piece>, InputErro
             return Err(InputError::field(
                 &f,
                 item.type_str(),
-                "a table { from = ..., to = ..., kind = \"clamped\" | \"rollers\" | \"free\" }",
+                "a table { from = ..., to = ..., kind = \"clamped\" | \"rollers\" | \"free\" | { spring = k_s } }",
             ));
         };
         for key in t.keys() {
@@ -123,7 +148,7 @@ pub(crate) fn parts(v: Option<&toml::Value>) -> Result<Vec<(String, Hold)>, Inpu
                 let hold = kind(
                     &field,
                     v,
-                    "\"clamped\", \"rollers\" or \"free\": a mesh's part is held whole",
+                    "\"clamped\", \"rollers\", \"free\" or { spring = k_s }: a mesh's part is held whole",
                 )?;
                 Ok((k.clone(), hold))
             })

@@ -31,6 +31,12 @@ pub enum Hold {
     Rollers,
     /// Nothing: traction free (or loaded by a traction).
     Free,
+    /// A spring of stiffness $k_s$ (N/m³, force per area per displacement) on both
+    /// components: $\sigma\nu = -k_s u$ on the part, a Robin condition. Both
+    /// components, as written: an elastic bed that resists sliding as well as
+    /// opening, positive on every rigid motion, so springs alone hold a body (a
+    /// normal-only spring would be another kind, which needs the part's normal).
+    Spring(f64),
 }
 
 impl Hold {
@@ -40,6 +46,7 @@ impl Hold {
             Hold::Clamped => "clamped",
             Hold::Rollers => "rollers",
             Hold::Free => "free",
+            Hold::Spring(_) => "spring",
         }
     }
 
@@ -53,7 +60,7 @@ impl Hold {
                 f[normal] = true;
                 f
             }
-            Hold::Free => [false; 2],
+            Hold::Free | Hold::Spring(_) => [false; 2],
         }
     }
 
@@ -66,7 +73,10 @@ impl Hold {
     /// $k_s$ of the term $k_s\int_{\Gamma_s} u\cdot v\,ds$ this kind adds to $B$ (zero:
     /// none).
     pub fn stiffness(self) -> f64 {
-        0.0
+        match self {
+            Hold::Spring(k) => k,
+            _ => 0.0,
+        }
     }
 
     /// The components this kind holds against a rigid motion of the body, given the
@@ -85,6 +95,9 @@ impl Hold {
 impl std::fmt::Display for Hold {
     /// The kind as messages and `show` name it.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
+        match self {
+            Hold::Spring(k) => write!(f, "spring k_s = {}", crate::error::number(*k)),
+            other => f.write_str(other.name()),
+        }
     }
 }
