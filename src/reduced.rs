@@ -114,7 +114,9 @@ impl<'d> Reduced<'d> {
         parallel: bool,
         timings: &mut Timings,
     ) -> Result<Reduced<'d>, RunError> {
-        if let Some((field, hold)) = scn.supports_with_stiffness().into_iter().next() {
+        // Without viscosity A = 0 = 0 (B + B_s): the loop takes the term in B.
+        let springs = scn.supports_with_stiffness();
+        if let Some((field, hold)) = springs.into_iter().find(|_| scn.problem.viscous()) {
             return Err(InputError::field(
                 field,
                 hold,

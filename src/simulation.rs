@@ -416,10 +416,11 @@ impl Simulation {
             Loop::General => false,
             Loop::Reduced => true,
             // The reduced loop checks proportionality again on the assembled matrices;
-            // a support's boundary term, in B alone, breaks it.
+            // a support's boundary term, in B alone, breaks it where A is not zero.
             Loop::Auto => {
                 scenario.relaxation_time().is_some()
-                    && scenario.supports_with_stiffness().is_empty()
+                    && (!scenario.problem.viscous()
+                        || scenario.supports_with_stiffness().is_empty())
             }
         };
         // The mesh: a scene whose segments miss the mesh lines is refused by name. The

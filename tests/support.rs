@@ -91,7 +91,9 @@ fn a_bar_on_a_spring_matches_its_closed_form() {
 }
 
 /// The spring enters B alone, so A = cB fails: the reduced loop is refused by the
-/// spring's field, and the automatic choice takes the general loop.
+/// spring's field, and the automatic choice takes the general loop. Without viscosity
+/// A = 0 = 0 (B + B_s) still holds: the automatic choice takes the reduced loop, and it
+/// meets the closed form.
 #[test]
 fn the_reduced_loop_refuses_a_spring() {
     let scn = bar(500.0, "viscoelastic");
@@ -105,6 +107,12 @@ fn the_reduced_loop_refuses_a_spring() {
     let auto = RunSettings::general(4, 4).with_path(Loop::Auto);
     let solution = Simulation::new(scn, auto).unwrap().solve(&mut ()).unwrap();
     assert!(!solution.reduced);
+    let k_s = 500.0;
+    let sim = Simulation::new(bar(k_s, "elastic"), RunSettings::default().with_n(8)).unwrap();
+    let solution = sim.solve(&mut ()).unwrap();
+    assert!(solution.reduced);
+    let worst = off(&sim, &solution.run.u, F / (E + k_s * W));
+    assert!(worst <= 1e-12, "{worst:e}");
 }
 
 /// A spring's value is checked by name, its table takes nothing else, and springs alone

@@ -601,7 +601,8 @@ impl Scenario {
 
     /// The supports that add a boundary term to the elasticity operator $B$
     /// ([`crate::support::Hold::stiffness`]), each as the file names it, with its kind.
-    /// The reduced time loop needs $A = cB$, which such a term, in $B$ alone, breaks.
+    /// The reduced time loop needs $A = cB$, which such a term, in $B$ alone, breaks
+    /// unless $A = 0$ (an elastic or steady problem).
     pub fn supports_with_stiffness(&self) -> Vec<(String, crate::support::Hold)> {
         let rectangle = (self.geometry.supports.iter()).map(|s| (&s.field, s.hold));
         let parts = (self.body.iter()).flat_map(|b| b.supports.iter().map(|s| (&s.field, s.hold)));
