@@ -231,6 +231,8 @@ pub enum RunError {
         length: f64,
         max: f64,
         g: f64,
+        /// The steps completed before this one.
+        partial: Box<Partial>,
     },
     #[error(
         "scenario `{scenario}`, step {step} (t = {t:e}): the solver `{solver}` solved the step's \
@@ -254,6 +256,8 @@ pub enum RunError {
         free: f64,
         ratio: f64,
         g: f64,
+        /// The steps completed before this one.
+        partial: Box<Partial>,
     },
     #[error(
         "{}. What may help: another step solver (`proxgrad` and `newton-no-line-search` \
@@ -262,16 +266,33 @@ pub enum RunError {
         self.failed_step().unwrap_or_default()
     )]
     Step {
-        scenario: String,
+        scenario: Box<str>,
         step: usize,
         t: f64,
-        solver: String,
+        solver: Box<str>,
         status: Status,
         iterations: usize,
         residual: f64,
         certificate: f64,
         tol: f64,
+        /// The steps completed before this one.
+        partial: Box<Partial>,
     },
+}
+
+/// What a run had done when a step failed: the record of every step it completed,
+/// the last formed field and the contact states of the last completed step.
+#[derive(Debug, Clone, Default)]
+pub struct Partial {
+    /// One record per completed step, in order (each certified).
+    pub records: Vec<StepRecord>,
+    /// The last field the loop formed, $u_n$ on the free dofs, with its step $n$: the
+    /// general loop forms every step's, the reduced loop only some (see
+    /// [`crate::simulation::Observer::wants_field`]). `None` when no step completed
+    /// or none formed its field.
+    pub field: Option<(usize, Vec<f64>)>,
+    /// The contact states after the last completed step (empty when none completed).
+    pub contact: Vec<ContactState>,
 }
 
 pub use crate::memory::{available_memory, check_memory, check_memory_dofs, memory_estimate};
@@ -331,12 +352,36 @@ impl RunError {
                 residual,
                 certificate,
                 tol,
+                ..
             } => Some(format!(
                 "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}",
                 step_failure(solver, status, iterations, residual, certificate, tol)
             )),
             _ => None,
         }
+    }
+
+    /// What the run had done when its step failed (a step's failure: [`RunError::Step`],
+    /// [`RunError::Cancellation`], [`RunError::Unresolvable`]); `None` for an error
+    /// before the first step.
+    pub fn partial(&self) -> Option<&Partial> {
+        match self {
+            RunError::Step { partial, .. }
+            | RunError::Cancellation { partial, .. }
+            | RunError::Unresolvable { partial, .. } => Some(partial),
+            _ => None,
+        }
+    }
+
+    /// The error with the run's completed steps attached (a step's failure only).
+    pub(crate) fn with_partial(mut self, done: Partial) -> RunError {
+        match &mut self {
+            RunError::Step { partial, .. }
+            | RunError::Cancellation { partial, .. }
+            | RunError::Unresolvable { partial, .. } => **partial = done,
+            _ => {}
+        }
+        self
     }
 }
 
@@ -470,14 +515,28 @@ pub(crate) fn run_batch_states(
                 au.iter().zip(f).map(|(au, f)| au + kf * f).collect()
             })
             .collect();
-        let infos;
-        (u, infos) = op.step(&b, scns, solvers, &mut r, &mut timings);
+        let (next, infos) = op.step(&b, scns, solvers, &mut r, &mut timings);
         let time_s = t0.elapsed().as_secs_f64();
         for (i, info) in infos.into_iter().enumerate() {
             let (rec, states) = timed(&mut timings.certificates, || {
-                op.record(&u[i], &b[i], &mut au[i], &scns[i], (step, t, time_s), info)
+                op.record(
+                    &next[i],
+                    &b[i],
+                    &mut au[i],
+                    &scns[i],
+                    (step, t, time_s),
+                    info,
+                )
             });
-            check_resolution(&rec.certificate, &scns[i], step)?;
+            // A failure keeps the steps done: records, u_{n-1} and its contact states.
+            let done = |e: RunError| {
+                e.with_partial(Partial {
+                    records: records[i].clone(),
+                    field: (step > 1).then(|| (step - 1, u[i].clone())),
+                    contact: contact[i].clone(),
+                })
+            };
+            check_resolution(&rec.certificate, &scns[i], step).map_err(done)?;
             let failed = rec.status != Status::Converged
                 || rec.certificate.max().is_nan()
                 || rec.certificate.max() > opt.certificate_tol;
@@ -495,26 +554,28 @@ pub(crate) fn run_batch_states(
                     opt.certificate_tol,
                     free,
                 ) {
-                    return Err(e);
+                    return Err(done(e));
                 }
             }
             if failed {
-                return Err(RunError::Step {
-                    scenario: scns[i].name.clone(),
+                return Err(done(RunError::Step {
+                    scenario: scns[i].name.as_str().into(),
                     step,
                     t,
-                    solver: solvers[i].name().to_string(),
+                    solver: solvers[i].name().into(),
                     status: rec.status,
                     iterations: rec.iterations,
                     residual: rec.solver_residual,
                     certificate: rec.certificate.max(),
                     tol: opt.certificate_tol,
-                });
+                    partial: Box::default(),
+                }));
             }
             records[i].push(rec);
-            observe(i, step, t, &u[i], &states);
+            observe(i, step, t, &next[i], &states);
             contact[i] = states;
         }
+        u = next;
     }
     timings.steps = clock.elapsed().as_secs_f64();
     // ANCHOR_END: time_loop
@@ -563,6 +624,7 @@ pub(crate) fn cancellation(
         free,
         ratio: free / g.abs(),
         g,
+        partial: Box::default(),
     })
 }
 
@@ -588,6 +650,7 @@ pub(crate) fn check_resolution(
         length,
         max: RESOLUTION_MAX,
         g: scn.g,
+        partial: Box::default(),
     })
 }
 
