@@ -2,7 +2,7 @@
 //! rectangle held whole or in `{ from, to, kind }` segments, and a mesh scene's table
 //! of named parts. The rectangle's presets and side names are the geometry's
 //! ([`crate::geometry::Geometry::from_toml`]); what holds each side is read here. A
-//! new kind adds its spelling to [`kind`].
+//! new kind adds its spelling to `kind`.
 
 use super::Hold;
 use crate::error::InputError;

@@ -18,7 +18,7 @@
 //! terms, the rigid-motion checks ask which components a kind holds
 //! ([`Hold::holds`]), and the reduced time loop, which needs $A = cB$, refuses a scene
 //! with a term ([`crate::reduced`]). A new kind is a new arm here and its TOML in
-//! [`file`]; nothing outside this directory changes.
+//! [`self::file`]; nothing outside this directory changes.
 
 pub mod file;
 
