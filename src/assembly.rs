@@ -82,6 +82,32 @@ fn pattern(mesh: &Mesh, dofs: &Dofs) -> SymbolicSparseColMat<usize> {
     SymbolicSparseColMat::new_checked(dofs.count, dofs.count, col_ptr, None, row_idx)
 }
 
+/// Adds the supports' boundary terms to `b` ([`crate::support`]): for each edge $e$ of
+/// `mesh.boundary_terms` with its $k_s$, $k_s\int_e u\cdot v\,ds$, the P1 edge mass
+/// $k_s |e|/6 \begin{pmatrix}2 & 1\\ 1 & 2\end{pmatrix}$ on each component (exact:
+/// the integrand is quadratic along the edge). `b` must have the pattern of
+/// [`stiffness_all`], which couples the two ends of every edge of a triangle.
+pub fn add_boundary_terms(b: &mut SpMat, mesh: &Mesh, dofs: &Dofs) {
+    for &(e, k) in &mesh.boundary_terms {
+        let [pa, pb] = e.map(|v| mesh.nodes[v]);
+        let m = k * (pb[0] - pa[0]).hypot(pb[1] - pa[1]) / 6.0;
+        for c in 0..2 {
+            for (i, j, w) in [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 2.0)] {
+                let (Some(r), Some(col)) = (dofs.of(e[i], c), dofs.of(e[j], c)) else {
+                    continue;
+                };
+                let range = b.symbolic().col_range(col);
+                let at = range.start
+                    + b.symbolic().row_idx()[range]
+                        .iter()
+                        .position(|&x| x == r)
+                        .expect("the pattern holds every edge coupling");
+                b.val_mut()[at] += w * m;
+            }
+        }
+    }
+}
+
 /// One stiffness matrix, see [`stiffness_all`].
 pub fn stiffness(mesh: &Mesh, dofs: &Dofs, tensor: &Isotropic) -> SpMat {
     let [k] = stiffness_all(mesh, dofs, [tensor]);

@@ -36,8 +36,8 @@
 //! a held part instead (the Hertz experiment does so).
 
 use crate::error::InputError;
-use crate::geometry::Hold;
 use crate::msh::MshMesh;
+use crate::support::Hold;
 use std::sync::Arc;
 
 /// A support on a named part.
@@ -156,14 +156,14 @@ impl std::fmt::Debug for Body {
 }
 
 impl Body {
-    /// The body of `mesh` with its supports (part name to `"clamped"`, `"rollers"` or
-    /// `"free"`), its contact part, its tractions, its prescribed displacement, and the
-    /// file's `bytes`; refused as the module says.
+    /// The body of `mesh` with its supports (part name to kind, read by
+    /// [`crate::support::file`]), its contact part, its tractions, its prescribed
+    /// displacement, and the file's `bytes`; refused as the module says.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         file: &str,
         mesh: MshMesh,
-        supports: &[(String, String)],
+        supports: &[(String, Hold)],
         contact: &str,
         tractions: Vec<PartTraction>,
         foundation: Foundation,
@@ -184,26 +184,24 @@ impl Body {
             })
         };
         let mut parts = vec![];
-        for (name, kind) in supports {
+        for &(ref name, hold) in supports {
             let field = format!("geometry.supports.{name}");
             let g = group(&field, name)?;
-            let hold = Hold::parse(&field, kind)?;
-            let fixes = match hold {
-                Hold::Clamped => [true; 2],
-                Hold::Free => [false; 2],
-                Hold::Rollers => {
+            let fixes = match hold.needs_normal() {
+                false => hold.fixes(0),
+                true => {
                     let along = |c: usize| {
                         let v0 = mesh.nodes[g.edges[0][0]][c];
                         g.edges.iter().flatten().all(|&v| mesh.nodes[v][c] == v0)
                     };
                     if along(0) {
-                        [true, false]
+                        hold.fixes(0)
                     } else if along(1) {
-                        [false, true]
+                        hold.fixes(1)
                     } else {
                         return Err(InputError::field(
                             field,
-                            "\"rollers\"",
+                            format!("\"{hold}\""),
                             format!(
                                 "\"clamped\" or \"free\" on part \"{name}\", which is not a \
                                  straight line x = const or y = const: rollers hold the normal \
@@ -445,7 +443,14 @@ impl Body {
     /// free: the rows $(1, 0, -y)$ for each held $x$ and $(0, 1, x)$ for each held $y$
     /// (coordinates from the body's centre) must have rank 3.
     fn check_rigid_motions(&self) -> Result<(), InputError> {
-        let fixed = self.fixed();
+        let mut fixed = self.fixed();
+        for s in &self.supports {
+            let held = s.hold.holds(s.fixes);
+            let g = self.mesh.group(&s.part).expect("checked when built");
+            for &v in g.edges.iter().flatten() {
+                fixed[v] = [fixed[v][0] || held[0], fixed[v][1] || held[1]];
+            }
+        }
         let (size, lo) = self.bounds();
         let centre = [lo[0] + size[0] / 2.0, lo[1] + size[1] / 2.0];
         let scale = size[0].max(size[1]);

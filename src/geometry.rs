@@ -1,15 +1,18 @@
 //! The scene: the rectangle $\Omega = (0, W) \times (0, H)$, what holds each part of its
 //! boundary, and the contact boundary $\Gamma_3$, a segment of the bottom.
 //!
-//! Each side is cut into segments, each `clamped` (both displacement components
-//! zero), on `rollers` (the normal component zero, free to slide) or `free`; the
-//! parts a scenario does not name are free. The paper's scene is the preset
+//! Each side is cut into segments, each held by a support kind of [`crate::support`]
+//! (`clamped`: both displacement components zero; `rollers`: the normal component
+//! zero, free to slide; `free`); the parts a scenario does not name are free. The
+//! file's supports are read by [`crate::support::file`], the presets and side names
+//! here. The paper's scene is the preset
 //! [`Geometry::paper`]: $W = 2$, $H = 1$, the sides clamped on $[\tfrac12, 1]$, the
 //! whole bottom in contact. [`Geometry::rollers`] is the smooth scene of the
 //! regularity study. A point of the boundary is held by every segment that contains
 //! it (a corner by both of its sides); a clamped segment holds its end points.
 
 use crate::error::{InputError, in_range};
+use crate::support::Hold;
 
 /// A side of the rectangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -45,53 +48,6 @@ impl Side {
     /// bottom and top.
     pub fn along(self, p: [f64; 2]) -> f64 {
         p[1 - self.normal()]
-    }
-}
-
-/// What holds a part of the boundary.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Hold {
-    /// Both components zero.
-    Clamped,
-    /// The normal component zero, free to slide.
-    Rollers,
-    Free,
-}
-
-impl Hold {
-    pub fn name(self) -> &'static str {
-        match self {
-            Hold::Clamped => "clamped",
-            Hold::Rollers => "rollers",
-            Hold::Free => "free",
-        }
-    }
-
-    pub(crate) fn parse(field: &str, s: &str) -> Result<Hold, InputError> {
-        match s {
-            "clamped" => Ok(Hold::Clamped),
-            "rollers" => Ok(Hold::Rollers),
-            "free" => Ok(Hold::Free),
-            other => Err(InputError::field(
-                field,
-                other,
-                "\"clamped\" (both components zero), \"rollers\" (the normal component \
-                 zero) or \"free\"",
-            )),
-        }
-    }
-
-    /// The components this hold fixes on `side`.
-    pub fn fixes(self, side: Side) -> [bool; 2] {
-        match self {
-            Hold::Clamped => [true; 2],
-            Hold::Rollers => {
-                let mut f = [false; 2];
-                f[side.normal()] = true;
-                f
-            }
-            Hold::Free => [false; 2],
-        }
     }
 }
 
@@ -236,7 +192,7 @@ impl Geometry {
         for s in &self.supports {
             let a = s.side.along(p);
             if self.on(s.side, p) && a >= s.from - tol && a <= s.to + tol {
-                let f = s.hold.fixes(s.side);
+                let f = s.hold.fixes(s.side.normal());
                 fixed = [fixed[0] || f[0], fixed[1] || f[1]];
             }
         }
@@ -366,7 +322,7 @@ impl Geometry {
         let held: Vec<String> = self
             .supports
             .iter()
-            .map(|s| format!("{} [{}, {}] {}", s.side.name(), s.from, s.to, s.hold.name()))
+            .map(|s| format!("{} [{}, {}] {}", s.side.name(), s.from, s.to, s.hold))
             .collect();
         let sing = self.singularities();
         let pts: Vec<String> = sing
@@ -438,7 +394,15 @@ impl Geometry {
                 }
                 for side in Side::ALL {
                     if let Some(v) = t.get(side.name()) {
-                        g.supports.extend(side_segments(side, v)?);
+                        let field = format!("geometry.supports.{}", side.name());
+                        let pieces = crate::support::file::side(&field, v)?;
+                        g.supports.extend(pieces.into_iter().map(|p| Segment {
+                            side,
+                            from: p.from,
+                            to: p.to.unwrap_or(f64::NAN),
+                            hold: p.hold,
+                            field: p.field,
+                        }));
                     }
                 }
                 g
@@ -563,7 +527,9 @@ impl Geometry {
         }
         // A scene with no held component in x or y leaves a rigid motion free, and
         // the elasticity operator singular.
-        let held = |c: usize| geo.supports.iter().any(|s| s.hold.fixes(s.side)[c]);
+        let held = |c: usize| {
+            (geo.supports.iter()).any(|s| s.hold.holds(s.hold.fixes(s.side.normal()))[c])
+        };
         for (c, name, rollers) in [(0, "x", "left or right"), (1, "y", "bottom or top")] {
             if !held(c) {
                 return Err(InputError::field(
@@ -578,81 +544,6 @@ impl Geometry {
             }
         }
         Ok(geo)
-    }
-}
-
-/// The segments of one side: `"clamped" | "rollers" | "free"` for the whole side, or
-/// a list of `{ from, to, kind }` tables.
-fn side_segments(side: Side, v: &toml::Value) -> Result<Vec<Segment>, InputError> {
-    let field = format!("geometry.supports.{}", side.name());
-    let whole = |hold: Hold, field: &str| {
-        Ok(if hold == Hold::Free {
-            vec![]
-        } else {
-            vec![segment(side, 0.0, f64::NAN, hold, field)]
-        })
-    };
-    match v {
-        toml::Value::String(s) => whole(Hold::parse(&field, s)?, &field),
-        toml::Value::Array(items) => {
-            let mut out = vec![];
-            for (i, item) in items.iter().enumerate() {
-                let f = format!("{field}[{i}]");
-                let toml::Value::Table(t) = item else {
-                    return Err(InputError::field(
-                        &f,
-                        item.type_str(),
-                        "a table { from = ..., to = ..., kind = \"clamped\" | \"rollers\" | \"free\" }",
-                    ));
-                };
-                for key in t.keys() {
-                    if !["from", "to", "kind"].contains(&key.as_str()) {
-                        return Err(InputError::field(
-                            format!("{f}.{key}"),
-                            "a value",
-                            "nothing: a segment has from, to and kind",
-                        ));
-                    }
-                }
-                let num = |k: &str| -> Result<f64, InputError> {
-                    match t.get(k) {
-                        Some(toml::Value::Float(x)) => Ok(*x),
-                        Some(toml::Value::Integer(x)) => Ok(*x as f64),
-                        Some(other) => Err(InputError::field(
-                            format!("{f}.{k}"),
-                            other.type_str(),
-                            "a number (a coordinate along the side)",
-                        )),
-                        None => Err(InputError::field(
-                            format!("{f}.{k}"),
-                            "nothing",
-                            "a number (a coordinate along the side: y on left and right, \
-                             x on bottom and top)",
-                        )),
-                    }
-                };
-                let kind = match t.get("kind") {
-                    Some(toml::Value::String(s)) => Hold::parse(&format!("{f}.kind"), s)?,
-                    _ => {
-                        return Err(InputError::field(
-                            format!("{f}.kind"),
-                            "nothing or not text",
-                            "\"clamped\", \"rollers\" or \"free\"",
-                        ));
-                    }
-                };
-                let (from, to) = (num("from")?, num("to")?);
-                // Free segments are kept: they hold nothing, but may not overlap
-                // another segment of the side (checked with the others).
-                out.push(segment(side, from, to, kind, &f));
-            }
-            Ok(out)
-        }
-        other => Err(InputError::field(
-            &field,
-            other.type_str(),
-            "\"clamped\", \"rollers\", \"free\" or a list of { from, to, kind } segments",
-        )),
     }
 }
 

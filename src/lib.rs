@@ -70,5 +70,6 @@ pub mod show;
 pub mod simulation;
 pub mod step;
 pub mod study;
+pub mod support;
 pub mod term;
 pub mod timing;

@@ -45,6 +45,9 @@ pub struct Mesh {
     pub shift: [f64; 2],
     /// The boundary edges and their sides, each ordered along its side.
     pub boundary: Vec<([usize; 2], Side)>,
+    /// The boundary edges whose support adds a term $k_s\int_e u\cdot v\,ds$ to the
+    /// elasticity operator, with its $k_s$ ([`crate::support::Hold::stiffness`]).
+    pub boundary_terms: Vec<([usize; 2], f64)>,
 }
 
 /// The most segments a structured mesh may have on the bottom (some 17 million
@@ -300,6 +303,14 @@ impl Mesh {
             .collect();
         gamma3.sort_by(|&a, &b| nodes[a][0].total_cmp(&nodes[b][0]));
         let contact: Vec<usize> = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        // The support inside each boundary edge (at its midpoint) says its term.
+        let boundary_terms = (boundary.iter())
+            .filter_map(|&(e, side)| {
+                let mid = 0.5 * (side.along(nodes[e[0]]) + side.along(nodes[e[1]]));
+                let k = geo.hold_at(side, mid).stiffness();
+                (k > 0.0).then_some((e, k))
+            })
+            .collect();
         Mesh {
             n,
             ny,
@@ -314,6 +325,7 @@ impl Mesh {
             gamma3,
             contact,
             boundary,
+            boundary_terms,
         }
     }
 
@@ -327,6 +339,14 @@ impl Mesh {
         let fixed = body.fixed();
         let gamma3 = body.gamma3.clone();
         let contact: Vec<usize> = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
+        let mut boundary_terms = vec![];
+        for s in &body.supports {
+            let k = s.hold.stiffness();
+            if k > 0.0 {
+                let g = body.mesh.group(&s.part).expect("checked when built");
+                boundary_terms.extend(g.edges.iter().map(|&e| (e, k)));
+            }
+        }
         let gap = (body.gamma3.iter().zip(body.gap()))
             .filter(|&(&v, _)| !fixed[v][1])
             .map(|(_, g)| g)
@@ -345,6 +365,7 @@ impl Mesh {
             gamma3,
             contact,
             boundary: vec![],
+            boundary_terms,
         }
     }
 

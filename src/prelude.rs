@@ -13,6 +13,6 @@ pub use crate::error::InputError;
 pub use crate::law::Law;
 pub use crate::output::rows::ContactRow;
 pub use crate::scenario::{Problem, Scenario};
-pub use crate::scheme::{RunError, StepRecord};
+pub use crate::scheme::{Partial, RunError, StepRecord};
 pub use crate::simulation::{Loop, MeshKind, Observer, OnStep, RunSettings, Simulation, Solution};
 pub use crate::step::{SOLVERS, StepSolver};

@@ -28,7 +28,7 @@ use crate::error::InputError;
 use crate::linalg::Cholesky;
 use crate::scenario::Scenario;
 use crate::scheme::{
-    Check, Discretisation, OrderingKind, Run, RunError, Settings, StepRecord, Timings,
+    Check, Discretisation, OrderingKind, Partial, Run, RunError, Settings, StepRecord, Timings,
 };
 use crate::step::{Status, StepProblem, StepSolver};
 use crate::timing::timed;
@@ -114,6 +114,18 @@ impl<'d> Reduced<'d> {
         parallel: bool,
         timings: &mut Timings,
     ) -> Result<Reduced<'d>, RunError> {
+        // Without viscosity A = 0 = 0 (B + B_s): the loop takes the term in B.
+        let springs = scn.supports_with_stiffness();
+        if let Some((field, hold)) = springs.into_iter().find(|_| scn.problem.viscous()) {
+            return Err(InputError::field(
+                field,
+                hold,
+                "a support without a boundary stiffness for the reduced loop, which needs \
+                 A = cB: this support adds its term to the elasticity B alone (it has no \
+                 dashpot), so the general loop solves the scene",
+            )
+            .into());
+        }
         let Some(c) = proportional(scn, disc) else {
             return Err(InputError::field(
                 "material",
@@ -312,6 +324,8 @@ impl<'d> Reduced<'d> {
         let mut records = Vec::with_capacity(steps);
         // The last field formed, kept while the next step may need it as u_{n-1}.
         let mut last: Option<(usize, Vec<f64>)> = None;
+        // The contact states after the last completed step, for a failure's report.
+        let mut last_contact = vec![];
         let clock = Instant::now();
         for step in 1..=steps {
             let t = step as f64 * k;
@@ -384,7 +398,21 @@ impl<'d> Reduced<'d> {
                 time_s: info.time_s,
                 check,
             };
-            crate::scheme::check_resolution(&certificate, scn, step)?;
+            // A failure keeps the steps done: records, the last field formed (u_{n-1}
+            // where this step formed it beside its own) and the contact states.
+            let done = |e: RunError| {
+                let formed = match &field {
+                    Some((u_prev, _)) if step > 1 => Some((step - 1, u_prev.clone())),
+                    Some(_) => None,
+                    None => last.clone(),
+                };
+                e.with_partial(Partial {
+                    records: records.clone(),
+                    field: formed,
+                    contact: last_contact.clone(),
+                })
+            };
+            crate::scheme::check_resolution(&certificate, scn, step).map_err(done)?;
             let failed = info.status != Status::Converged
                 || certificate.max().is_nan()
                 || certificate.max() > tol;
@@ -397,21 +425,22 @@ impl<'d> Reduced<'d> {
                 if let Some(e) =
                     crate::scheme::cancellation(scn, failure, certificate.max(), tol, free)
                 {
-                    return Err(e);
+                    return Err(done(e));
                 }
             }
             if failed {
-                return Err(RunError::Step {
-                    scenario: scn.name.clone(),
+                return Err(done(RunError::Step {
+                    scenario: scn.name.as_str().into(),
                     step,
                     t,
-                    solver: solver.name().to_string(),
+                    solver: solver.name().into(),
                     status: info.status,
                     iterations: info.iterations,
                     residual: info.residual,
                     certificate: certificate.max(),
                     tol,
-                });
+                    partial: Box::default(),
+                }));
             }
             observe(Stepped {
                 step,
@@ -423,6 +452,7 @@ impl<'d> Reduced<'d> {
             });
             records.push(rec);
             last = field.map(|(_, u)| (step, u));
+            last_contact = contact;
         }
         timings.steps += clock.elapsed().as_secs_f64();
         Ok(March {

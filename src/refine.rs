@@ -104,8 +104,8 @@ impl Scenario {
             ));
         };
         let r = refine(&body.mesh);
-        let supports: Vec<(String, String)> = (body.supports.iter())
-            .map(|s| (s.part.clone(), s.hold.name().to_string()))
+        let supports: Vec<(String, crate::support::Hold)> = (body.supports.iter())
+            .map(|s| (s.part.clone(), s.hold))
             .collect();
         let fine = crate::body::Body::new(
             &body.file,

@@ -28,7 +28,7 @@ pub struct Discretisation {
     pub dofs: Dofs,
     /// Viscosity operator $A$.
     pub a: SpMat,
-    /// Elasticity operator $B$.
+    /// Elasticity operator $B$, with the supports' boundary terms ([`crate::support`]).
     pub b: SpMat,
     /// Load vector $f$ of the loads $(f_0, f_2)$; step $n$ uses $\varphi(t_n) f$.
     pub f: Vec<f64>,
@@ -55,7 +55,9 @@ impl Discretisation {
     pub fn on(scn: &Scenario, mesh: impl Into<std::sync::Arc<Mesh>>) -> Self {
         let mesh: std::sync::Arc<Mesh> = mesh.into();
         let dofs = Dofs::new(&mesh, true);
-        let [a, b] = assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
+        let [a, mut b] =
+            assembly::stiffness_all(&mesh, &dofs, [&scn.viscosity(), &scn.elasticity()]);
+        assembly::add_boundary_terms(&mut b, &mesh, &dofs);
         let f = scn.load_vector(&mesh, &dofs);
         let contact_dofs = mesh
             .contact
@@ -234,6 +236,8 @@ pub enum RunError {
         length: f64,
         max: f64,
         g: f64,
+        /// The steps completed before this one.
+        partial: Box<Partial>,
     },
     #[error(
         "scenario `{scenario}`, step {step} (t = {t:e}): the solver `{solver}` solved the step's \
@@ -257,6 +261,8 @@ pub enum RunError {
         free: f64,
         ratio: f64,
         g: f64,
+        /// The steps completed before this one.
+        partial: Box<Partial>,
     },
     #[error(
         "{}. What may help: another step solver (`proxgrad` and `newton-no-line-search` \
@@ -265,16 +271,33 @@ pub enum RunError {
         self.failed_step().unwrap_or_default()
     )]
     Step {
-        scenario: String,
+        scenario: Box<str>,
         step: usize,
         t: f64,
-        solver: String,
+        solver: Box<str>,
         status: Status,
         iterations: usize,
         residual: f64,
         certificate: f64,
         tol: f64,
+        /// The steps completed before this one.
+        partial: Box<Partial>,
     },
+}
+
+/// What a run had done when a step failed: the record of every step it completed,
+/// the last formed field and the contact states of the last completed step.
+#[derive(Debug, Clone, Default)]
+pub struct Partial {
+    /// One record per completed step, in order (each certified).
+    pub records: Vec<StepRecord>,
+    /// The last field the loop formed, $u_n$ on the free dofs, with its step $n$: the
+    /// general loop forms every step's, the reduced loop only some (see
+    /// [`crate::simulation::Observer::wants_field`]). `None` when no step completed
+    /// or none formed its field.
+    pub field: Option<(usize, Vec<f64>)>,
+    /// The contact states after the last completed step (empty when none completed).
+    pub contact: Vec<ContactState>,
 }
 
 pub use crate::memory::{available_memory, check_memory, check_memory_dofs, memory_estimate};
@@ -334,12 +357,36 @@ impl RunError {
                 residual,
                 certificate,
                 tol,
+                ..
             } => Some(format!(
                 "scenario `{scenario}`, step {step} (t = {t:.6e}) failed: {}",
                 step_failure(solver, status, iterations, residual, certificate, tol)
             )),
             _ => None,
         }
+    }
+
+    /// What the run had done when its step failed (a step's failure: [`RunError::Step`],
+    /// [`RunError::Cancellation`], [`RunError::Unresolvable`]); `None` for an error
+    /// before the first step.
+    pub fn partial(&self) -> Option<&Partial> {
+        match self {
+            RunError::Step { partial, .. }
+            | RunError::Cancellation { partial, .. }
+            | RunError::Unresolvable { partial, .. } => Some(partial),
+            _ => None,
+        }
+    }
+
+    /// The error with the run's completed steps attached (a step's failure only).
+    pub(crate) fn with_partial(mut self, done: Partial) -> RunError {
+        match &mut self {
+            RunError::Step { partial, .. }
+            | RunError::Cancellation { partial, .. }
+            | RunError::Unresolvable { partial, .. } => **partial = done,
+            _ => {}
+        }
+        self
     }
 }
 
@@ -473,14 +520,28 @@ pub(crate) fn run_batch_states(
                 au.iter().zip(f).map(|(au, f)| au + kf * f).collect()
             })
             .collect();
-        let infos;
-        (u, infos) = op.step(&b, scns, solvers, &mut r, &mut timings);
+        let (next, infos) = op.step(&b, scns, solvers, &mut r, &mut timings);
         let time_s = t0.elapsed().as_secs_f64();
         for (i, info) in infos.into_iter().enumerate() {
             let (rec, states) = timed(&mut timings.certificates, || {
-                op.record(&u[i], &b[i], &mut au[i], &scns[i], (step, t, time_s), info)
+                op.record(
+                    &next[i],
+                    &b[i],
+                    &mut au[i],
+                    &scns[i],
+                    (step, t, time_s),
+                    info,
+                )
             });
-            check_resolution(&rec.certificate, &scns[i], step)?;
+            // A failure keeps the steps done: records, u_{n-1} and its contact states.
+            let done = |e: RunError| {
+                e.with_partial(Partial {
+                    records: records[i].clone(),
+                    field: (step > 1).then(|| (step - 1, u[i].clone())),
+                    contact: contact[i].clone(),
+                })
+            };
+            check_resolution(&rec.certificate, &scns[i], step).map_err(done)?;
             let failed = rec.status != Status::Converged
                 || rec.certificate.max().is_nan()
                 || rec.certificate.max() > opt.certificate_tol;
@@ -498,26 +559,28 @@ pub(crate) fn run_batch_states(
                     opt.certificate_tol,
                     free,
                 ) {
-                    return Err(e);
+                    return Err(done(e));
                 }
             }
             if failed {
-                return Err(RunError::Step {
-                    scenario: scns[i].name.clone(),
+                return Err(done(RunError::Step {
+                    scenario: scns[i].name.as_str().into(),
                     step,
                     t,
-                    solver: solvers[i].name().to_string(),
+                    solver: solvers[i].name().into(),
                     status: rec.status,
                     iterations: rec.iterations,
                     residual: rec.solver_residual,
                     certificate: rec.certificate.max(),
                     tol: opt.certificate_tol,
-                });
+                    partial: Box::default(),
+                }));
             }
             records[i].push(rec);
-            observe(i, step, t, &u[i], &states);
+            observe(i, step, t, &next[i], &states);
             contact[i] = states;
         }
+        u = next;
     }
     timings.steps = clock.elapsed().as_secs_f64();
     // ANCHOR_END: time_loop
@@ -566,6 +629,7 @@ pub(crate) fn cancellation(
         free,
         ratio: free / g.abs(),
         g,
+        partial: Box::default(),
     })
 }
 
@@ -591,6 +655,7 @@ pub(crate) fn check_resolution(
         length,
         max: RESOLUTION_MAX,
         g: scn.g,
+        partial: Box::default(),
     })
 }
 

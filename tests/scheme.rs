@@ -148,3 +148,67 @@ fn literal_scenario_stays_off_the_law() {
     assert!(max_unu < 1e-4, "max |u_nu| = {max_unu}");
     assert!(r.records.iter().all(|s| s.certificate.max() < 1e-10));
 }
+
+/// Newton that gives up (with `MaxIterations`) from step `fail_at` on: a failure at a
+/// known step.
+struct GivesUp {
+    inner: Newton,
+    calls: usize,
+    fail_at: usize,
+}
+
+impl StepSolver for GivesUp {
+    fn name(&self) -> &'static str {
+        "gives-up"
+    }
+    fn solve(&mut self, p: &evhi::step::StepProblem, r: &mut Vec<f64>) -> evhi::step::Info {
+        self.calls += 1;
+        let mut info = self.inner.solve(p, r);
+        if self.calls >= self.fail_at {
+            info.status = evhi::step::Status::MaxIterations;
+        }
+        info
+    }
+}
+
+/// A failed run's error carries what it had done: the records of the steps before the
+/// failing one, the field and contact states of the last of them, and the failing
+/// step's own numbers, on both time loops.
+#[test]
+fn a_failed_run_keeps_its_completed_steps() {
+    use evhi::prelude::*;
+    for path in [Loop::General, Loop::Reduced] {
+        let settings = RunSettings::default()
+            .with_n(8)
+            .with_steps(6)
+            .with_path(path);
+        let sim = Simulation::new(Scenario::load("figure").unwrap(), settings).unwrap();
+        let mut solver = GivesUp {
+            inner: Newton::default(),
+            calls: 0,
+            fail_at: 4,
+        };
+        let e = sim.solve_with(&mut solver, &mut ()).unwrap_err();
+        let RunError::Step {
+            step, t, solver, ..
+        } = &e
+        else {
+            panic!("{path:?}: {e}");
+        };
+        assert_eq!((*step, &**solver), (4, "gives-up"), "{path:?}");
+        assert!((t - 4.0 * sim.scenario().t_end() / 6.0).abs() < 1e-12);
+        let partial = e.partial().expect("a step's failure keeps its partial run");
+        let steps: Vec<usize> = partial.records.iter().map(|r| r.step).collect();
+        assert_eq!(steps, [1, 2, 3], "{path:?}");
+        assert!(partial.records.iter().all(|r| r.certificate.max() <= 1e-10));
+        assert_eq!(partial.contact.len(), sim.mesh().contact.len(), "{path:?}");
+        let (n, u) = partial.field.as_ref().expect("a formed field");
+        assert!(
+            *n <= 3 && u.len() == sim.discretisation().dofs.count,
+            "{path:?}"
+        );
+        if path == Loop::General {
+            assert_eq!(*n, 3);
+        }
+    }
+}

@@ -62,7 +62,7 @@ pub fn run(ctx: &Ctx, levels: &[usize], repeat: usize, machine: &str) -> Result<
             let b = Body::new(
                 &file,
                 m,
-                &[("clamped".into(), "clamped".into())],
+                &[("clamped".into(), evhi::support::Hold::Clamped)],
                 "bottom",
                 vec![PartTraction {
                     part: "top".into(),

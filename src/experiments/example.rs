@@ -108,12 +108,9 @@ impl Drop for Scratch {
     }
 }
 
-/// The three studies of `evhi study` on the worked example, in quick mode, run as the
-/// command line would run them: their Markdown summaries into
+/// The studies of `evhi study` (every entry of the registry) on the worked example, in
+/// quick mode, run as the command line would run them: their Markdown summaries into
 /// `data/example_study_*.md`, their figures into `figures/example_study_*`.
-/// A figure's stem in a study's directory and the suffix it gets here.
-type Stem = (&'static str, &'static str);
-
 fn studies(
     ctx: &Ctx,
     scratch: &Scratch,
@@ -121,7 +118,7 @@ fn studies(
     toml: &str,
     path: &str,
 ) -> Result<(), ExpError> {
-    use evhi::study::{ConvergenceArgs, StabilityArgs, Study, TimeArgs, run_as};
+    use evhi::study::{STUDIES, Study, run_as};
     // The studies read the scenario from a file: the compiled-in text, so that the
     // example runs from any working directory (the repository's path named in
     // `path` is what the summaries quote).
@@ -129,44 +126,19 @@ fn studies(
     std::fs::write(&file, toml).map_err(io(&file))?;
     let scenario = file.display().to_string();
     let scratch = scratch.0.join("studies");
-    ctx.add_units(3);
-    let [convergence, time, stability] = evhi::study::STUDIES;
-    // Each study's figures (stems in its directory) and the names they get here.
-    let runs: [(&str, &[Stem], Study); 3] = [
-        (
-            convergence,
-            &[("convergence", ""), ("split", "_split")],
-            Study::Convergence(ConvergenceArgs {
-                scenario: scenario.clone(),
-                quick: true,
-                solver: None,
-                announce: false,
-                out: scratch.join(convergence),
-            }),
-        ),
-        (
-            time,
-            &[("time_study", "")],
-            Study::Time(TimeArgs {
-                scenario: scenario.clone(),
-                quick: true,
-                n: None,
-                solver: None,
-                out: scratch.join(time),
-            }),
-        ),
-        (
-            stability,
-            &[(stability, "")],
-            Study::Stability(StabilityArgs {
-                scenario: scenario.clone(),
-                quick: true,
-                solver: None,
-                out: scratch.join(stability),
-            }),
-        ),
-    ];
-    for (study, stems, args) in runs {
+    ctx.add_units(STUDIES.len());
+    // Every study of the registry, as `evhi study NAME --scenario FILE --quick --out DIR`
+    // reads it.
+    for entry in &STUDIES {
+        let (study, stems) = (entry.name, entry.figures);
+        let out = scratch.join(study).display().to_string();
+        let words = [study, "--scenario", &scenario, "--quick", "--out", &out];
+        let args = Study::parse(&words).map_err(|e| {
+            ExpError::File(evhi::output::FileError::Table {
+                path: format!("evhi study {study}"),
+                message: e.to_string(),
+            })
+        })?;
         let command = format!("study {study} --scenario {path} --quick --out DIR");
         let md = run_as(args, &command).map_err(|e| {
             ExpError::File(evhi::output::FileError::Table {

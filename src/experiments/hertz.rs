@@ -369,7 +369,7 @@ impl Figure for PressureFig {
         let mut chart = ChartBuilder::on(root)
             .caption(
                 "Hertz: contact pressure of a cylinder on a rigid plane",
-                ("sans-serif", 26),
+                (evhi::output::plot::FONT, 26),
             )
             .margin(15)
             .x_label_area_size(50)

@@ -351,7 +351,7 @@ fn run_rules_refined(
                 || certificate > CERTIFICATE_TOL
             {
                 return Err(RunError::Step {
-                    scenario: format!("manufactured {} ({} rule)", sol.name(), rule.name()),
+                    scenario: format!("manufactured {} ({} rule)", sol.name(), rule.name()).into(),
                     step,
                     t,
                     solver: solvers[i].name().into(),
@@ -360,6 +360,7 @@ fn run_rules_refined(
                     residual: rec.solver_residual,
                     certificate,
                     tol: CERTIFICATE_TOL,
+                    partial: Box::default(),
                 });
             }
             let (err_e, err_v_sq) =

@@ -6,7 +6,7 @@ use super::{Problem, Scenario};
 use crate::body::{Body, Foundation, PartDisplacement, PartTraction};
 use crate::error::{InputError, bounded, finite, in_range, positive};
 use crate::geometry::Pattern;
-use crate::geometry::{Geometry, Hold, Side, Traction};
+use crate::geometry::{Geometry, Side, Traction};
 use crate::history::History;
 use crate::law::file::{LawEntry, check_none, law_of};
 use crate::material::{RawMaterial, elasticity_from};
@@ -183,17 +183,11 @@ fn truncate(text: &str, max: usize) -> String {
 /// `loads.traction[0]` in a file, `f2` on the command line).
 pub(super) fn check_traction(geo: &Geometry, t: &Traction) -> Result<(), InputError> {
     for s in geo.holds_on(t.side, t.from, t.to) {
-        let c = t.side.normal();
-        let acts = match s.hold {
-            Hold::Clamped => t.f != [0.0, 0.0],
-            Hold::Rollers => t.f[c] != 0.0,
-            Hold::Free => false,
-        };
-        if acts {
-            let what = if s.hold == Hold::Clamped {
-                "[0, 0]".to_string()
-            } else {
-                format!("a zero {} component", ["x", "y"][c])
+        let fixes = s.hold.fixes(t.side.normal());
+        if (0..2).any(|c| fixes[c] && t.f[c] != 0.0) {
+            let what = match fixes {
+                [true, true] => "[0, 0]".to_string(),
+                _ => format!("a zero {} component", if fixes[0] { "x" } else { "y" }),
             };
             return Err(InputError::field(
                 &t.field,
@@ -593,28 +587,7 @@ fn body_from(
     };
     let bytes = crate::msh::read_bytes(&path, file)?;
     let mesh = crate::msh::parse(&bytes, file)?;
-    let supports = match &rg.supports {
-        None => vec![],
-        Some(toml::Value::Table(t)) => t
-            .iter()
-            .map(|(k, v)| match v {
-                toml::Value::String(s) => Ok((k.clone(), s.clone())),
-                other => Err(InputError::field(
-                    format!("geometry.supports.{k}"),
-                    other.type_str(),
-                    "\"clamped\", \"rollers\" or \"free\": a mesh's part is held whole",
-                )),
-            })
-            .collect::<Result<_, _>>()?,
-        Some(other) => {
-            return Err(InputError::field(
-                "geometry.supports",
-                other.type_str(),
-                "a table of the mesh's parts, { part = \"clamped\" | \"rollers\" | \"free\" } \
-                 (the presets are the rectangle's)",
-            ));
-        }
-    };
+    let supports = crate::support::file::parts(rg.supports.as_ref())?;
     let contact = match &rg.contact {
         Some(toml::Value::String(s)) => s.clone(),
         other => {

@@ -502,7 +502,7 @@ impl Scenario {
                 .all(|(p, f)| (0..2).all(|c| !f[c] || phi0 * self.f0[c] * shape(p[0]) == 0.0))
         } else {
             self.geometry.supports.iter().all(|s| {
-                let fixed = s.hold.fixes(s.side);
+                let fixed = s.hold.fixes(s.side.normal());
                 [s.from, 0.5 * (s.from + s.to), s.to].iter().all(|&a| {
                     let x = match s.side {
                         Side::Left => 0.0,
@@ -605,6 +605,19 @@ impl Scenario {
     /// The viscosity tensor $\mathcal C$ (zero without viscosity).
     pub fn viscosity(&self) -> Isotropic {
         Isotropic::viscosity(self.alpha, self.beta)
+    }
+
+    /// The supports that add a boundary term to the elasticity operator $B$
+    /// ([`crate::support::Hold::stiffness`]), each as the file names it, with its kind.
+    /// The reduced time loop needs $A = cB$, which such a term, in $B$ alone, breaks
+    /// unless $A = 0$ (an elastic or steady problem).
+    pub fn supports_with_stiffness(&self) -> Vec<(String, crate::support::Hold)> {
+        let rectangle = (self.geometry.supports.iter()).map(|s| (&s.field, s.hold));
+        let parts = (self.body.iter()).flat_map(|b| b.supports.iter().map(|s| (&s.field, s.hold)));
+        (rectangle.chain(parts))
+            .filter(|(_, h)| h.stiffness() > 0.0)
+            .map(|(f, h)| (f.clone(), h))
+            .collect()
     }
 
     /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like

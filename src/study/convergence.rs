@@ -3,10 +3,10 @@
 use super::corners::{Edge, clamp_end_exponent, wedge_exponents};
 use super::graded;
 use super::{ExpError, coarsest, pct, study_ctx};
-use crate::geometry::Hold;
 use crate::output::csv::Table;
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
+use crate::support::Hold;
 use std::fmt::Write as _;
 
 /// The exponent a singular point predicts (the smallest real part in $(0, 1)$), or
@@ -16,7 +16,7 @@ fn predicted(s: &crate::geometry::Singularity, kappa: f64) -> f64 {
     let edge = |h: Hold| match h {
         Hold::Clamped => Some(Edge::Clamped),
         Hold::Free => Some(Edge::Free),
-        Hold::Rollers => None,
+        _ => None,
     };
     let (Some(a), Some(b)) = (edge(s.holds[0]), edge(s.holds[1])) else {
         return f64::NAN;

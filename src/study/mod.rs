@@ -31,9 +31,66 @@ pub use ctx::Ctx;
 pub use error::ExpError;
 mod time;
 
-/// The studies of `evhi study` (the experiments' computations on any scenario), by
-/// name: `convergence`, `time`, `stability`.
-pub const STUDIES: [&str; 3] = ["convergence", "time", "stability"];
+/// A study of `evhi study`: its name on the command line and the figures it writes.
+/// Its options and help are its [`Study`] variant's, which a test ties to the entry.
+#[derive(Debug)]
+pub struct StudyEntry {
+    /// Its subcommand's name (`evhi study NAME`).
+    pub name: &'static str,
+    /// The stems of the figures it writes in its directory (each as PNG and SVG), with
+    /// the suffix the book's worked example gives its copy of each.
+    pub figures: &'static [(&'static str, &'static str)],
+}
+
+/// The studies of `evhi study` (the experiments' computations on any scenario), each
+/// spelled once: the worked example of `evhi reproduce` runs every entry, and a test
+/// checks that the command line offers exactly these. A new study is its module, its
+/// [`Study`] variant with its arm in [`run_as`], and its entry here.
+pub const STUDIES: [StudyEntry; 3] = [
+    StudyEntry {
+        name: "convergence",
+        figures: &[("convergence", ""), ("split", "_split")],
+    },
+    StudyEntry {
+        name: "time",
+        figures: &[("time_study", "")],
+    },
+    StudyEntry {
+        name: "stability",
+        figures: &[("stability", "")],
+    },
+];
+
+/// The command line's words of a study, parsed as `evhi study WORDS…` parses them.
+#[derive(clap::Parser)]
+#[command(name = "study")]
+struct Words {
+    #[command(subcommand)]
+    study: Study,
+}
+
+impl Study {
+    /// The study that `evhi study WORDS…` runs (`words` from the study's name on), with
+    /// the command line's defaults and checks: `Study::parse(&["time", "--scenario",
+    /// "figure", "--quick", "--out", "runs/t"])`.
+    pub fn parse(words: &[&str]) -> Result<Study, clap::Error> {
+        use clap::Parser;
+        Ok(Words::try_parse_from(std::iter::once("study").chain(words.iter().copied()))?.study)
+    }
+
+    /// Its registry entry.
+    pub fn entry(&self) -> &'static StudyEntry {
+        let name = match self {
+            Study::Convergence(_) => "convergence",
+            Study::Time(_) => "time",
+            Study::Stability(_) => "stability",
+        };
+        STUDIES
+            .iter()
+            .find(|e| e.name == name)
+            .expect("every study has an entry (tested)")
+    }
+}
 
 #[derive(clap::Subcommand)]
 pub enum Study {
@@ -288,4 +345,26 @@ pub(super) fn write_scenario(
         format!("# The scenario of this study, as read.\n# evhi {command}\n{text}").as_bytes(),
     )?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{STUDIES, Study};
+
+    /// Every entry of the registry is a subcommand of `evhi study`, and every
+    /// subcommand an entry, in the same order; each parses with the options the worked
+    /// example gives it and names its own entry.
+    #[test]
+    fn the_command_line_offers_the_registry() {
+        use clap::Subcommand;
+        let cmd = Study::augment_subcommands(clap::Command::new("study"));
+        let names: Vec<&str> = cmd.get_subcommands().map(|c| c.get_name()).collect();
+        let entries: Vec<&str> = STUDIES.iter().map(|e| e.name).collect();
+        assert_eq!(names, entries);
+        for e in &STUDIES {
+            let words = [e.name, "--scenario", "figure", "--quick", "--out", "x"];
+            let study = Study::parse(&words).unwrap();
+            assert_eq!(study.entry().name, e.name);
+        }
+    }
 }
