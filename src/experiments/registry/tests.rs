@@ -87,5 +87,5 @@ fn book_tables_are_listed_with_their_writers() {
             t.file
         );
     }
-    assert_eq!(seen.len(), 17);
+    assert_eq!(seen.len(), 18);
 }
