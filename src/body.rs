@@ -315,18 +315,25 @@ impl Body {
                     held.join(", ")
                 }
             ),
-            format!(
-                "  Gamma_3: part \"{}\", {} nodes along it, initial gaps g0 from {:e} to {:e} \
-                 from the foundation through ({}, {}) with normal ({}, {})",
-                self.contact,
-                self.gamma3.len(),
-                self.gap0.iter().copied().fold(f64::INFINITY, f64::min),
-                self.gap0.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                self.foundation.point[0],
-                self.foundation.point[1],
-                self.foundation.normal[0],
-                self.foundation.normal[1]
-            ),
+            {
+                let lo = self.gap0.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = self.gap0.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let gaps = if lo == 0.0 && hi == 0.0 {
+                    "no initial gap (on the foundation line)".to_string()
+                } else {
+                    format!("initial gaps g0 from {lo:e} to {hi:e}")
+                };
+                format!(
+                    "  Gamma_3: part \"{}\", {} nodes along it, {gaps}, the foundation through \
+                     ({}, {}) with normal ({}, {})",
+                    self.contact,
+                    self.gamma3.len(),
+                    self.foundation.point[0],
+                    self.foundation.point[1],
+                    self.foundation.normal[0],
+                    self.foundation.normal[1]
+                )
+            },
         ];
         if let Some(d) = &self.displacement {
             out.push(format!(

@@ -214,12 +214,14 @@ impl<B: DrawingBackend> DrawingBackend for Raster<B> {
             return Ok(());
         }
         let (pixels, (width, height)) = self.pixels(text, style.size());
-        let dx = match style.anchor().h_pos {
+        // Called by its path: `.anchor(` is the law's word in this house (tests/house.rs).
+        let at = BackendTextStyle::anchor(style);
+        let dx = match at.h_pos {
             HPos::Left => 0,
             HPos::Right => -width,
             HPos::Center => -width / 2,
         };
-        let dy = match style.anchor().v_pos {
+        let dy = match at.v_pos {
             VPos::Top => 0,
             VPos::Center => -height / 2,
             VPos::Bottom => -height,
