@@ -430,94 +430,75 @@ impl Scenario {
         let f0_modulation = bounded("loads.f0_modulation", raw.loads.f0_modulation, 1e6)?;
         let law = law_of(&raw.law)?;
         check_none(&law, g)?;
-        if let Some(file) = mesh_file {
+        // The body: a mesh file's, or the rectangle's keys.
+        let (geometry, pattern, tractions, body) = if let Some(file) = mesh_file {
             let rg = rg.expect("a mesh names a [geometry]");
             let body = body_from(rg, file, source, &raw.loads, f2)?;
             let geometry = super::body_geometry(&body);
-            let scn = Scenario {
-                name: raw.name,
-                description: raw.description,
-                t_end,
-                g,
-                problem,
-                e,
-                kappa,
-                material_form,
-                alpha,
-                beta,
-                f0,
-                f2,
-                tractions: vec![],
-                f0_modulation,
-                history,
-                law,
-                geometry,
-                pattern: Pattern::File,
-                body: Some(body),
+            (geometry, Pattern::File, vec![], Some(body))
+        } else {
+            if rg.is_some_and(|g| g.foundation.is_some()) {
+                return Err(InputError::field(
+                    "geometry.foundation",
+                    "a value",
+                    "nothing on the rectangle, whose foundation is the line y = 0 under Gamma_3 \
+                     (a foundation is given on a mesh scene, [geometry] mesh = \"body.msh\")",
+                ));
+            }
+            if rg.is_some_and(|g| g.displacement.is_some()) {
+                return Err(InputError::field(
+                    "geometry.displacement",
+                    "a value",
+                    "nothing on the rectangle (a displacement is prescribed on a named part of a \
+                     mesh scene, [geometry] mesh = \"body.msh\")",
+                ));
+            }
+            let contact = match rg.and_then(|g| g.contact.as_ref()) {
+                None => None,
+                Some(toml::Value::Array(items)) => Some(
+                    items
+                        .iter()
+                        .map(|v| match v {
+                            toml::Value::Float(x) => Ok(*x),
+                            toml::Value::Integer(x) => Ok(*x as f64),
+                            other => Err(InputError::field(
+                                "geometry.contact",
+                                other.type_str(),
+                                "two numbers [x0, x1]: Gamma_3 = [x0, x1] x {0} on the bottom",
+                            )),
+                        })
+                        .collect::<Result<Vec<f64>, _>>()?,
+                ),
+                Some(other) => {
+                    return Err(InputError::field(
+                        "geometry.contact",
+                        other,
+                        "two numbers [x0, x1] on the rectangle (Gamma_3 = [x0, x1] x {0}); a part's \
+                         name only on a mesh scene ([geometry] mesh = \"body.msh\")",
+                    ));
+                }
             };
-            scn.check_load_scale()?;
-            return Ok(scn);
-        }
-        if rg.is_some_and(|g| g.foundation.is_some()) {
-            return Err(InputError::field(
-                "geometry.foundation",
-                "a value",
-                "nothing on the rectangle, whose foundation is the line y = 0 under Gamma_3 \
-                 (a foundation is given on a mesh scene, [geometry] mesh = \"body.msh\")",
-            ));
-        }
-        if rg.is_some_and(|g| g.displacement.is_some()) {
-            return Err(InputError::field(
-                "geometry.displacement",
-                "a value",
-                "nothing on the rectangle (a displacement is prescribed on a named part of a \
-                 mesh scene, [geometry] mesh = \"body.msh\")",
-            ));
-        }
-        let contact = match rg.and_then(|g| g.contact.as_ref()) {
-            None => None,
-            Some(toml::Value::Array(items)) => Some(
-                items
-                    .iter()
-                    .map(|v| match v {
-                        toml::Value::Float(x) => Ok(*x),
-                        toml::Value::Integer(x) => Ok(*x as f64),
-                        other => Err(InputError::field(
-                            "geometry.contact",
-                            other.type_str(),
-                            "two numbers [x0, x1]: Gamma_3 = [x0, x1] x {0} on the bottom",
-                        )),
-                    })
-                    .collect::<Result<Vec<f64>, _>>()?,
-            ),
-            Some(other) => {
-                return Err(InputError::field(
-                    "geometry.contact",
-                    other,
-                    "two numbers [x0, x1] on the rectangle (Gamma_3 = [x0, x1] x {0}); a part's \
-                     name only on a mesh scene ([geometry] mesh = \"body.msh\")",
-                ));
-            }
+            let geometry = Geometry::from_toml(
+                rg.and_then(|g| g.width),
+                rg.and_then(|g| g.height),
+                rg.and_then(|g| g.supports.as_ref()),
+                contact.as_deref(),
+            )?;
+            let pattern = match rg.and_then(|g| g.pattern.as_deref()) {
+                None | Some("diagonal") => Pattern::Diagonal,
+                Some("antidiagonal") => Pattern::Antidiagonal,
+                Some("crisscross") => Pattern::CrissCross,
+                Some(other) => {
+                    return Err(InputError::field(
+                        "geometry.pattern",
+                        other,
+                        "\"diagonal\" (the paper's), \"antidiagonal\" or \"crisscross\"",
+                    ));
+                }
+            };
+            let tractions = tractions_from(&raw.loads, f2, &geometry)?;
+            (geometry, pattern, tractions, None)
         };
-        let geometry = Geometry::from_toml(
-            rg.and_then(|g| g.width),
-            rg.and_then(|g| g.height),
-            rg.and_then(|g| g.supports.as_ref()),
-            contact.as_deref(),
-        )?;
-        let pattern = match rg.and_then(|g| g.pattern.as_deref()) {
-            None | Some("diagonal") => Pattern::Diagonal,
-            Some("antidiagonal") => Pattern::Antidiagonal,
-            Some("crisscross") => Pattern::CrissCross,
-            Some(other) => {
-                return Err(InputError::field(
-                    "geometry.pattern",
-                    other,
-                    "\"diagonal\" (the paper's), \"antidiagonal\" or \"crisscross\"",
-                ));
-            }
-        };
-        let tractions = tractions_from(&raw.loads, f2, &geometry)?;
         let scn = Scenario {
             name: raw.name,
             description: raw.description,
@@ -537,7 +518,7 @@ impl Scenario {
             law,
             geometry,
             pattern,
-            body: None,
+            body,
         };
         scn.check_load_scale()?;
         Ok(scn)
