@@ -4,22 +4,11 @@
 
 use super::{book_tables, names};
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn src() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
-}
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let p = entry.unwrap().path();
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|e| e == "rs") {
-            out.push(p);
-        }
-    }
-}
+#[path = "../../../tests/common/files.rs"]
+mod files;
+use files::{rust_files, src};
 
 /// The registry of experiments is the one place an experiment's name is spelled: the
 /// CLI's values, `reproduce paper`, the scheduling, the dispatcher and every table's
