@@ -246,6 +246,9 @@ fn law_none_is_the_limit_alone() {
         e.contains("g") && e.contains("nothing acts on Gamma_3"),
         "{e}"
     );
+    // The library's builder refuses the same scene the same way.
+    let b = scene(&none).without_limit().unwrap_err().to_string();
+    assert_eq!(b, e.lines().next().unwrap_or(&e).to_string(), "{b}");
     // A [law] table's own errors still name their line.
     let e = err(&format!(
         "{}[law]\nbreakpoints = [0.0]\nslope = [0.0]\n",

@@ -407,10 +407,12 @@ impl Scenario {
         Ok(self)
     }
 
-    /// Removes the unilateral limit: $g = +\infty$, as the file's `g = "none"`.
-    pub fn without_limit(mut self) -> Self {
+    /// Removes the unilateral limit: $g = +\infty$, as the file's `g = "none"`; refused,
+    /// as the file is, where the law is `"none"` too (nothing would act on $\Gamma_3$).
+    pub fn without_limit(mut self) -> Result<Self, InputError> {
+        crate::law::file::check_none(&self.law, f64::INFINITY)?;
         self.g = f64::INFINITY;
-        self
+        Ok(self)
     }
 
     /// Overrides the loads (validated).

@@ -104,7 +104,7 @@ pub fn write_hold(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
             let scene = if limit {
                 scn.clone()
             } else {
-                scn.clone().without_limit()
+                scn.clone().without_limit()?
             };
             // Per rule, the runs of every N.
             let mut runs: Vec<Vec<ExactRun>> = vec![vec![]; rules.len()];
