@@ -32,7 +32,10 @@ pub fn stiffness_all<const T: usize>(
     let mut vals: [Vec<f64>; T] = std::array::from_fn(|_| vec![0.0; row_idx.len()]);
     for tri in &mesh.triangles {
         let p = tri.map(|v| mesh.nodes[v]);
-        let ke: [_; T] = std::array::from_fn(|t| element_matrix(p, &d[t]));
+        let mut ke: [_; T] = std::array::from_fn(|t| element_matrix(p, &d[t]));
+        if dofs.has_frame() {
+            in_frame(&mut ke, tri, dofs);
+        }
         let gdof: [Option<usize>; 6] = std::array::from_fn(|a| dofs.of(tri[a / 2], a % 2));
         for (b, gb) in gdof.iter().enumerate() {
             let Some(gb) = *gb else { continue };
@@ -51,6 +54,33 @@ pub fn stiffness_all<const T: usize>(
         }
     }
     vals.map(|v| SparseColMat::new(symbolic.clone(), v))
+}
+
+/// Element matrices in the contact frame ([`crate::frame`]): $Q^\top K_e Q$ with $Q$
+/// block diagonal, $R = [\tau\ e]$ at each vertex that carries the frame.
+fn in_frame<const T: usize>(
+    ke: &mut [nalgebra::SMatrix<f64, 6, 6>; T],
+    tri: &[usize; 3],
+    dofs: &Dofs,
+) {
+    let mut q = nalgebra::SMatrix::<f64, 6, 6>::identity();
+    let mut any = false;
+    for (a, &v) in tri.iter().enumerate() {
+        if let Some(f) = dofs.frame_at(v) {
+            any = true;
+            let r = f.matrix();
+            for (c, row) in r.iter().enumerate() {
+                for (k, x) in row.iter().enumerate() {
+                    q[(2 * a + c, 2 * a + k)] = *x;
+                }
+            }
+        }
+    }
+    if any {
+        for k in ke.iter_mut() {
+            *k = q.transpose() * *k * q;
+        }
+    }
 }
 
 /// The pattern of the P1 operators on the free dofs: column (v, c) holds both
@@ -91,18 +121,26 @@ pub fn add_boundary_terms(b: &mut SpMat, mesh: &Mesh, dofs: &Dofs) {
     for &(e, k) in &mesh.boundary_terms {
         let [pa, pb] = e.map(|v| mesh.nodes[v]);
         let m = k * (pb[0] - pa[0]).hypot(pb[1] - pa[1]) / 6.0;
-        for c in 0..2 {
-            for (i, j, w) in [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 2.0)] {
-                let (Some(r), Some(col)) = (dofs.of(e[i], c), dofs.of(e[j], c)) else {
-                    continue;
-                };
-                let range = b.symbolic().col_range(col);
-                let at = range.start
-                    + b.symbolic().row_idx()[range]
-                        .iter()
-                        .position(|&x| x == r)
-                        .expect("the pattern holds every edge coupling");
-                b.val_mut()[at] += w * m;
+        let r = e.map(|v| dofs.frame_at(v).map(|f| f.matrix()));
+        for (i, j, w) in [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 2.0)] {
+            // w m I between the two ends, in their frames: R_i^T R_j.
+            let block = crate::frame::rotate_block([[w * m, 0.0], [0.0, w * m]], r[i], r[j]);
+            for (c, row) in block.iter().enumerate() {
+                for (d, &val) in row.iter().enumerate() {
+                    let (Some(rw), Some(col)) = (dofs.of(e[i], c), dofs.of(e[j], d)) else {
+                        continue;
+                    };
+                    if val == 0.0 {
+                        continue;
+                    }
+                    let range = b.symbolic().col_range(col);
+                    let at = range.start
+                        + b.symbolic().row_idx()[range]
+                            .iter()
+                            .position(|&x| x == rw)
+                            .expect("the pattern holds every edge coupling");
+                    b.val_mut()[at] += val;
+                }
             }
         }
     }
@@ -129,13 +167,7 @@ pub fn load(
     modulation: f64,
 ) -> Vec<f64> {
     let mut f = vec![0.0; dofs.count];
-    let mut add = |node: usize, val: [f64; 2]| {
-        for (c, v) in val.iter().enumerate() {
-            if let Some(i) = dofs.of(node, c) {
-                f[i] += v;
-            }
-        }
-    };
+    let mut add = |node: usize, val: [f64; 2]| dofs.add_nodal(&mut f, node, val);
     for tri in &mesh.triangles {
         let p = tri.map(|v| mesh.nodes[v]);
         let area = 0.5 * twice_area(p);
@@ -306,11 +338,7 @@ impl crate::scenario::Scenario {
                     let [p, q] = e.map(|v| mesh.nodes[v]);
                     let len = (q[0] - p[0]).hypot(q[1] - p[1]);
                     for &v in e {
-                        for c in 0..2 {
-                            if let Some(i) = dofs.of(v, c) {
-                                f[i] += t.f[c] * len / 2.0;
-                            }
-                        }
+                        dofs.add_nodal(&mut f, v, [t.f[0] * len / 2.0, t.f[1] * len / 2.0]);
                     }
                 }
             }

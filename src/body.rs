@@ -18,8 +18,9 @@
 //! the limit $u\cdot n_f - g_{0,i} \le g$. With $\Gamma_3$ on the line and
 //! $n_f = (0, -1)$ that is the paper's $u_\nu = -u_y$. The gaps go with the contact
 //! nodes ([`crate::mesh::Mesh::gap`]); the step solvers see the contact variables
-//! $s_i = u_\nu - g_{0,i}$. A normal other than $(0, -1)$ (a change of basis at the
-//! contact nodes) is refused with the reason, never ignored.
+//! $s_i = u_\nu - g_{0,i}$. With a normal other than $(0, -1)$ the nodes of $\Gamma_3$
+//! carry their dofs in the contact frame of [`crate::frame`]; a support there must then
+//! hold a component along or across $n_f$ (or both), refused otherwise.
 //!
 //! A part may be pressed by a prescribed displacement $d$ (uniform, `displacement = { on
 //! = "part", u = [dx, dy] }`) in the components its support holds. It is solved as a
@@ -243,6 +244,7 @@ impl Body {
             }
         }
         let gamma3 = chain(&mesh, contact, &g3.edges)?;
+        held_in_frame(&mesh, &parts, &gamma3, &foundation)?;
         let gap0 = gaps(&mesh, contact, &gamma3, &foundation)?;
         for t in &tractions {
             let g = group(&format!("{}.on", t.field), &t.part)?;
@@ -498,8 +500,7 @@ impl Body {
 }
 
 /// The initial gaps of the contact nodes `gamma3` from `f`, refused where a node lies
-/// behind the line, and, in this version, where the normal is not the paper's (that
-/// would need a change of basis at the contact nodes, not only a check).
+/// behind the line.
 fn gaps(
     mesh: &MshMesh,
     name: &str,
@@ -530,16 +531,51 @@ fn gaps(
             ),
         ));
     }
-    if f.normal != [0.0, -1.0] {
-        return Err(InputError::field(
-            "geometry.foundation.normal",
-            format!("[{}, {}]", f.normal[0], f.normal[1]),
-            "[0, -1] in this version: the contact unknown is -u_y at each contact node; \
-             another normal needs a change of basis at the contact nodes, not yet \
-             implemented (turn the mesh so that the foundation lies below it)",
-        ));
-    }
     Ok(gap0)
+}
+
+/// Refuses a node of $\Gamma_3$ held in one component that is neither along nor across
+/// the foundation's normal: in the contact frame ([`crate::frame`]) that would tie
+/// the tangent and the normal coordinate, which a fixed dof cannot say.
+fn held_in_frame(
+    mesh: &MshMesh,
+    parts: &[PartSupport],
+    gamma3: &[usize],
+    f: &Foundation,
+) -> Result<(), InputError> {
+    let Some(frame) = crate::frame::Frame::of_normal(f.normal) else {
+        return Ok(());
+    };
+    let on: std::collections::HashSet<usize> = gamma3.iter().copied().collect();
+    for s in parts {
+        if s.fixes == [true, true] || s.fixes == [false, false] {
+            continue;
+        }
+        let c = usize::from(s.fixes[1]);
+        if frame.slot_of_axis(c).is_some() {
+            continue;
+        }
+        let g = mesh.group(&s.part).expect("checked");
+        if let Some(&v) = g.edges.iter().flatten().find(|v| on.contains(v)) {
+            let p = mesh.nodes[v];
+            return Err(InputError::field(
+                "geometry.foundation.normal",
+                format!("[{}, {}]", f.normal[0], f.normal[1]),
+                format!(
+                    "a normal along or across the {} axis that {} ({}) holds at the contact \
+                     node ({}, {}): a contact node carries its displacement along and across \
+                     n_f, and a roller holding a slanted mix of the two is not supported (clamp \
+                     the part, or end it before Gamma_3)",
+                    ["x", "y"][c],
+                    s.field,
+                    s.hold.name(),
+                    p[0],
+                    p[1]
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The nodes of the contact part `name` in order along it: its edges must form one

@@ -1,6 +1,8 @@
-//! Condensation onto the contact normal displacements $r = Pu$, $r_i = u_{\nu,i} = -u_{y,i}$.
+//! Condensation onto the contact normal displacements $r = Pu$, $r_i = u_{\nu,i} = -u_{y,i}$
+//! (minus the normal coordinate of the contact frame, [`crate::frame`], under a
+//! foundation whose normal is not the paper's).
 //!
-//! The condensed stiffness is the Schur complement of $K$ on the contact $y$-dofs,
+//! The condensed stiffness is the Schur complement of $K$ on the contact normal dofs,
 //! $S = (P K^{-1} P^\top)^{-1} = L_{CC} L_{CC}^\top$ (the sign of $P$ cancels), read off
 //! the factor ([`crate::linalg`]): no solve at all.
 

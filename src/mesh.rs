@@ -39,6 +39,10 @@ pub struct Mesh {
     /// ([`crate::body::Body::shift`]); zero on the rectangle, whose $\Gamma_3$ lies on
     /// the foundation.
     pub gap: Vec<f64>,
+    /// The foundation's outward unit normal $n_f$ (the paper's $(0, -1)$ unless a mesh
+    /// scene says otherwise). With another, the nodes of $\Gamma_3$ carry their dofs in
+    /// the contact frame of [`crate::frame`], and `fixed` gives their held components in it.
+    pub normal: [f64; 2],
     /// The rigid translation $d$ added to the computed field to give the body's
     /// displacement ([`crate::body::Body::shift`]); zero unless a mesh scene prescribes a
     /// displacement.
@@ -315,6 +319,7 @@ impl Mesh {
             n,
             ny,
             gap: vec![0.0; contact.len()],
+            normal: crate::frame::PAPER_NORMAL,
             shift: [0.0; 2],
             width: geo.width,
             height: geo.height,
@@ -336,8 +341,22 @@ impl Mesh {
     /// so that $h = W/(2n)$ labels it as it does a grid of the same contact segments.
     pub fn from_body(body: &crate::body::Body) -> Mesh {
         let ([width, height], _) = body.bounds();
-        let fixed = body.fixed();
+        let mut fixed = body.fixed();
         let gamma3 = body.gamma3.clone();
+        if let Some(frame) = crate::frame::Frame::of_normal(body.foundation.normal) {
+            // Held components of Gamma_3's nodes in the frame (checked by the body).
+            for &v in &gamma3 {
+                let mut slots = [false; 2];
+                for c in (0..2).filter(|&c| fixed[v][c]) {
+                    match (frame.slot_of_axis(c), fixed[v]) {
+                        (Some(k), _) => slots[k] = true,
+                        (None, [true, true]) => slots = [true, true],
+                        (None, _) => unreachable!("refused by Body::new"),
+                    }
+                }
+                fixed[v] = slots;
+            }
+        }
         let contact: Vec<usize> = gamma3.iter().copied().filter(|&v| !fixed[v][1]).collect();
         let mut boundary_terms = vec![];
         for s in &body.supports {
@@ -354,6 +373,7 @@ impl Mesh {
         Mesh {
             n: body.gamma3.len() - 1,
             gap,
+            normal: body.foundation.normal,
             shift: body.shift(),
             ny: 0,
             width,
@@ -500,12 +520,16 @@ impl Mesh {
     // ANCHOR_END: weights
 }
 
-/// Degrees of freedom: two per node, clamped nodes removed (or kept, for tests).
+/// Degrees of freedom: two per node, clamped nodes removed (or kept, for tests). A
+/// node of $\Gamma_3$ under a foundation whose normal is not the paper's carries its
+/// pair in the contact frame ([`crate::frame`]); `expand` and `gather` convert.
 #[derive(Debug, Clone)]
 pub struct Dofs {
     /// `map[2 * node + c]` is the dof of component `c` of `node`, if free.
     pub map: Vec<Option<usize>>,
     pub count: usize,
+    /// The contact frame and which nodes carry it; `None` when every pair is Cartesian.
+    frame: Option<(crate::frame::Frame, Vec<bool>)>,
 }
 
 impl Dofs {
@@ -523,26 +547,62 @@ impl Dofs {
                 }
             }
         }
-        Dofs { map, count }
+        let frame = crate::frame::Frame::of_normal(mesh.normal).map(|f| {
+            let mut on = vec![false; mesh.nodes.len()];
+            for &v in &mesh.gamma3 {
+                on[v] = true;
+            }
+            (f, on)
+        });
+        Dofs { map, count, frame }
     }
-    /// The dof of component `c` (0 = x, 1 = y) of `node`.
+    /// The dof of component `c` (0 = x, 1 = y) of `node`: of the frame's
+    /// (tangent, normal into the body) at a node that carries the contact frame.
     pub fn of(&self, node: usize, c: usize) -> Option<usize> {
         self.map[2 * node + c]
     }
-    /// Expands a vector of free dofs to one value pair per node (zero where clamped).
+    /// The contact frame of `node`, if it carries one.
+    pub fn frame_at(&self, node: usize) -> Option<crate::frame::Frame> {
+        self.frame
+            .as_ref()
+            .and_then(|(f, on)| on[node].then_some(*f))
+    }
+    /// Whether some node carries the contact frame.
+    pub fn has_frame(&self) -> bool {
+        self.frame.is_some()
+    }
+    /// Expands a vector of free dofs to one Cartesian value pair per node (zero where
+    /// clamped).
     pub fn expand(&self, u: &[f64]) -> Vec<[f64; 2]> {
-        self.map
+        let mut out: Vec<[f64; 2]> = self
+            .map
             .chunks(2)
             .map(|d| [d[0].map_or(0.0, |i| u[i]), d[1].map_or(0.0, |i| u[i])])
-            .collect()
+            .collect();
+        if let Some((f, on)) = &self.frame {
+            for (val, _) in out.iter_mut().zip(on).filter(|(_, on)| **on) {
+                *val = f.to_cartesian(*val);
+            }
+        }
+        out
+    }
+    /// Adds the Cartesian nodal force `val` at `node` into `f` on its free dofs.
+    pub fn add_nodal(&self, f: &mut [f64], node: usize, val: [f64; 2]) {
+        let val = self.frame_at(node).map_or(val, |fr| fr.to_frame(val));
+        for (c, x) in val.iter().enumerate() {
+            if let Some(i) = self.of(node, c) {
+                f[i] += x;
+            }
+        }
     }
 }
 
 impl Dofs {
-    /// Gathers one value pair per node into a vector of free dofs.
+    /// Gathers one Cartesian value pair per node into a vector of free dofs.
     pub fn gather(&self, nodal: &[[f64; 2]]) -> Vec<f64> {
         let mut u = vec![0.0; self.count];
         for (v, val) in nodal.iter().enumerate() {
+            let val = self.frame_at(v).map_or(*val, |fr| fr.to_frame(*val));
             for (c, x) in val.iter().enumerate() {
                 if let Some(d) = self.of(v, c) {
                     u[d] = *x;

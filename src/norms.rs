@@ -178,7 +178,10 @@ impl NormGeometry {
             }
         }
         out.max = max_length(v);
-        let nu: Vec<f64> = mesh.contact.iter().map(|&c| -v[c][1]).collect();
+        let n = mesh.normal;
+        let nu: Vec<f64> = (mesh.contact.iter())
+            .map(|&c| v[c][0] * n[0] + v[c][1] * n[1])
+            .collect();
         out.gamma_sq = gamma_l2_sq(mesh, &nu);
         out
     }

@@ -32,12 +32,15 @@ pub struct Discretisation {
     pub b: SpMat,
     /// Load vector $f$ of the loads $(f_0, f_2)$; step $n$ uses $\varphi(t_n) f$.
     pub f: Vec<f64>,
-    /// $y$-dof of each contact node.
+    /// The normal dof of each contact node: its $y$-dof, or the second coordinate of
+    /// the contact frame ([`crate::frame`]) under a foundation whose normal is not
+    /// the paper's; $u_{\nu,i}$ is minus its value.
     pub contact_dofs: Vec<usize>,
     /// Trapezoidal weights $w_i$.
     pub weights: Vec<f64>,
     /// The gap of each contact node ([`Mesh::gap`]): the contact variable is
-    /// $s_i = u_{\nu,i} - \text{gap}_i$, with $u_{\nu,i} = -u_{y,i}$.
+    /// $s_i = u_{\nu,i} - \text{gap}_i$, with $u_{\nu,i} = u_i\cdot n_f$ ($-u_{y,i}$ on
+    /// the paper's foundation).
     pub gap: Vec<f64>,
 }
 

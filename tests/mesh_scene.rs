@@ -364,7 +364,7 @@ fn a_mesh_scene_s_load_is_the_rectangle_s_on_the_same_triangulation() {
 }
 
 #[test]
-fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
+fn a_foundation_is_any_line_in_front_of_gamma_3_or_refused_with_the_reason() {
     let with = |f: &str| format!("{HELD}\nfoundation = {f}");
     // The default, written out, is accepted: Gamma_3 on the line, every gap zero.
     let scn = scene(
@@ -395,12 +395,30 @@ fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
         "",
         &["geometry.foundation", "unit normal"],
     );
-    // A slanted normal with every node in front: refused until the change of basis.
-    refused_scene(
+    // A slanted normal with every node in front: accepted, each gap along n_f.
+    let slanted = scene(
         "ok.msh",
         &with("{ point = [3.0, 0.0], normal = [0.6, -0.8] }"),
         "",
-        &["geometry.foundation.normal", "change of basis"],
+    )
+    .unwrap();
+    let body = slanted.body().unwrap();
+    for (&v, g) in body.gamma3.iter().zip(&body.gap0) {
+        let p = body.mesh.nodes[v];
+        assert!((g - ((3.0 - p[0]) * 0.6 + p[1] * 0.8)).abs() < 1e-15);
+    }
+    // A slanted normal under a part held by rollers that end on Gamma_3: the roller's
+    // component is neither along nor across n_f.
+    refused_scene(
+        "ok.msh",
+        "supports = { left = \"rollers\", right = \"clamped\" }\ncontact = \"bottom\"\n\
+         foundation = { point = [3.0, 0.0], normal = [0.6, -0.8] }",
+        "",
+        &[
+            "geometry.foundation.normal",
+            "along or across the x axis",
+            "rollers",
+        ],
     );
     // An initial gap is accepted (tests/contact_gap.rs solves with one).
     let lifted = scene(
@@ -529,6 +547,132 @@ fn the_body_page_runs_as_written() {
         assert!(
             printed.lines().any(|l| l == row),
             "`{row}` not in:\n{printed}"
+        );
+    }
+}
+
+/// `data/meshes/paper_n16.msh` turned by `angle` about the origin, written beside the
+/// scene files (the nodes' coordinates in the ASCII $Nodes section turned, nothing else).
+fn turned_paper_mesh(angle: f64, name: &str) -> (Scratch, std::path::PathBuf) {
+    let text = read("data/meshes/paper_n16.msh");
+    let (c, s) = (angle.cos(), angle.sin());
+    let mut out = String::new();
+    let mut lines = text.lines();
+    while let Some(l) = lines.next() {
+        out.push_str(l);
+        out.push('\n');
+        if l != "$Nodes" {
+            continue;
+        }
+        let head = lines.next().unwrap();
+        out.push_str(head);
+        out.push('\n');
+        let blocks: usize = head.split_whitespace().next().unwrap().parse().unwrap();
+        for _ in 0..blocks {
+            let b = lines.next().unwrap();
+            out.push_str(b);
+            out.push('\n');
+            let count: usize = b.split_whitespace().nth(3).unwrap().parse().unwrap();
+            for _ in 0..count {
+                out.push_str(lines.next().unwrap());
+                out.push('\n');
+            }
+            for _ in 0..count {
+                let p: Vec<f64> = (lines.next().unwrap().split_whitespace())
+                    .map(|x| x.parse().unwrap())
+                    .collect();
+                let (x, y) = (c * p[0] - s * p[1], s * p[0] + c * p[1]);
+                out.push_str(&format!("{x:e} {y:e} {:e}\n", p[2]));
+            }
+        }
+    }
+    let dir = scratch(name);
+    let path = written(dir.join("turned.msh"), out);
+    (dir, path)
+}
+
+#[test]
+fn a_turned_body_on_a_turned_foundation_gives_the_same_contact_and_the_turned_field() {
+    let base = read(PAPER_MESH);
+    for (angle, reduced) in [
+        (0.3f64, false),
+        (std::f64::consts::FRAC_PI_2, true),
+        (-2.0, true),
+    ] {
+        let settings = on_loop(16, 16, reduced);
+        let (_dir, mesh) = turned_paper_mesh(angle, &format!("turned-{angle}"));
+        let (c, s) = (angle.cos(), angle.sin());
+        let turn = |v: [f64; 2]| [c * v[0] - s * v[1], s * v[0] + c * v[1]];
+        let n = turn([0.0, -1.0]);
+        let f0 = turn([0.0, -5.0]);
+        let f2 = turn([0.0, -75.0]);
+        let text = base
+            .replace(
+                "mesh = \"../../meshes/paper_n16.msh\"",
+                &format!(
+                    "mesh = \"{}\"\nfoundation = {{ point = [0.0, 0.0], normal = [{:e}, {:e}] }}",
+                    mesh.display(),
+                    n[0],
+                    n[1]
+                ),
+            )
+            .replace(
+                "f0 = [0.0, -5.0]",
+                &format!("f0 = [{:e}, {:e}]", f0[0], f0[1]),
+            )
+            .replace(
+                "f = [0.0, -75.0]",
+                &format!("f = [{:e}, {:e}]", f2[0], f2[1]),
+            );
+        let turned = Scenario::from_toml(&text, &mesh.display().to_string()).unwrap();
+        let solve = |scn: Scenario| {
+            let sim = Simulation::new(scn, settings.clone()).unwrap();
+            let sol = sim.solve(&mut ()).unwrap();
+            let rows = sol.contact_rows(sim.scenario());
+            let u = sol
+                .run
+                .mesh
+                .displacement(&evhi::mesh::Dofs::new(&sol.run.mesh, true), &sol.run.u);
+            (sol, rows, u)
+        };
+        let (a, a_rows, a_u) = solve(turned);
+        let (b, b_rows, b_u) = solve(Scenario::load(PAPER_MESH).unwrap());
+        let scale = b_u.iter().fold(0.0f64, |m, x| m.max(x[0].hypot(x[1])));
+        // The field turns with the body.
+        for (ua, ub) in a_u.iter().zip(&b_u) {
+            let t = turn(*ub);
+            assert!(
+                (ua[0] - t[0]).hypot(ua[1] - t[1]) <= 1e-12 * scale,
+                "angle {angle}: u {ua:?} against the turned {t:?}"
+            );
+        }
+        // The contact does not see the turn: u_nu, both stress parts, the regimes.
+        let stress = b_rows.iter().fold(0.0f64, |m, r| {
+            m.max(r.sigma_nu1.abs()).max(r.sigma_nu2.abs())
+        });
+        assert_eq!(a_rows.len(), b_rows.len());
+        assert!(
+            b_rows.iter().any(|r| r.regime != b_rows[0].regime),
+            "several regimes"
+        );
+        for (ra, rb) in a_rows.iter().zip(&b_rows) {
+            assert_eq!(ra.regime, rb.regime, "angle {angle}");
+            assert!(
+                close(ra.u_nu, rb.u_nu, scale, 1e-12),
+                "u_nu {} {}",
+                ra.u_nu,
+                rb.u_nu
+            );
+            assert!(close(ra.sigma_nu1, rb.sigma_nu1, stress, 1e-12));
+            assert!(close(ra.sigma_nu2, rb.sigma_nu2, stress, 1e-12));
+            assert!(close(ra.s, rb.s, 2.0, 1e-12));
+        }
+        let (ea, eb) = (a.energy_norm_t(), b.energy_norm_t());
+        assert!(close(ea, eb, 0.0, 1e-12), "energy norm {ea} against {eb}");
+        assert!(
+            a.max_certificate() < 1e-10,
+            "certified: {}",
+            a.max_certificate()
         );
     }
 }
