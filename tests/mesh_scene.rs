@@ -625,6 +625,26 @@ fn a_turned_body_on_a_turned_foundation_gives_the_same_contact_and_the_turned_fi
                 &format!("f = [{:e}, {:e}]", f2[0], f2[1]),
             );
         let turned = Scenario::from_toml(&text, &mesh.display().to_string()).unwrap();
+        if reduced {
+            // The command line solves and draws it: the field, the slanted foundation,
+            // the forces by arc length.
+            let file = written(_dir.join("turned.toml"), &text);
+            let out = _dir.join("run");
+            succeed(
+                evhi_with("solve --steps 4 --scenario")
+                    .arg(&file)
+                    .arg("--out")
+                    .arg(&out),
+            );
+            for f in [
+                "deformed.png",
+                "deformed.svg",
+                "contact.csv",
+                "solution.vtu",
+            ] {
+                assert!(out.join(f).exists(), "{f}");
+            }
+        }
         let solve = |scn: Scenario| {
             let sim = Simulation::new(scn, settings.clone()).unwrap();
             let sol = sim.solve(&mut ()).unwrap();

@@ -303,7 +303,7 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
     let h_text = if (h * n as f64 - 1.0).abs() < 1e-12 {
         format!("1/{n}")
     } else {
-        format!("{h}")
+        crate::output::plot::plain(&h)
     };
     let deformed = || {
         crate::output::scene::draw_run(

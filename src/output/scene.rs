@@ -48,6 +48,7 @@ pub fn draw_run(
             list.push(raw.map(|x| x as usize));
         }
         panel.triangles = Some(list);
+        panel.body = body_view(dir, &panel)?;
     } else {
         panel.check_lattice(&dir.join("nodes.csv"))?;
     }
@@ -64,6 +65,60 @@ pub fn draw_run(
             columns: 1,
         },
     )
+}
+
+/// What a mesh scene's panel draws beyond a lattice's: the foundation line (from the
+/// run's `scenario.toml`), each contact node's arc length and deformed position
+/// (matched to `nodes.csv` by its coordinates); `None` for a run that is no mesh scene
+/// (or whose scenario does not read).
+fn body_view(dir: &std::path::Path, panel: &Panel) -> Result<Option<BodyView>, FileError> {
+    let scenario = dir.join("scenario.toml");
+    let Some(foundation) = Scenario::load(&scenario.display().to_string())
+        .ok()
+        .and_then(|scn| {
+            scn.body()
+                .map(|b| (b.foundation.point, b.foundation.normal))
+        })
+    else {
+        // A graded rectangle, or a run without its scenario: drawn as the rectangle.
+        return Ok(None);
+    };
+    let contact = dir.join("contact.csv");
+    let c = read_csv(&contact)?;
+    let arc = col_f64(&c, "s")?;
+    let cy = col_f64(&c, "y")?;
+    let key = |x: f64, y: f64| (x.to_bits(), y.to_bits());
+    let at: std::collections::HashMap<(u64, u64), usize> = (0..panel.x.len())
+        .map(|v| (key(panel.x[v], panel.y[v]), v))
+        .collect();
+    let mut moved = Vec::with_capacity(panel.cx.len());
+    for (i, (&x, &y)) in panel.cx.iter().zip(&cy).enumerate() {
+        let Some(&v) = at.get(&key(x, y)) else {
+            return Err(FileError::Table {
+                path: format!("{}:{}", contact.display(), i + 2),
+                message: format!(
+                    "the contact node at ({x}, {y}) is no node of nodes.csv; the tables were \
+                     not written by one run"
+                ),
+            });
+        };
+        moved.push((x + panel.ux[v], y + panel.uy[v]));
+    }
+    Ok(Some(BodyView {
+        foundation,
+        arc,
+        moved,
+    }))
+}
+
+/// A mesh scene's extra panel data ([`body_view`]).
+pub struct BodyView {
+    /// The foundation's point and outward normal $n_f$.
+    foundation: ([f64; 2], [f64; 2]),
+    /// Each contact node's arc length along $\Gamma_3$.
+    arc: Vec<f64>,
+    /// Each contact node's deformed position.
+    moved: Vec<(f64, f64)>,
 }
 
 /// $\Gamma_3$ of a run directory where it is a part of the bottom: from the run's
@@ -102,6 +157,8 @@ pub struct Panel {
     /// $\Gamma_3$ as `[from, to]` on the bottom where it is not the whole bottom: the
     /// layer and foundation are drawn under it only.
     contact: Option<[f64; 2]>,
+    /// A mesh scene's foundation, arc lengths and deformed contact nodes.
+    body: Option<BodyView>,
 }
 
 impl Panel {
@@ -146,6 +203,7 @@ impl Panel {
             regime,
             triangles: None,
             contact: None,
+            body: None,
         })
     }
 }
@@ -186,12 +244,32 @@ impl Panel {
         total.fold(1.0f64, f64::max) * 1.1
     }
 
-    /// The rectangle's width and height: the lattice's extent.
+    /// The rectangle's width and height: the lattice's extent (from its lower-left
+    /// corner, [`Self::origin`]).
     fn width(&self) -> f64 {
-        self.x.iter().copied().fold(0.0, f64::max)
+        self.x.iter().copied().fold(f64::NEG_INFINITY, f64::max) - self.origin()[0]
     }
     fn height(&self) -> f64 {
-        self.y.iter().copied().fold(0.0, f64::max)
+        self.y.iter().copied().fold(f64::NEG_INFINITY, f64::max) - self.origin()[1]
+    }
+    /// The lower-left corner of the undeformed nodes' box: the origin on a lattice, the
+    /// box's corner on a mesh scene below or left of it.
+    fn origin(&self) -> [f64; 2] {
+        [
+            self.x.iter().copied().fold(f64::INFINITY, f64::min),
+            self.y.iter().copied().fold(f64::INFINITY, f64::min),
+        ]
+    }
+    /// Whether the foundation is not the paper's line under the body.
+    fn slanted(&self) -> bool {
+        self.body
+            .as_ref()
+            .is_some_and(|b| b.foundation.1 != crate::frame::PAPER_NORMAL)
+    }
+    /// Where the force panel places each contact node: its arc length on a mesh scene,
+    /// its x on the rectangle.
+    fn along(&self) -> &[f64] {
+        self.body.as_ref().map_or(&self.cx, |b| &b.arc)
     }
     /// The x span the mesh panel shows, and the y span it must show.
     fn x_span(&self) -> f64 {
@@ -307,6 +385,7 @@ fn draw_mesh<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     compact: bool,
 ) -> Result<(), String> {
+    let edges = p.triangles.as_deref().map(mesh_edges);
     let caption = format!(
         "{}: {}contact nodes: {}",
         if p.g.is_finite() {
@@ -314,10 +393,13 @@ fn draw_mesh<DB: DrawingBackend>(
         } else {
             "no limit".to_string()
         },
-        if compact {
-            ""
-        } else {
-            "deformed mesh (true scale); "
+        match (compact, &edges) {
+            (true, _) => String::new(),
+            (false, Some((_, true))) => format!(
+                "deformed body (true scale; its {} triangles drawn by the outline); ",
+                p.triangles.as_ref().map_or(0, Vec::len)
+            ),
+            (false, _) => "deformed mesh (true scale); ".to_string(),
         },
         regime_order(&p.regime)
             .iter()
@@ -325,13 +407,17 @@ fn draw_mesh<DB: DrawingBackend>(
             .collect::<Vec<_>>()
             .join(", ")
     );
+    let o = p.origin();
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, if compact { 17 } else { 18 }))
         .margin(8)
         .x_label_area_size(48)
         .y_label_area_size(50)
         // True aspect: as many metres per pixel down as across.
-        .build_cartesian_2d(-0.05..p.width() + 0.05, -0.16..-0.16 + aspect_span(p, area))
+        .build_cartesian_2d(
+            o[0] - 0.05..o[0] + p.width() + 0.05,
+            o[1] - 0.16..o[1] - 0.16 + aspect_span(p, area),
+        )
         .map_err(e2s)?;
     chart
         .configure_mesh()
@@ -343,9 +429,13 @@ fn draw_mesh<DB: DrawingBackend>(
         .map_err(e2s)?;
     // Foundation: layer top (y = 0, undeformed obstacle) and rigid base (y = -g;
     // none without a limit, the layer then fills the panel's foot), under Gamma_3 only.
-    let [left, right] = p.contact.unwrap_or([-0.05, p.width() + 0.05]);
+    let [left, right] = p.contact.unwrap_or([o[0] - 0.05, o[0] + p.width() + 0.05]);
     let base = p.g.min(0.16);
-    if p.g.is_finite() {
+    if p.slanted() {
+        let (x0, x1) = (o[0] - 0.05, o[0] + p.width() + 0.05);
+        let (y0, y1) = (o[1] - 0.16, o[1] - 0.16 + aspect_span(p, area));
+        draw_slanted_foundation(&mut chart, p, [x0, x1, y0, y1])?;
+    } else if p.g.is_finite() {
         chart
             .draw_series(std::iter::once(Rectangle::new(
                 [(left, -0.16), (right, -p.g)],
@@ -353,15 +443,17 @@ fn draw_mesh<DB: DrawingBackend>(
             )))
             .map_err(e2s)?;
     }
-    chart
-        .draw_series(std::iter::once(Rectangle::new(
-            [
-                (left, if p.g.is_finite() { -p.g } else { -base }),
-                (right, 0.0),
-            ],
-            RGBColor(240, 200, 120).mix(0.4).filled(),
-        )))
-        .map_err(e2s)?;
+    if !p.slanted() {
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [
+                    (left, if p.g.is_finite() { -p.g } else { -base }),
+                    (right, 0.0),
+                ],
+                RGBColor(240, 200, 120).mix(0.4).filled(),
+            )))
+            .map_err(e2s)?;
+    }
     let nx = p.cells;
     let ny = (p.x.len() / (nx + 1)).saturating_sub(1);
     let at = |i: usize, j: usize| {
@@ -371,10 +463,8 @@ fn draw_mesh<DB: DrawingBackend>(
     let style = RGBColor(40, 40, 90).stroke_width(1);
     let mut segs = vec![];
     let moved = |v: usize| (p.x[v] + p.ux[v], p.y[v] + p.uy[v]);
-    for t in p.triangles.iter().flatten() {
-        for e in 0..3 {
-            segs.push([moved(t[e]), moved(t[(e + 1) % 3])]);
-        }
+    if let Some((edges, _)) = &edges {
+        segs.extend(edges.iter().map(|&[a, b]| [moved(a), moved(b)]));
     }
     for j in (0..=ny).filter(|_| p.triangles.is_none()) {
         for i in 0..=nx {
@@ -395,15 +485,118 @@ fn draw_mesh<DB: DrawingBackend>(
                 .map(|s| PathElement::new(s.to_vec(), style)),
         )
         .map_err(e2s)?;
+    let dots: Vec<(f64, f64)> = match &p.body {
+        Some(b) => b.moved.clone(),
+        None => p.cx.iter().zip(&p.u_nu).map(|(&x, &u)| (x, -u)).collect(),
+    };
     chart
         .draw_series(
-            p.cx.iter()
-                .zip(&p.u_nu)
+            dots.into_iter()
                 .zip(&p.regime)
-                .map(|((&x, &u), r)| Circle::new((x, -u), 3, regime_colour(r).filled())),
+                .map(|(at, r)| Circle::new(at, 3, regime_colour(r).filled())),
         )
         .map_err(e2s)?;
     Ok(())
+}
+
+/// The most edges a mesh panel draws; a finer mesh is drawn by its outline only (an
+/// SVG of every edge of a 260 000-triangle mesh is some 75 MB, and no edge of it is
+/// wider than a pixel apart at this size).
+const MAX_DRAWN_EDGES: usize = 60_000;
+
+/// The edges of `tris`, each once: all of them up to [`MAX_DRAWN_EDGES`], the boundary
+/// (edges of one triangle) beyond.
+fn mesh_edges(tris: &[[usize; 3]]) -> (Vec<[usize; 2]>, bool) {
+    let mut count: std::collections::HashMap<[usize; 2], u8> =
+        std::collections::HashMap::with_capacity(2 * tris.len());
+    for t in tris {
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            *count.entry([a.min(b), a.max(b)]).or_default() += 1;
+        }
+    }
+    let outline = count.len() > MAX_DRAWN_EDGES;
+    let mut edges: Vec<[usize; 2]> = if !outline {
+        count.into_keys().collect()
+    } else {
+        count
+            .into_iter()
+            .filter(|&(_, k)| k == 1)
+            .map(|(e, _)| e)
+            .collect()
+    };
+    edges.sort_unstable();
+    (edges, outline)
+}
+
+/// A slanted foundation: its layer between the line through the foundation's point
+/// and the limit's line $g$ beyond it along $n_f$, and the rigid base beyond that,
+/// each cut to the plotting box `[x0, x1, y0, y1]`.
+fn draw_slanted_foundation<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    p: &Panel,
+    [x0, x1, y0, y1]: [f64; 4],
+) -> Result<(), String> {
+    let Some(body) = &p.body else { return Ok(()) };
+    let (pt, n) = body.foundation;
+    let tau = [-n[1], n[0]];
+    let far = 10.0 * ((x1 - x0).hypot(y1 - y0));
+    let band = |from: f64, to: f64| -> Vec<(f64, f64)> {
+        let at = |d: f64, t: f64| (pt[0] + d * n[0] + t * tau[0], pt[1] + d * n[1] + t * tau[1]);
+        clip_box(
+            &[at(from, -far), at(from, far), at(to, far), at(to, -far)],
+            [x0, x1, y0, y1],
+        )
+    };
+    let depth = if p.g.is_finite() { p.g } else { 0.16 };
+    let layer = band(0.0, depth);
+    if p.g.is_finite() {
+        let rigid = band(p.g, far);
+        if rigid.len() >= 3 {
+            chart
+                .draw_series(std::iter::once(Polygon::new(
+                    rigid,
+                    RGBColor(120, 120, 120).mix(0.5).filled(),
+                )))
+                .map_err(e2s)?;
+        }
+    }
+    if layer.len() >= 3 {
+        chart
+            .draw_series(std::iter::once(Polygon::new(
+                layer,
+                RGBColor(240, 200, 120).mix(0.4).filled(),
+            )))
+            .map_err(e2s)?;
+    }
+    Ok(())
+}
+
+/// The convex polygon `poly` cut to the box `[x0, x1, y0, y1]` (Sutherland–Hodgman).
+fn clip_box(poly: &[(f64, f64)], [x0, x1, y0, y1]: [f64; 4]) -> Vec<(f64, f64)> {
+    let mut out = poly.to_vec();
+    // Each edge of the box as "inside when f(p) >= 0".
+    let sides: [&dyn Fn((f64, f64)) -> f64; 4] =
+        [&|q| q.0 - x0, &|q| x1 - q.0, &|q| q.1 - y0, &|q| y1 - q.1];
+    for f in sides {
+        let input = std::mem::take(&mut out);
+        for (i, &a) in input.iter().enumerate() {
+            let b = input[(i + 1) % input.len()];
+            let (fa, fb) = (f(a), f(b));
+            if fa >= 0.0 {
+                out.push(a);
+            }
+            if (fa >= 0.0) != (fb >= 0.0) {
+                let t = fa / (fa - fb);
+                out.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+            }
+        }
+    }
+    out
 }
 
 /// The y span that the area's plotting region shows at true aspect.
@@ -431,29 +624,41 @@ fn draw_forces<DB: DrawingBackend>(
     } else {
         "interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)"
     };
+    let along = p.along();
+    let (lo, hi) = match &p.body {
+        Some(_) => (
+            along.iter().copied().fold(f64::INFINITY, f64::min),
+            along.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ),
+        None => (p.origin()[0], p.origin()[0] + p.width()),
+    };
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, 17))
         .margin(8)
         .x_label_area_size(48)
         .y_label_area_size(62)
-        .build_cartesian_2d(-0.05..p.width() + 0.05, 0.0..ymax)
+        .build_cartesian_2d(lo - 0.05..hi + 0.05, 0.0..ymax)
         .map_err(e2s)?;
     chart
         .configure_mesh()
         .disable_x_mesh()
-        .x_desc("x [m]")
+        .x_desc(if p.body.is_some() {
+            "arc length s along Γ3 [m]"
+        } else {
+            "x [m]"
+        })
         .y_desc("-σν [N/m]")
         .x_label_formatter(&crate::output::plot::plain)
         .y_label_formatter(&crate::output::plot::plain)
         .label_style((FONT, 16))
         .draw()
         .map_err(e2s)?;
-    let w = if p.cx.len() > 1 {
-        (p.cx[1] - p.cx[0]) * 0.35
+    let w = if along.len() > 1 {
+        (along[1] - along[0]).abs() * 0.35
     } else {
         0.01
     };
-    for (k, &x) in p.cx.iter().enumerate() {
+    for (k, &x) in along.iter().enumerate() {
         let a = -p.s1[k];
         let b = -(p.s1[k] + p.s2[k]);
         chart
@@ -496,4 +701,51 @@ fn draw_forces<DB: DrawingBackend>(
     }
     legend(&mut chart, SeriesLabelPosition::UpperRight, 15, 0.85)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mesh_edges_are_each_drawn_once_and_a_fine_mesh_by_its_outline() {
+        // Two triangles sharing an edge: five edges, the shared one once.
+        assert_eq!(
+            mesh_edges(&[[0, 1, 2], [1, 3, 2]]),
+            (vec![[0, 1], [0, 2], [1, 2], [1, 3], [2, 3]], false)
+        );
+        // A strip of m squares cut in two: 4m + 1 edges in all, 2m + 2 on its outline.
+        let m = MAX_DRAWN_EDGES / 4 + 1;
+        let tris: Vec<[usize; 3]> = (0..m)
+            .flat_map(|i| {
+                let (a, b, c, d) = (2 * i, 2 * i + 2, 2 * i + 3, 2 * i + 1);
+                [[a, b, c], [a, c, d]]
+            })
+            .collect();
+        let (outline, thinned) = mesh_edges(&tris);
+        assert_eq!((outline.len(), thinned), (2 * m + 2, true));
+        assert_eq!(mesh_edges(&tris[..2 * (m - 2)]).0.len(), 4 * (m - 2) + 1);
+    }
+
+    #[test]
+    fn a_band_is_cut_to_the_box() {
+        let inside = clip_box(&[(0.2, 0.2), (0.8, 0.2), (0.8, 0.8)], [0.0, 1.0, 0.0, 1.0]);
+        assert_eq!(inside, vec![(0.2, 0.2), (0.8, 0.2), (0.8, 0.8)]);
+        let cut = clip_box(
+            &[(-1.0, 0.5), (2.0, 0.5), (2.0, -1.0), (-1.0, -1.0)],
+            [0.0, 1.0, 0.0, 1.0],
+        );
+        let area: f64 = (0..cut.len())
+            .map(|i| {
+                let (a, b) = (cut[i], cut[(i + 1) % cut.len()]);
+                a.0 * b.1 - b.0 * a.1
+            })
+            .sum::<f64>()
+            .abs()
+            / 2.0;
+        assert!(
+            (area - 0.5).abs() < 1e-15,
+            "the lower half of the box: {area}"
+        );
+    }
 }
