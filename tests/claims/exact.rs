@@ -778,7 +778,8 @@ fn exact_limit_share() {
     assert!(rising(&conv("regimes", "k", "limit_share_percent")));
     assert!(rising(&conv("p1limit", "k", "limit_share_percent")));
     let g = conv("landing", "k", "limit_share_percent");
-    assert!(rising(&g[..6]) && g[6] < g[5] && g[7] < g[6]);
+    assert!(rising(&g[..3]) && g[3] < g[2] && rising(&g[3..6]) && g[6] < g[5] && g[7] < g[6]);
+    assert_eq!(super::max(&g), g[5]);
     let g5 = conv("landing", "k_on_step", "limit_share_percent");
     assert!(g5[1] < g5[0] && rising(&g5[1..]));
     for name in ["p1limit", "landing"] {
