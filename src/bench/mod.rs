@@ -19,9 +19,9 @@ pub const TABLES: [BookTable; 5] = [
     table("bench_solvers.csv", 2, 6),
 ];
 
-/// The Markdown layout (key columns, most columns of a part) of `file` if it is one
+/// The Markdown layout ([`BookTable`]) of `file` if it is one
 /// of the bench's tables the book shows.
-pub fn book_table(file: &str) -> Option<(usize, usize)> {
+pub fn book_table(file: &str) -> Option<&'static BookTable> {
     evhi::output::markdown::layout(TABLES.iter(), file)
 }
 

@@ -133,6 +133,18 @@ impl ExactRun {
     pub fn max_certificate(&self) -> f64 {
         self.max(|r| r.certificate)
     }
+    /// The share of $\Gamma_3 \times (0, T)$ where the discrete solution is at $g$: each
+    /// contact node in the regime `limit` after a step counts with its share $2h$ of
+    /// $\Gamma_3$ (length 2) and the step with its $k$, so the share is the count over
+    /// $nN$. (The two end nodes of $\Gamma_3$ weigh $h$, but no solution reaches $g$ there.)
+    pub fn limit_share(&self) -> f64 {
+        let limit = REGIMES
+            .iter()
+            .position(|x| *x == "limit")
+            .expect("a regime");
+        let at: usize = self.rows.iter().map(|w| w.regimes[limit]).sum();
+        at as f64 / (self.n * self.rows.len()) as f64
+    }
 }
 
 /// A quadrature point of one step: its triangle, weight, and the exact strains at

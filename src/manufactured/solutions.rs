@@ -234,6 +234,11 @@ impl Solution {
         }
     }
 
+    /// The book's letter, `(a)` … `(i)`: how the book's tables and figures name it.
+    pub fn letter(self) -> &'static str {
+        &self.label()[..3]
+    }
+
     /// The book's label.
     pub fn label(self) -> &'static str {
         match self {

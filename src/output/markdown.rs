@@ -3,9 +3,10 @@
 //! columns, and the CSV's provenance kept as an HTML comment. The CSV stays the
 //! source of truth; the rendering is regenerated whenever it is written.
 
-/// Renders `csv` (with its `#` provenance lines) as Markdown. The first `keys`
-/// columns are repeated in every part; each part has at most `max_cols` columns.
-pub fn table(csv: &str, keys: usize, max_cols: usize) -> String {
+/// Renders `csv` (with its `#` provenance lines) as Markdown, without the columns
+/// named in `hide`. The first `keys` columns shown are repeated in every part; each
+/// part has at most `max_cols` columns.
+pub fn table(csv: &str, keys: usize, max_cols: usize, hide: &[&str]) -> String {
     let mut provenance = vec![];
     let mut rows: Vec<Vec<String>> = vec![];
     for line in csv.lines() {
@@ -13,6 +14,16 @@ pub fn table(csv: &str, keys: usize, max_cols: usize) -> String {
             provenance.push(c.trim().replace("--", "- -"));
         } else if !line.trim().is_empty() {
             rows.push(split(line));
+        }
+    }
+    if let Some(header) = rows.first() {
+        let keep: Vec<bool> = header.iter().map(|h| !hide.contains(&h.as_str())).collect();
+        for r in &mut rows {
+            let mut i = 0;
+            r.retain(|_| {
+                i += 1;
+                keep.get(i - 1).copied().unwrap_or(true)
+            });
         }
     }
     let mut out = String::new();
@@ -133,24 +144,38 @@ fn number(cell: &str, integer: bool) -> String {
 }
 
 /// A table the book shows, as a Markdown rendering beside its CSV: the file, the key
-/// columns repeated in every part, and the most columns of one part (so a part fits
-/// the page).
+/// columns repeated in every part, the most columns of one part (so a part fits
+/// the page), and the CSV's columns the rendering leaves out (an identifier the
+/// book names otherwise).
 pub struct BookTable {
     pub file: &'static str,
     pub keys: usize,
     pub cols: usize,
+    pub hide: &'static [&'static str],
 }
 
 pub const fn book_table(file: &'static str, keys: usize, cols: usize) -> BookTable {
-    BookTable { file, keys, cols }
+    BookTable {
+        file,
+        keys,
+        cols,
+        hide: &[],
+    }
 }
 
-/// The Markdown layout (key columns, most columns of a part) of `file` among `tables`.
+impl BookTable {
+    /// The same table without the columns `hide` in its rendering.
+    pub const fn hiding(self, hide: &'static [&'static str]) -> BookTable {
+        BookTable { hide, ..self }
+    }
+}
+
+/// The Markdown layout of `file` among `tables`: its [`BookTable`].
 pub fn layout<'a>(
     mut tables: impl Iterator<Item = &'a BookTable>,
     file: &str,
-) -> Option<(usize, usize)> {
-    tables.find(|t| t.file == file).map(|t| (t.keys, t.cols))
+) -> Option<&'a BookTable> {
+    tables.find(|t| t.file == file)
 }
 
 #[cfg(test)]
@@ -170,7 +195,7 @@ mod tests {
     #[test]
     fn wide_tables_split_and_repeat_their_keys() {
         let csv = "# made by a test\na,b,c,d\nx,1.5,2,3\ny,2.25,3,4\n";
-        let md = table(csv, 1, 3);
+        let md = table(csv, 1, 3, &[]);
         assert!(md.starts_with("<!-- made by a test -->"));
         assert!(md.contains("| `a` | `b` | `c` |"), "{md}");
         assert!(md.contains("| `a` | `d` |"), "{md}");
@@ -179,16 +204,26 @@ mod tests {
 
     #[test]
     fn short_keys_read_as_given() {
-        let md = table("g,limit\n0.1,39\n0.09,47\n", 1, 6);
+        let md = table("g,limit\n0.1,39\n0.09,47\n", 1, 6, &[]);
         assert!(
             md.contains("| 0.1 | 39 |") && md.contains("| 0.09 | 47 |"),
             "{md}"
         );
         // A value column keeps its four digits; a key column with a long value keeps
         // the rule throughout.
-        let md = table("g,err\n0.123456,0.5\n0.5,0.5\n", 1, 6);
+        let md = table("g,err\n0.123456,0.5\n0.5,0.5\n", 1, 6, &[]);
         assert!(
             md.contains("| 0.1235 | 0.5000 |") && md.contains("| 0.5000 |"),
+            "{md}"
+        );
+    }
+
+    #[test]
+    fn hidden_columns_are_left_out() {
+        let md = table("name,letter,x\nregimes,(b),1.5\n", 1, 6, &["name"]);
+        assert!(md.contains("| `letter` | `x` |"), "{md}");
+        assert!(
+            md.contains("| (b) | 1.500 |") && !md.contains("regimes"),
             "{md}"
         );
     }

@@ -24,11 +24,19 @@ struct LogLog {
     guides: Vec<(f64, String)>,
     /// Where the legend goes.
     legend_at: SeriesLabelPosition,
+    /// The top of the y axis over the largest value (room for a legend at the top).
+    headroom: f64,
+    /// Font sizes: caption, tick labels and axis descriptions, legend.
+    fonts: (u32, u32, u32),
+    /// The marker of each series ([`shape`]); empty: `first_marker + i` for series `i`.
+    markers: Vec<usize>,
+    /// Series drawn [`nested`], each narrower than the one before.
+    nested: bool,
 }
 
 /// The outline of marker `i` in pixels around its centre: circle, triangle, square,
-/// diamond, inverted triangle, hexagon.
-fn shape(i: usize) -> Vec<(i32, i32)> {
+/// diamond, inverted triangle, hexagon; `scale` times the usual size.
+fn shape(i: usize, scale: f64) -> Vec<(i32, i32)> {
     let poly = |k: usize, r: f64, phase: f64| -> Vec<(i32, i32)> {
         (0..k)
             .map(|j| {
@@ -37,23 +45,45 @@ fn shape(i: usize) -> Vec<(i32, i32)> {
             })
             .collect()
     };
-    use std::f64::consts::FRAC_PI_2;
+    use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, SQRT_2};
+    let s = scale;
     match i % 6 {
-        0 => poly(16, 6.0, 0.0),
-        1 => poly(3, 8.0, FRAC_PI_2),
-        2 => vec![(-6, -6), (6, -6), (6, 6), (-6, 6)],
-        3 => poly(4, 8.0, 0.0),
-        4 => poly(3, 8.0, -FRAC_PI_2),
-        _ => poly(6, 7.0, 0.0),
+        0 => poly(16, 6.0 * s, 0.0),
+        1 => poly(3, 8.0 * s, FRAC_PI_2),
+        2 => poly(4, 6.0 * SQRT_2 * s, FRAC_PI_4),
+        3 => poly(4, 8.0 * s, 0.0),
+        4 => poly(3, 8.0 * s, -FRAC_PI_2),
+        _ => poly(6, 7.0 * s, 0.0),
     }
 }
 
 /// Marker `i` at `at` with a line of `half` pixels each side in the series' colour (0
 /// in the plot, 12 in the legend), so the legend shows what the plot draws.
 fn marker<C, DB: DrawingBackend>(i: usize, at: C, c: RGBColor, half: i32) -> Marker<C, DB> {
+    sized_marker(i, at, c, half, (1.0, 3))
+}
+
+/// [`marker`] at `size` = (scale of the shape, width of the line).
+fn sized_marker<C, DB: DrawingBackend>(
+    i: usize,
+    at: C,
+    c: RGBColor,
+    half: i32,
+    (scale, width): (f64, u32),
+) -> Marker<C, DB> {
     EmptyElement::at(at)
-        + PathElement::new(vec![(-half, 0), (half, 0)], c.stroke_width(3))
-        + Polygon::new(shape(i), c.filled())
+        + PathElement::new(vec![(-half, 0), (half, 0)], c.stroke_width(width))
+        + Polygon::new(shape(i, scale), c.filled())
+}
+
+/// The size of series `i` of a panel whose series may coincide (a family with no space
+/// error beside one with no time error): the first drawn widest, each later one
+/// narrower on top of it, so that every one shows.
+fn nested(i: usize, of: usize) -> (f64, u32) {
+    if of < 2 {
+        return (1.0, 3);
+    }
+    [(1.7, 7), (1.0, 3), (0.6, 2), (0.6, 2)][i.min(3)]
 }
 
 type Marker<C, DB> =
@@ -76,20 +106,30 @@ impl LogLog {
             .map(|e| 2f64.powi(e))
             .filter(|x| *x >= xmin && *x <= xmax)
             .collect();
-        let (ylo, yhi) = (ymin / 3.0, ymax * 30.0);
-        let ykeys: Vec<f64> = (-16..=3)
-            .map(|e| 10f64.powi(e))
-            .filter(|&y| y >= ylo && y <= yhi)
-            .collect();
+        let (ylo, yhi) = (ymin / 3.0, ymax * self.headroom);
+        // Over a few decades the axis reads 1, 2, 5 in plain numbers; over many, the
+        // powers of ten.
+        let few = yhi / ylo < 1e4;
+        let ykeys: Vec<f64> = if few {
+            evhi::output::plot::one_two_five((ylo, yhi), -16..=3)
+        } else {
+            (-16..=3)
+                .map(|e| 10f64.powi(e))
+                .filter(|&y| y >= ylo && y <= yhi)
+                .collect()
+        };
+        let plain = |y: &f64| evhi::output::plot::plain(y);
+        let power = |y: &f64| format!("{y:e}");
+        let (cap, tick, _) = self.fonts;
         let mut chart = LogLogChart {
-            caption: (&self.title, 22),
+            caption: (&self.title, cap),
             label_areas: (60, 90),
             desc: (&self.x_desc, &self.y_desc),
             format: (
                 Some(&|x| format!("{}", x.round())),
-                Some(&|y| format!("{y:e}")),
+                Some(if few { &plain } else { &power }),
             ),
-            fonts: (18, Some(18)),
+            fonts: (tick, Some(tick)),
             ..LogLogChart::default()
         }
         .build(
@@ -97,16 +137,21 @@ impl LogLog {
             (xmin / 1.3..xmax * 1.3).log_scale().with_key_points(keys),
             (ylo..yhi).log_scale().with_key_points(ykeys),
         )?;
+        let of = if self.nested { self.series.len() } else { 1 };
         for (i, (label, s, c)) in self.series.iter().enumerate() {
-            let (c, m) = (*c, first_marker + i);
+            let m = self.markers.get(i).copied().unwrap_or(first_marker + i);
+            let (c, size) = (*c, nested(i, of));
             chart
-                .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
+                .draw_series(LineSeries::new(s.clone(), c.stroke_width(size.1)))
                 .map_err(e2s)?;
             chart
-                .draw_series(s.iter().map(|&p| marker::<(f64, f64), DB>(m, p, c, 0)))
+                .draw_series(
+                    s.iter()
+                        .map(|&p| sized_marker::<(f64, f64), DB>(m, p, c, 0, size)),
+                )
                 .map_err(e2s)?
                 .label(label.clone())
-                .legend(move |(x, y)| marker::<(i32, i32), DB>(m, (x + 12, y), c, 12));
+                .legend(move |(x, y)| sized_marker::<(i32, i32), DB>(m, (x + 12, y), c, 12, size));
         }
         if let Some(&start) = self.series.first().and_then(|s| s.1.first()) {
             slope_guides(
@@ -118,7 +163,7 @@ impl LogLog {
                 0.4,
             )?;
         }
-        legend(&mut chart, self.legend_at.clone(), 19, 0.9)?;
+        legend(&mut chart, self.legend_at.clone(), self.fonts.2, 0.9)?;
         Ok(())
     }
 }
@@ -132,22 +177,102 @@ impl Figure for LogLog {
     }
 }
 
-/// Two log–log charts side by side.
-struct TwoPanels {
-    left: LogLog,
-    right: LogLog,
+/// Small multiples: one log–log chart per solution, in rows of two, and a last panel
+/// for the share of $\Gamma_3 \times (0, T)$ at $g$.
+struct Panels {
+    charts: Vec<LogLog>,
+    share: Share,
 }
 
-impl Figure for TwoPanels {
+impl Figure for Panels {
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        // One above the other, so that each keeps the page's width and its legend a
-        // readable size in the book's column.
-        let (l, r) = root.split_vertically(root.dim_in_pixel().1 as i32 / 2);
-        self.left.draw_on(&l, 0)?;
-        self.right.draw_on(&r, self.left.series.len())
+        let rows = (self.charts.len() + 2) / 2;
+        let cells = root.split_evenly((rows, 2));
+        for (area, chart) in cells.iter().zip(&self.charts) {
+            chart.draw_on(area, 0)?;
+        }
+        match cells.get(self.charts.len()) {
+            Some(area) => self.share.draw(area),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The share of $\Gamma_3 \times (0, T)$ at $g$ against the level, in percent, with the
+/// exact share as a dashed line.
+struct Share {
+    title: String,
+    series: Vec<Series>,
+    exact: f64,
+    fonts: (u32, u32, u32),
+}
+
+impl Figure for Share {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let pts: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| s.1.iter().copied())
+            .collect();
+        let ((xmin, xmax), _) = extent(&pts);
+        let keys: Vec<f64> = (0..=10)
+            .map(|e| 2f64.powi(e))
+            .filter(|x| *x >= xmin && *x <= xmax)
+            .collect();
+        let (cap, tick, leg) = self.fonts;
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, (FONT, cap))
+            .margin(15)
+            .x_label_area_size(60)
+            .y_label_area_size(90)
+            .build_cartesian_2d(
+                (xmin / 1.3..xmax * 1.3).log_scale().with_key_points(keys),
+                0.0..1.4 * self.exact,
+            )
+            .map_err(e2s)?;
+        chart
+            .configure_mesh()
+            .x_desc("mesh n (h = 1/n) or steps N (k = T/N)")
+            .y_desc("share of Γ3 × (0, T) at g (%)")
+            .x_label_formatter(&|x| format!("{}", x.round()))
+            .y_label_formatter(&|y| format!("{y:.0}"))
+            .label_style((FONT, tick))
+            .axis_desc_style((FONT, tick))
+            .draw()
+            .map_err(e2s)?;
+        let grey = RGBColor(50, 50, 50);
+        let (dash, gap) = evhi::output::plot::EXACT_DASHES[0];
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(xmin / 1.3, self.exact), (xmax * 1.3, self.exact)],
+                dash as u32,
+                gap as u32,
+                grey.stroke_width(2),
+            ))
+            .map_err(e2s)?
+            .label(format!("exact: {} %", self.exact))
+            .legend(move |xy| {
+                evhi::output::plot::dashed_legend(xy, dash, gap, grey.stroke_width(2))
+            });
+        for (i, (label, s, c)) in self.series.iter().enumerate() {
+            let c = *c;
+            chart
+                .draw_series(LineSeries::new(s.clone(), c.stroke_width(3)))
+                .map_err(e2s)?;
+            chart
+                .draw_series(s.iter().map(|&p| marker::<(f64, f64), DB>(i, p, c, 0)))
+                .map_err(e2s)?
+                .label(label.clone())
+                .legend(move |(x, y)| marker::<(i32, i32), DB>(i, (x + 12, y), c, 12));
+        }
+        legend(&mut chart, SeriesLabelPosition::LowerRight, leg, 0.9)?;
+        Ok(())
     }
 }
 
@@ -197,20 +322,66 @@ impl Figure for Regimes {
     }
 }
 
-const COLOURS: [(&str, &str, RGBColor); 12] = [
-    ("branch1", "h=k", RGBColor(0, 114, 178)),
-    ("regimes", "h=k", RGBColor(213, 94, 0)),
-    ("regimes", "h", RGBColor(230, 159, 0)),
-    ("regimes", "k", RGBColor(204, 121, 167)),
-    ("steady", "h", RGBColor(0, 158, 115)),
-    ("moving", "h=k", RGBColor(86, 180, 233)),
-    ("p1", "k", RGBColor(60, 60, 60)),
-    ("p1", "h", RGBColor(150, 150, 150)),
-    ("offnode", "h=k", RGBColor(0, 0, 0)),
-    ("p1limit", "k", RGBColor(0, 114, 178)),
-    ("landing", "k", RGBColor(213, 94, 0)),
-    ("landing", "k_on_step", RGBColor(0, 158, 115)),
+/// The families of a solution in the order its panel lists them, each with its colour
+/// and marker, the same in every panel.
+const FAMILIES: [(&str, RGBColor, usize); 4] = [
+    ("h=k", RGBColor(0, 114, 178), 0),
+    ("h", RGBColor(230, 159, 0), 2),
+    ("k", RGBColor(213, 94, 0), 1),
+    ("k_on_step", RGBColor(0, 158, 115), 3),
 ];
+
+/// Font sizes of the convergence figure's panels: caption, ticks and axis
+/// descriptions, legend (the figure is 1200 pixels wide, shown at about 750).
+const PANEL_FONTS: (u32, u32, u32) = (24, 20, 20);
+
+/// The panel of `exact_hold.csv`'s family: (i)'s largest error on the hold, with the
+/// exact compliance integral, with the limit and without it, and with the nodal rule.
+fn hold_panel(hold: &Path) -> Result<LogLog, ExpError> {
+    let df = read_csv(hold)?;
+    let (sol, limit, rule, steps, err) = (
+        col_str(&df, "solution")?,
+        col_str(&df, "limit")?,
+        col_str(&df, "rule")?,
+        col_f64(&df, "steps")?,
+        col_f64(&df, "rel_err_hold_percent")?,
+    );
+    let n = col_f64(&df, "n")?.first().copied().unwrap_or(0.0);
+    let pick = |l: &str, r: &str| -> Vec<(f64, f64)> {
+        (0..sol.len())
+            .filter(|&i| sol[i] == "hold" && limit[i] == l && rule[i] == r)
+            .map(|i| (steps[i], err[i]))
+            .collect()
+    };
+    Ok(LogLog {
+        title: format!("{}: on the hold only, n = {n}", label_of("hold")),
+        x_desc: "time steps N (k = T/N)".into(),
+        y_desc: "largest relative error on the hold (%)".into(),
+        series: vec![
+            (
+                "k, exact integral".into(),
+                pick("on", "exact"),
+                FAMILIES[2].1,
+            ),
+            (
+                "k, nodal rule".into(),
+                pick("on", "nodal"),
+                RGBColor(0, 114, 178),
+            ),
+            (
+                "k, exact integral, no limit".into(),
+                pick("removed", "exact"),
+                RGBColor(120, 120, 120),
+            ),
+        ],
+        guides: vec![(1.0, "slope −1".into())],
+        legend_at: SeriesLabelPosition::LowerLeft,
+        headroom: 1.5,
+        fonts: PANEL_FONTS,
+        markers: vec![1, 0, 4],
+        nested: true,
+    })
+}
 
 fn label_of(sol: &str) -> &'static str {
     evhi::manufactured::SOLUTIONS
@@ -219,66 +390,123 @@ fn label_of(sol: &str) -> &'static str {
         .map_or("?", |s| s.label())
 }
 
-pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<(), ExpError> {
-    // Errors of every family.
+pub fn draw_all(
+    ctx: &Ctx,
+    conv: &Path,
+    cea: &Path,
+    regimes: &Path,
+    hold: &Path,
+) -> Result<(), ExpError> {
+    // Errors of every family, one panel per solution.
     let df = read_csv(conv)?;
-    let (sol, fam, n, steps, err) = (
+    let (sol, fam, n, steps, err, share) = (
         col_str(&df, "solution")?,
         col_str(&df, "family")?,
         col_f64(&df, "n")?,
         col_f64(&df, "steps")?,
         col_f64(&df, "rel_err_max_percent")?,
+        col_f64(&df, "limit_share_percent")?,
     );
-    let series: Vec<(Series, bool)> = COLOURS
-        .iter()
-        .map(|&(s, f, c)| {
+    // The points of family `f` of solution `s`: (n or N, the column `v`), and its legend.
+    let family = |s: &str, f: &str, v: &[f64]| -> (String, Vec<(f64, f64)>) {
+        let rows: Vec<usize> = (0..sol.len())
+            .filter(|&i| sol[i] == s && fam[i] == f)
+            .collect();
+        let pts = rows
+            .iter()
+            .map(|&i| (if f.starts_with('k') { steps[i] } else { n[i] }, v[i]))
+            .collect();
+        let first = rows.first().copied().unwrap_or(0);
+        let (n0, s0) = (
+            n.get(first).copied().unwrap_or(0.0),
+            steps.get(first).copied().unwrap_or(0.0),
+        );
+        let what = match f {
+            "h=k" => "h = k = 1/n".to_string(),
+            "h" if s == "steady" => "h = 1/n, static".to_string(),
+            "h" => format!("h = 1/n, N = {s0}"),
+            "k_on_step" => format!("k = 1/N, N = 5·2^m, n = {n0}"),
+            _ => format!("k = 1/N, n = {n0}"),
+        };
+        (what, pts)
+    };
+    let mut charts = vec![];
+    for s in evhi::manufactured::SOLUTIONS {
+        let (mut series, mut markers) = (vec![], vec![]);
+        for (f, c, m) in FAMILIES {
+            let (label, pts) = family(s.name(), f, &err);
+            if !pts.is_empty() {
+                series.push((label, pts, c));
+                markers.push(m);
+            }
+        }
+        if series.is_empty() {
+            continue;
+        }
+        charts.push(LogLog {
+            title: s.label().to_string(),
+            x_desc: "mesh n (h = 1/n) or steps N (k = T/N)".into(),
+            y_desc: "largest relative energy error (%)".into(),
+            series,
+            guides: vec![(1.0, "slope −1".into())],
+            legend_at: SeriesLabelPosition::LowerLeft,
+            headroom: 1.5,
+            fonts: PANEL_FONTS,
+            markers,
+            nested: true,
+        });
+    }
+    charts.push(hold_panel(hold)?);
+    // The share at g of the solutions whose exact share is 15 %: (f), (g), (i).
+    let mut shares = vec![];
+    for (s, f, c) in [
+        ("p1limit", "h=k", RGBColor(0, 114, 178)),
+        ("p1limit", "k", RGBColor(213, 94, 0)),
+        ("landing", "k", RGBColor(0, 158, 115)),
+    ] {
+        let (label, pts) = family(s, f, &share);
+        shares.push((
+            format!("{} {label}", label_of(s).get(..3).unwrap_or("")),
+            pts,
+            c,
+        ));
+    }
+    {
+        let df = read_csv(hold)?;
+        let (sol, limit, rule, steps, share, n) = (
+            col_str(&df, "solution")?,
+            col_str(&df, "limit")?,
+            col_str(&df, "rule")?,
+            col_f64(&df, "steps")?,
+            col_f64(&df, "limit_share")?,
+            col_f64(&df, "n")?,
+        );
+        for (r, what, c) in [
+            ("nodal", "nodal rule", RGBColor(204, 121, 167)),
+            ("exact", "exact integral", RGBColor(86, 180, 233)),
+        ] {
             let rows: Vec<usize> = (0..sol.len())
-                .filter(|&i| sol[i] == s && fam[i] == f)
+                .filter(|&i| sol[i] == "hold" && limit[i] == "on" && rule[i] == r)
                 .collect();
-            let pts = rows
-                .iter()
-                .map(|&i| (if f.starts_with('k') { steps[i] } else { n[i] }, err[i]))
-                .collect::<Vec<_>>();
-            let first = rows.first().copied().unwrap_or(0);
-            let what = match f {
-                "h=k" => "h = k = 1/n".to_string(),
-                "h" if s == "steady" => "h = 1/n, static".to_string(),
-                "h" => format!("h = 1/n, N = {}", steps.get(first).copied().unwrap_or(0.0)),
-                "k_on_step" => format!(
-                    "k = 1/N, N = 5·2^m, n = {}",
-                    n.get(first).copied().unwrap_or(0.0)
-                ),
-                _ => format!("k = 1/N, n = {}", n.get(first).copied().unwrap_or(0.0)),
-            };
-            (
-                (format!("{}: {what}", label_of(s)), pts, c),
-                f.starts_with('k'),
-            )
-        })
-        .filter(|s| !s.0.1.is_empty())
-        .collect();
-    let (k, h): (Vec<_>, Vec<_>) = series.into_iter().partition(|s| s.1);
-    let y_desc = "max over t_n of ||u - u_hk||_E / max ||u||_E (%)".to_string();
+            let n0 = rows.first().map_or(0.0, |&i| n[i]);
+            shares.push((
+                format!("(i) k = 1/N, n = {n0}, {what}"),
+                rows.iter().map(|&i| (steps[i], 100.0 * share[i])).collect(),
+                c,
+            ));
+        }
+    }
     both(
         &ctx.figures,
         "exact_convergence",
-        (1000, 1500),
-        &TwoPanels {
-            left: LogLog {
-                title: "In h: h = k and h families, against the truth".into(),
-                x_desc: "n = 1/h".into(),
-                y_desc: y_desc.clone(),
-                series: h.into_iter().map(|s| s.0).collect(),
-                guides: vec![(1.0, "slope -1".into())],
-                legend_at: SeriesLabelPosition::UpperRight,
-            },
-            right: LogLog {
-                title: "In k: k families".into(),
-                x_desc: "N = T/k".into(),
-                y_desc,
-                series: k.into_iter().map(|s| s.0).collect(),
-                guides: vec![(1.0, "slope -1".into())],
-                legend_at: SeriesLabelPosition::UpperRight,
+        (1200, 3000),
+        &Panels {
+            charts,
+            share: Share {
+                title: "(f), (g), (i): share of Γ3 × (0, T) at g".into(),
+                series: shares,
+                exact: 15.0,
+                fonts: PANEL_FONTS,
             },
         },
     )?;
@@ -341,6 +569,10 @@ pub fn draw_all(ctx: &Ctx, conv: &Path, cea: &Path, regimes: &Path) -> Result<()
             guides: vec![(2.0, "slope -2 (h², k²)".into())],
             // The terms fall to the right; the lower left is empty.
             legend_at: SeriesLabelPosition::LowerLeft,
+            headroom: 30.0,
+            fonts: (22, 18, 19),
+            markers: vec![],
+            nested: false,
         },
     )?;
     // The regimes (b) visits, at the finest level up to 64.

@@ -96,6 +96,7 @@ fn orders(v: &[f64]) -> Vec<f64> {
 
 /// The study's rows, kept to write its tables.
 struct Study {
+    scn: Scenario,
     /// (family index, run) in the order of [`families`].
     runs: Vec<(usize, ExactRun)>,
     /// (b) on h = k with the exact rule, and the nodal–exact distance per level.
@@ -118,6 +119,7 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     let fams = families(ctx.quick);
     ctx.add_units(fams.iter().map(|f| f.levels.len()).sum());
     let mut study = Study {
+        scn: scn.clone(),
         runs: vec![],
         crime: vec![],
     };
@@ -150,9 +152,9 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     let regimes = write_regimes(ctx, &fams, &study)?;
     write_quadrature(ctx, &scn)?;
     write_quadrature_effect(ctx, &scn)?;
-    hold::write_hold(ctx, &scn)?;
+    let hold = hold::write_hold(ctx, &scn)?;
     let grid = write_grid(ctx, &grid)?;
-    figure::draw_all(ctx, &conv, &cea, &regimes)?;
+    figure::draw_all(ctx, &conv, &cea, &regimes, &hold)?;
     figure::draw_grid(ctx, &grid)
 }
 
@@ -197,6 +199,8 @@ fn write_grid(ctx: &Ctx, runs: &[ExactRun]) -> Result<std::path::PathBuf, ExpErr
     let mut t = Cols::default();
     for r in runs {
         let (h, k, lhs) = (r.h, r.k, r.lhs());
+        let terms = r.cea_terms();
+        t.s("letter", r.sol.letter());
         t.s("solution", r.sol.name());
         t.u("n", r.n);
         t.u("steps", r.steps);
@@ -211,13 +215,50 @@ fn write_grid(ctx: &Ctx, runs: &[ExactRun]) -> Result<std::path::PathBuf, ExpErr
             lhs / r.max_exact_v_sq() / (h * h + k * k),
         );
         t.f("rel_err_max_percent", 100.0 * r.rel_max());
+        for (name, v) in CEA_TERMS.iter().zip(terms) {
+            t.f(name, v);
+        }
+        t.f("lhs_over_terms", lhs / terms.iter().sum::<f64>());
+        t.f("limit_share_percent", 100.0 * r.limit_share());
         t.f("max_certificate", r.max_certificate());
     }
     let params = format!(
-        "{}; solutions (b) and (f) on every pair (n, N) of the levels, h = 1/n (the paper's h: Gamma_3 in 1/h segments, the cells have side 2h), k = T/N; lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, the left side of (4.24); max_u_v_sq = max_n ||u(t_n)||_V^2; rel_lhs_over_h2_plus_k2 = lhs / max_u_v_sq / (h^2 + k^2), the constant with the size of u divided out",
+        "{}; solutions (b) and (f) on every pair (n, N) of the levels, h = 1/n (the paper's h: Gamma_3 in 1/h segments, the cells have side 2h), k = T/N; lhs = max_n ||e_n||_V^2 + k sum ||e_n||_V^2, the left side of (4.24); max_u_v_sq = max_n ||u(t_n)||_V^2; rel_lhs_over_h2_plus_k2 = lhs / max_u_v_sq / (h^2 + k^2), the constant with the size of u divided out; the right side of (4.16) with v_n = Pi^h u_n as in exact_cea.csv (interp_max, dinterp_sum, gamma_sum, r_sum, delta_sum) and lhs_over_terms = lhs / their sum, the observed constant of (4.16); limit_share as in exact_convergence.csv; letter = the book's name of the solution",
         params()
     );
     ctx.write("exact_grid.csv", &t.table(), &params)
+}
+
+/// The columns of the terms of the right side of (4.16), in the order of
+/// [`ExactRun::cea_terms`].
+const CEA_TERMS: [&str; 5] = [
+    "interp_max",
+    "dinterp_sum",
+    "gamma_sum",
+    "r_sum",
+    "delta_sum",
+];
+
+/// The share of $\Gamma_3 \times (0, T)$ where $u_\nu = g$: a midpoint sum on a
+/// $20000 \times 200$ grid (cells of $10^{-4}$ in $x$ and $0.005$ in $t$). Its lines
+/// hold the hold's ends and the plateau's ends of (b), (f), (g) and (i), so it is exact
+/// for them; for (d), whose ends move, and (h), whose ends sit on no line, it meets
+/// the closed forms the book gives to $10^{-4}$ of the share (a test compares them).
+pub(super) fn exact_share(sol: Solution, scn: &Scenario) -> f64 {
+    let data = Data::new(sol, scn);
+    let (nx, nt) = (20_000, 200);
+    let t_end = scn.t_end();
+    let mut at = 0usize;
+    for j in 0..nt {
+        let t = (j as f64 + 0.5) / nt as f64 * t_end;
+        for i in 0..nx {
+            let x = (i as f64 + 0.5) / nx as f64 * 2.0;
+            if data.u_nu(x, t) >= scn.g() - 1e-12 {
+                at += 1;
+            }
+        }
+    }
+    at as f64 / (nx * nt) as f64
 }
 
 /// The provenance every table of the study shares.
@@ -237,13 +278,19 @@ fn write_convergence(
         .position(|r| *r == "limit")
         .expect("a regime");
     let mut t = Cols::default();
+    // The exact share, once per solution.
+    let mut shares = std::collections::HashMap::new();
     for (fi, fam) in fams.iter().enumerate() {
         let runs: Vec<&ExactRun> = s.runs.iter().filter(|r| r.0 == fi).map(|r| &r.1).collect();
         let max: Vec<f64> = runs.iter().map(|r| r.rel_max()).collect();
         let fin: Vec<f64> = runs.iter().map(|r| r.rel_final()).collect();
         let l2: Vec<f64> = runs.iter().map(|r| r.rel_l2()).collect();
         let (om, of, ol) = (orders(&max), orders(&fin), orders(&l2));
+        let share_exact = *shares
+            .entry(fam.sol.name())
+            .or_insert_with(|| exact_share(fam.sol, &s.scn));
         for (i, r) in runs.iter().enumerate() {
+            t.s("letter", fam.sol.letter());
             t.s("solution", fam.sol.name());
             t.s("family", fam.kind);
             t.u("n", r.n);
@@ -259,11 +306,13 @@ fn write_convergence(
             let at_max = r.max_row();
             t.f("t_at_max", at_max.t);
             t.u("limit_nodes_at_max", at_max.regimes[limit]);
+            t.f("limit_share_exact_percent", 100.0 * share_exact);
+            t.f("limit_share_percent", 100.0 * r.limit_share());
             t.f("max_certificate", r.max_certificate());
         }
     }
     let params = format!(
-        "{}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); landing_gap (g only) = T1 - t_m, t_m the last step before the landing time T1 = 0.4; t_at_max = the t_n where max_n ||u(t_n) - u_n||_E is reached (the first, on a tie), limit_nodes_at_max = the contact nodes of the discrete solution at g at that step (regime limit: within 1e-8 g, as in exact_regimes.csv); steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column",
+        "{}; rel_err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E, rel_err_T at t = T, rel_err_l2 = (k sum ||e_n||_E^2)^(1/2) / (k sum ||u(t_n)||_E^2)^(1/2); order = log2 of the ratio to the previous level of the family; lhs_over_h2_plus_k2 = (max_n ||e_n||_V^2 + k sum ||e_n||_V^2) / (h^2 + k^2) with h = 1/n, k = T/N (the observed constant of (4.24)); landing_gap (g only) = T1 - t_m, t_m the last step before the landing time T1 = 0.4; t_at_max = the t_n where max_n ||u(t_n) - u_n||_E is reached (the first, on a tie), limit_nodes_at_max = the contact nodes of the discrete solution at g at that step (regime limit: within 1e-8 g, as in exact_regimes.csv); limit_share_exact = the share of Gamma_3 x (0, T) where u_nu = g (midpoint sum on a 20000 x 200 grid), limit_share = that of the discrete solution: the contact nodes at g after each step, each weighted by its 2h of Gamma_3 and each step by k (count / (n N)); letter = the book's name of the solution; steady: the static problem, one solve, and ||e||_V^2 / h^2 in that column",
         params()
     );
     ctx.write("exact_convergence.csv", &t.table(), &params)
@@ -280,13 +329,7 @@ fn landing_gap(sol: Solution, k: f64) -> f64 {
 
 fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf, ExpError> {
     let mut t = Cols::default();
-    const TERMS: [&str; 5] = [
-        "interp_max",
-        "dinterp_sum",
-        "gamma_sum",
-        "r_sum",
-        "delta_sum",
-    ];
+    const TERMS: [&str; 5] = CEA_TERMS;
     for (fi, fam) in fams.iter().enumerate() {
         if fam.kind != "h=k"
             || !matches!(
@@ -304,6 +347,7 @@ fn write_cea(ctx: &Ctx, fams: &[Family], s: &Study) -> Result<std::path::PathBuf
             .collect();
         let ol = orders(&lhs);
         for (i, r) in runs.iter().enumerate() {
+            t.s("letter", fam.sol.letter());
             t.s("solution", fam.sol.name());
             t.u("n", r.n);
             t.u("steps", r.steps);
