@@ -173,7 +173,11 @@ pub(crate) fn elasticity_from(m: &RawMaterial) -> Result<(f64, f64, MaterialForm
         InputError::field(
             field,
             format!("{kappa:e} as the plane-strain Poisson ratio it implies"),
-            "constants whose plane-strain reading has a Poisson ratio in (-1, 1/2)",
+            format!(
+                "constants whose plane-strain reading has a Poisson ratio in (-1, 1/2) and \
+                 lambda/(2 mu) at most {MAX_LAME_RATIO:e} (nearer 1/2 the step matrix loses \
+                 its positive pivots in double precision)"
+            ),
         )
     })?;
     Ok((b * (1.0 + kappa), kappa, form))
@@ -234,7 +238,28 @@ impl MaterialForm {
 
 /// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`].
 /// A Poisson ratio: finite and in $(-1, \tfrac12)$.
+/// The largest $\lambda/(2\mu) = \kappa/(1 - 2\kappa)$ accepted: twelve of double
+/// precision's sixteen digits lost to the volumetric part.
+pub const MAX_LAME_RATIO: f64 = 1e12;
+
 pub(crate) fn poisson(field: &str, kappa: f64) -> Result<f64, InputError> {
+    if kappa.is_finite()
+        && kappa > -1.0
+        && kappa < 0.5
+        && kappa / (1.0 - 2.0 * kappa) > MAX_LAME_RATIO
+    {
+        return Err(InputError::field(
+            field,
+            kappa,
+            format!(
+                "a Poisson ratio with kappa/(1 - 2 kappa) = lambda/(2 mu) at most {MAX_LAME_RATIO:e} \
+                 (kappa up to about 0.4999999999995): nearer 1/2 the volumetric stiffness \
+                 swamps the shear's in double precision and the step matrix loses its \
+                 positive pivots; P1 triangles lock long before (a nearly incompressible \
+                 body needs a mixed method, not offered here)"
+            ),
+        ));
+    }
     if kappa.is_finite() && kappa > -1.0 && kappa < 0.5 {
         Ok(kappa)
     } else {

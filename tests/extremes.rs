@@ -156,3 +156,33 @@ fn extreme_values_are_rejected_by_name_or_solved_certified() {
         failures.join("\n")
     );
 }
+
+/// A Poisson ratio a hair below 1/2 (0.49999999999999994, the largest double below it)
+/// is refused when read, naming the ratio, instead of failing at the factorisation;
+/// 0.499999999999 (lambda/(2 mu) = 5e11) is accepted and solves certified.
+#[test]
+fn a_poisson_ratio_whose_volumetric_part_swamps_double_precision_is_refused_when_read() {
+    let text = std::fs::read_to_string("data/scenarios/figure.toml").unwrap();
+    let with = |k: &str| text.replace("kappa = 0.4", &format!("kappa = {k}"));
+    let e = evhi::scenario::Scenario::from_toml(&with("0.49999999999999994"), "k.toml")
+        .expect_err("refused")
+        .to_string();
+    for needle in [
+        "material.kappa",
+        "0.49999999999999994",
+        "lambda/(2 mu)",
+        "1e12",
+    ] {
+        assert!(e.contains(needle), "no `{needle}` in: {e}");
+    }
+    let lame = text.replace("E = 1000.0\nkappa = 0.4", "lambda = 1e20\nmu = 1.0");
+    let e = evhi::scenario::Scenario::from_toml(&lame, "l.toml")
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("lambda/(2 mu)"), "{e}");
+    let scn = evhi::scenario::Scenario::from_toml(&with("0.499999999999"), "k.toml").unwrap();
+    let sim = evhi::simulation::Simulation::new(scn, evhi::simulation::RunSettings::general(16, 4))
+        .unwrap();
+    let sol = sim.solve(&mut ()).unwrap();
+    assert!(sol.max_certificate() < 1e-10);
+}
