@@ -50,15 +50,16 @@ pub mod okabe_ito {
     pub const REDDISH_PURPLE: RGBColor = RGBColor(204, 121, 167);
 
     /// The order in which a figure's data series take their colours: the three
-    /// strongest first (blue, vermillion, bluish green), yellow left out (it does not
-    /// show as a line on white), black last (it is kept for references).
+    /// strongest first (blue, vermillion, bluish green), orange last (beside
+    /// vermillion it is the pair most often confused), yellow left out (it does not
+    /// show as a line on white) and black kept for references.
     pub const SERIES: [RGBColor; 6] = [
         BLUE,
         VERMILLION,
         BLUISH_GREEN,
         REDDISH_PURPLE,
-        ORANGE,
         SKY_BLUE,
+        ORANGE,
     ];
 
     /// The colour of the `i`-th data series ([`SERIES`], cycled).
@@ -73,7 +74,7 @@ pub const GREY_DARK: RGBColor = RGBColor(60, 60, 60);
 /// See [`GREY_DARK`].
 pub const GREY: RGBColor = RGBColor(120, 120, 120);
 /// See [`GREY_DARK`].
-pub const GREY_LIGHT: RGBColor = RGBColor(200, 200, 200);
+pub const GREY_LIGHT: RGBColor = RGBColor(210, 210, 210);
 
 /// The sequential colour map of every figure that colours a value: viridis (van der
 /// Walt and Smith, matplotlib 2.0), dark purple at `s = 0` through blue and green to
@@ -107,7 +108,7 @@ pub fn regime_colour(regime: &str) -> RGBColor {
     const MORE: [RGBColor; 4] = [oi::SKY_BLUE, oi::REDDISH_PURPLE, oi::YELLOW, GREY_DARK];
     use crate::law::Regime;
     match regime.parse::<Regime>() {
-        Ok(Regime::NoContact) => RGBColor(150, 150, 150),
+        Ok(Regime::NoContact) => GREY,
         Ok(Regime::Branch(1)) => oi::BLUE,
         Ok(Regime::Branch(2)) => oi::ORANGE,
         Ok(Regime::Branch(3)) => oi::BLUISH_GREEN,

@@ -10,6 +10,7 @@ use super::rows::{TriangleRow, column};
 use crate::certificate::regime_order;
 use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
+use crate::output::plot::{GREY, GREY_DARK, okabe_ito as oi};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 
@@ -263,11 +264,12 @@ impl Figure for SceneFigure {
     }
 }
 
-/// The height of a grid's legend rows under its title, pixels.
-const KEY_HEIGHT: u32 = 64;
+/// The height of a grid's legend rows under its title, pixels (three rows: a
+/// 1000 px grid holds two entries a row).
+const KEY_HEIGHT: u32 = 92;
 
 /// The colour of the unilateral part of the force.
-const UNILATERAL: RGBColor = RGBColor(120, 0, 0);
+const UNILATERAL: RGBColor = oi::REDDISH_PURPLE;
 
 /// Legend entries (a filled square and its label) left to right in rows across
 /// `area`, a new row where the next would not fit.
@@ -307,24 +309,25 @@ fn draw_mesh<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     compact: bool,
 ) -> Result<(), String> {
-    let caption = format!(
-        "{}: {}contact nodes: {}",
-        if p.g.is_finite() {
-            format!("g = {}", p.g)
-        } else {
-            "no limit".to_string()
-        },
-        if compact {
-            ""
-        } else {
-            "deformed mesh (true scale); "
-        },
-        regime_order(&p.regime)
-            .iter()
-            .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    let limit = if p.g.is_finite() {
+        format!("g = {}", p.g)
+    } else {
+        "no limit".to_string()
+    };
+    // A grid's panel is half the width: its caption names the limit only (the counts
+    // per regime are the table beside the grid).
+    let caption = if compact {
+        limit
+    } else {
+        format!(
+            "{limit}: deformed mesh (true scale); contact nodes: {}",
+            regime_order(&p.regime)
+                .iter()
+                .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, if compact { 17 } else { 18 }))
         .margin(8)
@@ -349,7 +352,7 @@ fn draw_mesh<DB: DrawingBackend>(
         chart
             .draw_series(std::iter::once(Rectangle::new(
                 [(left, -0.16), (right, -p.g)],
-                RGBColor(120, 120, 120).mix(0.5).filled(),
+                GREY.mix(0.5).filled(),
             )))
             .map_err(e2s)?;
     }
@@ -359,7 +362,7 @@ fn draw_mesh<DB: DrawingBackend>(
                 (left, if p.g.is_finite() { -p.g } else { -base }),
                 (right, 0.0),
             ],
-            RGBColor(240, 200, 120).mix(0.4).filled(),
+            oi::YELLOW.mix(0.4).filled(),
         )))
         .map_err(e2s)?;
     let nx = p.cells;
@@ -368,7 +371,7 @@ fn draw_mesh<DB: DrawingBackend>(
         let v = j * (nx + 1) + i;
         (p.x[v] + p.ux[v], p.y[v] + p.uy[v])
     };
-    let style = RGBColor(40, 40, 90).stroke_width(1);
+    let style = GREY_DARK.stroke_width(1);
     let mut segs = vec![];
     let moved = |v: usize| (p.x[v] + p.ux[v], p.y[v] + p.uy[v]);
     for t in p.triangles.iter().flatten() {
@@ -429,7 +432,7 @@ fn draw_forces<DB: DrawingBackend>(
     let caption = if shared.is_some() {
         "interface force -σν = -σν¹ - σν² on Γ3"
     } else {
-        "interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)"
+        "interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (reddish purple)"
     };
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, 17))
