@@ -35,13 +35,13 @@ pub struct Ctx {
     /// provenance names it.
     pub experiment: &'static str,
     /// The Markdown layout of a table the book shows, by file name: the key columns
-    /// repeated in every part and the most columns of one part; `None` for a table
-    /// the book does not show (no Markdown written).
-    pub book_table: fn(&str) -> Option<(usize, usize)>,
+    /// repeated in every part, the most columns of one part and the columns'
+    /// headings; `None` for a table the book does not show (no Markdown written).
+    pub book_table: fn(&str) -> Option<&'static crate::output::markdown::BookTable>,
 }
 
 /// No table shown by the book: [`Ctx::book_table`] of a study or a test.
-pub fn no_book_table(_: &str) -> Option<(usize, usize)> {
+pub fn no_book_table(_: &str) -> Option<&'static crate::output::markdown::BookTable> {
     None
 }
 
@@ -127,7 +127,7 @@ impl Ctx {
     /// Writes `data/<stem>.md`, the Markdown rendering of `data/<file>`, if the
     /// book shows that table ([`Ctx::book_table`]).
     pub fn render_book_table(&self, file: &str) -> Result<(), ExpError> {
-        let Some((keys, cols)) = (self.book_table)(file) else {
+        let Some(layout) = (self.book_table)(file) else {
             return Ok(());
         };
         let path = self.data_path(file);
@@ -137,7 +137,7 @@ impl Ctx {
                 source: e,
             })
         })?;
-        let md = crate::output::markdown::table(&text, keys, cols);
+        let md = crate::output::markdown::table(&text, layout.keys, layout.cols, layout.headings);
         self.write_file(&path.with_extension("md"), md.as_bytes())
     }
 
