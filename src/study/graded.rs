@@ -795,7 +795,6 @@ impl Figure for GradedFig {
                     Some(&crate::output::plot::plain),
                 ),
                 fonts: (FONTS.1, Some(FONTS.2)),
-                ..LogLogChart::default()
             }
             .build(
                 area,
