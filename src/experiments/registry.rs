@@ -203,7 +203,11 @@ pub const EXPERIMENTS: [Experiment; 15] = [
                 ("newton_matrix_condition", "condition of Newton's matrix"),
                 ("mean_iterations", "iterations per step"),
             ]),
-            table("stability_prop31.csv", 3, 6),
+            table("stability_prop31.csv", 3, 6).headed(&[
+                ("max_norm_du", "max ‖δu_n‖_V"),
+                ("k_sum_norm_du_sq", "k Σ ‖δu_n‖²_V"),
+                ("prop31_lhs", "left side of Prop. 3.1"),
+            ]),
         ],
     },
     Experiment {
