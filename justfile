@@ -19,12 +19,15 @@ ci:
 solve *ARGS:
     cargo run --release -- solve {{ARGS}}
 
-# Build the book into book/book/ (installs just, mdbook and mdbook-katex on first use)
+# Build the book into book/book/ (installs just, mdbook and mdbook-katex on first use), then
+# check every chapter at 1280 px in headless Chromium: it fails naming what is wider than
+# the text column (tools/book_overflow.py; skipped where no chromium is installed)
 book:
     bash tools/install.sh
     rm -rf book/src/figures && mkdir -p book/src/figures && cp figures/*.png book/src/figures/
     .tools/bin/mdbook build book
     @echo "book: book/book/index.html"
+    @if command -v chromium >/dev/null; then python3 tools/book_overflow.py book/book; else echo "book: no chromium, the column check skipped"; fi
 
 # Serve the book locally with live reload
 serve-book:

@@ -8,19 +8,79 @@ pub mod sweeps;
 pub mod tables;
 pub mod workprec;
 
-use evhi::output::markdown::{BookTable, book_table as table};
+use evhi::output::markdown::{BookTable, Heading, book_table as table};
 
 /// The tables of `evhi bench` the book shows.
 pub const TABLES: [BookTable; 5] = [
-    table("bench_scipy.csv", 1, 5),
-    table("bench.csv", 3, 6),
-    table("bench_sweeps.csv", 1, 5),
-    table("bench_vs_paper.csv", 1, 6),
-    table("bench_solvers.csv", 2, 6),
+    table("bench_scipy.csv", 1, 5).headed(SCIPY),
+    table("bench.csv", 3, 6).headed(BENCH),
+    table("bench_sweeps.csv", 1, 5).headed(SWEEPS),
+    table("bench_vs_paper.csv", 1, 6).headed(VS_PAPER),
+    table("bench_solvers.csv", 2, 6).headed(SOLVERS),
 ];
 
-/// The Markdown layout ([`BookTable`]) of `file` if it is one
-/// of the bench's tables the book shows.
+/// The headings of `bench.csv` in the book.
+const BENCH: &[Heading] = &[
+    ("path", "time loop"),
+    ("dofs", "unknowns"),
+    ("wall_s", "wall time (s)"),
+    ("assembly_s", "assembly (s)"),
+    ("factorisation_s", "factorisation (s)"),
+    ("condensation_s", "condensation (s)"),
+    ("steps_s", "time steps (s)"),
+    ("one_solve_s", "one solve (s)"),
+    ("floor_ratio", "run over its floor"),
+    ("peak_rss_mb", "peak memory (MiB)"),
+];
+
+/// The headings of `bench_scipy.csv` in the book.
+const SCIPY: &[Heading] = &[
+    ("dofs", "unknowns"),
+    ("scipy_total_s", "SciPy, total (s)"),
+    ("scipy_steps_s", "SciPy, time steps (s)"),
+    ("general_wall_s", "general loop (s)"),
+    ("reduced_wall_s", "reduced loop (s)"),
+    ("scipy_over_general", "SciPy over general"),
+    ("scipy_over_reduced", "SciPy over reduced"),
+    ("scipy_gap_u_nu", "gap in uν (relative)"),
+    ("scipy_gap_energy", "gap in energy (relative)"),
+];
+
+/// The headings of `bench_sweeps.csv` in the book.
+const SWEEPS: &[Heading] = &[
+    ("columns", "right-hand sides"),
+    ("nnz_l", "nonzeros of L"),
+    ("forward_ms", "forward (ms)"),
+    ("backward_ms", "backward (ms)"),
+    ("total_ms", "total (ms)"),
+    ("ms_per_column", "per right-hand side (ms)"),
+    ("gb_per_s", "rate (GB/s)"),
+];
+
+/// The headings of `bench_vs_paper.csv` in the book.
+const VS_PAPER: &[Heading] = &[
+    ("n_and_steps", "n = steps"),
+    ("paper_dofs", "paper: unknowns"),
+    ("paper_cpu_s", "paper: CPU time (s)"),
+    ("path", "our time loop"),
+    ("our_dofs", "our unknowns"),
+    ("our_wall_s", "our wall time (s)"),
+    ("paper_over_ours", "paper over ours"),
+];
+
+/// The headings of `bench_solvers.csv` in the book.
+const SOLVERS: &[Heading] = &[
+    ("solver", "step solver"),
+    ("wall_s", "wall time (s)"),
+    ("steps_s", "time steps (s)"),
+    ("iterations_total", "iterations"),
+    ("inner_iterations_total", "inner iterations"),
+    ("max_certificate", "largest certificate"),
+    ("energy_norm_T", "energy norm at T"),
+];
+
+/// The Markdown layout (key columns, most columns of a part, headings) of `file` if
+/// it is one of the bench's tables the book shows.
 pub fn book_table(file: &str) -> Option<&'static BookTable> {
     evhi::output::markdown::layout(TABLES.iter(), file)
 }

@@ -7,6 +7,7 @@ use evhi::output::plot::FONT;
 use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
 };
+use evhi::output::plot::{GREY_DARK, okabe_ito as oi};
 use evhi::output::rows::{POSITIVE, column};
 use evhi::study::{Ctx, ExpError};
 use plotters::prelude::*;
@@ -64,16 +65,16 @@ impl Chart {
         };
         Ok(Chart {
             series: vec![
-                ("h = k = 1/n".into(), pick("h=k"), RGBColor(0, 114, 178)),
+                ("h = k = 1/n".into(), pick("h=k"), oi::BLUE),
                 (
                     format!("h = 1/n, k = 1/{REFERENCE}"),
                     pick("h"),
-                    RGBColor(213, 94, 0),
+                    oi::VERMILLION,
                 ),
                 (
                     format!("h = 1/{REFERENCE}, k = 1/N: time error only"),
                     pick("k"),
-                    RGBColor(0, 158, 115),
+                    oi::BLUISH_GREEN,
                 ),
             ],
             floor: mesh_floor(ctx)?,
@@ -114,7 +115,7 @@ impl Figure for Chart {
                 Some(&evhi::output::plot::plain),
                 Some(&evhi::output::plot::plain),
             ),
-            fonts: (16, None),
+            fonts: (18, Some(18)),
             ..LogLogChart::default()
         }
         .build(
@@ -129,6 +130,7 @@ impl Figure for Chart {
         )?;
         let placed = place_labels(
             |x, y| chart.backend_coord(&(x, y)),
+            chart.plotting_area().get_pixel_range(),
             &self.series,
             self.floor,
         );
@@ -148,7 +150,7 @@ impl Figure for Chart {
                 .map_err(e2s)?;
         }
         if let Some(f) = self.floor {
-            let grey = RGBColor(90, 90, 90).stroke_width(2);
+            let grey = GREY_DARK.stroke_width(2);
             chart
                 .draw_series(DashedLineSeries::new(
                     vec![(xmin * 0.7, f), (xmax * 1.5, f)],
@@ -164,21 +166,28 @@ impl Figure for Chart {
         }
         chart
             .draw_series(
-                (placed.into_iter()).map(|(text, at)| Text::new(text, at, (FONT, 14).into_font())),
+                (placed.into_iter())
+                    .map(|(text, at)| Text::new(text, at, (FONT, LABEL.0).into_font())),
             )
             .map_err(e2s)?;
-        legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 18, 0.9)?;
         Ok(())
     }
 }
 
+/// The points' labels: font size, and the width of a character and the height of a
+/// line of it (pixels, a little over DejaVu Sans's, so that a box holds its text).
+const LABEL: (u32, i32, i32) = (16, 10, 18);
+
 /// Where each point's label goes: beside its point, at the first of twelve
 /// positions (right or left; above, level or below; near or farther) whose box, in
-/// pixels, overlaps no earlier label, point, line of a series or the `floor` line.
+/// pixels, lies inside the plotting area `inside` (x and y pixel ranges) and overlaps
+/// no earlier label, point, line of a series or the `floor` line.
 /// Returns (text, the label's top-left corner in data coordinates).
 /// `at` maps a point to pixels; both axes are logarithmic.
 fn place_labels(
     at: impl Fn(f64, f64) -> (i32, i32),
+    inside: (std::ops::Range<i32>, std::ops::Range<i32>),
     series: &[Family],
     floor: Option<f64>,
 ) -> Vec<(String, (f64, f64))> {
@@ -215,7 +224,7 @@ fn place_labels(
     for (_, s, _) in series {
         for p in s {
             let (px, py) = at(p.0, p.1);
-            let (w, h) = (8 * p.2.chars().count() as i32, 16);
+            let (w, h) = (LABEL.1 * p.2.chars().count() as i32, LABEL.2);
             let candidates = [
                 (8, -h - 2),
                 (8, 4),
@@ -231,7 +240,11 @@ fn place_labels(
                 (-24 - w, -h / 2),
             ];
             let free = |b: (i32, i32, i32, i32)| {
-                !boxes.iter().any(|&o| overlaps(b, o))
+                inside.0.start <= b.0
+                    && b.0 + b.2 <= inside.0.end
+                    && inside.1.start <= b.1
+                    && b.1 + b.3 <= inside.1.end
+                    && !boxes.iter().any(|&o| overlaps(b, o))
                     && floor_y.is_none_or(|y| !overlaps(b, (b.0, y - 3, b.2, 6)))
                     && !points
                         .iter()

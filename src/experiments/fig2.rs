@@ -5,13 +5,10 @@
 use super::{Ctx, ExpError, col_f64, read_csv};
 use evhi::output::csv::Table;
 use evhi::output::plot::FONT;
+use evhi::output::plot::okabe_ito as oi;
 use evhi::output::plot::{Figure, both, e2s, legend};
 use evhi::scenario::Scenario;
 use plotters::prelude::*;
-
-/// Okabe–Ito blue and vermillion (safe for colour-blind readers).
-const OKABE_BLUE: RGBColor = RGBColor(0, 114, 178);
-const VERMILLION: RGBColor = RGBColor(213, 94, 0);
 
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let scn = Scenario::load("figure")?;
@@ -157,21 +154,19 @@ impl Figure for Fig2 {
             .map(|((&u, &s), _)| (u, s))
             .collect();
         chart
-            .draw_series(LineSeries::new(comp, OKABE_BLUE.stroke_width(3)))
+            .draw_series(LineSeries::new(comp, oi::BLUE.stroke_width(3)))
             .map_err(e2s)?
             .label(self.law_label.clone())
-            .legend(|(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], OKABE_BLUE.stroke_width(3))
-            });
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], oi::BLUE.stroke_width(3)));
         chart
-            .draw_series(LineSeries::new(wall, VERMILLION.stroke_width(3)))
+            .draw_series(LineSeries::new(wall, oi::VERMILLION.stroke_width(3)))
             .map_err(e2s)?
             .label(format!(
                 "unilateral limit uν = g = {} (5.2): -σν² ≥ 0",
                 self.g
             ))
             .legend(|(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], VERMILLION.stroke_width(3))
+                PathElement::new(vec![(x, y), (x + 20, y)], oi::VERMILLION.stroke_width(3))
             });
         chart
             .draw_series(

@@ -6,7 +6,7 @@
 
 use super::{Ctx, ExpError};
 pub use evhi::output::markdown::BookTable;
-use evhi::output::markdown::book_table as table;
+use evhi::output::markdown::{Heading, book_table as table};
 
 /// One experiment.
 pub struct Experiment {
@@ -35,10 +35,20 @@ pub fn book_tables() -> impl Iterator<Item = &'static BookTable> {
         .chain(crate::bench::TABLES.iter())
 }
 
-/// The Markdown layout ([`BookTable`]) of `file` if the book shows it: the [`super::Ctx::book_table`] of every experiment and the bench.
+/// The Markdown layout (key columns, most columns of a part, headings) of `file` if
+/// the book shows it: the [`super::Ctx::book_table`] of every experiment and the bench.
 pub fn book_table(file: &str) -> Option<&'static BookTable> {
     evhi::output::markdown::layout(book_tables(), file)
 }
+
+/// The headings of a count of contact nodes per regime.
+const REGIME_COUNTS: &[Heading] = &[
+    ("no_contact", "no contact"),
+    ("branch1", "branch 1"),
+    ("branch2", "branch 2"),
+    ("branch3", "branch 3"),
+    ("limit", "at the limit"),
+];
 
 /// The experiments, in the order `evhi reproduce` runs them.
 pub const EXPERIMENTS: [Experiment; 15] = [
@@ -48,7 +58,13 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         paper: true,
         cost: 0.7,
         run: super::hypotheses::run,
-        tables: &[table("hypotheses.csv", 1, 5)],
+        tables: &[table("hypotheses.csv", 1, 5).headed(&[
+            ("trace_norm", "‖ι‖"),
+            ("m_trace_norm_sq", "m ‖ι‖²"),
+            ("alpha_A", "α_A"),
+            ("beta_B", "β_B"),
+            ("smallness_holds", "H(s) holds"),
+        ])],
     },
     Experiment {
         name: "fig2",
@@ -64,7 +80,16 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         paper: true,
         cost: 0.9,
         run: super::loads::run,
-        tables: &[table("loads_search.csv", 2, 7)],
+        tables: &[table("loads_search.csv", 2, 7).headed(&[
+            ("no_contact", "no contact"),
+            ("branch1", "branch 1"),
+            ("branch2", "branch 2"),
+            ("branch3", "branch 3"),
+            ("limit", "at the limit"),
+            ("u_nu_centre", "uν at the centre (m)"),
+            ("centre_regime", "regime at the centre"),
+            ("least_share", "least share"),
+        ])],
     },
     Experiment {
         name: "fig3",
@@ -80,7 +105,7 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         paper: true,
         cost: 2.0,
         run: super::scenes::run_fig4,
-        tables: &[table("fig4_counts.csv", 1, 6)],
+        tables: &[table("fig4_counts.csv", 1, 6).headed(REGIME_COUNTS)],
     },
     Experiment {
         name: "table1",
@@ -96,7 +121,19 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         paper: false,
         cost: 23.0,
         run: super::paths::run,
-        tables: &[table("paths.csv", 2, 4)],
+        tables: &[table("paths.csv", 2, 4).headed(&[
+            ("contact_gap", "gap in uν (relative)"),
+            ("energy_gap", "gap in energy norm (relative)"),
+            ("field_gap_T", "gap in the field at T (relative)"),
+            (
+                "general_max_certificate",
+                "general loop: largest certificate",
+            ),
+            (
+                "reduced_max_certificate",
+                "reduced loop: largest certificate",
+            ),
+        ])],
     },
     Experiment {
         name: "forensics",
@@ -145,9 +182,32 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         cost: 8.6,
         run: super::stability::run,
         tables: &[
-            table("stability_sweeps.csv", 4, 7),
-            table("stability_penalty.csv", 1, 5),
-            table("stability_prop31.csv", 3, 6),
+            table("stability_sweeps.csv", 4, 7).headed(&[
+                ("beta_B", "β_B"),
+                ("solver", "step solver"),
+                ("hessian_min", "step Hessian, least eigenvalue (bound)"),
+                ("failed_step", "failed step"),
+                ("mean_iterations", "iterations per step"),
+                (
+                    "max_certificate_or_residual",
+                    "largest certificate or residual",
+                ),
+            ]),
+            table("stability_penalty.csv", 1, 5).headed(&[
+                ("penalty_stiffness", "penalty stiffness"),
+                ("overshoot_over_g", "overshoot over g"),
+                (
+                    "rel_diff_energy_vs_exact",
+                    "energy against the exact limit (relative)",
+                ),
+                ("newton_matrix_condition", "condition of Newton's matrix"),
+                ("mean_iterations", "iterations per step"),
+            ]),
+            table("stability_prop31.csv", 3, 6).headed(&[
+                ("max_norm_du", "max ‖δu_n‖_V"),
+                ("k_sum_norm_du_sq", "k Σ ‖δu_n‖²_V"),
+                ("prop31_lhs", "left side of Prop. 3.1"),
+            ]),
         ],
     },
     Experiment {

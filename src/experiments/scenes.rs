@@ -174,7 +174,7 @@ pub fn run_fig4(ctx: &Ctx) -> Result<(), ExpError> {
     Ok(both(
         &ctx.figures,
         "fig4_several_g",
-        (1400, 1460),
+        (1000, 1180),
         &SceneFigure {
             paper_law: true,
             panels,

@@ -20,6 +20,7 @@ use evhi::linalg::Cholesky;
 use evhi::mesh::Dofs;
 use evhi::ordering::Ordering;
 use evhi::output::csv::Table;
+use evhi::output::plot::okabe_ito as oi;
 use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five, slope_guides,
 };
@@ -243,11 +244,7 @@ fn draw(
         col_f64(&df, "n")?,
         col_f64(&df, "rel_diff_next")?,
     );
-    let colours = [
-        RGBColor(213, 94, 0),
-        RGBColor(0, 114, 178),
-        RGBColor(0, 158, 115),
-    ];
+    let colours = [oi::VERMILLION, oi::BLUE, oi::BLUISH_GREEN];
     let series = SCENARIOS
         .iter()
         .zip(colours)

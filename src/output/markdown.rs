@@ -1,12 +1,25 @@
 //! Markdown renderings of the CSV tables the book shows: numbers to four
 //! significant digits, wide tables split into narrower ones that repeat the key
-//! columns, and the CSV's provenance kept as an HTML comment. The CSV stays the
-//! source of truth; the rendering is regenerated whenever it is written.
+//! columns, each column headed in words with its unit where the table gives a
+//! heading for it (`wall_s` as "wall time (s)"; the CSV keeps its name), and the
+//! CSV's provenance kept as an HTML comment. The CSV stays the source of truth; the
+//! rendering is regenerated whenever it is written.
+
+/// A CSV column's name and the heading the rendering gives it.
+pub type Heading = (&'static str, &'static str);
 
 /// Renders `csv` (with its `#` provenance lines) as Markdown, without the columns
-/// named in `hide`. The first `keys` columns shown are repeated in every part; each
-/// part has at most `max_cols` columns.
-pub fn table(csv: &str, keys: usize, max_cols: usize, hide: &[&str]) -> String {
+/// named in `hide`. The first `keys` columns shown are repeated in every part; each part has at most `max_cols` columns. A
+/// column named in `headings` is headed by its words; any other by its CSV name, in
+/// code type where the table has no headings at all (a name that is already a word,
+/// such as `n` or `solver`, reads as one beside headings in words).
+pub fn table(
+    csv: &str,
+    keys: usize,
+    max_cols: usize,
+    hide: &[&str],
+    headings: &[Heading],
+) -> String {
     let mut provenance = vec![];
     let mut rows: Vec<Vec<String>> = vec![];
     for line in csv.lines() {
@@ -71,7 +84,11 @@ pub fn table(csv: &str, keys: usize, max_cols: usize, hide: &[&str]) -> String {
             .collect();
         out.push('|');
         for &c in &cols {
-            out.push_str(&format!(" `{}` |", header[c]));
+            match headings.iter().find(|h| h.0 == header[c]) {
+                Some((_, words)) => out.push_str(&format!(" {} |", words.replace('|', "\\|"))),
+                None if headings.is_empty() => out.push_str(&format!(" `{}` |", header[c])),
+                None => out.push_str(&format!(" {} |", header[c])),
+            }
         }
         out.push_str("\n|");
         for _ in &cols {
@@ -145,21 +162,26 @@ fn number(cell: &str, integer: bool) -> String {
 
 /// A table the book shows, as a Markdown rendering beside its CSV: the file, the key
 /// columns repeated in every part, the most columns of one part (so a part fits
-/// the page), and the CSV's columns the rendering leaves out (an identifier the
-/// book names otherwise).
+/// the page), the CSV's columns the rendering leaves out (an identifier the book
+/// names otherwise), and the columns' headings in words.
 pub struct BookTable {
     pub file: &'static str,
     pub keys: usize,
     pub cols: usize,
     pub hide: &'static [&'static str],
+    /// Headings in words, with units, by CSV column name (a column left out is headed
+    /// by its name).
+    pub headings: &'static [Heading],
 }
 
+/// A [`BookTable`] whose columns are headed by their CSV names.
 pub const fn book_table(file: &'static str, keys: usize, cols: usize) -> BookTable {
     BookTable {
         file,
         keys,
         cols,
         hide: &[],
+        headings: &[],
     }
 }
 
@@ -168,9 +190,13 @@ impl BookTable {
     pub const fn hiding(self, hide: &'static [&'static str]) -> BookTable {
         BookTable { hide, ..self }
     }
+    /// The table with its columns headed by `headings`.
+    pub const fn headed(self, headings: &'static [Heading]) -> BookTable {
+        BookTable { headings, ..self }
+    }
 }
 
-/// The Markdown layout of `file` among `tables`: its [`BookTable`].
+/// The table `file` among `tables`, if it is one.
 pub fn layout<'a>(
     mut tables: impl Iterator<Item = &'a BookTable>,
     file: &str,
@@ -195,7 +221,7 @@ mod tests {
     #[test]
     fn wide_tables_split_and_repeat_their_keys() {
         let csv = "# made by a test\na,b,c,d\nx,1.5,2,3\ny,2.25,3,4\n";
-        let md = table(csv, 1, 3, &[]);
+        let md = table(csv, 1, 3, &[], &[]);
         assert!(md.starts_with("<!-- made by a test -->"));
         assert!(md.contains("| `a` | `b` | `c` |"), "{md}");
         assert!(md.contains("| `a` | `d` |"), "{md}");
@@ -204,14 +230,14 @@ mod tests {
 
     #[test]
     fn short_keys_read_as_given() {
-        let md = table("g,limit\n0.1,39\n0.09,47\n", 1, 6, &[]);
+        let md = table("g,limit\n0.1,39\n0.09,47\n", 1, 6, &[], &[]);
         assert!(
             md.contains("| 0.1 | 39 |") && md.contains("| 0.09 | 47 |"),
             "{md}"
         );
         // A value column keeps its four digits; a key column with a long value keeps
         // the rule throughout.
-        let md = table("g,err\n0.123456,0.5\n0.5,0.5\n", 1, 6, &[]);
+        let md = table("g,err\n0.123456,0.5\n0.5,0.5\n", 1, 6, &[], &[]);
         assert!(
             md.contains("| 0.1235 | 0.5000 |") && md.contains("| 0.5000 |"),
             "{md}"
@@ -220,12 +246,26 @@ mod tests {
 
     #[test]
     fn hidden_columns_are_left_out() {
-        let md = table("name,letter,x\nregimes,(b),1.5\n", 1, 6, &["name"]);
+        let md = table("name,letter,x\nregimes,(b),1.5\n", 1, 6, &["name"], &[]);
         assert!(md.contains("| `letter` | `x` |"), "{md}");
         assert!(
             md.contains("| (b) | 1.500 |") && !md.contains("regimes"),
             "{md}"
         );
+    }
+
+    #[test]
+    fn headings_in_words_replace_the_names_they_give() {
+        let csv = "n,wall_s,x\n4,0.5,1\n";
+        let md = table(
+            csv,
+            1,
+            3,
+            &[],
+            &[("wall_s", "wall time (s)"), ("n", "n = 1/h")],
+        );
+        assert!(md.contains("| n = 1/h | wall time (s) | x |"), "{md}");
+        assert!(!md.contains("wall_s"), "{md}");
     }
 
     #[test]

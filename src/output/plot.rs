@@ -25,25 +25,96 @@ pub fn init_font() {
     });
 }
 
+/// The Okabe–Ito palette (Okabe and Ito, *Color Universal Design*, 2008): eight colours
+/// that readers with any common colour-vision deficiency tell apart. Every figure
+/// takes its categorical colours from here, so that a colour means the same kind of
+/// thing across the book.
+pub mod okabe_ito {
+    use plotters::style::RGBColor;
+
+    /// Black.
+    pub const BLACK: RGBColor = RGBColor(0, 0, 0);
+    /// Orange.
+    pub const ORANGE: RGBColor = RGBColor(230, 159, 0);
+    /// Sky blue.
+    pub const SKY_BLUE: RGBColor = RGBColor(86, 180, 233);
+    /// Bluish green.
+    pub const BLUISH_GREEN: RGBColor = RGBColor(0, 158, 115);
+    /// Yellow (too light for a line on white: for areas and cells).
+    pub const YELLOW: RGBColor = RGBColor(240, 228, 66);
+    /// Blue.
+    pub const BLUE: RGBColor = RGBColor(0, 114, 178);
+    /// Vermillion.
+    pub const VERMILLION: RGBColor = RGBColor(213, 94, 0);
+    /// Reddish purple.
+    pub const REDDISH_PURPLE: RGBColor = RGBColor(204, 121, 167);
+
+    /// The order in which a figure's data series take their colours: the three
+    /// strongest first (blue, vermillion, bluish green), orange last (beside
+    /// vermillion it is the pair most often confused), yellow left out (it does not
+    /// show as a line on white) and black kept for references.
+    pub const SERIES: [RGBColor; 6] = [
+        BLUE,
+        VERMILLION,
+        BLUISH_GREEN,
+        REDDISH_PURPLE,
+        SKY_BLUE,
+        ORANGE,
+    ];
+
+    /// The colour of the `i`-th data series ([`SERIES`], cycled).
+    pub fn series(i: usize) -> RGBColor {
+        SERIES[i % SERIES.len()]
+    }
+}
+
+/// Neutral greys for what is not data: reference lines and guides ([`GREY_DARK`]), a
+/// second reference ([`GREY`]), backgrounds and "nothing here" ([`GREY_LIGHT`]).
+pub const GREY_DARK: RGBColor = RGBColor(60, 60, 60);
+/// See [`GREY_DARK`].
+pub const GREY: RGBColor = RGBColor(120, 120, 120);
+/// See [`GREY_DARK`].
+pub const GREY_LIGHT: RGBColor = RGBColor(210, 210, 210);
+
+/// The sequential colour map of every figure that colours a value: viridis (van der
+/// Walt and Smith, matplotlib 2.0), dark purple at `s = 0` through blue and green to
+/// yellow at `s = 1`, uniform in perceived lightness and readable in grey and by
+/// colour-blind readers. Linear between its nine stops at every eighth; `s` outside
+/// [0, 1] is clamped, and NaN is drawn as `s = 0`.
+pub fn viridis(s: f64) -> RGBColor {
+    const STOPS: [[f64; 3]; 9] = [
+        [68.0, 1.0, 84.0],
+        [72.0, 40.0, 120.0],
+        [62.0, 73.0, 137.0],
+        [49.0, 104.0, 142.0],
+        [38.0, 130.0, 142.0],
+        [31.0, 158.0, 137.0],
+        [53.0, 183.0, 121.0],
+        [110.0, 206.0, 88.0],
+        [253.0, 231.0, 37.0],
+    ];
+    let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
+    let at = s * 8.0;
+    let i = (at.floor() as usize).min(7);
+    let w = at - i as f64;
+    let mix = |j: usize| (STOPS[i][j] + w * (STOPS[i + 1][j] - STOPS[i][j])).round() as u8;
+    RGBColor(mix(0), mix(1), mix(2))
+}
+
 /// Colour of a contact regime (`branch4` and beyond cycle through further colours, so
 /// a law with more branches draws too).
 pub fn regime_colour(regime: &str) -> RGBColor {
-    // Okabe–Ito: told apart by readers with any common colour-vision deficiency.
-    const MORE: [RGBColor; 4] = [
-        RGBColor(86, 180, 233),
-        RGBColor(204, 121, 167),
-        RGBColor(240, 228, 66),
-        RGBColor(60, 60, 60),
-    ];
+    use okabe_ito as oi;
+    const MORE: [RGBColor; 4] = [oi::SKY_BLUE, oi::REDDISH_PURPLE, oi::YELLOW, GREY_DARK];
     use crate::law::Regime;
     match regime.parse::<Regime>() {
-        Ok(Regime::NoContact) => RGBColor(150, 150, 150),
-        Ok(Regime::Branch(1)) => RGBColor(0, 114, 178),
-        Ok(Regime::Branch(2)) => RGBColor(230, 159, 0),
-        Ok(Regime::Branch(3)) => RGBColor(0, 158, 115),
-        Ok(Regime::Limit) => RGBColor(213, 94, 0),
+        Ok(Regime::NoContact) => GREY,
+        Ok(Regime::Branch(1)) => oi::BLUE,
+        Ok(Regime::Branch(2)) => oi::ORANGE,
+        Ok(Regime::Branch(3)) => oi::BLUISH_GREEN,
+        Ok(Regime::Limit) => oi::VERMILLION,
         Ok(Regime::Branch(b)) => MORE[b.saturating_sub(4) % MORE.len()],
-        Err(_) => RGBColor(0, 0, 0),
+        Err(_) => oi::BLACK,
     }
 }
 
@@ -521,5 +592,35 @@ pub fn power_of_ten(v: &f64) -> String {
         format!("10{sup}")
     } else {
         plain(v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn viridis_runs_from_purple_to_yellow_getting_lighter() {
+        assert_eq!(viridis(0.0), RGBColor(68, 1, 84));
+        assert_eq!(viridis(1.0), RGBColor(253, 231, 37));
+        assert_eq!(viridis(0.5), RGBColor(38, 130, 142));
+        assert_eq!(viridis(-3.0), viridis(0.0));
+        assert_eq!(viridis(7.0), viridis(1.0));
+        assert_eq!(viridis(f64::NAN), viridis(0.0));
+        // Luma rises strictly along the map, so that it reads in grey.
+        let luma = |c: RGBColor| 0.299 * c.0 as f64 + 0.587 * c.1 as f64 + 0.114 * c.2 as f64;
+        let l: Vec<f64> = (0..=64).map(|i| luma(viridis(i as f64 / 64.0))).collect();
+        assert!(l.windows(2).all(|w| w[1] > w[0]), "{l:?}");
+    }
+
+    #[test]
+    fn series_colours_are_distinct_and_cycle() {
+        for i in 0..okabe_ito::SERIES.len() {
+            for j in 0..i {
+                assert_ne!(okabe_ito::series(i), okabe_ito::series(j));
+            }
+        }
+        assert_eq!(okabe_ito::series(okabe_ito::SERIES.len()), okabe_ito::BLUE);
+        assert!(!okabe_ito::SERIES.contains(&okabe_ito::YELLOW));
     }
 }

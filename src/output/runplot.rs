@@ -9,6 +9,7 @@ use super::rows::SummaryRow;
 use crate::certificate::regime_order;
 use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
+use crate::output::plot::{GREY, okabe_ito as oi};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -390,7 +391,7 @@ fn draw_evolution(
     both(
         dir,
         "evolution",
-        (1200, 1300),
+        (1000, 1240),
         &Evolution {
             title: format!("{scenario}: evolution on Γ3, h = {h_text}, {steps} steps"),
             g,
@@ -411,15 +412,6 @@ struct Evolution {
     /// Per regime: name, (t, count).
     counts: Vec<(String, Vec<(f64, f64)>)>,
 }
-
-/// Okabe–Ito colours for the five nodes.
-const NODE_COLOURS: [RGBColor; 5] = [
-    RGBColor(0, 114, 178),
-    RGBColor(213, 94, 0),
-    RGBColor(0, 158, 115),
-    RGBColor(204, 121, 167),
-    RGBColor(86, 180, 233),
-];
 
 impl Figure for Evolution {
     fn draw<DB: DrawingBackend>(
@@ -486,7 +478,7 @@ impl Figure for Evolution {
                 .map_err(e2s)?;
             let mut entries = vec![];
             if limit {
-                let grey = RGBColor(120, 120, 120);
+                let grey = GREY;
                 chart
                     .draw_series(DashedLineSeries::new(
                         vec![(0.0, self.g), (t_max, self.g)],
@@ -498,7 +490,7 @@ impl Figure for Evolution {
                 entries.push(("the limit g".to_string(), grey, true));
             }
             for (k, node) in self.nodes.iter().enumerate() {
-                let c = NODE_COLOURS[k % NODE_COLOURS.len()];
+                let c = oi::series(k);
                 if dashed(node.0) {
                     chart
                         .draw_series(DashedLineSeries::new(pick(node), 10, 8, c.stroke_width(3)))

@@ -10,6 +10,7 @@ use super::rows::{TriangleRow, column};
 use crate::certificate::regime_order;
 use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, legend, regime_colour, regime_label};
+use crate::output::plot::{GREY, GREY_DARK, okabe_ito as oi};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 
@@ -341,11 +342,12 @@ impl Figure for SceneFigure {
     }
 }
 
-/// The height of a grid's legend rows under its title, pixels.
-const KEY_HEIGHT: u32 = 64;
+/// The height of a grid's legend rows under its title, pixels (three rows: a
+/// 1000 px grid holds two entries a row).
+const KEY_HEIGHT: u32 = 92;
 
 /// The colour of the unilateral part of the force.
-const UNILATERAL: RGBColor = RGBColor(120, 0, 0);
+const UNILATERAL: RGBColor = oi::REDDISH_PURPLE;
 
 /// Legend entries (a filled square and its label) left to right in rows across
 /// `area`, a new row where the next would not fit.
@@ -385,28 +387,33 @@ fn draw_mesh<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     compact: bool,
 ) -> Result<(), String> {
+    let limit = if p.g.is_finite() {
+        format!("g = {}", p.g)
+    } else {
+        "no limit".to_string()
+    };
     let edges = p.triangles.as_deref().map(mesh_edges);
-    let caption = format!(
-        "{}: {}contact nodes: {}",
-        if p.g.is_finite() {
-            format!("g = {}", p.g)
-        } else {
-            "no limit".to_string()
-        },
-        match (compact, &edges) {
-            (true, _) => String::new(),
-            (false, Some((_, true))) => format!(
-                "deformed body (true scale; its {} triangles drawn by the outline); ",
-                p.triangles.as_ref().map_or(0, Vec::len)
-            ),
-            (false, _) => "deformed mesh (true scale); ".to_string(),
-        },
-        regime_order(&p.regime)
-            .iter()
-            .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    // A grid's panel is half the width: its caption names the limit only (the counts
+    // per regime are the table beside the grid).
+    let caption = if compact {
+        limit
+    } else {
+        format!(
+            "{limit}: {}contact nodes: {}",
+            match &edges {
+                Some((_, true)) => format!(
+                    "deformed body (true scale; its {} triangles drawn by the outline); ",
+                    p.triangles.as_ref().map_or(0, Vec::len)
+                ),
+                _ => "deformed mesh (true scale); ".to_string(),
+            },
+            regime_order(&p.regime)
+                .iter()
+                .map(|r| format!("{r} {}", p.regime.iter().filter(|x| *x == r).count()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    };
     let o = p.origin();
     let mut chart = ChartBuilder::on(area)
         .caption(caption, (FONT, if compact { 17 } else { 18 }))
@@ -439,7 +446,7 @@ fn draw_mesh<DB: DrawingBackend>(
         chart
             .draw_series(std::iter::once(Rectangle::new(
                 [(left, -0.16), (right, -p.g)],
-                RGBColor(120, 120, 120).mix(0.5).filled(),
+                GREY.mix(0.5).filled(),
             )))
             .map_err(e2s)?;
     }
@@ -450,7 +457,7 @@ fn draw_mesh<DB: DrawingBackend>(
                     (left, if p.g.is_finite() { -p.g } else { -base }),
                     (right, 0.0),
                 ],
-                RGBColor(240, 200, 120).mix(0.4).filled(),
+                oi::YELLOW.mix(0.4).filled(),
             )))
             .map_err(e2s)?;
     }
@@ -460,7 +467,7 @@ fn draw_mesh<DB: DrawingBackend>(
         let v = j * (nx + 1) + i;
         (p.x[v] + p.ux[v], p.y[v] + p.uy[v])
     };
-    let style = RGBColor(40, 40, 90).stroke_width(1);
+    let style = GREY_DARK.stroke_width(1);
     let mut segs = vec![];
     let moved = |v: usize| (p.x[v] + p.ux[v], p.y[v] + p.uy[v]);
     if let Some((edges, _)) = &edges {
@@ -558,10 +565,7 @@ fn draw_slanted_foundation<DB: DrawingBackend>(
         let rigid = band(p.g, far);
         if rigid.len() >= 3 {
             chart
-                .draw_series(std::iter::once(Polygon::new(
-                    rigid,
-                    RGBColor(120, 120, 120).mix(0.5).filled(),
-                )))
+                .draw_series(std::iter::once(Polygon::new(rigid, GREY.mix(0.5).filled())))
                 .map_err(e2s)?;
         }
     }
@@ -569,7 +573,7 @@ fn draw_slanted_foundation<DB: DrawingBackend>(
         chart
             .draw_series(std::iter::once(Polygon::new(
                 layer,
-                RGBColor(240, 200, 120).mix(0.4).filled(),
+                oi::YELLOW.mix(0.4).filled(),
             )))
             .map_err(e2s)?;
     }
@@ -622,7 +626,7 @@ fn draw_forces<DB: DrawingBackend>(
     let caption = if shared.is_some() {
         "interface force -σν = -σν¹ - σν² on Γ3"
     } else {
-        "interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (dark red)"
+        "interface force -σν on Γ3: compliance part -σν¹ (regime colour), unilateral part -σν² (reddish purple)"
     };
     let along = p.along();
     let (lo, hi) = match &p.body {

@@ -35,8 +35,8 @@ pub struct Ctx {
     /// provenance names it.
     pub experiment: &'static str,
     /// The Markdown layout of a table the book shows, by file name: the key columns
-    /// repeated in every part and the most columns of one part; `None` for a table
-    /// the book does not show (no Markdown written).
+    /// repeated in every part, the most columns of one part and the columns'
+    /// headings; `None` for a table the book does not show (no Markdown written).
     pub book_table: fn(&str) -> Option<&'static crate::output::markdown::BookTable>,
 }
 
@@ -137,7 +137,13 @@ impl Ctx {
                 source: e,
             })
         })?;
-        let md = crate::output::markdown::table(&text, layout.keys, layout.cols, layout.hide);
+        let md = crate::output::markdown::table(
+            &text,
+            layout.keys,
+            layout.cols,
+            layout.hide,
+            layout.headings,
+        );
         self.write_file(&path.with_extension("md"), md.as_bytes())
     }
 

@@ -19,6 +19,7 @@ use crate::mesh::{Dofs, Mesh};
 use crate::output::csv::Table;
 use crate::output::csv::{col_f64, col_str, read_csv};
 use crate::output::plot::{Figure, LogLogChart, both, e2s, keys_within, slope_guides};
+use crate::output::plot::{GREY_DARK, okabe_ito as oi};
 use crate::scenario::Scenario;
 use plotters::prelude::*;
 use std::sync::Arc;
@@ -665,12 +666,7 @@ pub fn draw(
     let (load, family) = (col_str(&df, "load")?, col_str(&df, "family")?);
     let dofs = col_f64(&df, "dofs")?;
     // Colour-blind-safe (Okabe–Ito), one per family, which its marker says too.
-    let colours = [
-        RGBColor(0, 0, 0),
-        RGBColor(0, 114, 178),
-        RGBColor(213, 94, 0),
-        RGBColor(0, 158, 115),
-    ];
+    let colours = [oi::BLACK, oi::BLUE, oi::VERMILLION, oi::BLUISH_GREEN];
     let panel = |col: &str| -> Result<Vec<Series>, ExpError> {
         let v = col_f64(&df, col)?;
         let mut series = vec![];
@@ -688,13 +684,13 @@ pub fn draw(
     let fig = GradedFig {
         panels: [
             (
-                "(a) error at t = T, against the graded reference".into(),
+                "(a) error at T against the graded reference".into(),
                 "relative energy error at T, %".into(),
                 panel("rel_err_T_percent")?,
             ),
             (
-                "(b) largest increment over time to the next level".into(),
-                "max over t of ||u_n - u_2n|| / ||u_2n||, %".into(),
+                "(b) largest increment to the next level".into(),
+                "max over t of ‖u_n − u_2n‖ / ‖u_2n‖, %".into(),
                 panel("increment_max_percent")?,
             ),
         ],
@@ -702,23 +698,39 @@ pub fn draw(
     Ok(both(
         dir,
         stem,
-        (1500, 700 + key_height(fig.panels[0].2.len())),
+        (1500, 760 + key_height(fig.panels[0].2.len())),
         &fig,
     )?)
 }
 
 /// The legend's columns and the height of one of its rows, pixels.
-const KEY: (usize, u32) = (4, 30);
+const KEY: (usize, u32) = (4, 38);
+
+/// The font sizes (pixels) of the panels' captions, tick labels, axis descriptions and
+/// the legend: the figure is 1500 px wide and the book's column about 750, so each
+/// reads at half its size there (no less than 13 px).
+const FONTS: (u32, u32, u32, u32) = (28, 26, 26, 26);
+
+/// The legend's row and column of entry `i` of `series` series and the two guides:
+/// the series row by row ([`KEY`]`.0` a row, one load a row when there are four
+/// families), the guides on a row of their own below.
+fn key_cell(i: usize, series: usize) -> (usize, usize) {
+    if i < series {
+        (i / KEY.0, i % KEY.0)
+    } else {
+        (series.div_ceil(KEY.0), i - series)
+    }
+}
 
 /// The height of the legend under the panels for `series` series and the two guides.
 fn key_height(series: usize) -> u32 {
-    ((series + 2).div_ceil(KEY.0) as u32) * KEY.1 + 16
+    (series.div_ceil(KEY.0) as u32 + 1) * KEY.1 + 16
 }
 
 /// The outline of family `f`'s marker: square (uniform), octagon (graded towards all
-/// four points), triangle (clamp ends), diamond (top corners).
+/// four points), triangle (clamp ends), diamond (top corners); 12 to 16 px across.
 fn shape(f: usize) -> Vec<(i32, i32)> {
-    match f {
+    let outline = match f {
         0 => vec![(-6, -6), (6, -6), (6, 6), (-6, 6)],
         1 => vec![
             (-3, -7),
@@ -732,7 +744,12 @@ fn shape(f: usize) -> Vec<(i32, i32)> {
         ],
         2 => vec![(0, -8), (8, 6), (-8, 6)],
         _ => vec![(0, -8), (8, 0), (0, 8), (-8, 0)],
-    }
+    };
+    // Half as large again, to read at the column's half scale.
+    outline
+        .into_iter()
+        .map(|(x, y)| (x * 3 / 2, y * 3 / 2))
+        .collect()
 }
 
 impl Figure for GradedFig {
@@ -769,14 +786,15 @@ impl Figure for GradedFig {
             };
             let ykeys = keys_within(yr, [0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0]);
             let mut chart = LogLogChart {
-                caption: (title, 24),
+                caption: (title, FONTS.0),
+                label_areas: (76, 104),
+                margin: 28,
                 desc: ("unknowns N", ydesc),
                 format: (
                     Some(&crate::output::plot::plain),
                     Some(&crate::output::plot::plain),
                 ),
-                fonts: (20, Some(22)),
-                ..LogLogChart::default()
+                fonts: (FONTS.1, Some(FONTS.2)),
             }
             .build(
                 area,
@@ -826,14 +844,12 @@ impl Figure for GradedFig {
         // One legend for both panels, under them.
         let (kw, _) = key.dim_in_pixel();
         let col = kw as i32 / KEY.0 as i32;
-        let font = TextStyle::from((crate::output::plot::FONT, 19).into_font());
-        let grey = RGBColor(50, 50, 50);
+        let font = TextStyle::from((crate::output::plot::FONT, FONTS.3).into_font());
+        let grey = GREY_DARK;
         let entries = self.panels[0].2.len() + guides.len();
         for i in 0..entries {
-            let (x, y) = (
-                20 + col * (i % KEY.0) as i32,
-                14 + KEY.1 as i32 * (i / KEY.0) as i32,
-            );
+            let (row, column) = key_cell(i, self.panels[0].2.len());
+            let (x, y) = (20 + col * column as i32, 14 + KEY.1 as i32 * row as i32);
             let label = match self.panels[0].2.get(i) {
                 Some((label, _, c, f, l)) => {
                     let (c, f) = (*c, *f);

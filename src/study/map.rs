@@ -4,18 +4,19 @@
 //! figure. The book's map (`stability`) and `evhi study stability` draw theirs with it.
 
 use crate::output::plot::FONT;
+use crate::output::plot::{GREY_LIGHT, okabe_ito as oi};
 use crate::scenario::Scenario;
 
 /// Cell colours of the map (Okabe–Ito, safe for colour-blind readers; a failed
 /// cell also says "fail").
 /// Convex and not convex differ in lightness (dark blue, pale grey), the two that
 /// warn in hue and lightness (yellow, vermillion).
-const CONVEX: RGBColor = RGBColor(0, 114, 178);
-const NOT_CONVEX: RGBColor = RGBColor(222, 226, 232);
-const SEVERAL: RGBColor = RGBColor(240, 228, 66);
-const FAILED: RGBColor = RGBColor(213, 94, 0);
+const CONVEX: RGBColor = oi::BLUE;
+const NOT_CONVEX: RGBColor = GREY_LIGHT;
+const SEVERAL: RGBColor = oi::YELLOW;
+const FAILED: RGBColor = oi::VERMILLION;
 /// The penalty converged but let u_nu pass g (Okabe–Ito bluish green).
-const OVERSHOOT: RGBColor = RGBColor(0, 158, 115);
+const OVERSHOOT: RGBColor = oi::BLUISH_GREEN;
 /// The outcome of a cell whose uncertified solver let u_nu pass g (measured).
 const OVERSHOOTS_G: &str = "converged (overshoots g)";
 use crate::output::plot::{Figure, e2s};
@@ -153,7 +154,7 @@ impl Figure for MapFigure {
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,
     ) -> Result<(), String> {
-        let root = root.titled(&self.title, (FONT, 19)).map_err(e2s)?;
+        let root = root.titled(&self.title, (FONT, 21)).map_err(e2s)?;
         let mut ks: Vec<f64> = self.cells.iter().map(|c| c.1).collect();
         ks.sort_by(f64::total_cmp);
         ks.dedup();
@@ -200,8 +201,8 @@ impl Figure for MapFigure {
                 })
                 .x_desc("time step k")
                 .y_desc(&self.row_desc)
-                .label_style((FONT, 16))
-                .axis_desc_style((FONT, 16))
+                .label_style((FONT, 18))
+                .axis_desc_style((FONT, 18))
                 .draw()
                 .map_err(e2s)?;
             for c in self.cells.iter().filter(|c| c.0 == *solver) {
@@ -235,7 +236,7 @@ impl Figure for MapFigure {
                 } else {
                     BLACK
                 };
-                let style = (FONT, 16).into_font().color(&ink).pos(Pos::new(
+                let style = (FONT, 18).into_font().color(&ink).pos(Pos::new(
                     plotters::style::text_anchor::HPos::Center,
                     plotters::style::text_anchor::VPos::Center,
                 ));
@@ -263,7 +264,7 @@ impl Figure for MapFigure {
             let (x, y) = (20 + 540 * (i % 2) as i32, y0 + 30 * (i / 2) as i32);
             root.draw(&Rectangle::new([(x, y), (x + 18, y + 18)], colour.filled()))
                 .map_err(e2s)?;
-            root.draw(&Text::new(*text, (x + 26, y + 1), (FONT, 17)))
+            root.draw(&Text::new(*text, (x + 26, y + 1), (FONT, 18)))
                 .map_err(e2s)?;
         }
         Ok(())

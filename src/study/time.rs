@@ -1,6 +1,7 @@
 //! `evhi study time`: the time error at a fixed mesh on the scenario's own history.
 
 use super::{bar, pct, study_ctx, write_scenario};
+use crate::output::plot::okabe_ito as oi;
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use std::fmt::Write as _;
@@ -188,14 +189,13 @@ fn draw_time(
     rows: &[super::time_error::Row],
     n: usize,
 ) -> Result<(), super::ExpError> {
-    use plotters::style::RGBColor;
     let pick = |f: &dyn Fn(&super::time_error::Row) -> f64| -> Vec<(f64, f64)> {
         rows.iter()
             .map(|r| (r.steps as f64, 100.0 * f(r)))
             .filter(|p| p.1.is_finite() && p.1 > 0.0)
             .collect()
     };
-    let (blue, red) = (RGBColor(0, 114, 178), RGBColor(213, 94, 0));
+    let (blue, red) = (oi::BLUE, oi::VERMILLION);
     let mut series = vec![
         ("max over t".to_string(), pick(&|r| r.err_max), blue, false),
         ("at T".to_string(), pick(&|r| r.err_t), red, false),

@@ -61,7 +61,8 @@ fn experiment_names_are_spelled_in_the_registry_only() {
 
 /// The tables the book shows are listed in the registry, beside the experiment (or the
 /// bench) that writes them: each is named once, and each has its CSV and its Markdown
-/// rendering in `data/`.
+/// rendering in `data/`; each heading in words names a column of its CSV, and the
+/// rendering shows it in place of that name.
 #[test]
 fn book_tables_are_listed_with_their_writers() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -76,6 +77,26 @@ fn book_tables_are_listed_with_their_writers() {
             "{} has no Markdown rendering",
             t.file
         );
+        let text = std::fs::read_to_string(&csv).unwrap();
+        let header: Vec<&str> = text
+            .lines()
+            .find(|l| !l.starts_with('#'))
+            .unwrap_or("")
+            .split(',')
+            .collect();
+        let md = std::fs::read_to_string(csv.with_extension("md")).unwrap();
+        for (column, words) in t.headings {
+            assert!(
+                header.contains(column),
+                "{}: a heading for {column:?}, which is no column of it ({header:?})",
+                t.file
+            );
+            assert!(
+                md.contains(&format!(" {words} |")) && !md.contains(&format!("`{column}`")),
+                "{}: its Markdown does not head {column:?} as {words:?}",
+                t.file
+            );
+        }
     }
     assert_eq!(seen.len(), 19);
 }

@@ -5,13 +5,10 @@ use super::*;
 #[allow(unused_imports)]
 use evhi::output::plot::FONT;
 use evhi::output::plot::LogLogChart;
+use evhi::output::plot::{GREY, GREY_DARK, GREY_LIGHT, okabe_ito as oi};
 
 /// Okabe–Ito colours (safe for colour-blind readers), one per history.
-const COLOURS: [RGBColor; 3] = [
-    RGBColor(213, 94, 0),
-    RGBColor(0, 114, 178),
-    RGBColor(0, 158, 115),
-];
+const COLOURS: [RGBColor; 3] = [oi::VERMILLION, oi::BLUE, oi::BLUISH_GREEN];
 
 /// A plotted series: label, points, colour index (the history), marker (0 circle for
 /// `figure`, 1 triangle for `literal`) and whether it is the dashed scalar model.
@@ -129,7 +126,7 @@ impl Figure for TimeFig {
                     .draw_series(DashedLineSeries::new(pts.clone(), 8, 6, style))
                     .map_err(e2s)?;
                 if !label.is_empty() {
-                    let grey = RGBColor(60, 60, 60).stroke_width(2);
+                    let grey = GREY_DARK.stroke_width(2);
                     drawn.label(label.clone()).legend(move |(x, y)| {
                         EmptyElement::at((x, y))
                             + PathElement::new(vec![(0, 0), (10, 0)], grey)
@@ -170,14 +167,14 @@ impl Figure for TimeFig {
                 vec![(tau, y0), (tau, y1)],
                 4,
                 4,
-                RGBColor(150, 150, 150).stroke_width(1),
+                GREY.stroke_width(1),
             ))
             .map_err(e2s)?;
         chart
             .draw_series(std::iter::once(Text::new(
                 "k = τ",
                 (tau * 1.05, y0 * 1.6),
-                (FONT, 18).into_font().color(&RGBColor(90, 90, 90)),
+                (FONT, 18).into_font().color(&GREY_DARK),
             )))
             .map_err(e2s)?;
         // Slope-1 guide through the last point of the first compatible series.
@@ -188,11 +185,11 @@ impl Figure for TimeFig {
                     guide,
                     3,
                     5,
-                    RGBColor(90, 90, 90).stroke_width(1),
+                    GREY_DARK.stroke_width(1),
                 ))
                 .map_err(e2s)?
                 .label("slope 1")
-                .legend(|xy| dashed_legend(xy, 3, 5, RGBColor(90, 90, 90).stroke_width(1)));
+                .legend(|xy| dashed_legend(xy, 3, 5, GREY_DARK.stroke_width(1)));
         }
         legend(&mut chart, SeriesLabelPosition::UpperLeft, 18, 0.9)?;
         Ok(())
@@ -200,7 +197,7 @@ impl Figure for TimeFig {
 }
 
 /// The colour of the scalar model's band in the controls' figure.
-const MODEL_BAND: RGBColor = RGBColor(200, 200, 200);
+const MODEL_BAND: RGBColor = GREY_LIGHT;
 
 /// A load history's label (`a_constant`, `b_ramp1`, ...) in words.
 fn in_words(label: &str) -> String {
@@ -235,13 +232,9 @@ pub(super) fn draw_controls(ctx: &Ctx, path: &std::path::Path) -> Result<(), Exp
     // Okabe–Ito: the three relaxation times, then the no-landing control.
     let colour = |v: &str, i: usize| {
         if v.starts_with("no landing") {
-            RGBColor(0, 0, 0)
+            oi::BLACK
         } else {
-            [
-                RGBColor(0, 114, 178),
-                RGBColor(213, 94, 0),
-                RGBColor(0, 158, 115),
-            ][i % 3]
+            [oi::BLUE, oi::VERMILLION, oi::BLUISH_GREEN][i % 3]
         }
     };
     let mut panels = vec![];
@@ -273,7 +266,7 @@ pub(super) fn draw_controls(ctx: &Ctx, path: &std::path::Path) -> Result<(), Exp
             // The model depends on the relaxation time only: one grey dashed line per
             // tau, apart from the measured series it would otherwise hide.
             if !v.starts_with("no landing") {
-                series.push((String::new(), pts, RGBColor(110, 110, 110), 9, true));
+                series.push((String::new(), pts, GREY, 9, true));
             }
         }
         panels.push((title.to_string(), series));

@@ -4,6 +4,7 @@
 use super::*;
 #[allow(unused_imports)]
 use crate::output::plot::FONT;
+use crate::output::plot::{GREY_DARK, okabe_ito as oi};
 use crate::output::plot::{LogLogChart, extent, one_two_five};
 
 /// A plotted series: label, points, colour, and whether it is the second
@@ -23,11 +24,7 @@ struct Fig5Split {
 }
 
 /// Okabe–Ito colours (safe for colour-blind readers), one per scenario in order.
-pub const COLOURS: [RGBColor; 3] = [
-    RGBColor(0, 114, 178),
-    RGBColor(213, 94, 0),
-    RGBColor(0, 158, 115),
-];
+pub const COLOURS: [RGBColor; 3] = [oi::BLUE, oi::VERMILLION, oi::BLUISH_GREEN];
 
 /// The error split of the table at `path` (of [`compute`]) for `scenarios`, into
 /// `dir` as `stem`.png and .svg: the h part ($x = 1/n$) and the k part ($x = 1/N$), at
@@ -180,7 +177,7 @@ impl Figure for Fig5 {
             .find(|s| !s.1.is_empty())
             .and_then(|s| s.1.first())
         {
-            let grey = RGBColor(90, 90, 90);
+            let grey = GREY_DARK;
             for (slope, y, label, dash, gap) in [
                 (1.0, y0 * 0.45, "slope 1", 12, 6),
                 (0.5, y0 * 0.2, "slope 1/2", 2, 5),
