@@ -4,10 +4,12 @@
 use crate::experiments::{Ctx, ExpError, col_f64, col_str, read_csv};
 use evhi::manufactured::run::REGIMES;
 use evhi::output::plot::FONT;
+use evhi::output::plot::okabe_ito as oi;
 use evhi::output::plot::{
     Figure, LogLogChart, both, e2s, extent, fit_title, legend, regime_colour, regime_label,
     slope_guides,
 };
+use evhi::output::plot::{GREY, GREY_DARK, viridis};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -246,7 +248,7 @@ impl Figure for Share {
             .axis_desc_style((FONT, tick))
             .draw()
             .map_err(e2s)?;
-        let grey = RGBColor(50, 50, 50);
+        let grey = GREY_DARK;
         let (dash, gap) = evhi::output::plot::EXACT_DASHES[0];
         chart
             .draw_series(DashedLineSeries::new(
@@ -325,10 +327,10 @@ impl Figure for Regimes {
 /// The families of a solution in the order its panel lists them, each with its colour
 /// and marker, the same in every panel.
 const FAMILIES: [(&str, RGBColor, usize); 4] = [
-    ("h=k", RGBColor(0, 114, 178), 0),
-    ("h", RGBColor(230, 159, 0), 2),
-    ("k", RGBColor(213, 94, 0), 1),
-    ("k_on_step", RGBColor(0, 158, 115), 3),
+    ("h=k", oi::BLUE, 0),
+    ("h", oi::ORANGE, 2),
+    ("k", oi::VERMILLION, 1),
+    ("k_on_step", oi::BLUISH_GREEN, 3),
 ];
 
 /// Font sizes of the convergence figure's panels: caption, ticks and axis
@@ -363,15 +365,11 @@ fn hold_panel(hold: &Path) -> Result<LogLog, ExpError> {
                 pick("on", "exact"),
                 FAMILIES[2].1,
             ),
-            (
-                "k, nodal rule".into(),
-                pick("on", "nodal"),
-                RGBColor(0, 114, 178),
-            ),
+            ("k, nodal rule".into(), pick("on", "nodal"), oi::BLUE),
             (
                 "k, exact integral, no limit".into(),
                 pick("removed", "exact"),
-                RGBColor(120, 120, 120),
+                GREY,
             ),
         ],
         guides: vec![(1.0, "slope −1".into())],
@@ -460,9 +458,9 @@ pub fn draw_all(
     // The share at g of the solutions whose exact share is 15 %: (f), (g), (i).
     let mut shares = vec![];
     for (s, f, c) in [
-        ("p1limit", "h=k", RGBColor(0, 114, 178)),
-        ("p1limit", "k", RGBColor(213, 94, 0)),
-        ("landing", "k", RGBColor(0, 158, 115)),
+        ("p1limit", "h=k", oi::BLUE),
+        ("p1limit", "k", oi::VERMILLION),
+        ("landing", "k", oi::BLUISH_GREEN),
     ] {
         let (label, pts) = family(s, f, &share);
         shares.push((
@@ -482,8 +480,8 @@ pub fn draw_all(
             col_f64(&df, "n")?,
         );
         for (r, what, c) in [
-            ("nodal", "nodal rule", RGBColor(204, 121, 167)),
-            ("exact", "exact integral", RGBColor(86, 180, 233)),
+            ("nodal", "nodal rule", oi::REDDISH_PURPLE),
+            ("exact", "exact integral", oi::SKY_BLUE),
         ] {
             let rows: Vec<usize> = (0..sol.len())
                 .filter(|&i| sol[i] == "hold" && limit[i] == "on" && rule[i] == r)
@@ -524,37 +522,37 @@ pub fn draw_all(
         (
             "(b) max ||u_n - Πu_n||²_V".to_string(),
             pick("regimes", "interp_max")?,
-            RGBColor(0, 114, 178),
+            oi::BLUE,
         ),
         (
             "(b) k Σ ||δ(u_n - Πu_n)||²_V".into(),
             pick("regimes", "dinterp_sum")?,
-            RGBColor(230, 159, 0),
+            oi::ORANGE,
         ),
         (
             "(b) k Σ ||u_nν - Πu_nν||_L²(Γ3)".into(),
             pick("regimes", "gamma_sum")?,
-            RGBColor(0, 158, 115),
+            oi::BLUISH_GREEN,
         ),
         (
             "(b) k Σ ||δ_n||²_V".into(),
             pick("regimes", "delta_sum")?,
-            RGBColor(204, 121, 167),
+            oi::REDDISH_PURPLE,
         ),
         (
             "(d) k Σ |R_n(Πu_n)| ((b): 0)".into(),
             pick("moving", "r_sum")?,
-            RGBColor(86, 180, 233),
+            oi::SKY_BLUE,
         ),
         (
             "(h) k Σ |R_n(Πu_n)|, ends on no node".into(),
             pick("offnode", "r_sum")?,
-            RGBColor(0, 0, 0),
+            oi::BLACK,
         ),
         (
             "(b) left side of (4.24)".into(),
             pick("regimes", "lhs")?,
-            RGBColor(213, 94, 0),
+            oi::VERMILLION,
         ),
     ];
     both(
@@ -626,20 +624,10 @@ struct Grid {
 /// A panel of [`Grid`]: its title and its cells $(n, N, \text{value})$.
 type Panel = (String, Vec<(f64, f64, f64)>);
 
-/// A sequential colour from pale yellow (0) to dark blue (1), readable in grey.
+/// A sequential colour from light (0) to dark (1): viridis run backwards, readable in
+/// grey and by colour-blind readers.
 fn sequential(s: f64) -> RGBColor {
-    const STOPS: [(f64, [f64; 3]); 4] = [
-        (0.0, [255.0, 247.0, 188.0]),
-        (0.35, [161.0, 218.0, 180.0]),
-        (0.7, [44.0, 127.0, 184.0]),
-        (1.0, [37.0, 52.0, 148.0]),
-    ];
-    let s = s.clamp(0.0, 1.0);
-    let i = STOPS.iter().rposition(|p| p.0 <= s).unwrap_or(0).min(2);
-    let ((a, ca), (b, cb)) = (STOPS[i], STOPS[i + 1]);
-    let w = (s - a) / (b - a);
-    let mix = |j: usize| (ca[j] + w * (cb[j] - ca[j])).round() as u8;
-    RGBColor(mix(0), mix(1), mix(2))
+    viridis(1.0 - s.clamp(0.0, 1.0))
 }
 
 impl Figure for Grid {
