@@ -66,3 +66,29 @@ pub fn size_text(bytes: f64) -> String {
         format!("{value:.2} {unit}")
     }
 }
+
+/// `text` for one line of a terminal: each control character (a CR or LF in a path
+/// the user typed, an escape sequence) written as its Rust escape (`\r`, `\u{1b}`),
+/// everything else as it is.
+pub fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn control_characters_are_escaped_and_the_rest_kept() {
+        assert_eq!(
+            super::one_line("runs/a\r\nb\u{1b}[2J é"),
+            "runs/a\\r\\nb\\u{1b}[2J é"
+        );
+    }
+}

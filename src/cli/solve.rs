@@ -212,7 +212,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         run.n,
         solution.max_certificate(),
         wall.elapsed().as_secs_f64(),
-        args.out.display()
+        evhi::term::one_line(&args.out.display().to_string())
     );
     Ok(())
 }
