@@ -76,5 +76,5 @@ fn book_tables_are_listed_with_their_writers() {
             t.file
         );
     }
-    assert_eq!(seen.len(), 18);
+    assert_eq!(seen.len(), 21);
 }
