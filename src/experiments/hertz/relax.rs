@@ -98,29 +98,28 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let n = steps(ctx.quick);
     let sim = Simulation::new(visco, RunSettings::default().with_steps(n))?;
     let mesh = sim.mesh().clone();
-    let mut rec: Vec<(f64, f64, f64, f64)> = vec![];
-    let mut s0 = vec![];
+    // Each step's t, P, p0, a and s0.
+    let mut rec: Vec<[f64; 5]> = vec![];
     let sol = {
         let mut obs = OnStep::new(|_: usize, t: f64, _: Option<&[f64]>, c: &[ContactState]| {
             let (p, p0, a) = measures(&mesh, c);
-            rec.push((t, p, p0, a));
-            s0.push(c[0].u_nu);
+            rec.push([t, p, p0, a, c[0].u_nu]);
         });
         sim.solve(&mut obs)?
     };
     ctx.log("hertz: the viscoelastic body relaxed");
     let certificate = sol.max_certificate();
-    let col = |f: &dyn Fn(&(f64, f64, f64, f64)) -> f64| rec.iter().map(f).collect::<Vec<f64>>();
+    let col = |i: usize, by: f64| rec.iter().map(|r| r[i] / by).collect::<Vec<f64>>();
     let m = rec.len();
     let table = Table::new()
-        .f64("t", col(&|r| r.0))
-        .f64("P", col(&|r| r.1))
-        .f64("p0", col(&|r| r.2))
-        .f64("a", col(&|r| r.3))
-        .f64("s0", s0)
-        .f64("P_over_steady", col(&|r| r.1 / p_el))
-        .f64("p0_over_steady", col(&|r| r.2 / p0_el))
-        .f64("a_over_steady", col(&|r| r.3 / a_el))
+        .f64("t", col(0, 1.0))
+        .f64("P", col(1, 1.0))
+        .f64("p0", col(2, 1.0))
+        .f64("a", col(3, 1.0))
+        .f64("s0", col(4, 1.0))
+        .f64("P_over_steady", col(1, p_el))
+        .f64("p0_over_steady", col(2, p0_el))
+        .f64("a_over_steady", col(3, a_el))
         .f64("P_steady", vec![p_el; m])
         .f64("p0_steady", vec![p0_el; m])
         .f64("a_steady", vec![a_el; m]);
