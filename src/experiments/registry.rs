@@ -169,7 +169,9 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         name: "hertz",
         about: "Hertz's cylinder on a rigid plane against the formula: graded meshes, the reading of a, the finite body",
         paper: false,
-        cost: 10.0,
+        // Alone 30.6 s (one run: 4 meshes, the edge sweep's 32 solves, the finite
+        // body's 72, the viscoelastic body's 128 steps).
+        cost: 30.6,
         run: super::hertz::run,
         tables: &[
             table("hertz.csv", 1, 8),
