@@ -256,3 +256,44 @@ fn law_none_is_the_limit_alone() {
     ));
     assert!(e.contains("line") && e.contains("slope"), "{e}");
 }
+
+/// Gaps given by `Scenario::with_contact_gaps` act as the file's do: the paper's mesh
+/// with the gap delta at every node is the scene lifted by delta above its foundation,
+/// to the last bit; a count other than the contact nodes', a negative or a non-finite
+/// gap and the rectangle are refused by name.
+#[test]
+fn contact_gaps_of_one_s_own_act_as_the_foundation_s() {
+    let delta = 0.02;
+    let lifted = text().replace(
+        "contact = \"bottom\"",
+        &format!(
+            "contact = \"bottom\"\nfoundation = {{ point = [0.0, {}], normal = [0.0, -1.0] }}",
+            -delta
+        ),
+    );
+    let flat = scene(&text());
+    let m = flat.body().unwrap().gamma3.len();
+    let given = flat.clone().with_contact_gaps(vec![delta; m]).unwrap();
+    let a = solve(given, Loop::General);
+    let b = solve(scene(&lifted), Loop::General);
+    assert_eq!(a.run.u, b.run.u);
+    assert!(
+        a.run
+            .contact
+            .iter()
+            .any(|c| c.sigma_nu1 + c.sigma_nu2 < 0.0)
+    );
+    for (gaps, needle) in [
+        (vec![delta; m - 1], "contact gaps"),
+        (vec![-delta; m], "contact gaps[0]"),
+        (vec![f64::NAN; m], "contact gaps[0]"),
+    ] {
+        let e = flat.clone().with_contact_gaps(gaps).unwrap_err();
+        assert_eq!(e.field_name(), Some(needle), "{e}");
+    }
+    let e = Scenario::load("figure")
+        .unwrap()
+        .with_contact_gaps(vec![0.0; 17])
+        .unwrap_err();
+    assert_eq!(e.field_name(), Some("geometry.mesh"), "{e}");
+}

@@ -586,6 +586,43 @@ impl Scenario {
         Ok(self)
     }
 
+    /// Replaces the initial gaps $g_{0,i}$ of a mesh scene's contact nodes (in their
+    /// order along $\Gamma_3$, [`crate::body::Body::gamma3`]) by `gap0`, in place of
+    /// their distances from the foundation line: a foundation of another shape, such
+    /// as Hertz's parabola $x^2/(2R)$ beside a circle's exact gaps. Refused on the
+    /// rectangle, for a count other than the contact nodes', and for a gap that is not
+    /// finite or is negative (a node behind the foundation), as the file's gaps are.
+    pub fn with_contact_gaps(mut self, gap0: Vec<f64>) -> Result<Self, InputError> {
+        let Some(body) = self.body.as_mut() else {
+            return Err(InputError::field(
+                "geometry.mesh",
+                "none (the rectangle)",
+                "a mesh scene for contact gaps of its own: the rectangle's Gamma_3 lies on \
+                 the foundation line",
+            ));
+        };
+        if gap0.len() != body.gamma3.len() {
+            return Err(InputError::field(
+                "contact gaps",
+                format!("{} values", gap0.len()),
+                format!(
+                    "one gap per node of the contact part \"{}\": {} values, in order along it",
+                    body.contact,
+                    body.gamma3.len()
+                ),
+            ));
+        }
+        if let Some(i) = gap0.iter().position(|g| !(g.is_finite() && *g >= 0.0)) {
+            return Err(InputError::field(
+                format!("contact gaps[{i}]"),
+                gap0[i],
+                "a finite gap >= 0 (a node behind the foundation is refused)",
+            ));
+        }
+        body.gap0 = gap0;
+        Ok(self)
+    }
+
     /// Renames the scene (one line, not blank: it heads every table's `#` lines).
     pub fn with_name(mut self, name: &str) -> Result<Self, InputError> {
         file::one_line_text("name", name, false)?;

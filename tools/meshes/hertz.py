@@ -2,15 +2,18 @@
 """Writes data/meshes/hertz_<N>.msh: the right half of a half-cylinder of radius R = 1
 (plane strain), the quarter disc x >= 0 of the disc centred at (0, R) below its flat
 face y = R. It touches the foundation y = 0 at the origin. Graded towards the contact
-zone: triangles of size h = A / N within 1.2 A of the origin (A = 0.1 R, the largest
-contact half-width the Hertz experiment asks for), growing to R / 8 beyond 0.6 R.
+zone: triangles of size h = 0.1 R / N (N elements across 0.1 R) within 1.2 A of the
+origin, growing to R / 8 beyond 0.6 R. A is the largest contact half-width the mesh is
+for: 0.1 R, or 0.2 R with --wide, which writes hertz_wide_<N>.msh (the Hertz
+experiment's a/R = 0.2, where the finite body's offset is measured).
 
 Groups (curves): "axis" (x = 0, the symmetry line: rollers), "flat" (y = R, the face
 that is pressed), "contact" (the arc from the origin to the angle 0.5 rad, Gamma_3),
 "arc" (the rest of the arc, traction free); the surface is the group "body".
 
 Usage: python3 -m venv /tmp/gmsh-venv && /tmp/gmsh-venv/bin/pip install gmsh
-       /tmp/gmsh-venv/bin/python tools/meshes/hertz.py [--n 12 25 50 100] [--ascii]
+       /tmp/gmsh-venv/bin/python tools/meshes/hertz.py [--n 12 25 50 100 200] [--ascii]
+       /tmp/gmsh-venv/bin/python tools/meshes/hertz.py --wide --n 12 25 50
 The tests and the experiment read the committed .msh files and need no Gmsh.
 """
 import argparse
@@ -20,16 +23,16 @@ import os
 import gmsh
 
 R = 1.0
-A = 0.1 * R
+H = 0.1 * R
 THETA_CONTACT = 0.5
 
 
-def mesh(n, binary, out):
+def mesh(n, reach, binary, out):
     gmsh.initialize(["-noenv"])
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add(f"hertz_{n}")
     geo = gmsh.model.geo
-    h = A / n
+    h = H / n
     origin = geo.addPoint(0.0, 0.0, 0.0)
     centre = geo.addPoint(0.0, R, 0.0)
     end_contact = geo.addPoint(
@@ -58,7 +61,7 @@ def mesh(n, binary, out):
     gmsh.model.mesh.field.setNumber(thr, "InField", dist)
     gmsh.model.mesh.field.setNumber(thr, "SizeMin", h)
     gmsh.model.mesh.field.setNumber(thr, "SizeMax", R / 8)
-    gmsh.model.mesh.field.setNumber(thr, "DistMin", 1.2 * A)
+    gmsh.model.mesh.field.setNumber(thr, "DistMin", 1.2 * reach)
     gmsh.model.mesh.field.setNumber(thr, "DistMax", 0.6 * R)
     gmsh.model.mesh.field.setAsBackgroundMesh(thr)
     for opt in [
@@ -81,14 +84,16 @@ def mesh(n, binary, out):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--n", type=int, nargs="+", default=[12, 25, 50, 100])
+    ap.add_argument("--n", type=int, nargs="+", default=[12, 25, 50, 100, 200])
+    ap.add_argument("--wide", action="store_true", help="fine up to 1.2 * 0.2 R")
     ap.add_argument("--ascii", action="store_true")
     a = ap.parse_args()
     here = os.path.dirname(os.path.abspath(__file__))
+    reach, stem = (0.2 * R, "hertz_wide") if a.wide else (0.1 * R, "hertz")
     for n in a.n:
-        out = os.path.join(here, "..", "..", "data", "meshes", f"hertz_{n}.msh")
-        ntri = mesh(n, not a.ascii, out)
-        print(f"{os.path.normpath(out)}: {ntri} triangles, h = {A / n:g} at the contact")
+        out = os.path.join(here, "..", "..", "data", "meshes", f"{stem}_{n}.msh")
+        ntri = mesh(n, reach, not a.ascii, out)
+        print(f"{os.path.normpath(out)}: {ntri} triangles, h = {H / n:g} at the contact")
 
 
 if __name__ == "__main__":

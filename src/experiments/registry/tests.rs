@@ -98,5 +98,5 @@ fn book_tables_are_listed_with_their_writers() {
             );
         }
     }
-    assert_eq!(seen.len(), 19);
+    assert_eq!(seen.len(), 22);
 }

@@ -16,6 +16,16 @@
 //! The half-width is read off the computed pressure at the edge of contact: near it
 //! any smooth contact has $p \propto \sqrt{a - x}$, so $p^2$ is extrapolated linearly to
 //! zero through the last two nodes in contact.
+//!
+//! The main table presses to $a/R \approx 0.05$; beside it, [`reading`] measures how the
+//! error of $a$ depends on where the edge falls between two nodes and what the reading
+//! itself adds, [`offset`] the finite body's share at $a/R$ = 0.05, 0.1 and 0.2 with the
+//! circle's gaps and Hertz's parabola, and [`relax`] the same body with the paper's
+//! viscosity on a compliant layer.
+
+mod offset;
+mod reading;
+mod relax;
 
 use super::{Ctx, ExpError, col_f64, read_csv};
 use evhi::assembly::{matvec, stiffness};
@@ -28,23 +38,47 @@ use plotters::prelude::*;
 use std::f64::consts::PI;
 
 /// The scene's file, as shipped.
-const SCENE: &str = include_str!("../../data/scenarios/examples/hertz.toml");
+const SCENE: &str = include_str!("../../../data/scenarios/examples/hertz.toml");
 const SCENE_PATH: &str = "data/scenarios/examples/hertz.toml";
 /// The radius of the meshes of `tools/meshes/hertz.py`.
 pub const R: f64 = 1.0;
 
-/// The meshes, by elements across the nominal half-width $0.1R$.
+/// The meshes of `hertz.csv`, by their elements across $0.1R$ (half as many across
+/// its $a \approx 0.05R$).
 pub fn meshes(quick: bool) -> Vec<usize> {
     if quick {
-        vec![12, 25]
+        vec![25, 50]
     } else {
-        vec![12, 25, 50, 100]
+        vec![25, 50, 100, 200]
     }
 }
 
-/// The prescribed displacement of the flat face (downwards) that makes $a \approx 0.1R$
-/// (from a first run; any value serves, Hertz is compared at the computed force).
-pub const PRESS: f64 = 0.0161;
+/// The shipped scene's press of the flat face (downwards), $a \approx 0.1R$.
+const SCENE_PRESS: f64 = 0.0161;
+
+/// The prescribed displacement of the flat face (downwards) of `hertz.csv`, which
+/// makes $a \approx 0.05R$ (from a first run; any value serves, Hertz is compared at the
+/// computed force). At $a/R = 0.1$ the finite body alone shortens $a$ by about a
+/// quarter of a percent (`hertz_offset.csv`); at 0.05 by a quarter of that.
+pub const PRESS: f64 = 0.0050;
+
+/// The initial gaps of the contact nodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Gap {
+    /// The circle's, $R - \sqrt{R^2 - x^2}$: the nodes' distances from the foundation.
+    Circle,
+    /// Hertz's parabola $x^2 / (2R)$ at the same nodes.
+    Parabola,
+}
+
+impl Gap {
+    pub fn name(self) -> &'static str {
+        match self {
+            Gap::Circle => "circle",
+            Gap::Parabola => "parabola",
+        }
+    }
+}
 
 evhi::row! {
     /// One row of `hertz.csv`: one mesh against Hertz's formula at the computed force.
@@ -81,20 +115,32 @@ pub struct Solved {
     pub p: Vec<f64>,
 }
 
-/// The scene on `hertz_{n}.msh` with the flat face pressed by `press`.
-pub fn scene(n: usize, press: f64) -> Result<Scenario, ExpError> {
+/// The scene on `data/meshes/{mesh}.msh` (`hertz_50`, `hertz_wide_25`) with the flat
+/// face pressed by `press` and the contact nodes' initial gaps `gap`.
+pub fn scene(mesh: &str, press: f64, gap: Gap) -> Result<Scenario, ExpError> {
     let text = SCENE
-        .replace("hertz_25.msh", &format!("hertz_{n}.msh"))
+        .replace("hertz_25.msh", &format!("{mesh}.msh"))
         .replace(
-            &format!("u = [0.0, -{PRESS}]"),
+            &format!("u = [0.0, -{SCENE_PRESS}]"),
             &format!("u = [0.0, {:e}]", -press),
         );
-    Ok(Scenario::from_toml(&text, SCENE_PATH)?)
+    let scn = Scenario::from_toml(&text, SCENE_PATH)?;
+    Ok(match gap {
+        Gap::Circle => scn,
+        Gap::Parabola => {
+            let body = scn.body().expect("a mesh scene");
+            let g0 = (body.gamma3.iter())
+                .map(|&v| body.mesh.nodes[v][0].powi(2) / (2.0 * R))
+                .collect();
+            scn.with_contact_gaps(g0)?
+        }
+    })
 }
 
-/// Solves mesh `n` pressed by `press` and compares with Hertz at the computed force.
-pub fn solve(n: usize, press: f64) -> Result<Solved, ExpError> {
-    let scn = scene(n, press)?;
+/// Solves the mesh `name` pressed by `press` with the gaps `gap` and compares with Hertz at the
+/// computed force.
+pub fn solve(name: &str, press: f64, gap: Gap) -> Result<Solved, ExpError> {
+    let scn = scene(name, press, gap)?;
     let sim = Simulation::new(scn.clone(), RunSettings::default())?;
     let sol = sim.solve(&mut ())?;
     let run = &sol.run;
@@ -155,7 +201,7 @@ pub fn solve(n: usize, press: f64) -> Result<Solved, ExpError> {
         })
         .fold(f64::INFINITY, f64::min);
     let row = HertzRow {
-        mesh: n as u64,
+        mesh: mesh_number(name),
         h_min,
         dofs: run.dofs as u64,
         a_fem,
@@ -173,10 +219,17 @@ pub fn solve(n: usize, press: f64) -> Result<Solved, ExpError> {
     Ok(Solved { row, x, p })
 }
 
+/// The number a mesh's name ends with (`hertz_wide_25`: 25).
+fn mesh_number(mesh: &str) -> u64 {
+    (mesh.rsplit('_').next())
+        .and_then(|n| n.parse().ok())
+        .expect("a mesh named hertz_N or hertz_wide_N")
+}
+
 /// The edge of contact from the nodal pressures `p` at `x`: $p^2$ through the last two
 /// nodes in contact, extrapolated to zero ($p \propto \sqrt{a - x}$ there); with the
 /// index of the last node in contact.
-fn edge(x: &[f64], p: &[f64]) -> (f64, usize) {
+pub fn edge(x: &[f64], p: &[f64]) -> (f64, usize) {
     let last = p.iter().rposition(|&v| v > 0.0).unwrap_or(0);
     let a = if last >= 1 {
         let (x1, x2) = (x[last - 1], x[last]);
@@ -193,7 +246,7 @@ fn edge(x: &[f64], p: &[f64]) -> (f64, usize) {
 }
 
 /// The nodes' shares of the $x$ axis: half the $x$-extent of the segments beside each.
-fn x_shares(x: &[f64]) -> Vec<f64> {
+pub fn x_shares(x: &[f64]) -> Vec<f64> {
     let m = x.len();
     (0..m)
         .map(|i| {
@@ -242,39 +295,13 @@ fn l2_error(x: &[f64], p: &[f64], exact: &dyn Fn(f64) -> f64, len: f64) -> f64 {
     (err / norm).sqrt()
 }
 
-/// The press of the finite-body study: $a/R \approx 0.05$, half of `hertz.csv`'s.
-/// Solved on the meshes 50 and 100, it has the elements across $a$ that the meshes 25
-/// and 50 have at $a/R \approx 0.1$: the discretisation, which depends on $h/a$,
-/// is then the same in each pair, and what differs is the finite body.
-pub const PRESS_SMALL: f64 = 0.0050;
-
-evhi::row! {
-    /// One row of `hertz_split.csv`: a quantity's error at $a/R \approx 0.1$ split into
-    /// the finite body's part and the discretisation's.
-    pub struct SplitRow {
-        /// `a` or `p0`.
-        quantity: String => "quantity",
-        /// The mesh at a/R about 0.1 and the one at 0.05 with as many elements across a.
-        mesh_big: u64 => "mesh_a01",
-        mesh_small: u64 => "mesh_a005",
-        rel_err_big: f64 => "rel_err_a01",
-        rel_err_small: f64 => "rel_err_a005",
-        /// (a_small / a_big)^2, the finite body's expected ratio.
-        ratio: f64 => "size_ratio_sq",
-        /// The finite body's part at a/R about 0.1: (e_big - e_small) / (1 - ratio).
-        finite_body: f64 => "finite_body_a01",
-        /// The finest mesh's error at a/R about 0.1, less the finite body's part.
-        discretisation_finest: f64 => "discretisation_finest",
-    }
-}
-
 pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let levels = meshes(ctx.quick);
-    ctx.add_units(levels.len() + if ctx.quick { 0 } else { 2 });
+    ctx.add_units(levels.len());
     let mut rows = vec![];
     let mut profiles = vec![];
     for &n in &levels {
-        let s = solve(n, PRESS)?;
+        let s = solve(&format!("hertz_{n}"), PRESS, Gap::Circle)?;
         ctx.log(&format!(
             "hertz: mesh {n}, a = {:.6} (Hertz {:.6})",
             s.row.a_fem, s.row.a_hertz
@@ -283,7 +310,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         profiles.push((n, s));
     }
     let params = format!(
-        "Hertz's cylinder on a rigid plane, half model: data/scenarios/examples/hertz.toml on data/meshes/hertz_MESH.msh (tools/meshes/hertz.py; MESH elements across 0.1 R), R = {R}, flat face pressed by {PRESS}; P = twice the half model's contact force; a_hertz, p0_hertz from P; a_fem from p^2 extrapolated to zero through the last two nodes in contact; p0_fem the pressure at x = 0; pressures per unit x (nodal force over the node's share of the x axis); rel_err_p_l2 over [0, max(a_hertz, first node out of contact)]; total_force_rel_err = |contact force + flat face's reaction| / |reaction| (the two balance); penetration_over_g = max(u_nu - g0 - g) / g"
+        "Hertz's cylinder on a rigid plane, half model: data/scenarios/examples/hertz.toml on data/meshes/hertz_MESH.msh (tools/meshes/hertz.py; MESH elements across 0.1 R, half as many across a), R = {R}, flat face pressed by {PRESS} (a/R about 0.05); P = twice the half model's contact force; a_hertz, p0_hertz from P; a_fem from p^2 extrapolated to zero through the last two nodes in contact; p0_fem the pressure at x = 0; pressures per unit x (nodal force over the node's share of the x axis); rel_err_p_l2 over [0, max(a_hertz, first node out of contact)]; total_force_rel_err = |contact force + flat face's reaction| / |reaction| (the two balance); penetration_over_g = max(u_nu - g0 - g) / g"
     );
     ctx.write("hertz.csv", &HertzRow::table(&rows), &params)?;
     // The finest mesh's pressure (and the coarsest's) beside Hertz's.
@@ -308,50 +335,65 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         &profile,
         "the computed pressure at the contact nodes of the coarsest and finest meshes of hertz.csv, scaled by Hertz's a and p0 at the computed force",
     )?;
-    if !ctx.quick {
-        let mut small = vec![];
-        for &n in &levels[2..] {
-            let s = solve(n, PRESS_SMALL)?;
-            ctx.log(&format!("hertz: mesh {n}, a/R = {:.4}", s.row.a_hertz / R));
-            small.push(s.row);
-        }
-        ctx.write(
-            "hertz_size.csv",
-            &HertzRow::table(&small),
-            &format!("the finite body: the meshes 50 and 100 of hertz.csv with the flat face pressed by {PRESS_SMALL} (a/R about 0.05); columns as in hertz.csv"),
-        )?;
-        let finest = rows.last().expect("meshes");
-        let mut split = vec![];
-        for q in ["a", "p0"] {
-            let err = |r: &HertzRow| if q == "a" { r.rel_err_a } else { r.rel_err_p0 };
-            for (big, sm) in rows[1..3].iter().zip(&small) {
-                let ratio = (sm.a_hertz / big.a_hertz).powi(2);
-                let fb = (err(big) - err(sm)) / (1.0 - ratio);
-                split.push(SplitRow {
-                    quantity: q.to_string(),
-                    mesh_big: big.mesh,
-                    mesh_small: sm.mesh,
-                    rel_err_big: err(big),
-                    rel_err_small: err(sm),
-                    ratio,
-                    finite_body: fb,
-                    discretisation_finest: err(finest) - fb,
-                });
-            }
-        }
-        ctx.write(
-            "hertz_split.csv",
-            &SplitRow::table(&split),
-            "the relative errors of a and p0 at a/R about 0.1 (hertz.csv) split: the finite body's part scales like (a/R)^2, the discretisation's depends on h/a only, so two solutions with equal h/a at a/R about 0.1 and 0.05 (hertz_size.csv) differ by the finite body's part times 1 - size_ratio_sq; discretisation_finest = the finest mesh's error at a/R about 0.1 less that part",
-        )?;
-    }
     let df = read_csv(&path)?;
     let fig = PressureFig {
         mesh: col_f64(&df, "mesh")?,
         x: col_f64(&df, "x_over_a_hertz")?,
         p: col_f64(&df, "p_over_p0_hertz")?,
     };
-    Ok(both(&ctx.figures, "hertz_pressure", (900, 600), &fig)?)
+    both(&ctx.figures, "hertz_pressure", (900, 600), &fig)?;
+    relax::run(ctx)?;
+    if !ctx.quick {
+        let edges = reading::run(ctx)?;
+        let fits = offset::run(ctx)?;
+        let finest = rows.last().expect("meshes");
+        let mean = edges.last().expect("meshes").fem_mean;
+        ctx.write(
+            "hertz_finest_split.csv",
+            &finest_split(finest, mean, &fits),
+            "the finest mesh of hertz.csv (a/R about 0.05) split: finite_body = c (a_hertz/R)^2 with the circle's c at the finest count across a (hertz_offset_fit.csv), discretisation = rel_err - finite_body; a_mean: a's error over the edge's places (rel_err_a_mean of hertz_edge.csv)",
+        )?;
+    }
+    Ok(())
+}
+
+evhi::row! {
+    /// The finest mesh's error of a quantity split into the finite body's and the
+    /// discretisation's parts.
+    pub struct SplitRow {
+        /// `a`, `a_mean` (over the edge's places) or `p0`.
+        quantity: String => "quantity",
+        rel_err: f64 => "rel_err",
+        finite_body: f64 => "finite_body",
+        discretisation: f64 => "discretisation",
+    }
+}
+
+/// The split of the finest row's errors with the circle's finite-body coefficients
+/// at the most elements across $a$, and `mean`, the mean error of $a$ over the places
+/// of the edge.
+fn finest_split(finest: &HertzRow, mean: f64, fits: &[offset::FitRow]) -> Table {
+    let s2 = (finest.a_hertz / R).powi(2);
+    let most = fits.iter().map(|f| f.across).max().expect("fits");
+    let c = |q: &str| {
+        (fits.iter())
+            .find(|f| f.gap == Gap::Circle.name() && f.quantity == q && f.across == most)
+            .expect("a fit")
+            .coefficient
+    };
+    let (fa, fp) = (c("a") * s2, c("p0") * s2);
+    let rows = [
+        ("a", finest.rel_err_a, fa),
+        ("a_mean", mean, fa),
+        ("p0", finest.rel_err_p0, fp),
+    ]
+    .map(|(q, e, f)| SplitRow {
+        quantity: q.into(),
+        rel_err: e,
+        finite_body: f,
+        discretisation: e - f,
+    });
+    SplitRow::table(&rows)
 }
 
 /// The computed pressures against Hertz's ellipse, in Hertz's units.
@@ -395,11 +437,12 @@ impl Figure for PressureFig {
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
         let mut meshes: Vec<f64> = self.mesh.clone();
         meshes.dedup();
-        for (k, m) in meshes.iter().enumerate() {
-            let colour = if k == 0 {
-                RGBColor(230, 120, 30)
+        // The finest first, small, and the coarsest over it, larger: both stay visible.
+        for (k, m) in meshes.iter().enumerate().rev() {
+            let (colour, r) = if k == 0 {
+                (evhi::output::plot::okabe_ito::VERMILLION, 5)
             } else {
-                RGBColor(30, 90, 200)
+                (evhi::output::plot::okabe_ito::BLUE, 2)
             };
             let pts: Vec<(f64, f64)> = (0..self.x.len())
                 .filter(|&i| self.mesh[i] == *m)
@@ -408,11 +451,11 @@ impl Figure for PressureFig {
             chart
                 .draw_series(
                     pts.iter()
-                        .map(|&(x, y)| Circle::new((x, y), 3, colour.filled())),
+                        .map(|&(x, y)| Circle::new((x, y), r, colour.filled())),
                 )
                 .map_err(e2s)?
                 .label(format!("evhi, mesh {m} ({} nodes on Gamma_3)", pts.len()))
-                .legend(move |(x, y)| Circle::new((x + 10, y), 3, colour.filled()));
+                .legend(move |(x, y)| Circle::new((x + 10, y), r, colour.filled()));
         }
         legend(&mut chart, SeriesLabelPosition::UpperRight, 16, 0.9)
     }
