@@ -52,6 +52,16 @@ pub enum Loop {
 /// uniform mesh with $n = 64$, the scenario's default step count, Newton (with its
 /// fallbacks), the
 /// automatic loop and ordering, tolerance $10^{-10}$).
+///
+/// It is `#[non_exhaustive]`, so a field added later breaks no caller: outside the
+/// crate it is built from [`RunSettings::default`] (or [`RunSettings::general`]) and
+/// the `with_*` setters, not by a struct literal:
+///
+/// ```compile_fail,E0639
+/// use evhi::prelude::*;
+/// let settings = RunSettings { n: 16, ..RunSettings::default() };
+/// ```
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
     /// Segments $n$ on the bottom: a multiple of 4, at most 4096 ($n = 1/h$ on the
@@ -218,6 +228,7 @@ pub struct Simulation {
 /// The result of a solve: the state at $T$, every step's record and the timings.
 /// Its `Debug` form is a summary (the sizes, the certificate, the loop and the
 /// fallback), not the field's values.
+#[non_exhaustive]
 pub struct Solution {
     /// The run: $u_N$ (free dofs), the contact states at $T$, each step's record
     /// (iterations, solver residual, certificate), the timings, the mesh.
@@ -230,6 +241,7 @@ pub struct Solution {
 }
 
 /// A run the default solver could not finish, solved again by another certified one.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fallback {
     /// The registry name of the solver that certified every step.

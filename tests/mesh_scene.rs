@@ -39,11 +39,7 @@ fn close(a: f64, b: f64, scale: f64, rel: f64) -> bool {
 
 #[test]
 fn the_paper_mesh_gives_the_built_in_figure_scene_to_1e_12() {
-    let settings = RunSettings {
-        n: 16,
-        steps: Some(16),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default().with_n(16).with_steps(16);
     let solve = |scn: Scenario| {
         let sim = Simulation::new(scn, settings.clone()).unwrap();
         let sol = sim.solve(&mut ()).unwrap();
@@ -430,11 +426,7 @@ fn the_foundation_is_the_paper_s_line_or_refused_with_the_reason() {
 /// nodes in another order): the same scene, the same numbers to 1e-12, node by node.
 #[test]
 fn the_paper_mesh_refined_twice_gives_the_built_in_scene_at_n_64_to_1e_12() {
-    let settings = RunSettings {
-        n: 64,
-        steps: Some(8),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default().with_n(64).with_steps(8);
     let solve = |scn: Scenario| {
         let sim = Simulation::new(scn, settings.clone()).unwrap();
         let sol = sim.solve(&mut ()).unwrap();

@@ -478,3 +478,27 @@ fn the_readme_scene_is_the_shipped_file() {
     let scene = evhi::scenario::Scenario::load(&path.display().to_string()).unwrap();
     assert_eq!(scene.name(), "block");
 }
+
+/// The README's library snippet is abridged from `examples/solve_a_scene.rs`, which
+/// is built and is the crate's doc-tested front page: every code line the README shows
+/// (its trailing comment set aside) is a line of that example, so the snippet cannot
+/// stop compiling without the test failing.
+#[test]
+fn the_readme_snippet_is_the_front_page_example() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let shown = readme
+        .split("```rust\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("a Rust block in the README");
+    let example = std::fs::read_to_string(root.join("examples/solve_a_scene.rs")).unwrap();
+    let code = |l: &str| l.split(" //").next().unwrap_or("").trim().to_string();
+    let lines: Vec<String> = example.lines().map(code).collect();
+    let mut shown_lines = 0;
+    for l in shown.lines().map(code).filter(|l| !l.is_empty()) {
+        assert!(lines.contains(&l), "README line not in the example: {l}");
+        shown_lines += 1;
+    }
+    assert!(shown_lines >= 4, "the README's snippet has {shown_lines} lines");
+}

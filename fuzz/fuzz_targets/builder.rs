@@ -43,11 +43,7 @@ fuzz_target!(|bytes: &[u8]| {
             Err(e) => assert!(e.field_name().is_some() || !e.to_string().is_empty()),
         }
     }
-    let settings = RunSettings {
-        n: 4,
-        steps: Some(2),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default().with_n(4).with_steps(2);
     if let Ok(sim) = Simulation::new(scene, settings) {
         let _ = sim.solve(&mut ());
     }
