@@ -429,11 +429,7 @@ impl Simulation {
             Loop::Reduced => true,
             // The reduced loop checks proportionality again on the assembled matrices;
             // a support's boundary term, in B alone, breaks it where A is not zero.
-            Loop::Auto => {
-                scenario.relaxation_time().is_some()
-                    && (!scenario.problem.viscous()
-                        || scenario.supports_with_stiffness().is_empty())
-            }
+            Loop::Auto => scenario.proportional_damping().is_some(),
         };
         // The mesh: a scene whose segments miss the mesh lines is refused by name. The
         // run takes it as it is; a uniform mesh's building time is counted in the run's

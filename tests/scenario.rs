@@ -500,5 +500,8 @@ fn the_readme_snippet_is_the_front_page_example() {
         assert!(lines.contains(&l), "README line not in the example: {l}");
         shown_lines += 1;
     }
-    assert!(shown_lines >= 4, "the README's snippet has {shown_lines} lines");
+    assert!(
+        shown_lines >= 4,
+        "the README's snippet has {shown_lines} lines"
+    );
 }

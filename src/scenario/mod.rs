@@ -622,6 +622,16 @@ impl Scenario {
             .collect()
     }
 
+    /// The constant $c$ with $A = c\,(B + B_s)$, where $B_s$ is the supports' springs'
+    /// boundary term, when the step operator's damping is proportional (what the reduced
+    /// time loop needs): the relaxation time ([`Scenario::relaxation_time`]) when no
+    /// support adds stiffness or there is no viscosity ($A = 0 = 0\,(B + B_s)$), else
+    /// `None` (a spring is in $B$ alone, so $A = \tau B \ne \tau (B + B_s)$).
+    pub fn proportional_damping(&self) -> Option<f64> {
+        let tau = self.relaxation_time()?;
+        (!self.problem.viscous() || self.supports_with_stiffness().is_empty()).then_some(tau)
+    }
+
     /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like
     /// coefficients in the same ratio), else `None`. The ratio is taken on the second
     /// coefficients, positive for both tensors, and the first ones compared by cross
