@@ -137,6 +137,12 @@ fn a_mesh_scene_solves_from_the_command_line_and_keeps_its_mesh() {
         &["--n", "nothing on a mesh scene", "16 contact segments"],
     );
     assert!(!dir.join("t").exists());
+    // `show` refuses it by the same words.
+    let o = evhi_with("show --n 32").arg(PAPER_MESH).output().unwrap();
+    refused(
+        &o,
+        &["--n", "nothing on a mesh scene", "16 contact segments"],
+    );
 }
 
 /// `study convergence` on a mesh scene: the uniform family by refinement, each level's
@@ -523,4 +529,22 @@ fn the_body_page_runs_as_written() {
             "`{row}` not in:\n{printed}"
         );
     }
+}
+
+/// The refusal of a level on a mesh scene is the scene's own, in the library's words
+/// (the field `n`, the file, its contact segments); a rectangle scene takes the level.
+#[test]
+fn a_mesh_scene_refuses_a_level() {
+    let e = Scenario::load(PAPER_MESH)
+        .unwrap()
+        .refuse_level_on_mesh(32)
+        .unwrap_err();
+    assert_eq!(e.field_name(), Some("n"));
+    let msg = e.to_string();
+    assert!(
+        msg.contains("paper_n16.msh") && msg.contains("with 16 contact segments"),
+        "{msg}"
+    );
+    let figure = Scenario::load("figure").unwrap();
+    assert!(figure.refuse_level_on_mesh(32).is_ok());
 }

@@ -145,17 +145,9 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(t_r) => scn.with_ramp(t_r)?,
         None => scn,
     };
-    if let (Some(n), Some(body)) = (args.n, scn.body()) {
-        return Err(evhi::error::InputError::field(
-            "--n",
-            n,
-            format!(
-                "nothing on a mesh scene: its mesh is the file's ({}), with {} contact segments",
-                body.file,
-                body.gamma3.len() - 1
-            ),
-        )
-        .into());
+    if let Some(n) = args.n {
+        scn.refuse_level_on_mesh(n)
+            .map_err(|e| e.for_flag("n", "--n"))?;
     }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());

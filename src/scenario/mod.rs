@@ -244,6 +244,26 @@ impl Scenario {
         self.body.as_ref()
     }
 
+    /// Refuses a level $n$ (the rectangle's segments on the bottom) on a mesh scene,
+    /// whose mesh is its file's: the refusal names the field `n`, the file and its
+    /// count of contact segments. A rectangle scene takes any level here (the mesh
+    /// checks it when it is built).
+    pub fn refuse_level_on_mesh(&self, n: usize) -> Result<(), InputError> {
+        match &self.body {
+            None => Ok(()),
+            Some(b) => Err(InputError::field(
+                "n",
+                n,
+                format!(
+                    "nothing on a mesh scene: its mesh is the file's ({}), with {} contact \
+                     segments",
+                    b.file,
+                    b.gamma3.len() - 1
+                ),
+            )),
+        }
+    }
+
     /// Refuses a mesh scene where `what` needs the rectangle's structured meshes of a
     /// level $n$ (meshes of any level, grading towards the rectangle's corners).
     pub fn refuse_mesh_scene(&self, what: &str) -> Result<(), InputError> {
