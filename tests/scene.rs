@@ -517,7 +517,7 @@ fn with_problem_equals_the_file() {
     let elastic = cantilever("elastic");
     assert_eq!(elastic, file);
     let err = elastic.with_problem(Problem::Viscoelastic).unwrap_err();
-    assert_eq!(err.field_name(), Some("problem"));
+    assert_eq!(err.field_name(), Some("material.alpha"));
 }
 
 /// The scene of the third hostile run (issue 41): a 3 x 1 cantilever clamped on the

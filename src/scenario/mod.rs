@@ -401,18 +401,20 @@ impl Scenario {
 
     /// The same scenario as another problem: an elastic or steady one drops the
     /// viscosity (the data of a viscoelastic problem otherwise unchanged); a
-    /// viscoelastic one needs a viscosity, so it is refused from a problem without.
+    /// viscoelastic one needs a viscosity, so it is refused from a problem without, by
+    /// the missing `material.alpha`, as its file would be.
     pub fn with_problem(mut self, problem: Problem) -> Result<Self, InputError> {
         if problem.viscous() && !self.problem.viscous() {
-            return Err(InputError::field(
-                "problem",
-                problem.name(),
-                format!(
-                    "\"elastic\" or \"steady\" for scenario `{}`, which has no viscosity \
-                     (give alpha and beta in its file for a viscoelastic problem)",
-                    self.name
-                ),
-            ));
+            // Refused as the file refuses a viscoelastic problem without alpha and beta.
+            return Err(file::viscosity(problem, None, None)
+                .err()
+                .unwrap_or_else(|| {
+                    InputError::field(
+                        "problem",
+                        problem.name(),
+                        "\"elastic\" or \"steady\" for a scene without viscosity",
+                    )
+                }));
         }
         if !problem.viscous() {
             (self.alpha, self.beta) = (0.0, 0.0);
