@@ -39,11 +39,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("g [m]   contact nodes at the limit   largest certificate   energy norm at T");
     for g in [0.03, 0.05, 0.08] {
         let scene = Scenario::from_toml(&block(0.5, g), "block")?;
-        let settings = RunSettings {
-            n: 32,
-            steps: Some(32),
-            ..RunSettings::default()
-        };
+        let settings = RunSettings::default().with_n(32).with_steps(32);
         let solution = Simulation::new(scene, settings)?.solve(&mut ())?;
         let limit = solution.contact().iter().filter(|c| c.at_limit).count();
         println!(

@@ -24,12 +24,12 @@ fn main() {
         .skip(1)
         .filter_map(|s| s.parse::<usize>().ok())
     {
-        let at = |path: Loop, threads: u8| RunSettings {
-            n,
-            steps: Some(n),
-            path,
-            threads: Some(threads),
-            ..RunSettings::default()
+        let at = |path: Loop, threads: u8| {
+            RunSettings::default()
+                .with_n(n)
+                .with_steps(n)
+                .with_path(path)
+                .with_threads(threads)
         };
         let red = trace(&scn, at(Loop::Reduced, 2));
         let gap = |a: &[f64]| {

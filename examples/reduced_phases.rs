@@ -14,12 +14,10 @@ fn main() {
         .unwrap_or(1024);
     let scn = Scenario::load("figure").unwrap();
     let t = Instant::now();
-    let settings = RunSettings {
-        n,
-        path: Loop::Reduced,
-        threads: Some(1),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default()
+        .with_n(n)
+        .with_path(Loop::Reduced)
+        .with_threads(1);
     let sim = Simulation::new(scn.clone(), settings).unwrap();
     let disc = sim.discretisation();
     let assembly = t.elapsed().as_secs_f64();

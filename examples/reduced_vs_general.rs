@@ -15,12 +15,10 @@ fn timed(scn: &Scenario, n: usize, path: Loop) -> (Vec<f64>, Solution, f64) {
     let mut observer = OnStep::new(|_, _, _: Option<&[f64]>, c: &[ContactState]| {
         r.extend(c.iter().map(|c| c.u_nu))
     });
-    let settings = RunSettings {
-        n,
-        steps: Some(n),
-        path,
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default()
+        .with_n(n)
+        .with_steps(n)
+        .with_path(path);
     let solution = Simulation::new(scn.clone(), settings)
         .unwrap()
         .solve_with(&mut Newton::default(), &mut observer)

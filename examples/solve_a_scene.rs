@@ -4,11 +4,7 @@ use evhi::prelude::*;
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // The paper's scene with loads that reach every branch of the law, h = k = 1/16.
     let scene = Scenario::load("figure")?;
-    let settings = RunSettings {
-        n: 16,
-        steps: Some(16),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default().with_n(16).with_steps(16);
     let solution = Simulation::new(scene, settings)?.solve(&mut ())?;
 
     // Every step is certified, and the middle of the contact zone sits on the limit g.

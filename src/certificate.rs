@@ -114,6 +114,7 @@ pub fn resolved_length(law: &Law, g: f64) -> f64 {
 }
 
 /// The certificate of one step.
+#[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Certificate {
     pub stationarity: f64,
@@ -136,6 +137,7 @@ impl Certificate {
 }
 
 /// Per contact node: $u_\nu$, $\sigma^1_\nu$, $\sigma^2_\nu$.
+#[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactState {
     pub u_nu: f64,

@@ -3,6 +3,7 @@
 use std::fmt::Display;
 
 /// A value the program cannot accept.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum InputError {
     /// A field holds a value outside its allowed set.
@@ -150,6 +151,7 @@ pub fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<f64, InputError
 }
 
 /// Why a factorisation failed.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FactorError {
     #[error(

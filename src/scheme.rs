@@ -102,6 +102,7 @@ impl Check {
 }
 
 /// One step's record.
+#[non_exhaustive]
 #[derive(Debug, Clone)]
 pub struct StepRecord {
     pub step: usize,
@@ -120,6 +121,7 @@ pub struct StepRecord {
 }
 
 /// Wall times of the phases, s.
+#[non_exhaustive]
 #[derive(Debug, Clone, Default)]
 pub struct Timings {
     pub assembly: f64,
@@ -144,6 +146,7 @@ impl Timings {
 }
 
 /// The result of a run.
+#[non_exhaustive]
 pub struct Run {
     pub n: usize,
     pub steps: usize,
@@ -214,6 +217,7 @@ impl Run {
 pub const CANCELLATION_RATIO: f64 = 1e4;
 
 /// Why a run stopped.
+#[non_exhaustive]
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
     #[error(transparent)]
@@ -290,6 +294,7 @@ pub enum RunError {
 
 /// What a run had done when a step failed: the record of every step it completed,
 /// the last formed field and the contact states of the last completed step.
+#[non_exhaustive]
 #[derive(Debug, Clone, Default)]
 pub struct Partial {
     /// One record per completed step, in order (each certified).

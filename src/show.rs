@@ -159,12 +159,24 @@ pub fn report(scn: &Scenario, n: usize, steps: usize) -> (String, usize) {
         c_t.b,
         c_t.coercivity()
     );
+    let springs: Vec<String> = (scn.supports_with_stiffness().into_iter())
+        .map(|(field, _)| field)
+        .collect();
     match scn.relaxation_time() {
         Some(_) if !scn.problem.viscous() => {
             let _ = writeln!(
                 s,
                 "  C = 0: no viscosity; A = 0, so the reduced time loop applies with c = 0 (each \
                  step is the static contact problem alone)"
+            );
+        }
+        Some(tau) if scn.proportional_damping().is_none() => {
+            let _ = writeln!(
+                s,
+                "  C = {tau:.6} G, but the spring support ({}) adds stiffness to B alone: A = C is \
+                 not a multiple of B + B_s, so the damping is not proportional and the general \
+                 time loop runs",
+                springs.join(", ")
             );
         }
         Some(tau) => {

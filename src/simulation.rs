@@ -52,6 +52,16 @@ pub enum Loop {
 /// uniform mesh with $n = 64$, the scenario's default step count, Newton (with its
 /// fallbacks), the
 /// automatic loop and ordering, tolerance $10^{-10}$).
+///
+/// It is `#[non_exhaustive]`, so a field added later breaks no caller: outside the
+/// crate it is built from [`RunSettings::default`] (or [`RunSettings::general`]) and
+/// the `with_*` setters, not by a struct literal:
+///
+/// ```compile_fail,E0639
+/// use evhi::prelude::*;
+/// let settings = RunSettings { n: 16, ..RunSettings::default() };
+/// ```
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
     /// Segments $n$ on the bottom: a multiple of 4, at most 4096 ($n = 1/h$ on the
@@ -218,6 +228,7 @@ pub struct Simulation {
 /// The result of a solve: the state at $T$, every step's record and the timings.
 /// Its `Debug` form is a summary (the sizes, the certificate, the loop and the
 /// fallback), not the field's values.
+#[non_exhaustive]
 pub struct Solution {
     /// The run: $u_N$ (free dofs), the contact states at $T$, each step's record
     /// (iterations, solver residual, certificate), the timings, the mesh.
@@ -230,6 +241,7 @@ pub struct Solution {
 }
 
 /// A run the default solver could not finish, solved again by another certified one.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fallback {
     /// The registry name of the solver that certified every step.
@@ -417,11 +429,7 @@ impl Simulation {
             Loop::Reduced => true,
             // The reduced loop checks proportionality again on the assembled matrices;
             // a support's boundary term, in B alone, breaks it where A is not zero.
-            Loop::Auto => {
-                scenario.relaxation_time().is_some()
-                    && (!scenario.problem.viscous()
-                        || scenario.supports_with_stiffness().is_empty())
-            }
+            Loop::Auto => scenario.proportional_damping().is_some(),
         };
         // The mesh: a scene whose segments miss the mesh lines is refused by name. The
         // run takes it as it is; a uniform mesh's building time is counted in the run's

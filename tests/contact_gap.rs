@@ -20,12 +20,10 @@ fn scene(text: &str) -> Scenario {
 }
 
 fn solve(scn: Scenario, path: Loop) -> evhi::simulation::Solution {
-    let settings = RunSettings {
-        n: 16,
-        steps: Some(16),
-        path,
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default()
+        .with_n(16)
+        .with_steps(16)
+        .with_path(path);
     Simulation::new(scn, settings)
         .unwrap()
         .solve(&mut ())

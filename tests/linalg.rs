@@ -8,7 +8,7 @@ use evhi::linalg::Cholesky;
 use evhi::ordering::Ordering;
 use evhi::scenario::Scenario;
 use evhi::scheme::{Discretisation, OrderingKind};
-use evhi::simulation::{RunSettings, Simulation};
+use evhi::simulation::Simulation;
 use evhi::step::newton::Newton;
 
 mod common;
@@ -186,10 +186,7 @@ fn both_orderings_give_the_same_run() {
     let scn = Scenario::load("figure").unwrap();
     let mut last = vec![];
     for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
-        let settings = RunSettings {
-            ordering: Some(ordering),
-            ..common::general(32, 16)
-        };
+        let settings = common::general(32, 16).with_ordering(ordering);
         let r = common::solve_with(&scn, settings, None, &mut Newton::default(), &mut ()).unwrap();
         last.push(r.u);
     }

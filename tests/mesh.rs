@@ -133,10 +133,7 @@ fn criss_cross_runs_with_nested_dissection() {
         .with_pattern(Pattern::CrissCross);
     let mut last = vec![];
     for ordering in [OrderingKind::NestedDissection, OrderingKind::Amd] {
-        let settings = evhi::simulation::RunSettings {
-            ordering: Some(ordering),
-            ..common::general(16, 8)
-        };
+        let settings = common::general(16, 8).with_ordering(ordering);
         let run = common::solve_with(&scn, settings, None, &mut Newton::default(), &mut ());
         last.push(run.unwrap().u);
     }

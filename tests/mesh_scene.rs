@@ -39,11 +39,7 @@ fn close(a: f64, b: f64, scale: f64, rel: f64) -> bool {
 
 #[test]
 fn the_paper_mesh_gives_the_built_in_figure_scene_to_1e_12() {
-    let settings = RunSettings {
-        n: 16,
-        steps: Some(16),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default().with_n(16).with_steps(16);
     let solve = |scn: Scenario| {
         let sim = Simulation::new(scn, settings.clone()).unwrap();
         let sol = sim.solve(&mut ()).unwrap();
@@ -141,6 +137,12 @@ fn a_mesh_scene_solves_from_the_command_line_and_keeps_its_mesh() {
         &["--n", "nothing on a mesh scene", "16 contact segments"],
     );
     assert!(!dir.join("t").exists());
+    // `show` refuses it by the same words.
+    let o = evhi_with("show --n 32").arg(PAPER_MESH).output().unwrap();
+    refused(
+        &o,
+        &["--n", "nothing on a mesh scene", "16 contact segments"],
+    );
 }
 
 /// `study convergence` on a mesh scene: the uniform family by refinement, each level's
@@ -448,11 +450,7 @@ fn a_foundation_is_any_line_in_front_of_gamma_3_or_refused_with_the_reason() {
 /// nodes in another order): the same scene, the same numbers to 1e-12, node by node.
 #[test]
 fn the_paper_mesh_refined_twice_gives_the_built_in_scene_at_n_64_to_1e_12() {
-    let settings = RunSettings {
-        n: 64,
-        steps: Some(8),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default().with_n(64).with_steps(8);
     let solve = |scn: Scenario| {
         let sim = Simulation::new(scn, settings.clone()).unwrap();
         let sol = sim.solve(&mut ()).unwrap();
@@ -695,4 +693,22 @@ fn a_turned_body_on_a_turned_foundation_gives_the_same_contact_and_the_turned_fi
             a.max_certificate()
         );
     }
+}
+
+/// The refusal of a level on a mesh scene is the scene's own, in the library's words
+/// (the field `n`, the file, its contact segments); a rectangle scene takes the level.
+#[test]
+fn a_mesh_scene_refuses_a_level() {
+    let e = Scenario::load(PAPER_MESH)
+        .unwrap()
+        .refuse_level_on_mesh(32)
+        .unwrap_err();
+    assert_eq!(e.field_name(), Some("n"));
+    let msg = e.to_string();
+    assert!(
+        msg.contains("paper_n16.msh") && msg.contains("with 16 contact segments"),
+        "{msg}"
+    );
+    let figure = Scenario::load("figure").unwrap();
+    assert!(figure.refuse_level_on_mesh(32).is_ok());
 }

@@ -196,11 +196,9 @@ fn both_forms_of_one_material_are_accepted_together() {
     let a = evhi::scenario::Scenario::from_toml(&young, "young").unwrap();
     let b = evhi::scenario::Scenario::from_toml(&lame, "lame").unwrap();
     assert!((a.kappa() - b.kappa()).abs() < 1e-12 && (a.e() - b.e()).abs() < 1e-3 * a.e());
-    let settings = evhi::simulation::RunSettings {
-        n: 8,
-        steps: Some(2),
-        ..Default::default()
-    };
+    let settings = evhi::simulation::RunSettings::default()
+        .with_n(8)
+        .with_steps(2);
     for scn in [a, b] {
         let s = evhi::simulation::Simulation::new(scn, settings.clone())
             .unwrap()

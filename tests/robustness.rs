@@ -358,11 +358,9 @@ proptest! {
         prop_assert!(scene.kappa() > -1.0 && scene.kappa() < 0.5);
         prop_assert!(scene.f0().iter().chain(scene.f2().iter()).all(|x| x.is_finite()));
         prop_assert!(scene.beta() > 0.0 && 2.0 * scene.alpha() + scene.beta() > 0.0);
-        let settings = evhi::simulation::RunSettings {
-            n: 4,
-            steps: Some(2),
-            ..Default::default()
-        };
+        let settings = evhi::simulation::RunSettings::default()
+            .with_n(4)
+            .with_steps(2);
         if let Ok(sim) = evhi::simulation::Simulation::new(scene, settings) {
             let _ = sim.solve(&mut ());
         }
@@ -376,39 +374,15 @@ proptest! {
 fn settings_are_refused_in_the_librarys_words() {
     use evhi::prelude::*;
     let scene = || Scenario::load("figure").unwrap();
-    let base = || RunSettings {
-        n: 16,
-        steps: Some(2),
-        ..RunSettings::default()
-    };
+    let base = || RunSettings::default().with_n(16).with_steps(2);
     let cases: [(RunSettings, &str); 4] = [
+        (base().with_certificate_tol(1.0), "`certificate_tol`"),
+        (base().with_grading(0.3), "`grading`"),
+        (base().with_threads(3), "`threads`"),
         (
-            RunSettings {
-                certificate_tol: 1.0,
-                ..base()
-            },
-            "`certificate_tol`",
-        ),
-        (
-            RunSettings {
-                grading: Some(0.3),
-                ..base()
-            },
-            "`grading`",
-        ),
-        (
-            RunSettings {
-                threads: Some(3),
-                ..base()
-            },
-            "`threads`",
-        ),
-        (
-            RunSettings {
-                mesh: MeshKind::Graded,
-                ordering: Some(evhi::scheme::OrderingKind::NestedDissection),
-                ..base()
-            },
+            base()
+                .with_mesh(MeshKind::Graded)
+                .with_ordering(evhi::scheme::OrderingKind::NestedDissection),
             "`ordering`",
         ),
     ];

@@ -478,3 +478,144 @@ fn the_readme_scene_is_the_shipped_file() {
     let scene = evhi::scenario::Scenario::load(&path.display().to_string()).unwrap();
     assert_eq!(scene.name(), "block");
 }
+
+/// The README's library snippet is abridged from `examples/solve_a_scene.rs`, which
+/// is built and is the crate's doc-tested front page: every code line the README shows
+/// (its trailing comment set aside) is a line of that example, so the snippet cannot
+/// stop compiling without the test failing.
+#[test]
+fn the_readme_snippet_is_the_front_page_example() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let shown = readme
+        .split("```rust\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("a Rust block in the README");
+    let example = std::fs::read_to_string(root.join("examples/solve_a_scene.rs")).unwrap();
+    let code = |l: &str| l.split(" //").next().unwrap_or("").trim().to_string();
+    let lines: Vec<String> = example.lines().map(code).collect();
+    let mut shown_lines = 0;
+    for l in shown.lines().map(code).filter(|l| !l.is_empty()) {
+        assert!(lines.contains(&l), "README line not in the example: {l}");
+        shown_lines += 1;
+    }
+    assert!(
+        shown_lines >= 4,
+        "the README's snippet has {shown_lines} lines"
+    );
+}
+
+/// Every refusal of the file reader that a builder can reach: the scene the builder
+/// would make, written as a file, is refused with the builder's own words (its first
+/// line; the file adds where the value stood) and by the same field.
+#[test]
+fn the_builders_refuse_what_the_file_refuses() {
+    use evhi::law::Law;
+    use evhi::scenario::Problem;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let figure_text = std::fs::read_to_string(root.join("data/scenarios/figure.toml")).unwrap();
+    let figure = || Scenario::from_toml(&figure_text, "figure").unwrap();
+    let elastic_text = figure_text.replace("alpha = 100.0\nbeta = 50.0\n", "");
+    let elastic_text = elastic_text.replace("g = 0.1\n", "g = 0.1\nproblem = \"elastic\"\n");
+    let elastic = || Scenario::from_toml(&elastic_text, "figure").unwrap();
+    let edit = |text: &str, from: &str, to: &str| {
+        assert!(text.contains(from), "no `{from}`");
+        text.replacen(from, to, 1)
+    };
+    let f = figure_text.as_str();
+    type Built = Result<Scenario, evhi::error::InputError>;
+    let big = evhi::scenario::MAX_LAW * 10.0;
+    let cases: Vec<(String, Built)> = vec![
+        (edit(f, "g = 0.1", "g = -1.0"), figure().with_g(-1.0)),
+        (edit(f, "g = 0.1", "g = 0.0"), figure().with_g(0.0)),
+        (edit(f, "g = 0.1", "g = nan"), figure().with_g(f64::NAN)),
+        (
+            edit(f, "f0 = [0.0, -5.0]", "f0 = [nan, -5.0]"),
+            figure().with_loads(Some([f64::NAN, -5.0]), None),
+        ),
+        (
+            edit(f, "f2 = [0.0, -75.0]", "f2 = [0.0, 1e300]"),
+            figure().with_loads(None, Some([0.0, 1e300])),
+        ),
+        (
+            edit(f, "E = 1000.0", "E = -1.0"),
+            figure().with_elasticity(-1.0, 0.4),
+        ),
+        (
+            edit(f, "kappa = 0.4", "kappa = 0.5"),
+            figure().with_elasticity(1000.0, 0.5),
+        ),
+        (
+            edit(f, "alpha = 100.0", "alpha = inf"),
+            figure().with_viscosity(f64::INFINITY, 50.0),
+        ),
+        (
+            edit(f, "beta = 50.0", "beta = 0.0"),
+            figure().with_viscosity(100.0, 0.0),
+        ),
+        (
+            edit(f, "alpha = 100.0", "alpha = -100.0"),
+            figure().with_viscosity(-100.0, 50.0),
+        ),
+        (
+            edit(
+                &elastic_text,
+                "kappa = 0.4\n",
+                "kappa = 0.4\nalpha = 1.0\nbeta = 2.0\n",
+            ),
+            elastic().with_viscosity(1.0, 2.0),
+        ),
+        (
+            edit(
+                &elastic_text,
+                "problem = \"elastic\"",
+                "problem = \"viscoelastic\"",
+            ),
+            elastic().with_problem(Problem::Viscoelastic),
+        ),
+        (
+            edit(
+                f,
+                "slopes = [0.0, 200.0, -100.0, 300.0]",
+                &format!("slopes = [0.0, {big:e}, -100.0, 300.0]"),
+            ),
+            figure().with_law(
+                Law::new(
+                    &[0.0, 0.05, 0.075],
+                    &[0.0, big, -100.0, 300.0],
+                    &[0.0; 3],
+                    0.0,
+                )
+                .unwrap(),
+            ),
+        ),
+        (
+            edit(f, "name = \"figure\"", "name = \" \""),
+            figure().with_name(" "),
+        ),
+        (
+            edit(f, "name = \"figure\"", "name = \"a\\nb\""),
+            figure().with_name("a\nb"),
+        ),
+        (
+            edit(
+                f,
+                "description = \"vertical loads f0 = (0, -5), f2 = (0, -75) on the top; \
+                 paper's material and law\"",
+                "description = \"two\\nlines\"",
+            ),
+            figure().with_description("two\nlines"),
+        ),
+    ];
+    for (text, built) in cases {
+        let file = Scenario::from_toml(&text, "figure").expect_err(&text);
+        let built = built.expect_err(&text);
+        let file_msg = file.to_string();
+        let built_msg = built.to_string();
+        let first = file_msg.lines().next().unwrap_or_default();
+        assert_eq!(first, built_msg, "file: {file_msg}");
+        assert_eq!(file.field_name(), built.field_name(), "{file_msg}");
+        assert!(built.field_name().is_some(), "{built_msg}");
+    }
+}

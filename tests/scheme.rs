@@ -122,10 +122,7 @@ fn convexify_without_polish_is_still_certified_loosely() {
         polish: false,
         ..Default::default()
     });
-    let loose = evhi::simulation::RunSettings {
-        certificate_tol: 1e-5,
-        ..common::general(16, 16)
-    };
+    let loose = common::general(16, 16).with_certificate_tol(1e-5);
     let r =
         common::solve_with(&scn, loose, None, &mut solver, &mut ()).expect("loose run succeeds");
     let worst = r

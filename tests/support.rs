@@ -160,3 +160,23 @@ fn a_spring_is_checked_and_holds_the_body() {
         .unwrap();
     assert!(solution.max_certificate() <= 1e-10);
 }
+
+/// `show` does not call a viscoelastic scene with a spring "proportional damping": its
+/// C is a multiple of G, but the spring is in B alone. It names the spring's support,
+/// and the scene's own answer agrees with the loop `solve` takes. Without viscosity,
+/// or without the spring, the damping is proportional.
+#[test]
+fn show_says_a_spring_breaks_proportional_damping() {
+    let (text, _) = evhi::show::report(&bar(500.0, "viscoelastic"), 8, 4);
+    assert!(!text.contains("proportional damping"), "{text}");
+    assert!(
+        text.contains("geometry.supports.right") && text.contains("not proportional"),
+        "{text}"
+    );
+    assert_eq!(bar(500.0, "viscoelastic").proportional_damping(), None);
+    assert_eq!(bar(500.0, "elastic").proportional_damping(), Some(0.0));
+    let figure = Scenario::load("figure").unwrap();
+    assert!(figure.proportional_damping().is_some());
+    let (text, _) = evhi::show::report(&figure, 8, 4);
+    assert!(text.contains("proportional damping"), "{text}");
+}

@@ -21,21 +21,14 @@ pub fn run(args: ShowArgs) -> Result<(), Box<dyn std::error::Error>> {
     let scn = Scenario::load(&args.scenario)?;
     // Refused as `solve` refuses them, by their options.
     let flag = super::solve::settings_flag;
-    let n = match (scn.body(), args.n) {
-        (Some(body), None) => body.gamma3.len() - 1,
-        (Some(body), Some(n)) => {
-            return Err(evhi::error::InputError::field(
-                "--n",
-                n,
-                format!(
-                    "nothing on a mesh scene: its mesh is the file's ({})",
-                    body.file
-                ),
-            )
-            .into());
-        }
-        (None, n) => {
-            let n = n.unwrap_or(64);
+    if let Some(n) = args.n {
+        scn.refuse_level_on_mesh(n)
+            .map_err(|e| e.for_flag("n", "--n"))?;
+    }
+    let n = match scn.body() {
+        Some(body) => body.gamma3.len() - 1,
+        None => {
+            let n = args.n.unwrap_or(64);
             evhi::mesh::check_n(n).map_err(flag)?;
             evhi::scheme::check_memory(n, evhi::mesh::rows(n, scn.geometry())).map_err(flag)?;
             n

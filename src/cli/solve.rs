@@ -145,17 +145,9 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         Some(t_r) => scn.with_ramp(t_r)?,
         None => scn,
     };
-    if let (Some(n), Some(body)) = (args.n, scn.body()) {
-        return Err(evhi::error::InputError::field(
-            "--n",
-            n,
-            format!(
-                "nothing on a mesh scene: its mesh is the file's ({}), with {} contact segments",
-                body.file,
-                body.gamma3.len() - 1
-            ),
-        )
-        .into());
+    if let Some(n) = args.n {
+        scn.refuse_level_on_mesh(n)
+            .map_err(|e| e.for_flag("n", "--n"))?;
     }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());
@@ -237,28 +229,38 @@ pub fn settings_flag(e: evhi::error::InputError) -> evhi::error::InputError {
 
 /// The run settings the options ask for (checked by [`Simulation::new`]).
 fn settings(args: &SolveArgs) -> RunSettings {
-    RunSettings {
-        n: args.n.unwrap_or(64),
-        steps: args.steps,
-        mesh: if args.mesh == "graded" {
+    let mut settings = RunSettings::default()
+        .with_n(args.n.unwrap_or(64))
+        .with_mesh(if args.mesh == "graded" {
             MeshKind::Graded
         } else {
             MeshKind::Uniform
-        },
-        grading: args.grading,
-        solver: args.solver.clone(),
-        path: match args.path.as_str() {
+        })
+        .with_path(match args.path.as_str() {
             "general" => Loop::General,
             "reduced" => Loop::Reduced,
             _ => Loop::Auto,
-        },
-        ordering: args.ordering.as_deref().map(|o| match o {
+        })
+        .with_certificate_tol(args.certificate_tol);
+    if let Some(steps) = args.steps {
+        settings = settings.with_steps(steps);
+    }
+    if let Some(mu) = args.grading {
+        settings = settings.with_grading(mu);
+    }
+    if let Some(solver) = &args.solver {
+        settings = settings.with_solver(solver);
+    }
+    if let Some(ordering) = args.ordering.as_deref() {
+        settings = settings.with_ordering(match ordering {
             "amd" => OrderingKind::Amd,
             _ => OrderingKind::NestedDissection,
-        }),
-        threads: args.threads,
-        certificate_tol: args.certificate_tol,
+        });
     }
+    if let Some(threads) = args.threads {
+        settings = settings.with_threads(threads);
+    }
+    settings
 }
 
 /// The command line's observer: the run's records and files, and a progress bar

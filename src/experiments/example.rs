@@ -12,7 +12,7 @@ use evhi::certificate::ContactState;
 use evhi::output::run::{Provenance, Recorder, Recording};
 use evhi::output::rundir::RunDir;
 use evhi::scenario::Scenario;
-use evhi::simulation::{Loop, OnStep, RunSettings, Simulation};
+use evhi::simulation::{OnStep, RunSettings, Simulation};
 use evhi::step::newton::Newton;
 
 /// The examples: name, TOML (compiled in), its path.
@@ -199,12 +199,7 @@ fn one(
     })?;
     // As `evhi solve --n N --steps N --path general` solves it: the library's one
     // way to run a scene, so no wiring here to keep in step with the command.
-    let settings = RunSettings {
-        n,
-        steps: Some(n),
-        path: Loop::General,
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::general(n, n);
     let sim = Simulation::new(scn.clone(), settings)?;
     let mut rec = Recording {
         recorder: Recorder::new(&scn, sim.mesh().clone(), n, None)?,
@@ -419,10 +414,7 @@ fn step_control(ctx: &Ctx, scn: &Scenario, n: usize) -> Result<(), ExpError> {
         .collect::<Result<_, _>>()?;
     let mid = n / 2;
     // The condensed operator of the mesh, once for every row.
-    let settings = RunSettings {
-        threads: Some(1),
-        ..evhi::simulation::RunSettings::general(n, n)
-    };
+    let settings = RunSettings::general(n, n).with_threads(1);
     let sim = Simulation::new(scn.clone(), settings)?;
     let disc = sim.discretisation();
     let red = sim.reduced_operator(&disc, &mut evhi::scheme::Timings::default())?;

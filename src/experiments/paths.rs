@@ -42,10 +42,7 @@ fn general(scns: &[&Scenario], n: usize) -> Result<Vec<Traced>, ExpError> {
 
 fn reduced(scn: &Scenario, n: usize) -> Result<Traced, ExpError> {
     let mut r = vec![];
-    let settings = RunSettings {
-        path: Loop::Reduced,
-        ..evhi::simulation::RunSettings::general(n, n)
-    };
+    let settings = RunSettings::general(n, n).with_path(Loop::Reduced);
     let sim = Simulation::new(scn.clone(), settings)?;
     let mut observer =
         OnStep::new(|_, _, _, c: &[ContactState]| r.extend(c.iter().map(|c| c.u_nu)));

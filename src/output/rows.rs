@@ -270,6 +270,7 @@ row! {
     /// compression), its regime on the law, its $y$ and its arc length $s$ along
     /// $\Gamma_3$ from $\Gamma_3$'s first node (on a mesh scene's curved or slanted
     /// contact part, where $x$ alone does not place it).
+    #[non_exhaustive]
     pub struct ContactRow {
         x: f64 => "x",
         u_nu: f64 => "u_nu",
@@ -314,7 +315,7 @@ impl crate::simulation::Solution {
     /// ```
     /// use evhi::scenario::Scenario;
     /// use evhi::simulation::{RunSettings, Simulation};
-    /// let settings = RunSettings { n: 8, steps: Some(4), ..RunSettings::default() };
+    /// let settings = RunSettings::default().with_n(8).with_steps(4);
     /// let sim = Simulation::new(Scenario::load("figure")?, settings)?;
     /// let solution = sim.solve(&mut ())?;
     /// let rows = solution.contact_rows(sim.scenario());

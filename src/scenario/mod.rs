@@ -244,6 +244,26 @@ impl Scenario {
         self.body.as_ref()
     }
 
+    /// Refuses a level $n$ (the rectangle's segments on the bottom) on a mesh scene,
+    /// whose mesh is its file's: the refusal names the field `n`, the file and its
+    /// count of contact segments. A rectangle scene takes any level here (the mesh
+    /// checks it when it is built).
+    pub fn refuse_level_on_mesh(&self, n: usize) -> Result<(), InputError> {
+        match &self.body {
+            None => Ok(()),
+            Some(b) => Err(InputError::field(
+                "n",
+                n,
+                format!(
+                    "nothing on a mesh scene: its mesh is the file's ({}), with {} contact \
+                     segments",
+                    b.file,
+                    b.gamma3.len() - 1
+                ),
+            )),
+        }
+    }
+
     /// Refuses a mesh scene where `what` needs the rectangle's structured meshes of a
     /// level $n$ (meshes of any level, grading towards the rectangle's corners).
     pub fn refuse_mesh_scene(&self, what: &str) -> Result<(), InputError> {
@@ -381,18 +401,20 @@ impl Scenario {
 
     /// The same scenario as another problem: an elastic or steady one drops the
     /// viscosity (the data of a viscoelastic problem otherwise unchanged); a
-    /// viscoelastic one needs a viscosity, so it is refused from a problem without.
+    /// viscoelastic one needs a viscosity, so it is refused from a problem without, by
+    /// the missing `material.alpha`, as its file would be.
     pub fn with_problem(mut self, problem: Problem) -> Result<Self, InputError> {
         if problem.viscous() && !self.problem.viscous() {
-            return Err(InputError::field(
-                "problem",
-                problem.name(),
-                format!(
-                    "\"elastic\" or \"steady\" for scenario `{}`, which has no viscosity \
-                     (give alpha and beta in its file for a viscoelastic problem)",
-                    self.name
-                ),
-            ));
+            // Refused as the file refuses a viscoelastic problem without alpha and beta.
+            return Err(file::viscosity(problem, None, None)
+                .err()
+                .unwrap_or_else(|| {
+                    InputError::field(
+                        "problem",
+                        problem.name(),
+                        "\"elastic\" or \"steady\" for a scene without viscosity",
+                    )
+                }));
         }
         if !problem.viscous() {
             (self.alpha, self.beta) = (0.0, 0.0);
@@ -657,6 +679,16 @@ impl Scenario {
             .filter(|(_, h)| h.stiffness() > 0.0)
             .map(|(f, h)| (f.clone(), h))
             .collect()
+    }
+
+    /// The constant $c$ with $A = c\,(B + B_s)$, where $B_s$ is the supports' springs'
+    /// boundary term, when the step operator's damping is proportional (what the reduced
+    /// time loop needs): the relaxation time ([`Scenario::relaxation_time`]) when no
+    /// support adds stiffness or there is no viscosity ($A = 0 = 0\,(B + B_s)$), else
+    /// `None` (a spring is in $B$ alone, so $A = \tau B \ne \tau (B + B_s)$).
+    pub fn proportional_damping(&self) -> Option<f64> {
+        let tau = self.relaxation_time()?;
+        (!self.problem.viscous() || self.supports_with_stiffness().is_empty()).then_some(tau)
     }
 
     /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like

@@ -38,6 +38,7 @@ pub struct StepProblem<'a> {
 }
 
 /// How a step solve ended.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Status {
     /// The reduced optimality residual is below the tolerance.
@@ -63,6 +64,7 @@ impl Status {
 }
 
 /// What a step solve did.
+#[non_exhaustive]
 #[derive(Debug, Clone)]
 pub struct Info {
     pub status: Status,

@@ -30,25 +30,15 @@ pub(super) fn run(
         .into());
     }
     let mut plan = time::plan(args.quick);
+    if let Some(n) = args.n {
+        scn.refuse_level_on_mesh(n)
+            .map_err(|e| e.for_flag("n", "--n"))?;
+    }
     match (args.n, scn.body_mesh()) {
         // A mesh scene's mesh is its file's: n is its count of contact segments.
-        (None, Some(mesh)) => plan.n = mesh.n,
-        (Some(n), Some(mesh)) => {
-            return Err(crate::error::InputError::field(
-                "--n",
-                n,
-                format!(
-                    "nothing on a mesh scene, whose mesh is its file's ({} contact segments)",
-                    mesh.n
-                ),
-            )
-            .into());
-        }
-        (n, None) => {
-            if let Some(n) = n {
-                plan.n = n;
-            }
-        }
+        (_, Some(mesh)) => plan.n = mesh.n,
+        (Some(n), None) => plan.n = n,
+        (None, None) => {}
     }
     plan.solver = super::study_solver(args.solver.as_deref())?;
     if scn.body().is_none() {

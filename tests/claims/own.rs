@@ -594,11 +594,7 @@ fn five_branch_peak(n: usize, steps: usize) -> f64 {
     use evhi::prelude::*;
     let path = super::root().join("data/scenarios/examples/five_branch.toml");
     let scn = Scenario::load(&path.display().to_string()).unwrap();
-    let settings = RunSettings {
-        n,
-        steps: Some(steps),
-        ..Default::default()
-    };
+    let settings = RunSettings::default().with_n(n).with_steps(steps);
     let mut peak: f64 = 0.0;
     let mid = n / 2;
     let mut obs = OnStep::new(|_, _, _: Option<&[f64]>, c: &[ContactState]| {

@@ -353,12 +353,7 @@ pub fn contact(run: &Path) -> Vec<evhi::output::rows::ContactRow> {
 /// The settings of the general time loop on `n` segments with `steps` steps, the rest
 /// as [`evhi::simulation::RunSettings::default`].
 pub fn general(n: usize, steps: usize) -> evhi::simulation::RunSettings {
-    evhi::simulation::RunSettings {
-        n,
-        steps: Some(steps),
-        path: evhi::simulation::Loop::General,
-        ..Default::default()
-    }
+    evhi::simulation::RunSettings::general(n, steps)
 }
 
 /// Solves `scn` with `settings` (on `mesh` if given) by the caller's `solver`, telling
@@ -401,14 +396,11 @@ impl evhi::simulation::Observer for EveryField {
 
 /// The settings of the time loop `reduced` or general on `n` segments with `steps` steps.
 pub fn on_loop(n: usize, steps: usize, reduced: bool) -> evhi::simulation::RunSettings {
-    evhi::simulation::RunSettings {
-        path: if reduced {
-            evhi::simulation::Loop::Reduced
-        } else {
-            evhi::simulation::Loop::General
-        },
-        ..general(n, steps)
-    }
+    general(n, steps).with_path(if reduced {
+        evhi::simulation::Loop::Reduced
+    } else {
+        evhi::simulation::Loop::General
+    })
 }
 
 /// An observer that asks the reduced loop for the field where `wants(step)` and tells

@@ -201,12 +201,10 @@ fn grid_level(step: usize, steps: usize, grid: usize) -> Option<usize> {
 /// reduced operator. Two workers already keep both cores busy, so its solves take
 /// one thread.
 fn prepared(scn: &Scenario, n: usize) -> Result<Simulation, ExpError> {
-    let settings = RunSettings {
-        n,
-        path: Loop::Reduced,
-        threads: Some(1),
-        ..RunSettings::default()
-    };
+    let settings = RunSettings::default()
+        .with_n(n)
+        .with_path(Loop::Reduced)
+        .with_threads(1);
     Ok(Simulation::new(scn.clone(), settings)?)
 }
 
