@@ -59,6 +59,9 @@ pub struct StepRow {
     pub iterations: usize,
     /// Contact nodes in each of [`REGIMES`].
     pub regimes: [usize; 5],
+    /// The residual estimate $\eta$ of the step ([`crate::estimator`]); 0 unless the run
+    /// was asked for it ([`run_estimated`]).
+    pub eta: f64,
 }
 
 /// A run against the exact solution.
@@ -247,6 +250,18 @@ pub fn run_refined(
     Ok(runs.remove(0))
 }
 
+/// [`run`] with the residual estimate $\eta$ of every step ([`crate::estimator`]) in
+/// [`StepRow::eta`], from the exact $f_0$, $f_2$ and $f_3$ of the solution.
+pub fn run_estimated(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+) -> Result<ExactRun, RunError> {
+    let (mut runs, _) = run_rules_options(sol, scn, n, steps, &[Rule::Nodal], 0, true)?;
+    Ok(runs.remove(0))
+}
+
 fn run_rules_refined(
     sol: Solution,
     scn: &Scenario,
@@ -254,6 +269,18 @@ fn run_rules_refined(
     steps: usize,
     rules: &[Rule],
     refine: usize,
+) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
+    run_rules_options(sol, scn, n, steps, rules, refine, false)
+}
+
+fn run_rules_options(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+    rules: &[Rule],
+    refine: usize,
+    estimated: bool,
 ) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
     let clock = Instant::now();
     let steps = if sol.is_static() { 1 } else { steps };
@@ -295,6 +322,8 @@ fn run_rules_refined(
         })
         .collect();
     let mut au = vec![vec![0.0; disc.dofs.count]; rules.len()];
+    // u_{n-1} at the nodes per rule, for the estimator's stress.
+    let mut prev_h = vec![vec![[0.0; 2]; mesh.nodes.len()]; rules.len()];
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
     let mut diffs = vec![];
@@ -375,8 +404,29 @@ fn run_rules_refined(
                     partial: Box::default(),
                 });
             }
-            let (err_e, err_v_sq) =
-                measure_error(&data, &mesh, &bms, points, &disc.dofs.expand(&u[0]));
+            let nodal_h = disc.dofs.expand(&u[0]);
+            let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
+            let eta = if estimated {
+                let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
+                let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
+                let surface = |x: [f64; 2], nrm: [f64; 2]| {
+                    if x[1].abs() < 1e-12 && nrm[1] < -0.5 {
+                        data.gamma3_load(x[0], t)
+                    } else {
+                        data.traction(x[0], x[1], t, nrm)
+                    }
+                };
+                let pb = crate::estimator::Problem {
+                    elast: data.elast,
+                    visc: data.visc,
+                    f0: &f0,
+                    surface: &surface,
+                };
+                crate::estimator::estimate(&mesh, &pb, &nodal_h, &prev_h[i], k, &sigma_h).total()
+            } else {
+                0.0
+            };
+            prev_h[i] = nodal_h;
             let mut row = StepRow {
                 err_e,
                 err_v_sq,
@@ -387,6 +437,7 @@ fn run_rules_refined(
             row.certificate = certificate;
             row.iterations = rec.iterations;
             row.regimes = count_regimes(&states, scn);
+            row.eta = eta;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }
