@@ -41,6 +41,12 @@ pub struct Problem<'a> {
     /// The surface load at a point of $\partial\Omega$ with outward normal `n` at $t_n$:
     /// $f_2$ on $\Gamma_2$ (zero on its free parts) and $f_3$ on $\Gamma_3$.
     pub surface: &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2],
+    /// A line load $\ell$ carried by the interior edges, if the data have one: at a
+    /// point of an edge with unit normal `n`, the jump $\sigma^-n - \sigma^+n$ that the
+    /// load balances (the side $-$ is the one `n` points out of). A field smooth only
+    /// piecewise, such as a P1 field of a coarser mesh, is the solution of data with
+    /// such a load; then the jump term measures $[\sigma^n\nu] - \ell$.
+    pub line: Option<&'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2]>,
 }
 
 /// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
@@ -160,7 +166,19 @@ pub fn estimate(
                     let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
                     let s0 = stress[t0];
                     let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
-                    let term = he * he * (j[0] * j[0] + j[1] * j[1]);
+                    let r = match pb.line {
+                        None => he * (j[0] * j[0] + j[1] * j[1]),
+                        Some(line) => GAUSS3
+                            .iter()
+                            .map(|&(q, w)| {
+                                let x =
+                                    [pa[0] + q * (pb_[0] - pa[0]), pa[1] + q * (pb_[1] - pa[1])];
+                                let l = line(x, n);
+                                w * he * ((j[0] - l[0]).powi(2) + (j[1] - l[1]).powi(2))
+                            })
+                            .sum(),
+                    };
+                    let term = he * r;
                     out.eta_sq[t] += 0.5 * term;
                     out.eta_sq[t0] += 0.5 * term;
                     out.parts[1] += term;
@@ -271,6 +289,7 @@ mod tests {
             visc,
             f0: &f0,
             surface: &surface,
+            line: None,
         };
         let sn = traction(sig, mesh.normal);
         let sigma_nu = sn[0] * mesh.normal[0] + sn[1] * mesh.normal[1];

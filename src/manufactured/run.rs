@@ -62,6 +62,10 @@ pub struct StepRow {
     /// The residual estimate $\eta$ of the step ([`crate::estimator`]); 0 unless the run
     /// was asked for it ([`run_estimated`]).
     pub eta: f64,
+    /// The step's stress error $\|\sigma(t_n) - \sigma^n_h\|_{L^2(\Omega)}$, with
+    /// $\sigma^n_h = \mathcal C\varepsilon((u^n_h - u^{n-1}_h)/k) + \mathcal G\varepsilon(u^n_h)$: the
+    /// norm the residual's terms measure; 0 unless the run was asked for it.
+    pub err_sigma: f64,
 }
 
 /// A run against the exact solution.
@@ -324,6 +328,7 @@ fn run_rules_options(
     let mut au = vec![vec![0.0; disc.dofs.count]; rules.len()];
     // u_{n-1} at the nodes per rule, for the estimator's stress.
     let mut prev_h = vec![vec![[0.0; 2]; mesh.nodes.len()]; rules.len()];
+    let h_min = 1.0 / n as f64;
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
     let mut diffs = vec![];
@@ -406,7 +411,7 @@ fn run_rules_options(
             }
             let nodal_h = disc.dofs.expand(&u[0]);
             let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
-            let eta = if estimated {
+            let (eta, err_sigma) = if estimated {
                 let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
                 let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
                 let surface = |x: [f64; 2], nrm: [f64; 2]| {
@@ -416,15 +421,28 @@ fn run_rules_options(
                         data.traction(x[0], x[1], t, nrm)
                     }
                 };
+                // The jump of the exact sigma nu across an edge: the line load of a
+                // solution smooth only piecewise (zero to rounding for a smooth one).
+                let line = |x: [f64; 2], nrm: [f64; 2]| {
+                    let e = 1e-9 * h_min;
+                    let minus = data.traction(x[0] - e * nrm[0], x[1] - e * nrm[1], t, nrm);
+                    let plus = data.traction(x[0] + e * nrm[0], x[1] + e * nrm[1], t, nrm);
+                    [minus[0] - plus[0], minus[1] - plus[1]]
+                };
                 let pb = crate::estimator::Problem {
                     elast: data.elast,
                     visc: data.visc,
                     f0: &f0,
                     surface: &surface,
+                    line: Some(&line),
                 };
-                crate::estimator::estimate(&mesh, &pb, &nodal_h, &prev_h[i], k, &sigma_h).total()
+                let eta = crate::estimator::estimate(&mesh, &pb, &nodal_h, &prev_h[i], k, &sigma_h)
+                    .total();
+                let now = p1_strains(&mesh, &bms, &nodal_h);
+                let before = p1_strains(&mesh, &bms, &prev_h[i]);
+                (eta, stress_error(&data, points, [&now, &before], k))
             } else {
-                0.0
+                (0.0, 0.0)
             };
             prev_h[i] = nodal_h;
             let mut row = StepRow {
@@ -438,6 +456,7 @@ fn run_rules_options(
             row.iterations = rec.iterations;
             row.regimes = count_regimes(&states, scn);
             row.eta = eta;
+            row.err_sigma = err_sigma;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }
@@ -677,4 +696,22 @@ fn measure_error(
         err_v_sq += pt.w * contract(e);
     }
     (err_e_sq.max(0.0).sqrt(), err_v_sq)
+}
+
+/// $\|\sigma(t_n) - \sigma^n_h\|_{L^2(\Omega)}$ from the exact strains at the points and the
+/// discrete strains of $u^n_h$ and $u^{n-1}_h$ per triangle.
+fn stress_error(data: &Data, points: &[Point], [now, before]: [&[[f64; 3]]; 2], k: f64) -> f64 {
+    let mut sq = 0.0;
+    for pt in points {
+        let exact = super::stress(&pt.now, data.visc.as_ref(), &data.elast);
+        let eh = now[pt.tri];
+        let mut sh = super::apply(&data.elast, eh);
+        if let Some(c) = &data.visc {
+            let rate = sub(eh, before[pt.tri]).map(|x| x / k);
+            let v = super::apply(c, rate);
+            (0..3).for_each(|i| sh[i] += v[i]);
+        }
+        sq += pt.w * contract(sub(exact, sh));
+    }
+    sq.sqrt()
 }
