@@ -2,11 +2,11 @@
 //!
 //! For the step's stress $\sigma^n = \mathcal C\varepsilon((u^n - u^{n-1})/k) + \mathcal G\varepsilon(u^n)$,
 //! constant on each triangle $T$ for P1 fields, the indicator of $T$ is
-//! $$\eta_T^2 = h_T^2\|f_0 + \operatorname{Div}\sigma^n\|^2_T
-//!   + \tfrac12\sum_{e\subset\partial T\ \text{interior}} h_e\|[\sigma^n\nu]\|^2_e
-//!   + \sum_{e\subset\partial T\cap\Gamma_2} h_e\|f_2 - \sigma^n\nu\|^2_e
-//!   + \sum_{e\subset\partial T\cap\Gamma_3} h_e\big(\|\sigma^n_\tau - f_{3,\tau}\|^2_e
-//!     + \|\sigma^n_\nu - f_{3,\nu} - \sigma^h_\nu\|^2_e\big),$$
+//! $$\eta_T^2 = h_T^2\|f_0 + \operatorname{Div}\sigma^n\|^2_T +
+//!   \tfrac12\sum_{e\subset\partial T\ \text{interior}} h_e\|[\sigma^n\nu]\|^2_e +
+//!   \sum_{e\subset\partial T\cap\Gamma_2} h_e\|f_2 - \sigma^n\nu\|^2_e +
+//!   \sum_{e\subset\partial T\cap\Gamma_3} h_e\big(\|\sigma^n_\tau - f_{3,\tau}\|^2_e +
+//!     \|\sigma^n_\nu - f_{3,\nu} - \sigma^h_\nu\|^2_e\big),$$
 //! with $\operatorname{Div}\sigma^n = 0$ on each triangle, $h_T$ its longest edge, $h_e$ the
 //! edge's length, $[\sigma\nu]$ the jump of the normal stress across an interior edge,
 //! $\sigma_\nu = (\sigma\nu)\cdot n_f$ and $\sigma_\tau = \sigma\nu - \sigma_\nu n_f$ along the
@@ -29,6 +29,9 @@ use crate::material::Isotropic;
 use crate::mesh::Mesh;
 use std::collections::HashMap;
 
+/// A load on a line at a point with a unit normal: `(x, n) -> value`.
+pub type LineLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
+
 /// What the estimator needs of the problem besides the fields: the tensors and the
 /// loads, as functions of the point.
 pub struct Problem<'a> {
@@ -40,13 +43,13 @@ pub struct Problem<'a> {
     pub f0: &'a dyn Fn([f64; 2]) -> [f64; 2],
     /// The surface load at a point of $\partial\Omega$ with outward normal `n` at $t_n$:
     /// $f_2$ on $\Gamma_2$ (zero on its free parts) and $f_3$ on $\Gamma_3$.
-    pub surface: &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2],
+    pub surface: LineLoad<'a>,
     /// A line load $\ell$ carried by the interior edges, if the data have one: at a
     /// point of an edge with unit normal `n`, the jump $\sigma^-n - \sigma^+n$ that the
     /// load balances (the side $-$ is the one `n` points out of). A field smooth only
     /// piecewise, such as a P1 field of a coarser mesh, is the solution of data with
     /// such a load; then the jump term measures $[\sigma^n\nu] - \ell$.
-    pub line: Option<&'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2]>,
+    pub line: Option<LineLoad<'a>>,
 }
 
 /// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
