@@ -52,6 +52,56 @@ pub struct Problem<'a> {
     pub line: Option<LineLoad<'a>>,
 }
 
+/// A rectangle scene's loads at one time, as the estimator asks for them: the volume
+/// force $\varphi(t) f_0 (1 + a\cos\pi x)$ and each traction $\varphi(t) f$ on its segment
+/// of a side, a side known by its outward normal (as [`crate::assembly::load`] places them).
+/// A mesh scene's named boundary parts are not read here yet.
+#[derive(Debug, Clone)]
+pub struct SceneLoads {
+    pub f0: [f64; 2],
+    pub modulation: f64,
+    pub tractions: Vec<crate::geometry::Traction>,
+    /// The load history's factor $\varphi(t)$ at the step.
+    pub phi: f64,
+}
+
+impl SceneLoads {
+    /// The loads of `scn` at time `t`.
+    pub fn new(scn: &crate::scenario::Scenario, t: f64) -> SceneLoads {
+        SceneLoads {
+            f0: scn.f0(),
+            modulation: scn.f0_modulation(),
+            tractions: scn.tractions(),
+            phi: scn.history().phi(t),
+        }
+    }
+    /// $f_0$ at `x`.
+    pub fn f0_at(&self, x: [f64; 2]) -> [f64; 2] {
+        let w = self.phi * (1.0 + self.modulation * (std::f64::consts::PI * x[0]).cos());
+        self.f0.map(|c| c * w)
+    }
+    /// The surface load at `x` with outward normal `n`: the sum of the tractions whose
+    /// side has that normal and whose segment holds `x` (zero on a free part).
+    pub fn surface_at(&self, x: [f64; 2], n: [f64; 2]) -> [f64; 2] {
+        use crate::geometry::Side;
+        let side = match n {
+            [a, _] if a < -0.5 => Side::Left,
+            [a, _] if a > 0.5 => Side::Right,
+            [_, b] if b < -0.5 => Side::Bottom,
+            _ => Side::Top,
+        };
+        let mut out = [0.0; 2];
+        for t in self.tractions.iter().filter(|t| t.side == side) {
+            let s = side.along(x);
+            if s >= t.from && s <= t.to {
+                out[0] += self.phi * t.f[0];
+                out[1] += self.phi * t.f[1];
+            }
+        }
+        out
+    }
+}
+
 /// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Estimate {

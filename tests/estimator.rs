@@ -93,3 +93,147 @@ fn efficiency_table() {
         println!("{line}");
     }
 }
+
+/// Keeps the last two fields and the last contact states of a run.
+#[derive(Default)]
+struct LastTwo {
+    fields: Vec<Vec<f64>>,
+    contact: Vec<evhi::certificate::ContactState>,
+    t: f64,
+}
+
+impl evhi::simulation::Observer for LastTwo {
+    fn wants_field(&self, _step: usize) -> bool {
+        true
+    }
+    fn step(
+        &mut self,
+        _n: usize,
+        t: f64,
+        u: Option<&[f64]>,
+        contact: &[evhi::certificate::ContactState],
+    ) {
+        if let Some(u) = u {
+            self.fields.push(u.to_vec());
+            if self.fields.len() > 2 {
+                self.fields.remove(0);
+            }
+        }
+        self.contact = contact.to_vec();
+        self.t = t;
+    }
+}
+
+/// The boundary nodes where the boundary data change: the two boundary edges that
+/// meet there differ in kind (held, loaded or free, contact) or in direction. Read from
+/// the mesh alone.
+fn data_change_nodes(mesh: &evhi::mesh::Mesh) -> Vec<usize> {
+    use std::collections::HashMap;
+    let mut count: HashMap<[usize; 2], usize> = HashMap::new();
+    for t in &mesh.triangles {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
+            *count.entry([a.min(b), a.max(b)]).or_default() += 1;
+        }
+    }
+    let on_g3: std::collections::HashSet<usize> = mesh.gamma3.iter().copied().collect();
+    let held = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
+    // Per boundary node: (kind, direction) of each boundary edge at it.
+    let mut at: HashMap<usize, Vec<(u8, [i64; 2])>> = HashMap::new();
+    for (e, c) in count {
+        if c != 1 {
+            continue;
+        }
+        let [a, b] = e;
+        let kind = if on_g3.contains(&a) && on_g3.contains(&b) {
+            0
+        } else if held(a) && held(b) {
+            1
+        } else {
+            2
+        };
+        let d = [
+            mesh.nodes[b][0] - mesh.nodes[a][0],
+            mesh.nodes[b][1] - mesh.nodes[a][1],
+        ];
+        let len = d[0].hypot(d[1]);
+        let dir = [
+            (d[0] / len * 1e6).round().abs() as i64,
+            (d[1] / len * 1e6).round().abs() as i64,
+        ];
+        at.entry(a).or_default().push((kind, dir));
+        at.entry(b).or_default().push((kind, dir));
+    }
+    at.into_iter()
+        .filter(|(_, v)| v.len() == 2 && v[0] != v[1])
+        .map(|(n, _)| n)
+        .collect()
+}
+
+#[test]
+fn indicators_concentrate_where_the_boundary_data_change() {
+    use evhi::estimator::{Problem, SceneLoads, estimate};
+    use evhi::simulation::{RunSettings, Simulation};
+    let scn = Scenario::load("figure").unwrap();
+    let sim = Simulation::new(scn.clone(), RunSettings::general(32, 8)).unwrap();
+    let mut obs = LastTwo::default();
+    sim.solve(&mut obs).unwrap();
+    let disc = sim.discretisation();
+    let mesh = sim.mesh();
+    let (u, u_prev) = (
+        disc.dofs.expand(&obs.fields[1]),
+        disc.dofs.expand(&obs.fields[0]),
+    );
+    let loads = SceneLoads::new(&scn, obs.t);
+    let f0 = |x: [f64; 2]| loads.f0_at(x);
+    let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+    let pb = Problem {
+        elast: scn.elasticity(),
+        visc: Some(scn.viscosity()),
+        f0: &f0,
+        surface: &surface,
+        line: None,
+    };
+    let sigma_h: Vec<f64> = obs
+        .contact
+        .iter()
+        .map(|c| c.sigma_nu1 + c.sigma_nu2)
+        .collect();
+    let k = scn.t_end() / 8.0;
+    let est = estimate(mesh, &pb, &u, &u_prev, k, &sigma_h);
+    let special = data_change_nodes(mesh);
+    assert!(!special.is_empty());
+    let mut order: Vec<usize> = (0..est.eta_sq.len()).collect();
+    order.sort_by(|&a, &b| est.eta_sq[b].total_cmp(&est.eta_sq[a]));
+    // The largest indicators sit within one triangle's size of a node where the data change.
+    for &t in &order[..4] {
+        let p = mesh.triangles[t].map(|v| mesh.nodes[v]);
+        let c = [
+            (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+            (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+        ];
+        let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+        let h_t = (0..3).map(|i| d(p[i], p[(i + 1) % 3])).fold(0.0, f64::max);
+        let near = special
+            .iter()
+            .map(|&v| d(c, mesh.nodes[v]))
+            .fold(f64::MAX, f64::min);
+        assert!(
+            near <= h_t,
+            "triangle {t} at {:?}",
+            mesh.triangles[t].map(|v| mesh.nodes[v])
+        );
+    }
+    let mut sorted = est.eta_sq.clone();
+    sorted.sort_by(f64::total_cmp);
+    let median = sorted[sorted.len() / 2];
+    println!(
+        "largest eta_T^2 / median: {:.1}; top four at {:?}",
+        sorted[sorted.len() - 1] / median,
+        order[..4]
+            .iter()
+            .map(|&t| mesh.triangles[t].map(|v| mesh.nodes[v]))
+            .collect::<Vec<_>>()
+    );
+    assert!(sorted[sorted.len() - 1] > 10.0 * median);
+}
