@@ -11,6 +11,9 @@
 //! contact rule's, which the spatial estimator does not see: the stress index falls to
 //! 0.63–2.4 and is not stable.
 
+mod common;
+
+use common::{Csv, evhi_with, read, refused, scratch, succeed};
 use evhi::manufactured::run::{ExactRun, run_estimated};
 use evhi::manufactured::{SOLUTIONS, Solution};
 use evhi::scenario::Scenario;
@@ -236,4 +239,41 @@ fn indicators_concentrate_where_the_boundary_data_change() {
             .collect::<Vec<_>>()
     );
     assert!(sorted[sorted.len() - 1] > 10.0 * median);
+}
+
+#[test]
+fn solve_estimate_writes_the_indicators() {
+    let dir = scratch("estimate");
+    let out = dir.join("run");
+    succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --estimate --out").arg(&out));
+    let csv = Csv::read(out.join("estimator.csv"));
+    // One row per triangle of the n = 16 mesh (16 x 8 cells, two triangles each).
+    assert_eq!(csv.len(), 2 * 16 * 8);
+    let eta: Vec<f64> = (0..csv.len())
+        .map(|r| csv.get(r, "eta").parse().unwrap())
+        .collect();
+    assert!(eta.iter().all(|e| e.is_finite() && *e >= 0.0) && eta.iter().any(|e| *e > 0.0));
+    let vtu = read(out.join("solution.vtu"));
+    assert!(vtu.contains(r#"<CellData>"#) && vtu.contains(r#"Name="eta""#));
+    // Without the flag, neither.
+    let plain = dir.join("plain");
+    succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --out").arg(&plain));
+    assert!(!plain.join("estimator.csv").exists());
+    assert!(!read(plain.join("solution.vtu")).contains("CellData"));
+}
+
+#[test]
+fn solve_estimate_is_refused_on_a_mesh_scene() {
+    let dir = scratch("estimate-mesh");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/data/scenarios/examples/paper_mesh.toml"
+    );
+    let o = evhi_with("solve --estimate --scenario")
+        .arg(scene)
+        .arg("--out")
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    refused(&o, &["--estimate", "rectangle"]);
 }
