@@ -87,7 +87,7 @@ pub struct SolveArgs {
     pub timings: bool,
     /// Also estimate the error of the last step by the residual estimator (element,
     /// interior-jump, traction and contact residuals of sigma = A eps((u_N - u_N-1)/k) +
-    /// B eps(u_N); see the book's chapter "The error estimator"): writes
+    /// B eps(u_N); the equation heads the library's `estimator` module): writes
     /// estimator.csv (centroid x, y and eta of each triangle) and adds the cell field
     /// `eta` to solution.vtu. Rectangle scenes only, for now. Without it nothing of this
     /// is computed.
