@@ -48,6 +48,7 @@ pub mod dense;
 pub mod diagnostics;
 pub mod element;
 pub mod error;
+pub mod estimator;
 pub mod frame;
 pub mod geometry;
 pub mod history;

@@ -85,6 +85,14 @@ pub struct SolveArgs {
     /// Print the wall time of each phase (assembly, factorisation, condensation, steps).
     #[arg(long)]
     pub timings: bool,
+    /// Also estimate the error of the last step by the residual estimator (element,
+    /// interior-jump, traction and contact residuals of sigma = A eps((u_N - u_N-1)/k) +
+    /// B eps(u_N); the equation heads the library's `estimator` module): writes
+    /// estimator.csv (centroid x, y and eta of each triangle) and adds the cell field
+    /// `eta` to solution.vtu. Rectangle scenes only, for now. Without it nothing of this
+    /// is computed.
+    #[arg(long)]
+    pub estimate: bool,
     /// Fail a step whose certificate exceeds this relative residual (in [1e-15, 1e-4]).
     #[arg(long, default_value_t = evhi::scheme::CERTIFICATE_TOL, allow_hyphen_values = true)]
     pub certificate_tol: f64,
@@ -149,6 +157,14 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         scn.refuse_level_on_mesh(n)
             .map_err(|e| e.for_flag("n", "--n"))?;
     }
+    if args.estimate && scn.body().is_some() {
+        return Err(evhi::error::InputError::field(
+            "--estimate",
+            "true",
+            "only on a rectangle scene for now (a mesh scene's boundary parts are not read by the estimator yet)",
+        )
+        .into());
+    }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
@@ -168,9 +184,16 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         bar: None,
         started: Instant::now(),
         steps: steps as u64,
+        estimate: args.estimate,
+        last: vec![],
     };
     let (solution, h_s) = sim.solve_checking_smallness(&mut cli);
-    let Progress { recording, bar, .. } = cli;
+    let Progress {
+        recording,
+        bar,
+        last,
+        ..
+    } = cli;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
@@ -191,12 +214,20 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         seconds,
         &h_s,
     )?;
+    let t_est = Instant::now();
+    if args.estimate {
+        write_estimate(&out, scn, run, &last)?;
+    }
+    let t_est = t_est.elapsed();
     // The run's figures, drawn from the tables just written.
     evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
         let (output, total) = (t_out.elapsed(), wall.elapsed());
         evhi::diag_text!("{}", evhi::output::run::timings(&sim, run, output, total));
+        if args.estimate {
+            evhi::diag_text!("estimator (last step): {:.3} s\n", t_est.as_secs_f64());
+        }
     }
     evhi::diag!(
         "solved: {} steps, n = {}, largest certificate {:.1e}, {:.2} s wall; run directory {}",
@@ -270,15 +301,73 @@ struct Progress<'a> {
     bar: Option<ProgressBar>,
     started: Instant,
     steps: u64,
+    /// Whether `--estimate` asked for the last two fields.
+    estimate: bool,
+    /// The last two fields formed (free dofs), oldest first, with their steps.
+    last: Vec<(usize, Vec<f64>)>,
+}
+
+/// The residual estimate of the run's last step: `estimator.csv` and `solution.vtu`
+/// again with the cell field `eta`. $u^{N-1}$ is the field before the last (zero for
+/// a run of one step).
+fn write_estimate(
+    out: &RunDir,
+    scn: &Scenario,
+    run: &evhi::scheme::Run,
+    last: &[(usize, Vec<f64>)],
+) -> Result<(), Box<dyn std::error::Error>> {
+    use evhi::estimator::{Problem, SceneLoads, estimate};
+    let mesh = &run.mesh;
+    let dofs = evhi::mesh::Dofs::new(mesh, true);
+    let u = dofs.expand(&run.u);
+    let u_prev = match last.iter().find(|(n, _)| *n + 1 == run.steps) {
+        Some((_, f)) => dofs.expand(f),
+        None if run.steps == 1 => vec![[0.0; 2]; mesh.nodes.len()],
+        None => return Err("the run did not keep the field before the last step".into()),
+    };
+    let loads = SceneLoads::new(scn, run.steps as f64 * run.k);
+    let f0 = |x: [f64; 2]| loads.f0_at(x);
+    let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+    let pb = Problem {
+        elast: scn.elasticity(),
+        visc: Some(scn.viscosity()),
+        f0: &f0,
+        surface: &surface,
+        line: None,
+    };
+    let sigma_h: Vec<f64> = (run.contact.iter())
+        .map(|c| c.sigma_nu1 + c.sigma_nu2)
+        .collect();
+    let eta = estimate(mesh, &pb, &u, &u_prev, run.k, &sigma_h).eta();
+    let mut csv = String::from("x,y,eta\n");
+    for (tri, e) in mesh.triangles.iter().zip(&eta) {
+        let p = tri.map(|v| mesh.nodes[v]);
+        let c = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
+        csv += &format!("{},{},{:e}\n", c[0], c[1], e);
+    }
+    out.write("estimator.csv", csv.as_bytes())?;
+    let disp = mesh.displacement(&dofs, &run.u);
+    let codes: Vec<i32> = (run.contact.iter())
+        .map(|c| c.regime_code(scn.law(), scn.g()))
+        .collect();
+    let vtu = evhi::output::vtu::vtu_cells(mesh, &disp, &run.contact, &codes, &[("eta", &eta)]);
+    out.write("solution.vtu", vtu.as_bytes())?;
+    Ok(())
 }
 
 impl Observer for Progress<'_> {
     fn wants_field(&self, step: usize) -> bool {
-        self.recording.wants_field(step)
+        self.recording.wants_field(step) || (self.estimate && step as u64 + 1 >= self.steps)
     }
 
     fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, contact: &[ContactState]) {
         self.recording.step(n, t, u, contact);
+        if let (true, Some(u)) = (self.estimate, u) {
+            self.last.push((n, u.to_vec()));
+            if self.last.len() > 2 {
+                self.last.remove(0);
+            }
+        }
         if self.bar.is_none() && self.started.elapsed() > Duration::from_secs(1) {
             let b = ProgressBar::new(self.steps).with_style(
                 ProgressStyle::with_template(
@@ -296,6 +385,7 @@ impl Observer for Progress<'_> {
 
     fn restart(&mut self) {
         self.recording.restart();
+        self.last.clear();
     }
 }
 

@@ -59,6 +59,13 @@ pub struct StepRow {
     pub iterations: usize,
     /// Contact nodes in each of [`REGIMES`].
     pub regimes: [usize; 5],
+    /// The residual estimate $\eta$ of the step ([`crate::estimator`]); 0 unless the run
+    /// was asked for it ([`run_estimated`]).
+    pub eta: f64,
+    /// The step's stress error $\|\sigma(t_n) - \sigma^n_h\|_{L^2(\Omega)}$, with
+    /// $\sigma^n_h = \mathcal C\varepsilon((u^n_h - u^{n-1}_h)/k) + \mathcal G\varepsilon(u^n_h)$: the
+    /// norm the residual's terms measure; 0 unless the run was asked for it.
+    pub err_sigma: f64,
 }
 
 /// A run against the exact solution.
@@ -247,6 +254,18 @@ pub fn run_refined(
     Ok(runs.remove(0))
 }
 
+/// [`run`] with the residual estimate $\eta$ of every step ([`crate::estimator`]) in
+/// [`StepRow::eta`], from the exact $f_0$, $f_2$ and $f_3$ of the solution.
+pub fn run_estimated(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+) -> Result<ExactRun, RunError> {
+    let (mut runs, _) = run_rules_options(sol, scn, n, steps, &[Rule::Nodal], 0, true)?;
+    Ok(runs.remove(0))
+}
+
 fn run_rules_refined(
     sol: Solution,
     scn: &Scenario,
@@ -254,6 +273,18 @@ fn run_rules_refined(
     steps: usize,
     rules: &[Rule],
     refine: usize,
+) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
+    run_rules_options(sol, scn, n, steps, rules, refine, false)
+}
+
+fn run_rules_options(
+    sol: Solution,
+    scn: &Scenario,
+    n: usize,
+    steps: usize,
+    rules: &[Rule],
+    refine: usize,
+    estimated: bool,
 ) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
     let clock = Instant::now();
     let steps = if sol.is_static() { 1 } else { steps };
@@ -295,6 +326,9 @@ fn run_rules_refined(
         })
         .collect();
     let mut au = vec![vec![0.0; disc.dofs.count]; rules.len()];
+    // u_{n-1} at the nodes per rule, for the estimator's stress.
+    let mut prev_h = vec![vec![[0.0; 2]; mesh.nodes.len()]; rules.len()];
+    let h_min = 1.0 / n as f64;
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
     let mut diffs = vec![];
@@ -375,8 +409,42 @@ fn run_rules_refined(
                     partial: Box::default(),
                 });
             }
-            let (err_e, err_v_sq) =
-                measure_error(&data, &mesh, &bms, points, &disc.dofs.expand(&u[0]));
+            let nodal_h = disc.dofs.expand(&u[0]);
+            let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
+            let (eta, err_sigma) = if estimated {
+                let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
+                let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
+                let surface = |x: [f64; 2], nrm: [f64; 2]| {
+                    if x[1].abs() < 1e-12 && nrm[1] < -0.5 {
+                        data.gamma3_load(x[0], t)
+                    } else {
+                        data.traction(x[0], x[1], t, nrm)
+                    }
+                };
+                // The jump of the exact sigma nu across an edge: the line load of a
+                // solution smooth only piecewise (zero to rounding for a smooth one).
+                let line = |x: [f64; 2], nrm: [f64; 2]| {
+                    let e = 1e-9 * h_min;
+                    let minus = data.traction(x[0] - e * nrm[0], x[1] - e * nrm[1], t, nrm);
+                    let plus = data.traction(x[0] + e * nrm[0], x[1] + e * nrm[1], t, nrm);
+                    [minus[0] - plus[0], minus[1] - plus[1]]
+                };
+                let pb = crate::estimator::Problem {
+                    elast: data.elast,
+                    visc: data.visc,
+                    f0: &f0,
+                    surface: &surface,
+                    line: Some(&line),
+                };
+                let eta = crate::estimator::estimate(&mesh, &pb, &nodal_h, &prev_h[i], k, &sigma_h)
+                    .total();
+                let now = p1_strains(&mesh, &bms, &nodal_h);
+                let before = p1_strains(&mesh, &bms, &prev_h[i]);
+                (eta, stress_error(&data, points, [&now, &before], k))
+            } else {
+                (0.0, 0.0)
+            };
+            prev_h[i] = nodal_h;
             let mut row = StepRow {
                 err_e,
                 err_v_sq,
@@ -387,6 +455,8 @@ fn run_rules_refined(
             row.certificate = certificate;
             row.iterations = rec.iterations;
             row.regimes = count_regimes(&states, scn);
+            row.eta = eta;
+            row.err_sigma = err_sigma;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }
@@ -626,4 +696,22 @@ fn measure_error(
         err_v_sq += pt.w * contract(e);
     }
     (err_e_sq.max(0.0).sqrt(), err_v_sq)
+}
+
+/// $\|\sigma(t_n) - \sigma^n_h\|_{L^2(\Omega)}$ from the exact strains at the points and the
+/// discrete strains of $u^n_h$ and $u^{n-1}_h$ per triangle.
+fn stress_error(data: &Data, points: &[Point], [now, before]: [&[[f64; 3]]; 2], k: f64) -> f64 {
+    let mut sq = 0.0;
+    for pt in points {
+        let exact = super::stress(&pt.now, data.visc.as_ref(), &data.elast);
+        let eh = now[pt.tri];
+        let mut sh = super::apply(&data.elast, eh);
+        if let Some(c) = &data.visc {
+            let rate = sub(eh, before[pt.tri]).map(|x| x / k);
+            let v = super::apply(c, rate);
+            (0..3).for_each(|i| sh[i] += v[i]);
+        }
+        sq += pt.w * contract(sub(exact, sh));
+    }
+    sq.sqrt()
 }

@@ -27,8 +27,9 @@ pub const DELAY_ENV: &str = "EVHI_WRITE_DELAY_MS";
 
 /// The files a run writes into its directory (besides [`MARKER`] and the numbered
 /// snapshots `solution_NNNNNN.vtu` of `--vtk-every`).
-pub const RUN_FILES: [&str; 14] = [
+pub const RUN_FILES: [&str; 15] = [
     "contact.csv",
+    "estimator.csv",
     "summary.csv",
     "steps.csv",
     "nodes.csv",

@@ -26,6 +26,18 @@ pub fn pvd(steps: &[(f64, String)]) -> String {
 /// states of the contact nodes (in `mesh.contact` order) and `regimes` their regime
 /// codes ([`ContactState::regime_code`]; written as `regime`, $-1$ off $\Gamma_3$).
 pub fn vtu(mesh: &Mesh, disp: &[[f64; 2]], contact: &[ContactState], regimes: &[i32]) -> String {
+    vtu_cells(mesh, disp, contact, regimes, &[])
+}
+
+/// [`vtu`] with cell fields: each `(name, values)` one value per triangle (the
+/// estimator's `eta`, [`crate::estimator`]).
+pub fn vtu_cells(
+    mesh: &Mesh,
+    disp: &[[f64; 2]],
+    contact: &[ContactState],
+    regimes: &[i32],
+    cells: &[(&str, &[f64])],
+) -> String {
     let (np, nc) = (mesh.nodes.len(), mesh.triangles.len());
     let mut s = String::new();
     let _ = writeln!(s, r#"<?xml version="1.0"?>"#);
@@ -106,6 +118,21 @@ pub fn vtu(mesh: &Mesh, disp: &[[f64; 2]], contact: &[ContactState], regimes: &[
         let _ = write!(s, "{r} ");
     }
     let _ = writeln!(s, "\n</DataArray>");
-    let _ = writeln!(s, "</PointData></Piece></UnstructuredGrid></VTKFile>");
+    let _ = writeln!(s, "</PointData>");
+    if !cells.is_empty() {
+        let _ = writeln!(s, "<CellData>");
+        for (name, vals) in cells {
+            let _ = writeln!(
+                s,
+                r#"<DataArray type="Float64" Name="{name}" format="ascii">"#
+            );
+            for v in vals.iter() {
+                let _ = write!(s, "{v} ");
+            }
+            let _ = writeln!(s, "\n</DataArray>");
+        }
+        let _ = writeln!(s, "</CellData>");
+    }
+    let _ = writeln!(s, "</Piece></UnstructuredGrid></VTKFile>");
     s
 }

@@ -1,0 +1,362 @@
+//! The residual a posteriori estimator of one backward-Euler step.
+//!
+//! For the step's stress $\sigma^n = \mathcal C\varepsilon((u^n - u^{n-1})/k) + \mathcal G\varepsilon(u^n)$,
+//! constant on each triangle $T$ for P1 fields, the indicator of $T$ is
+//! $$\eta_T^2 = h_T^2\|f_0 + \operatorname{Div}\sigma^n\|^2_T +
+//!   \tfrac12\sum_{e\subset\partial T\ \text{interior}} h_e\|[\sigma^n\nu]\|^2_e +
+//!   \sum_{e\subset\partial T\cap\Gamma_2} h_e\|f_2 - \sigma^n\nu\|^2_e +
+//!   \sum_{e\subset\partial T\cap\Gamma_3} h_e\big(\|\sigma^n_\tau - f_{3,\tau}\|^2_e +
+//!     \|\sigma^n_\nu - f_{3,\nu} - \sigma^h_\nu\|^2_e\big),$$
+//! with $\operatorname{Div}\sigma^n = 0$ on each triangle, $h_T$ its longest edge, $h_e$ the
+//! edge's length, $[\sigma\nu]$ the jump of the normal stress across an interior edge,
+//! $\sigma_\nu = (\sigma\nu)\cdot n_f$ and $\sigma_\tau = \sigma\nu - \sigma_\nu n_f$ along the
+//! foundation's normal $n_f$ ([`crate::mesh::Mesh::normal`]), and $\sigma^h_\nu$ the
+//! discrete contact stress $\sigma^1_\nu + \sigma^2_\nu$ of the step
+//! ([`crate::certificate::ContactState`]), linear between the contact nodes. The
+//! estimate is $\eta = (\sum_T \eta^2_T)^{1/2}$; each term is formed in one pass over the
+//! triangles and their edges, so the cost is $O(\#T)$.
+//!
+//! Which boundary edge is which is read from the mesh, not from a side's name: an
+//! edge of one triangle whose two nodes are on $\Gamma_3$ is a contact edge; one whose
+//! two nodes hold both components is on $\Gamma_1$ and carries no term; every other
+//! boundary edge is on $\Gamma_2$ and contributes the components its nodes leave free.
+//! A node of $\Gamma_3$ that is not a contact node (its normal component held) has no
+//! discrete contact stress; there $\sigma^h_\nu$ is taken as the element's own
+//! $\sigma_\nu - f_{3,\nu}$, so that end adds no normal residual.
+
+use crate::material::Isotropic;
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+/// A load on a line at a point with a unit normal: `(x, n) -> value`.
+pub type LineLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
+
+/// What the estimator needs of the problem besides the fields: the tensors and the
+/// loads, as functions of the point.
+pub struct Problem<'a> {
+    /// $\mathcal G$.
+    pub elast: Isotropic,
+    /// $\mathcal C$, or `None` for a static problem (then $k$ is not used).
+    pub visc: Option<Isotropic>,
+    /// $f_0$ at a point of $\Omega$ at $t_n$.
+    pub f0: &'a dyn Fn([f64; 2]) -> [f64; 2],
+    /// The surface load at a point of $\partial\Omega$ with outward normal `n` at $t_n$:
+    /// $f_2$ on $\Gamma_2$ (zero on its free parts) and $f_3$ on $\Gamma_3$.
+    pub surface: LineLoad<'a>,
+    /// A line load $\ell$ carried by the interior edges, if the data have one: at a
+    /// point of an edge with unit normal `n`, the jump $\sigma^-n - \sigma^+n$ that the
+    /// load balances (the side $-$ is the one `n` points out of). A field smooth only
+    /// piecewise, such as a P1 field of a coarser mesh, is the solution of data with
+    /// such a load; then the jump term measures $[\sigma^n\nu] - \ell$.
+    pub line: Option<LineLoad<'a>>,
+}
+
+/// A rectangle scene's loads at one time, as the estimator asks for them: the volume
+/// force $\varphi(t) f_0 (1 + a\cos\pi x)$ and each traction $\varphi(t) f$ on its segment
+/// of a side, a side known by its outward normal (as [`crate::assembly::load`] places them).
+/// A mesh scene's named boundary parts are not read here yet.
+#[derive(Debug, Clone)]
+pub struct SceneLoads {
+    pub f0: [f64; 2],
+    pub modulation: f64,
+    pub tractions: Vec<crate::geometry::Traction>,
+    /// The load history's factor $\varphi(t)$ at the step.
+    pub phi: f64,
+}
+
+impl SceneLoads {
+    /// The loads of `scn` at time `t`.
+    pub fn new(scn: &crate::scenario::Scenario, t: f64) -> SceneLoads {
+        SceneLoads {
+            f0: scn.f0(),
+            modulation: scn.f0_modulation(),
+            tractions: scn.tractions(),
+            phi: scn.history().phi(t),
+        }
+    }
+    /// $f_0$ at `x`.
+    pub fn f0_at(&self, x: [f64; 2]) -> [f64; 2] {
+        let w = self.phi * (1.0 + self.modulation * (std::f64::consts::PI * x[0]).cos());
+        self.f0.map(|c| c * w)
+    }
+    /// The surface load at `x` with outward normal `n`: the sum of the tractions whose
+    /// side has that normal and whose segment holds `x` (zero on a free part).
+    pub fn surface_at(&self, x: [f64; 2], n: [f64; 2]) -> [f64; 2] {
+        use crate::geometry::Side;
+        let side = match n {
+            [a, _] if a < -0.5 => Side::Left,
+            [a, _] if a > 0.5 => Side::Right,
+            [_, b] if b < -0.5 => Side::Bottom,
+            _ => Side::Top,
+        };
+        let mut out = [0.0; 2];
+        for t in self.tractions.iter().filter(|t| t.side == side) {
+            let s = side.along(x);
+            if s >= t.from && s <= t.to {
+                out[0] += self.phi * t.f[0];
+                out[1] += self.phi * t.f[1];
+            }
+        }
+        out
+    }
+}
+
+/// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Estimate {
+    /// $\eta_T^2$ per triangle, in the mesh's order.
+    pub eta_sq: Vec<f64>,
+    /// $\sum_T$ of the element, jump, $\Gamma_2$ and $\Gamma_3$ terms.
+    pub parts: [f64; 4],
+}
+
+impl Estimate {
+    /// $\eta = (\sum_T\eta^2_T)^{1/2}$.
+    pub fn total(&self) -> f64 {
+        self.eta_sq.iter().sum::<f64>().sqrt()
+    }
+    /// $\eta_T$ per triangle.
+    pub fn eta(&self) -> Vec<f64> {
+        self.eta_sq.iter().map(|e| e.sqrt()).collect()
+    }
+}
+
+/// Gauss–Legendre on $[0, 1]$, 3 points (exact to degree 5).
+const GAUSS3: [(f64, f64); 3] = [
+    (0.112_701_665_379_258_3, 5.0 / 18.0),
+    (0.5, 8.0 / 18.0),
+    (0.887_298_334_620_741_7, 5.0 / 18.0),
+];
+
+/// The stress of a P1 field on a triangle: $\sigma = \mathcal C\varepsilon(\delta u) + \mathcal G\varepsilon(u)$
+/// (11, 22, 12), from nodal values of $u^n$ and $\delta u^n = (u^n - u^{n-1})/k$.
+fn element_stress(p: [[f64; 2]; 3], u: [[f64; 2]; 3], du: [[f64; 2]; 3], pb: &Problem) -> [f64; 3] {
+    let (_, bm) = crate::element::strain_matrix(p);
+    let strain = |v: [[f64; 2]; 3]| {
+        let mut e = [0.0; 3];
+        for a in 0..3 {
+            for c in 0..2 {
+                for (r, er) in e.iter_mut().enumerate() {
+                    *er += bm[(r, 2 * a + c)] * v[a][c];
+                }
+            }
+        }
+        e[2] *= 0.5; // the strain matrix's third row is 2 eps_12
+        e
+    };
+    let mut s = apply(&pb.elast, strain(u));
+    if let Some(c) = &pb.visc {
+        let v = apply(c, strain(du));
+        (0..3).for_each(|i| s[i] += v[i]);
+    }
+    s
+}
+
+/// $\mathcal T\varepsilon = a(\operatorname{tr}\varepsilon)I + b\varepsilon$ (11, 22, 12).
+fn apply(t: &Isotropic, e: [f64; 3]) -> [f64; 3] {
+    let tr = e[0] + e[1];
+    [t.a * tr + t.b * e[0], t.a * tr + t.b * e[1], t.b * e[2]]
+}
+
+fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
+    [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
+}
+
+// ANCHOR: estimate
+/// The indicators of the step with nodal (Cartesian) displacements `u` $= u^n$ and
+/// `u_prev` $= u^{n-1}$, time step `k`, and `sigma_h` the discrete contact stress
+/// $\sigma^1_\nu + \sigma^2_\nu$ at each contact node (in [`Mesh::contact`]'s order).
+pub fn estimate(
+    mesh: &Mesh,
+    pb: &Problem,
+    u: &[[f64; 2]],
+    u_prev: &[[f64; 2]],
+    k: f64,
+    sigma_h: &[f64],
+) -> Estimate {
+    let nt = mesh.triangles.len();
+    let mut out = Estimate {
+        eta_sq: vec![0.0; nt],
+        parts: [0.0; 4],
+    };
+    let nf = mesh.normal;
+    let mut on_g3 = vec![false; mesh.nodes.len()];
+    mesh.gamma3.iter().for_each(|&v| on_g3[v] = true);
+    let mut contact_at: Vec<Option<usize>> = vec![None; mesh.nodes.len()];
+    mesh.contact
+        .iter()
+        .enumerate()
+        .for_each(|(i, &v)| contact_at[v] = Some(i));
+    // Stresses, and each edge's first triangle (for the interior jumps).
+    let mut stress = Vec::with_capacity(nt);
+    let mut edges: HashMap<[usize; 2], (usize, [usize; 2])> = HashMap::with_capacity(2 * nt);
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let p = tri.map(|v| mesh.nodes[v]);
+        let un = tri.map(|v| u[v]);
+        let du = tri.map(|v| {
+            let (a, b) = (u[v], u_prev[v]);
+            [(a[0] - b[0]) / k, (a[1] - b[1]) / k]
+        });
+        let s = element_stress(p, un, du, pb);
+        stress.push(s);
+        // Element residual: h_T^2 ||f0||^2 (Div sigma = 0 on a P1 triangle).
+        let h_t = (0..3)
+            .map(|i| dist(p[i], p[(i + 1) % 3]))
+            .fold(0.0, f64::max);
+        let r: f64 = crate::quadrature::triangle_points(p, &[])
+            .into_iter()
+            .map(|(x, w)| {
+                let f = (pb.f0)(x);
+                w * (f[0] * f[0] + f[1] * f[1])
+            })
+            .sum();
+        let term = h_t * h_t * r;
+        out.eta_sq[t] += term;
+        out.parts[0] += term;
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            let key = [a.min(b), a.max(b)];
+            match edges.remove(&key) {
+                Some((t0, _)) => {
+                    // Interior: h_e |[sigma nu]|^2 h_e, half to each side.
+                    let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
+                    let he = dist(pa, pb_);
+                    let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
+                    let s0 = stress[t0];
+                    let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
+                    let r = match pb.line {
+                        None => he * (j[0] * j[0] + j[1] * j[1]),
+                        Some(line) => GAUSS3
+                            .iter()
+                            .map(|&(q, w)| {
+                                let x =
+                                    [pa[0] + q * (pb_[0] - pa[0]), pa[1] + q * (pb_[1] - pa[1])];
+                                let l = line(x, n);
+                                w * he * ((j[0] - l[0]).powi(2) + (j[1] - l[1]).powi(2))
+                            })
+                            .sum(),
+                    };
+                    let term = he * r;
+                    out.eta_sq[t] += 0.5 * term;
+                    out.eta_sq[t0] += 0.5 * term;
+                    out.parts[1] += term;
+                }
+                None => {
+                    edges.insert(key, (t, [a, b]));
+                }
+            }
+        }
+    }
+    // The edges left are the boundary's, each with its one triangle (a -> b counter-clockwise).
+    for (_, (t, [a, b])) in edges {
+        let both_fixed = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
+        let contact = on_g3[a] && on_g3[b];
+        if !contact && both_fixed(a) && both_fixed(b) {
+            continue;
+        }
+        let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
+        let he = dist(pa, pb_);
+        let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
+        let sn = traction(stress[t], n);
+        let at = |s: f64| [pa[0] + s * (pb_[0] - pa[0]), pa[1] + s * (pb_[1] - pa[1])];
+        let mut r = 0.0;
+        if contact {
+            let f3 = |x: [f64; 2]| (pb.surface)(x, n);
+            // sigma_nu - f3_nu of the element at an end that is not a contact node.
+            let own = |x: [f64; 2]| {
+                let f = f3(x);
+                (sn[0] - f[0]) * nf[0] + (sn[1] - f[1]) * nf[1]
+            };
+            let end = |v: usize, x: [f64; 2]| match contact_at[v] {
+                Some(i) => sigma_h[i],
+                None => own(x),
+            };
+            let (ha, hb) = (end(a, pa), end(b, pb_));
+            for (s, w) in GAUSS3 {
+                let x = at(s);
+                let f = f3(x);
+                let d = [sn[0] - f[0], sn[1] - f[1]];
+                let dn = d[0] * nf[0] + d[1] * nf[1];
+                let tau = [d[0] - dn * nf[0], d[1] - dn * nf[1]];
+                let rn = dn - (ha + s * (hb - ha));
+                r += w * he * (tau[0] * tau[0] + tau[1] * tau[1] + rn * rn);
+            }
+        } else {
+            // Gamma_2: the components left free at both ends.
+            let free = [0, 1].map(|c| !(mesh.fixed[a][c] && mesh.fixed[b][c]));
+            for (s, w) in GAUSS3 {
+                let f = (pb.surface)(at(s), n);
+                for c in 0..2 {
+                    if free[c] {
+                        r += w * he * (f[c] - sn[c]).powi(2);
+                    }
+                }
+            }
+        }
+        let term = he * r;
+        out.eta_sq[t] += term;
+        out.parts[if contact { 3 } else { 2 }] += term;
+    }
+    out
+}
+// ANCHOR_END: estimate
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An affine field with constant stress, the matching tractions on $\Gamma_2$ and
+    /// on $\Gamma_3$ a discrete contact stress equal to its own: it solves both the
+    /// discrete and the continuous problem, and every term vanishes to rounding.
+    #[test]
+    fn zero_on_a_field_that_solves_both_problems() {
+        let mesh = Mesh::structured(8).expect("mesh");
+        let elast = Isotropic::elasticity(1.0, 0.3);
+        let visc = Some(Isotropic::viscosity(0.5, 0.2));
+        let g = [[1e-3, 2e-3], [-5e-4, 3e-3]];
+        let field = |s: f64| -> Vec<[f64; 2]> {
+            (mesh.nodes.iter())
+                .map(|p| {
+                    [
+                        s * (g[0][0] * p[0] + g[0][1] * p[1]),
+                        s * (g[1][0] * p[0] + g[1][1] * p[1]),
+                    ]
+                })
+                .collect()
+        };
+        let (u, u_prev, k) = (field(1.0), field(0.5), 0.25);
+        let eps = |s: f64| [s * g[0][0], s * g[1][1], 0.5 * s * (g[0][1] + g[1][0])];
+        let sig = {
+            let a = apply(&elast, eps(1.0));
+            let b = apply(visc.as_ref().expect("visc"), eps(0.5 / k));
+            [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+        };
+        let surface = move |_: [f64; 2], n: [f64; 2]| {
+            // On Gamma_3 the load carries the tangential part only.
+            let t = traction(sig, n);
+            if n == [0.0, -1.0] { [t[0], 0.0] } else { t }
+        };
+        let f0 = |_: [f64; 2]| [0.0, 0.0];
+        let pb = Problem {
+            elast,
+            visc,
+            f0: &f0,
+            surface: &surface,
+            line: None,
+        };
+        let sn = traction(sig, mesh.normal);
+        let sigma_nu = sn[0] * mesh.normal[0] + sn[1] * mesh.normal[1];
+        let sigma_h = vec![sigma_nu; mesh.contact.len()];
+        let est = estimate(&mesh, &pb, &u, &u_prev, k, &sigma_h);
+        let scale = (sig[0] * sig[0] + sig[1] * sig[1] + 2.0 * sig[2] * sig[2]).sqrt();
+        assert!(est.total() < 1e-13 * scale, "{est:?}");
+        // The same field with a wrong contact stress is seen, on Gamma_3 alone.
+        let off = vec![sigma_nu + 1e-3; mesh.contact.len()];
+        let est = estimate(&mesh, &pb, &u, &u_prev, k, &off);
+        assert!(est.parts[3] > 1e-8 && est.parts[0] + est.parts[1] + est.parts[2] < 1e-26);
+    }
+}
