@@ -25,6 +25,8 @@
 //! --sweeps` measures each; the sweeps run at about half the machine's
 //! streaming rate, bound by per-supernode work and latency, not bandwidth.
 
+#![warn(missing_docs)]
+
 use crate::assembly::SpMat;
 use crate::ordering::Ordering;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -433,6 +435,7 @@ impl Cholesky {
         self.values.len()
     }
 
+    /// Order $n$ of the factored matrix: its number of rows, the length of a right-hand side.
     pub fn dim(&self) -> usize {
         self.symbolic.nrows()
     }

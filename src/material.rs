@@ -236,7 +236,7 @@ impl MaterialForm {
     }
 }
 
-/// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`].
+/// A modulus: in $[1/M, M]$ with $M$ = [`MAX_MAGNITUDE`](crate::error::MAX_MAGNITUDE).
 /// A Poisson ratio: finite and in $(-1, \tfrac12)$.
 /// The largest $\lambda/(2\mu) = \kappa/(1 - 2\kappa)$ accepted: twelve of double
 /// precision's sixteen digits lost to the volumetric part.

@@ -10,6 +10,8 @@
 //! resolution while the field's resolution improves. Each named group's edge $[a, b]$
 //! becomes its two halves $[a, m_{ab}]$, $[m_{ab}, b]$, in the same group.
 
+#![warn(missing_docs)]
+
 use crate::error::InputError;
 use crate::msh::{EdgeGroup, MshMesh};
 use crate::scenario::Scenario;
@@ -19,6 +21,8 @@ use std::collections::HashMap;
 /// their numbers), the coarse edge it halves.
 #[derive(Debug, Clone)]
 pub struct Refinement {
+    /// The refined mesh: the coarse nodes first, then one midpoint per coarse edge,
+    /// four triangles per coarse triangle, each named group's edges halved.
     pub mesh: MshMesh,
     /// `parents[i]`: the ends of the edge whose midpoint is node `coarse + i`.
     pub parents: Vec<[usize; 2]>,
