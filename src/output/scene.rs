@@ -111,8 +111,8 @@ fn body_view(dir: &std::path::Path, panel: &Panel) -> Result<Option<BodyView>, F
         moved,
     }))
 }
+
 /// A mesh scene's extra panel data, read by `body_view`.
-/// A mesh scene's extra panel data ([`body_view`]).
 pub struct BodyView {
     /// The foundation's point and outward normal $n_f$.
     foundation: ([f64; 2], [f64; 2]),
