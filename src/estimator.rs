@@ -162,6 +162,35 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
     [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
 }
 
+/// The indicators of a step of a rectangle scene `scn` at time `t`: its loads read by
+/// [`SceneLoads`], its tensors, no line load, and the discrete contact stress
+/// $\sigma^1_\nu + \sigma^2_\nu$ of each contact state in `contact` (in
+/// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`].
+pub fn estimate_scene(
+    scn: &crate::scenario::Scenario,
+    mesh: &Mesh,
+    u: &[[f64; 2]],
+    u_prev: &[[f64; 2]],
+    k: f64,
+    t: f64,
+    contact: &[crate::certificate::ContactState],
+) -> Estimate {
+    let loads = SceneLoads::new(scn, t);
+    let f0 = |x: [f64; 2]| loads.f0_at(x);
+    let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+    let pb = Problem {
+        elast: scn.elasticity(),
+        visc: Some(scn.viscosity()),
+        f0: &f0,
+        surface: &surface,
+        line: None,
+    };
+    let sigma_h: Vec<f64> = (contact.iter())
+        .map(|c| c.sigma_nu1 + c.sigma_nu2)
+        .collect();
+    estimate(mesh, &pb, u, u_prev, k, &sigma_h)
+}
+
 // ANCHOR: estimate
 /// The indicators of the step with nodal (Cartesian) displacements `u` $= u^n$ and
 /// `u_prev` $= u^{n-1}$, time step `k`, and `sigma_h` the discrete contact stress

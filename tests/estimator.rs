@@ -175,7 +175,7 @@ fn data_change_nodes(mesh: &evhi::mesh::Mesh) -> Vec<usize> {
 
 #[test]
 fn indicators_concentrate_where_the_boundary_data_change() {
-    use evhi::estimator::{Problem, SceneLoads, estimate};
+    use evhi::estimator::estimate_scene;
     use evhi::simulation::{RunSettings, Simulation};
     let scn = Scenario::load("figure").unwrap();
     let sim = Simulation::new(scn.clone(), RunSettings::general(32, 8)).unwrap();
@@ -187,23 +187,8 @@ fn indicators_concentrate_where_the_boundary_data_change() {
         disc.dofs.expand(&obs.fields[1]),
         disc.dofs.expand(&obs.fields[0]),
     );
-    let loads = SceneLoads::new(&scn, obs.t);
-    let f0 = |x: [f64; 2]| loads.f0_at(x);
-    let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-    let pb = Problem {
-        elast: scn.elasticity(),
-        visc: Some(scn.viscosity()),
-        f0: &f0,
-        surface: &surface,
-        line: None,
-    };
-    let sigma_h: Vec<f64> = obs
-        .contact
-        .iter()
-        .map(|c| c.sigma_nu1 + c.sigma_nu2)
-        .collect();
     let k = scn.t_end() / 8.0;
-    let est = estimate(mesh, &pb, &u, &u_prev, k, &sigma_h);
+    let est = estimate_scene(&scn, mesh, &u, &u_prev, k, obs.t, &obs.contact);
     let special = data_change_nodes(mesh);
     assert!(!special.is_empty());
     let mut order: Vec<usize> = (0..est.eta_sq.len()).collect();

@@ -316,7 +316,7 @@ fn write_estimate(
     run: &evhi::scheme::Run,
     last: &[(usize, Vec<f64>)],
 ) -> Result<(), Box<dyn std::error::Error>> {
-    use evhi::estimator::{Problem, SceneLoads, estimate};
+    use evhi::estimator::estimate_scene;
     let mesh = &run.mesh;
     let dofs = evhi::mesh::Dofs::new(mesh, true);
     let u = dofs.expand(&run.u);
@@ -325,20 +325,8 @@ fn write_estimate(
         None if run.steps == 1 => vec![[0.0; 2]; mesh.nodes.len()],
         None => return Err("the run did not keep the field before the last step".into()),
     };
-    let loads = SceneLoads::new(scn, run.steps as f64 * run.k);
-    let f0 = |x: [f64; 2]| loads.f0_at(x);
-    let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-    let pb = Problem {
-        elast: scn.elasticity(),
-        visc: Some(scn.viscosity()),
-        f0: &f0,
-        surface: &surface,
-        line: None,
-    };
-    let sigma_h: Vec<f64> = (run.contact.iter())
-        .map(|c| c.sigma_nu1 + c.sigma_nu2)
-        .collect();
-    let eta = estimate(mesh, &pb, &u, &u_prev, run.k, &sigma_h).eta();
+    let t = run.steps as f64 * run.k;
+    let eta = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact).eta();
     let mut csv = String::from("x,y,eta\n");
     for (tri, e) in mesh.triangles.iter().zip(&eta) {
         let p = tri.map(|v| mesh.nodes[v]);
