@@ -50,6 +50,176 @@ const REGIME_COUNTS: &[Heading] = &[
     ("limit", "at the limit"),
 ];
 
+/// The exact solutions' tables: the solution by its letter, the mesh $n$ (h = 1/n)
+/// and the steps $N$ (k = T/N).
+const EXACT_KEYS: [Heading; 3] = [("letter", "solution"), ("n", "n"), ("steps", "N")];
+
+/// `exact_convergence.csv`'s headings.
+const EXACT_CONVERGENCE: &[Heading] = &[
+    EXACT_KEYS[0],
+    ("family", "family"),
+    EXACT_KEYS[1],
+    EXACT_KEYS[2],
+    ("rel_err_max_percent", "largest error over time (%)"),
+    ("order_max", "order"),
+    ("rel_err_T_percent", "error at T (%)"),
+    ("order_T", "order"),
+    ("rel_err_l2_percent", "root mean square error over time (%)"),
+    ("order_l2", "order"),
+    ("lhs_over_h2_plus_k2", "left side of (4.24) / (h² + k²)"),
+    ("landing_gap", "landing time less last step before it"),
+    ("t_at_max", "t of the largest error"),
+    ("limit_nodes_at_max", "nodes at g then"),
+    ("limit_share_exact_percent", "share at g, exact (%)"),
+    ("limit_share_percent", "share at g, computed (%)"),
+    ("max_certificate", "largest certificate"),
+];
+
+/// `exact_cea.csv`'s headings: the five terms of (4.16)'s right side and its left side.
+const EXACT_CEA: &[Heading] = &[
+    EXACT_KEYS[0],
+    EXACT_KEYS[1],
+    EXACT_KEYS[2],
+    ("interp_max", "interpolation, largest"),
+    ("order_interp_max", "order"),
+    ("dinterp_sum", "interpolation's increments, summed"),
+    ("order_dinterp_sum", "order"),
+    ("gamma_sum", "interpolation on Γ₃, summed"),
+    ("order_gamma_sum", "order"),
+    ("r_sum", "residual R, summed"),
+    ("order_r_sum", "order"),
+    ("delta_sum", "difference quotient's error, summed"),
+    ("order_delta_sum", "order"),
+    ("lhs", "left side"),
+    ("order_lhs", "order"),
+    ("lhs_over_terms", "left side / right side's terms"),
+    ("r_share", "residual's share of the terms"),
+    ("r_sum_predicted", "residual R, closed form"),
+    ("lhs_over_h2_plus_k2", "left side / (h² + k²)"),
+];
+
+/// `exact_crime.csv`'s headings: the nodal rule against the exact compliance integral.
+const EXACT_CRIME: &[Heading] = &[
+    EXACT_KEYS[1],
+    EXACT_KEYS[2],
+    ("rel_err_nodal_percent", "error, nodal rule (%)"),
+    ("rel_err_exact_percent", "error, exact integral (%)"),
+    ("crime_percent", "the rules' difference (%)"),
+    ("order_crime", "order"),
+    ("crime_share", "difference / nodal error"),
+    ("max_kkt_exact", "largest KKT residual, exact integral"),
+];
+
+/// `exact_hold.csv`'s headings.
+const EXACT_HOLD: &[Heading] = &[
+    EXACT_KEYS[0],
+    ("limit", "limit g"),
+    ("rule", "contact rule"),
+    EXACT_KEYS[2],
+    EXACT_KEYS[1],
+    ("rel_err_hold_percent", "largest error in the hold (%)"),
+    ("order_hold", "order"),
+    ("t_at_hold_max", "t of it"),
+    ("rel_err_t0_5_percent", "error at t = 0.5 (%)"),
+    ("order_t0_5", "order"),
+    ("rel_err_t0_625_percent", "error at t = 0.625 (%)"),
+    ("order_t0_625", "order"),
+    ("rel_err_max_percent", "largest error over time (%)"),
+    ("t_at_max", "t of it"),
+    ("limit_share_exact", "share at g, exact"),
+    ("limit_share", "share at g, computed"),
+    ("max_certificate", "largest certificate"),
+];
+
+/// `exact_grid.csv`'s headings.
+const EXACT_GRID: &[Heading] = &[
+    EXACT_KEYS[0],
+    EXACT_KEYS[1],
+    EXACT_KEYS[2],
+    ("h", "h"),
+    ("k", "k"),
+    ("lhs", "left side of (4.24)"),
+    ("lhs_over_h2_plus_k2", "left side / (h² + k²)"),
+    ("lhs_over_h_plus_k_sq", "left side / (h + k)²"),
+    ("max_u_v_sq", "largest ‖u(t)‖²"),
+    ("rel_lhs_over_h2_plus_k2", "left side / ‖u‖² / (h² + k²)"),
+    ("rel_err_max_percent", "largest error over time (%)"),
+    ("interp_max", "interpolation, largest"),
+    ("dinterp_sum", "interpolation's increments, summed"),
+    ("gamma_sum", "interpolation on Γ₃, summed"),
+    ("r_sum", "residual R, summed"),
+    ("delta_sum", "difference quotient's error, summed"),
+    ("lhs_over_terms", "left side / right side's terms"),
+    ("limit_share_percent", "share at g, computed (%)"),
+    ("max_certificate", "largest certificate"),
+];
+
+/// `hertz.csv`'s headings: lengths in units of R, pressures per unit length.
+const HERTZ: &[Heading] = &[
+    ("mesh", "mesh (elements across 0.1 R)"),
+    ("h_min", "smallest h"),
+    ("dofs", "unknowns"),
+    ("a_fem", "a, computed"),
+    ("a_hertz", "a, Hertz"),
+    ("p0_fem", "p₀, computed"),
+    ("p0_hertz", "p₀, Hertz"),
+    ("rel_err_a", "relative error of a"),
+    ("rel_err_p0", "relative error of p₀"),
+    ("rel_err_p_l2", "relative error of p in L²"),
+    ("total_force_rel_err", "force balance's misfit"),
+    ("P", "total force P"),
+    ("penetration_over_g", "penetration / g"),
+    ("elements_across", "elements across a"),
+];
+
+/// `hertz_edge.csv`'s headings: a's error over the 8 places of the contact edge.
+const HERTZ_EDGE: &[Heading] = &[
+    ("mesh", "mesh"),
+    ("elements_across", "elements across a"),
+    ("rel_err_a_mean", "error of a, mean"),
+    ("rel_err_a_min", "least"),
+    ("rel_err_a_max", "largest"),
+    ("rel_err_a_width", "largest less least"),
+    ("width_over_h_a", "that × elements across a"),
+    ("last_in_contact_mean", "last node in contact (elements past a)"),
+    ("reading_err_sampled_max", "reading's error on sampled p, largest"),
+    ("reading_err_forces_mean", "reading's error on nodal forces, mean"),
+    ("forces_mean_over_h_a", "that × elements across a"),
+];
+
+/// `hertz_offset.csv`'s headings.
+const HERTZ_OFFSET: &[Heading] = &[
+    ("gap", "initial gap"),
+    ("across", "elements across a (aimed)"),
+    ("a_over_R", "a / R (aimed)"),
+    ("mesh", "mesh"),
+    ("elements_across", "elements across a"),
+    ("a_hertz", "a, Hertz"),
+    ("rel_err_a", "relative error of a"),
+    ("rel_err_a_range", "its range over 4 presses"),
+    ("rel_err_p0", "relative error of p₀"),
+    ("rel_err_p_l2", "relative error of p in L²"),
+];
+
+/// `hertz_offset_fit.csv`'s headings: the fit $e = e_h + c\,(a/R)^2$.
+const HERTZ_OFFSET_FIT: &[Heading] = &[
+    ("gap", "initial gap"),
+    ("quantity", "quantity"),
+    ("across", "elements across a"),
+    ("e_h", "discretisation's part e_h"),
+    ("c", "finite body's c"),
+    ("finite_body_at_0.1", "finite body's part at a/R = 0.1"),
+    ("fit_residual", "largest misfit"),
+];
+
+/// `hertz_finest_split.csv`'s headings.
+const HERTZ_FINEST_SPLIT: &[Heading] = &[
+    ("quantity", "quantity"),
+    ("rel_err", "error"),
+    ("finite_body", "finite body's part"),
+    ("discretisation", "discretisation's part"),
+];
+
 /// The experiments, in the order `evhi reproduce` runs them.
 pub const EXPERIMENTS: [Experiment; 15] = [
     Experiment {
@@ -219,11 +389,19 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         run: super::exact::run_study,
         tables: &[
             // The book names the solutions by letter: the CSVs' identifiers stay out.
-            table("exact_convergence.csv", 4, 6).hiding(&["solution"]),
-            table("exact_cea.csv", 3, 5).hiding(&["solution"]),
-            table("exact_crime.csv", 2, 4),
-            table("exact_hold.csv", 5, 9).hiding(&["solution"]),
-            table("exact_grid.csv", 3, 7).hiding(&["solution"]),
+            table("exact_convergence.csv", 4, 6)
+                .hiding(&["solution"])
+                .headed(EXACT_CONVERGENCE),
+            table("exact_cea.csv", 3, 5)
+                .hiding(&["solution"])
+                .headed(EXACT_CEA),
+            table("exact_crime.csv", 2, 4).headed(EXACT_CRIME),
+            table("exact_hold.csv", 5, 9)
+                .hiding(&["solution"])
+                .headed(EXACT_HOLD),
+            table("exact_grid.csv", 3, 7)
+                .hiding(&["solution"])
+                .headed(EXACT_GRID),
         ],
     },
     Experiment {
@@ -235,11 +413,11 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         cost: 30.6,
         run: super::hertz::run,
         tables: &[
-            table("hertz.csv", 1, 8),
-            table("hertz_edge.csv", 1, 8),
-            table("hertz_offset.csv", 4, 9),
-            table("hertz_offset_fit.csv", 3, 8),
-            table("hertz_finest_split.csv", 1, 5),
+            table("hertz.csv", 1, 8).headed(HERTZ),
+            table("hertz_edge.csv", 1, 8).headed(HERTZ_EDGE),
+            table("hertz_offset.csv", 4, 9).headed(HERTZ_OFFSET),
+            table("hertz_offset_fit.csv", 3, 8).headed(HERTZ_OFFSET_FIT),
+            table("hertz_finest_split.csv", 1, 5).headed(HERTZ_FINEST_SPLIT),
         ],
     },
 ];

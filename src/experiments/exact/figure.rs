@@ -121,7 +121,7 @@ impl LogLog {
                 .collect()
         };
         let plain = |y: &f64| evhi::output::plot::plain(y);
-        let power = |y: &f64| format!("{y:e}");
+        let power = |y: &f64| evhi::output::plot::power_of_ten(y);
         let (cap, tick, _) = self.fonts;
         let mut chart = LogLogChart {
             caption: (&self.title, cap),
@@ -641,7 +641,8 @@ impl Figure for Grid {
              colour: log C, each panel on its own scale",
             22,
         )?;
-        let panels = root.split_evenly((1, self.panels.len()));
+        // One panel above the other, so that the figure keeps the book column's width.
+        let panels = root.split_evenly((self.panels.len(), 1));
         for (whole, (title, cells)) in panels.iter().zip(&self.panels) {
             // The colour bar at the right of each panel.
             let (wide, _) = whole.dim_in_pixel();
@@ -784,7 +785,7 @@ pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
     Ok(both(
         &ctx.figures,
         "exact_grid",
-        (1500, 700),
+        (1000, 1300),
         &Grid { panels },
     )?)
 }
