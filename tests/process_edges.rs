@@ -40,6 +40,41 @@ fn a_non_utf8_out_is_written_and_named_lossily() {
     ok(&o);
 }
 
+/// A `--scenario` path that is not UTF-8 is refused in our words, naming the
+/// argument and saying what to do, by every command that reads a scene; nothing is
+/// written.
+#[test]
+fn a_non_utf8_scenario_is_refused_with_what_to_do() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = scratch("non-utf8-scenario");
+    let scene = dir.join(std::ffi::OsStr::from_bytes(b"scene-\xff.toml"));
+    std::fs::write(&scene, "").unwrap();
+    let out = dir.join("out");
+    for cmd in [
+        "solve --out",
+        "study time --quick --out",
+        "study stability --quick --out",
+        "study convergence --quick --out",
+    ] {
+        let o = evhi_with(cmd)
+            .arg(&out)
+            .arg("--scenario")
+            .arg(&scene)
+            .output()
+            .unwrap();
+        assert!(!o.status.success(), "{cmd}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("--scenario"), "{cmd}: {err}");
+        assert!(err.contains("is not valid UTF-8"), "{cmd}: {err}");
+        assert!(err.contains("rename the file"), "{cmd}: {err}");
+        assert!(!err.contains("panicked"), "{cmd}: {err}");
+        assert!(!out.exists(), "{cmd} wrote {out:?}");
+    }
+    let o = evhi_with("show").arg(&scene).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("is not valid UTF-8"), "{err}");
+}
+
 /// `evhi scenarios | head -1` ends quietly: no panic, success, whatever the timing
 /// (case 2; it panicked 9 times in 20).
 #[test]

@@ -8,7 +8,14 @@ use evhi::output::plot::{
     Figure, LogLogChart, both, circle_legend, e2s, extent, legend, one_two_five,
 };
 use evhi::output::plot::{GREY_DARK, okabe_ito as oi};
-use evhi::output::rows::{POSITIVE, column};
+use evhi::output::rows::{Allowed, POSITIVE, column};
+
+/// A relative error in percent that a reference can have: above 0 (the log axis) and at
+/// most 100.
+const PERCENT: Allowed<f64> = Allowed {
+    test: |x| (POSITIVE.test)(x) && *x <= 100.0,
+    says: "a percentage > 0 and at most 100",
+};
 use evhi::study::{Ctx, ExpError};
 use plotters::prelude::*;
 use std::path::Path;
@@ -27,7 +34,8 @@ pub struct Chart {
 
 /// The orthogonal estimate of the 1/512 mesh's own error for `figure`, percent, from
 /// `data/table1_reference_error.csv` (written by the forensics), if there; a value
-/// there that is not a finite number > 0 is refused (the chart draws it on a log axis).
+/// there that is not a percentage in (0, 100] is refused (the chart draws it on a log
+/// axis, and a mesh whose own error passed 100 % would be no reference).
 fn mesh_floor(ctx: &Ctx) -> Result<Option<f64>, ExpError> {
     let path = ctx.data_path("table1_reference_error.csv");
     if !path.exists() {
@@ -38,7 +46,7 @@ fn mesh_floor(ctx: &Ctx) -> Result<Option<f64>, ExpError> {
     let name = "reference_error_orthogonal_percent";
     let v = column::<f64>(&text, name, &[])?;
     Ok(match load.iter().position(|l| l == "figure") {
-        Some(i) if !(POSITIVE.test)(&v[i]) => Err(text.bad_cell(i, name, POSITIVE.says))?,
+        Some(i) if !(PERCENT.test)(&v[i]) => Err(text.bad_cell(i, name, PERCENT.says))?,
         Some(i) => Some(v[i]),
         None => None,
     })

@@ -5,6 +5,7 @@ use evhi::scenario::Scenario;
 #[derive(clap::Args)]
 pub struct ShowArgs {
     /// A built-in scenario or the path of a scenario TOML file.
+    #[arg(value_parser = evhi::scenario::arg_parser())]
     pub scenario: String,
     /// Contact segments n = 1/h of the run to check (a multiple of 4; default 64).
     /// Refused on a mesh scene, whose mesh is its file's.

@@ -18,7 +18,7 @@ pub struct SolveArgs {
     /// singular corner; `nonproportional`: `figure` with a viscosity that is not a
     /// multiple of the elasticity, so only the general time loop applies) or the path
     /// of a scenario TOML file (see data/scenarios/).
-    #[arg(long, default_value = "figure")]
+    #[arg(long, default_value = "figure", value_parser = evhi::scenario::arg_parser())]
     pub scenario: String,
     /// Segments n on the bottom (n = 1/h on the paper's 2 x 1 rectangle; a multiple of
     /// 4, and every end of a support, traction or Γ3 segment must fall on a node; the

@@ -712,3 +712,23 @@ impl Scenario {
         Some(if ta > 0.0 && ta.is_finite() { ta } else { tb })
     }
 }
+
+/// A `--scenario` argument as text: a built-in name or the path of a scene file, which
+/// [`Scenario::read`] takes as UTF-8. A path that is not UTF-8 is refused with what to
+/// do, in the words of the argument it came from (the command line's parser names it).
+pub fn utf8_arg(arg: std::ffi::OsString) -> Result<String, String> {
+    arg.into_string().map_err(|raw| {
+        format!(
+            "the path \"{}\" is not valid UTF-8 (its other bytes are shown as \u{fffd}); a \
+             scene is read by a UTF-8 name or path: rename the file, or copy it to one",
+            raw.to_string_lossy()
+        )
+    })
+}
+
+/// The command line's parser of a `--scenario` argument: [`utf8_arg`] on the raw
+/// argument, so that a path that is not UTF-8 gets that message, not the parser's own.
+pub fn arg_parser() -> impl clap::builder::TypedValueParser<Value = String> {
+    use clap::builder::TypedValueParser;
+    clap::builder::OsStringValueParser::new().try_map(utf8_arg)
+}

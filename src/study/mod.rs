@@ -139,7 +139,7 @@ pub enum Study {
 #[derive(clap::Args)]
 pub struct TimeArgs {
     /// A built-in scenario or the path of a scenario TOML file.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::scenario::arg_parser())]
     pub scenario: String,
     /// Mesh n = 16, N up to 256 and a reference with 16384 steps (seconds); without
     /// it n = 32, N up to 1024 and 32768 reference steps.
@@ -160,7 +160,7 @@ pub struct TimeArgs {
 #[derive(clap::Args)]
 pub struct StabilityArgs {
     /// A built-in scenario or the path of a scenario TOML file.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::scenario::arg_parser())]
     pub scenario: String,
     /// Levels n0, 2 n0 and steps 1, 8 (seconds); without it n0, 2 n0, 4 n0 and steps
     /// 1, 2, 4, …, 64 (a steady problem always takes one step). n0 is the coarsest
@@ -180,7 +180,7 @@ pub struct StabilityArgs {
 #[derive(clap::Args)]
 pub struct ConvergenceArgs {
     /// A built-in scenario or the path of a scenario TOML file.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::scenario::arg_parser())]
     pub scenario: String,
     /// Four levels per family and a reference at 32 times the coarsest n, the split
     /// on three levels against 16 times, within a budget of about 10 s of work (the
