@@ -719,7 +719,7 @@ impl Scenario {
 pub fn utf8_arg(arg: std::ffi::OsString) -> Result<String, String> {
     arg.into_string().map_err(|raw| {
         format!(
-            "the path \"{}\" is not valid UTF-8 (its other bytes are shown as \u{fffd}); a \
+            "the path \"{}\" is not valid UTF-8 (the bytes that are not are shown as \u{fffd}); a \
              scene is read by a UTF-8 name or path: rename the file, or copy it to one",
             raw.to_string_lossy()
         )
