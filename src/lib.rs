@@ -74,4 +74,5 @@ pub mod step;
 pub mod study;
 pub mod support;
 pub mod term;
+pub mod time_grid;
 pub mod timing;

@@ -310,11 +310,36 @@ impl<'d> Reduced<'d> {
         timings: &mut Timings,
         observe: &mut dyn FnMut(Stepped<'_>),
     ) -> Result<March, RunError> {
-        let k = scn.t_end / steps as f64;
-        let at = timed(&mut timings.condensation, || {
-            self.at(k, scn.law.curvature_min())
-        })?;
-        let (ck, a) = (self.c + k, self.c / (self.c + k));
+        self.march_on(
+            scn,
+            load,
+            &crate::time_grid::TimeGrid::uniform(scn.t_end, steps),
+            solver,
+            tol,
+            want_field,
+            timings,
+            observe,
+        )
+    }
+
+    /// [`Reduced::march`] on any time grid: each step's $a$, $\beta_n$ and $S_K$ are
+    /// those of its own $k_n$ (the operator of a new $k$ is $S_B$ scaled, no solve).
+    #[allow(clippy::too_many_arguments)]
+    pub fn march_on(
+        &self,
+        scn: &Scenario,
+        load: &Load,
+        grid: &crate::time_grid::TimeGrid,
+        solver: &mut dyn StepSolver,
+        tol: f64,
+        want_field: &dyn Fn(usize) -> bool,
+        timings: &mut Timings,
+        observe: &mut dyn FnMut(Stepped<'_>),
+    ) -> Result<March, RunError> {
+        let steps = grid.len();
+        let cmin = scn.law.curvature_min();
+        let mut at = timed(&mut timings.condensation, || self.at(grid.k(1), cmin))?;
+        let mut hessian_min = at.hessian_min;
         let m = load.q.len();
         let mut st = State {
             y: 0.0,
@@ -327,8 +352,16 @@ impl<'d> Reduced<'d> {
         // The contact states after the last completed step, for a failure's report.
         let mut last_contact = vec![];
         let clock = Instant::now();
+        let mut rescale_s = 0.0;
         for step in 1..=steps {
-            let t = step as f64 * k;
+            let (t, k) = (grid.t(step), grid.k(step));
+            if k != at.k {
+                let clock = Instant::now();
+                at = timed(&mut timings.condensation, || self.at(k, cmin))?;
+                hessian_min = hessian_min.min(at.hessian_min);
+                rescale_s += clock.elapsed().as_secs_f64();
+            }
+            let (ck, a) = (self.c + k, self.c / (self.c + k));
             let t0 = Instant::now();
             // ANCHOR: reduced_step
             // r_0 = a r_{n-1} + beta_n q: no solve.
@@ -454,11 +487,12 @@ impl<'d> Reduced<'d> {
             last = field.map(|(_, u)| (step, u));
             last_contact = contact;
         }
-        timings.steps += clock.elapsed().as_secs_f64();
+        timings.steps += clock.elapsed().as_secs_f64() - rescale_s;
+        let k_min = grid.k(1);
         Ok(March {
             records,
-            hessian_min: at.hessian_min,
-            s_eigen: (ck * self.lambda_min, at.lambda_max),
+            hessian_min,
+            s_eigen: ((self.c + k_min) * self.lambda_min, at.lambda_max),
         })
     }
 }
@@ -499,20 +533,22 @@ pub(crate) fn run(
     // The load's solve is the one solve of the run before the steps: its time is
     // the floor's unit (`one_solve_s`).
     let load = crate::timing::timed(&mut timings.one_solve, || op.load(disc.f.clone()));
-    let quarter = (opt.steps / 4).max(1);
-    let want = |n: usize| n.is_multiple_of(quarter) || n == opt.steps || want_field(n);
+    let grid = crate::time_grid::TimeGrid::of(scn, opt.steps, opt.time_layer)?;
+    let last = grid.len();
+    let quarter = (last / 4).max(1);
+    let want = |n: usize| n.is_multiple_of(quarter) || n == last || want_field(n);
     let (mut u, mut contact) = (vec![], vec![]);
-    let march = op.march(
+    let march = op.march_on(
         scn,
         &load,
-        opt.steps,
+        &grid,
         solver,
         opt.certificate_tol,
         &want,
         &mut timings,
         &mut |s| {
             observe(s.step, s.t, s.field, s.contact);
-            if s.step == opt.steps {
+            if s.step == last {
                 u = s.field.expect("the last field is formed").to_vec();
                 contact = s.contact.to_vec();
             }

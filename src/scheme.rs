@@ -150,7 +150,8 @@ impl Timings {
 pub struct Run {
     pub n: usize,
     pub steps: usize,
-    /// The time step $k = T/N$ and the mesh size $h = 1/n$.
+    /// The time step $k = T/N$ (a grid into the initial layer: its longest step, and
+    /// `steps` counts all of its steps) and the mesh size $h = 1/n$.
     pub k: f64,
     pub h: f64,
     /// The mesh the run solved on (outputs draw from it instead of rebuilding it).
@@ -193,7 +194,8 @@ impl Run {
     ) -> Run {
         Run {
             n: opt.n,
-            steps: opt.steps,
+            // The grid's steps: N on the uniform grid, more into the layer.
+            steps: records.len(),
             k: t_end / opt.steps as f64,
             h: disc.mesh.h(),
             mesh: disc.mesh.clone(),
@@ -442,6 +444,9 @@ pub struct Settings {
     /// grid takes the requested ordering; a bisected one ([`crate::bisection`]) is
     /// ordered by AMD.
     pub mesh: Option<std::sync::Arc<Mesh>>,
+    /// The halvings $J$ of the first step of a grid into the initial layer
+    /// ([`crate::time_grid::TimeGrid::layer`]); 0: $N$ uniform steps.
+    pub time_layer: u32,
 }
 
 /// Which fill-reducing ordering the factorisation uses.
@@ -476,6 +481,7 @@ impl Settings {
             ordering: OrderingKind::NestedDissection,
             parallel: true,
             mesh: None,
+            time_layer: 0,
         }
     }
 }
@@ -505,9 +511,9 @@ pub(crate) fn run_batch_states(
     };
     let mut timings = Timings::default();
     let (disc, loads) = timed(&mut timings.assembly, || discretise(scns, opt))?;
-    let k = scn.t_end / opt.steps as f64;
+    let grid = crate::time_grid::TimeGrid::of(scn, opt.steps, opt.time_layer)?;
     let cmin = (scns.iter().map(|s| s.law.curvature_min())).fold(f64::INFINITY, f64::min);
-    let op = StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?;
+    let mut op = StepOperator::new(&disc, grid.k(1), opt.ordering, opt.parallel, cmin, &mut timings)?;
     timings.one_solve = op.one_solve(&disc.f);
     let (nd, m, nb) = (disc.dofs.count, op.kw.len(), scns.len());
     // ANCHOR: time_loop
@@ -515,11 +521,19 @@ pub(crate) fn run_batch_states(
     let mut u = vec![vec![0.0; nd]; nb];
     let mut au = vec![vec![0.0; nd]; nb];
     let mut r = vec![vec![0.0; m]; nb];
-    let mut records: Vec<Vec<StepRecord>> = vec![Vec::with_capacity(opt.steps); nb];
+    let mut records: Vec<Vec<StepRecord>> = vec![Vec::with_capacity(grid.len()); nb];
     let mut contact = vec![vec![]; nb];
     let clock = Instant::now();
-    for step in 1..=opt.steps {
-        let t = step as f64 * k;
+    // A grid into the layer changes k a few times, each time to a longer step: the
+    // operator of the new k is factorised then (its time is the factorisation's).
+    let mut refactor_s = 0.0;
+    for step in 1..=grid.len() {
+        let (t, k) = (grid.t(step), grid.k(step));
+        if k != op.k {
+            let clock = Instant::now();
+            op = StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?;
+            refactor_s += clock.elapsed().as_secs_f64();
+        }
         let t0 = Instant::now();
         // b_n = A u_{n-1} + k f_n, with f_n = phi(t_n) f.
         let b: Vec<Vec<f64>> = (au.iter().zip(&loads).zip(scns))
@@ -590,7 +604,7 @@ pub(crate) fn run_batch_states(
         }
         u = next;
     }
-    timings.steps = clock.elapsed().as_secs_f64();
+    timings.steps = clock.elapsed().as_secs_f64() - refactor_s;
     // ANCHOR_END: time_loop
     Ok((u.into_iter().zip(records).zip(contact))
         .map(|((u, records), contact)| {

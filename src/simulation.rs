@@ -91,6 +91,11 @@ pub struct RunSettings {
     /// $[10^{-15}, 10^{-4}]$. An uncertified solver (the penalty) is judged by its own
     /// convergence instead.
     pub certificate_tol: f64,
+    /// A grid into the initial layer: its first step is $(T/N)/2^J$ for this $J$, and
+    /// the steps grow with the layer's decay up to $T/N$
+    /// ([`crate::time_grid::TimeGrid::layer`]); 0 (the default): $N$ steps of $T/N$.
+    /// At most 30; a scene without viscosity has no layer and is refused.
+    pub time_layer: u32,
 }
 
 impl Default for RunSettings {
@@ -105,6 +110,7 @@ impl Default for RunSettings {
             ordering: None,
             threads: None,
             certificate_tol: crate::scheme::CERTIFICATE_TOL,
+            time_layer: 0,
         }
     }
 }
@@ -143,6 +149,12 @@ impl RunSettings {
     /// Time steps ([`RunSettings::steps`]).
     pub fn with_steps(mut self, steps: usize) -> Self {
         self.steps = Some(steps);
+        self
+    }
+    /// A grid into the initial layer with first step $(T/N)/2^J$
+    /// ([`RunSettings::time_layer`]).
+    pub fn with_time_layer(mut self, halvings: u32) -> Self {
+        self.time_layer = halvings;
         self
     }
     /// The mesh ([`RunSettings::mesh`]).
@@ -223,6 +235,8 @@ pub struct Simulation {
     /// the run's assembly time.
     mesh_s: f64,
     reduced: bool,
+    /// The time grid the loops step through.
+    grid: crate::time_grid::TimeGrid,
 }
 
 /// The result of a solve: the state at $T$, every step's record and the timings.
@@ -407,6 +421,19 @@ impl Simulation {
             RunError::Input(e) => e,
             other => InputError::field("steps", steps, other.to_string()),
         })?;
+        // The grid into the layer has more steps than N: checked as a count of its own.
+        let time_grid = crate::time_grid::TimeGrid::of(&scenario, steps, s.time_layer)?;
+        if time_grid.len() > 1_000_000 {
+            return Err(InputError::field(
+                "time_layer",
+                s.time_layer,
+                format!(
+                    "fewer halvings: this grid has {} steps, and a run takes at most 1000000",
+                    time_grid.len()
+                ),
+            ));
+        }
+        opt.time_layer = s.time_layer;
         opt.certificate_tol = s.certificate_tol;
         opt.ordering = ordering;
         opt.parallel = match (s.threads, ordering) {
@@ -468,6 +495,7 @@ impl Simulation {
             mesh,
             mesh_s,
             reduced,
+            grid: time_grid,
         })
     }
 
@@ -486,9 +514,15 @@ impl Simulation {
         &self.mesh
     }
 
-    /// The step count $N$.
+    /// The step count: $N$ on the uniform grid, all of the grid's steps on a grid into
+    /// the initial layer ([`RunSettings::time_layer`]).
     pub fn steps(&self) -> usize {
-        self.opt.steps
+        self.grid.len()
+    }
+
+    /// The run's time grid.
+    pub fn grid(&self) -> &crate::time_grid::TimeGrid {
+        &self.grid
     }
 
     /// The step solver's registry entry.
@@ -638,7 +672,9 @@ impl Simulation {
         let opt = self.loop_settings(solver.certified());
         let mut run = if self.reduced {
             // Asked before the loop, so that the observer is free to be told.
-            let wanted: Vec<bool> = (0..=opt.steps).map(|s| observer.wants_field(s)).collect();
+            let wanted: Vec<bool> = (0..=self.grid.len())
+                .map(|s| observer.wants_field(s))
+                .collect();
             crate::reduced::run(
                 &self.scenario,
                 &opt,

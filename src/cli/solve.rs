@@ -32,6 +32,15 @@ pub struct SolveArgs {
     /// problem = "steady" is one solve at t = T (1 step, the only value accepted).
     #[arg(long, allow_hyphen_values = true)]
     pub steps: Option<usize>,
+    /// A time grid into the initial layer instead of N uniform steps: the first step is
+    /// (T/N)/2^J for this J, and each step may grow as the layer of the relaxation time
+    /// tau decays (k -> k (1 + k/(2 tau)), rounded down to T/N over a power of two) up
+    /// to T/N. A load applied in full at t = 0 is followed with far fewer steps than a
+    /// uniform grid of the first step's length needs (the book's time chapter measures
+    /// it). 0 (the default) is the uniform grid; at most 30; a scene without viscosity
+    /// has no layer and is refused. Example: --steps 16 --time-layer 8.
+    #[arg(long, default_value_t = 0)]
+    pub time_layer: u32,
     /// The mesh: `uniform` (the structured grid with n segments on the bottom, each
     /// cell cut by one diagonal, as in the paper) or `graded` (newest-vertex bisection
     /// refined towards the scene's singular points, which `evhi show` lists: where a
@@ -253,6 +262,7 @@ pub fn settings_flag(e: evhi::error::InputError) -> evhi::error::InputError {
         ("ordering", "--ordering"),
         ("threads", "--threads"),
         ("certificate_tol", "--certificate-tol"),
+        ("time_layer", "--time-layer"),
     ]
     .into_iter()
     .fold(e, |e, (field, flag)| e.for_flag(field, flag))
@@ -272,7 +282,8 @@ fn settings(args: &SolveArgs) -> RunSettings {
             "reduced" => Loop::Reduced,
             _ => Loop::Auto,
         })
-        .with_certificate_tol(args.certificate_tol);
+        .with_certificate_tol(args.certificate_tol)
+        .with_time_layer(args.time_layer);
     if let Some(steps) = args.steps {
         settings = settings.with_steps(steps);
     }
@@ -325,7 +336,8 @@ fn write_estimate(
         None if run.steps == 1 => vec![[0.0; 2]; mesh.nodes.len()],
         None => return Err("the run did not keep the field before the last step".into()),
     };
-    let t = run.steps as f64 * run.k;
+    // The last step's time and length (the grid into the layer ends with steps of T/N).
+    let t = run.records.last().map_or(scn.t_end(), |r| r.t);
     let eta = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact).eta();
     let mut csv = String::from("x,y,eta\n");
     for (tri, e) in mesh.triangles.iter().zip(&eta) {

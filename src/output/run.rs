@@ -339,7 +339,7 @@ pub fn write(
         scenario: scn.name.clone(),
         solver: prov.solver.clone(),
         h: run.mesh.h(),
-        k: scn.t_end / run.steps as f64,
+        k: run.k,
         g: scn.g,
         f0_x: scn.f0[0],
         f0_y: scn.f0[1],
