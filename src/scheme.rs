@@ -513,7 +513,14 @@ pub(crate) fn run_batch_states(
     let (disc, loads) = timed(&mut timings.assembly, || discretise(scns, opt))?;
     let grid = crate::time_grid::TimeGrid::of(scn, opt.steps, opt.time_layer)?;
     let cmin = (scns.iter().map(|s| s.law.curvature_min())).fold(f64::INFINITY, f64::min);
-    let mut op = StepOperator::new(&disc, grid.k(1), opt.ordering, opt.parallel, cmin, &mut timings)?;
+    let mut op = StepOperator::new(
+        &disc,
+        grid.k(1),
+        opt.ordering,
+        opt.parallel,
+        cmin,
+        &mut timings,
+    )?;
     timings.one_solve = op.one_solve(&disc.f);
     let (nd, m, nb) = (disc.dofs.count, op.kw.len(), scns.len());
     // ANCHOR: time_loop

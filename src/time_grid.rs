@@ -106,6 +106,7 @@ impl TimeGrid {
                 ),
             ));
         };
+        // ANCHOR: layer_grid
         let unit = t_end / total as f64;
         let (mut exponents, mut ends) = (vec![], vec![]);
         let (mut at, mut ideal) = (0u64, unit);
@@ -124,6 +125,7 @@ impl TimeGrid {
             let k = ideal.max(size as f64 * unit);
             ideal = k * (1.0 + k / (2.0 * tau));
         }
+        // ANCHOR_END: layer_grid
         Ok(TimeGrid {
             t_end,
             n,
@@ -258,18 +260,22 @@ mod tests {
         }
         // Far fewer steps than the uniform grid of the first step's length, more than N.
         assert!(m > n && m < n * 64 / 4, "{m}");
-        let distinct: std::collections::BTreeSet<u64> =
-            (1..=m).map(|s| g.k(s).to_bits()).collect();
+        let distinct: std::collections::BTreeSet<u64> = (1..=m).map(|s| g.k(s).to_bits()).collect();
         assert_eq!(distinct.len(), j as usize + 1);
     }
 
     #[test]
     fn bad_layers_are_refused_by_name() {
         let e = TimeGrid::layer(1.0, 16, 31, 0.07).unwrap_err().to_string();
-        assert!(e.contains("time_layer") && e.contains("from 0 to 30"), "{e}");
+        assert!(
+            e.contains("time_layer") && e.contains("from 0 to 30"),
+            "{e}"
+        );
         let e = TimeGrid::layer(1.0, 16, 4, 0.0).unwrap_err().to_string();
         assert!(e.contains("relaxation time"), "{e}");
-        let e = TimeGrid::layer(1.0, 1 << 30, 30, 0.07).unwrap_err().to_string();
+        let e = TimeGrid::layer(1.0, 1 << 30, 30, 0.07)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("2^52"), "{e}");
     }
 }

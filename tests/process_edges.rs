@@ -72,7 +72,10 @@ fn a_non_utf8_scenario_is_refused_with_what_to_do() {
     }
     let o = evhi_with("show").arg(&scene).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("is not valid UTF-8"), "{err}");
+    assert!(
+        !o.status.success() && err.contains("is not valid UTF-8"),
+        "{err}"
+    );
 }
 
 /// `evhi scenarios | head -1` ends quietly: no panic, success, whatever the timing

@@ -134,7 +134,12 @@ fn table1_convergence() {
 fn time_study() {
     snapshot_outputs(
         "time",
-        &["time_study.csv", "time_controls.csv"],
+        &[
+            "time_study.csv",
+            "time_controls.csv",
+            "time_layer.csv",
+            "adaptive_time.csv",
+        ],
         &["time_study_max", "time_study_T", "time_controls"],
     );
 }

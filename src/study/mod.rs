@@ -26,6 +26,7 @@ pub(crate) mod runs;
 pub mod split;
 mod stability;
 pub mod time_error;
+pub mod time_layer;
 pub use convergence::split_plan;
 pub use ctx::Ctx;
 pub use error::ExpError;

@@ -762,3 +762,106 @@ fn time_table1_at_t() {
         }
     }
 }
+
+// ---- A time grid that follows the layer ----
+
+const SAVED: &str = "adaptive_time.csv";
+const LAYER: &str = "time_layer.csv";
+
+/// The row of `adaptive_time.csv` for `scenario`, `history`, `measure`, target (percent).
+fn saved(scenario: &str, history: &str, measure: &str, target: &str) -> Row {
+    rows(SAVED)
+        .into_iter()
+        .find(|r| {
+            r["scenario"] == scenario
+                && r["history"] == history
+                && r["measure"] == measure
+                && num(r, "target_percent") == target.parse::<f64>().unwrap()
+        })
+        .unwrap_or_else(|| panic!("no row {scenario} {history} {measure} {target}"))
+}
+
+#[test]
+fn time_layer_one_percent() {
+    let mut ratios = vec![];
+    for (scn, uniform, layer) in [("figure", "347", "61"), ("literal", "257", "54")] {
+        let r = saved(scn, "a_constant", "max", "1");
+        assert_eq!(r["uniform_how"], "interpolated");
+        assert_eq!(r["layer_how"], "interpolated");
+        assert_eq!(fix(num(&r, "uniform_steps"), 0), uniform, "{scn}");
+        assert_eq!(fix(num(&r, "layer_steps"), 0), layer, "{scn}");
+        ratios.push(num(&r, "layer_over_uniform"));
+    }
+    assert_eq!(fixes(&ratios, 2), ["0.18", "0.21"]);
+    // The bar: at most a quarter of the uniform steps.
+    assert!(ratios.iter().all(|&q| q <= 0.25), "{ratios:?}");
+}
+
+#[test]
+fn time_layer_tenth_percent() {
+    for (scn, layer, uniform_last) in [("figure", "462", "0.338"), ("literal", "424", "0.249")] {
+        let r = saved(scn, "a_constant", "max", "0.1");
+        assert_eq!(fix(num(&r, "layer_steps"), 0), layer, "{scn}");
+        assert_eq!(r["uniform_how"], "not reached");
+        let e = study(scn, "a_constant", "rel_err_max_percent");
+        let n = study(scn, "a_constant", "steps");
+        assert_eq!(*n.last().unwrap(), 1024.0);
+        assert_eq!(sig(*e.last().unwrap(), 3), uniform_last, "{scn}");
+    }
+}
+
+#[test]
+fn time_layer_figure_first_steps() {
+    let layer = rows(LAYER);
+    let mut matched = vec![];
+    for r in layer
+        .iter()
+        .filter(|r| r["scenario"] == "figure" && r["history"] == "a_constant")
+    {
+        let j = num(r, "halvings") as u32;
+        let n_first = num(r, "n_longest") as u32 * (1 << j);
+        let uniform: Vec<f64> = rows(STUDY)
+            .iter()
+            .filter(|u| u["scenario"] == "figure" && u["history"] == "a_constant")
+            .filter(|u| num(u, "steps") == n_first as f64)
+            .map(|u| num(u, "rel_err_max_percent"))
+            .collect();
+        if let [u] = uniform[..] {
+            // Every digit written: the same double.
+            assert_eq!(num(r, "rel_err_max_percent"), u, "J = {j}");
+            matched.push(j);
+        }
+    }
+    assert_eq!(matched, [1, 2, 3, 4, 5, 6]);
+    let j6 = layer
+        .iter()
+        .find(|r| r["scenario"] == "figure" && r["history"] == "a_constant" && r["halvings"] == "6")
+        .unwrap();
+    assert_eq!(num(j6, "steps"), 155.0);
+}
+
+#[test]
+fn time_layer_at_t() {
+    let fewest = min(&column(LAYER, &[], "steps"));
+    assert_eq!(fewest, 18.0);
+    for scn in ["figure", "literal"] {
+        let r = saved(scn, "a_constant", "T", "1");
+        assert_eq!(
+            (r["uniform_how"].as_str(), num(&r, "uniform_steps")),
+            ("at most", 4.0)
+        );
+        assert!(num(&r, "layer_over_uniform") > 1.0);
+    }
+}
+
+#[test]
+fn time_layer_ramps_cost_more() {
+    let mut ratios = vec![];
+    for scn in ["figure", "literal"] {
+        for h in ["b_ramp1", "c_ramp0.25"] {
+            ratios.push(num(&saved(scn, h, "max", "1"), "layer_over_uniform"));
+        }
+    }
+    assert_eq!(fix(min(&ratios), 1), "1.3");
+    assert_eq!(fix(max(&ratios), 1), "1.8");
+}

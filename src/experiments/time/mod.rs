@@ -42,6 +42,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     let path = write_rows(ctx, &plan, &rows, "time_study.csv", "history")?;
     write_markdown(ctx, &path, &plan)?;
     draw(ctx, &path)?;
+    layer(&plan, ctx, &rows)?;
     // One batch per material: a batch shares its step matrix.
     let all = controls()?;
     let mut rows = vec![];
@@ -65,6 +66,11 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
 
 /// Runs every scenario and history at every level (one batched run per level).
 pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
+    study_of(plan, ctx, &scenes()?)
+}
+
+/// The study's scenes: each load scenario under each history.
+fn scenes() -> Result<Vec<(String, String, Scenario)>, ExpError> {
     let mut scns = vec![];
     for name in SCENARIOS {
         for (label, h) in histories() {
@@ -74,8 +80,50 @@ pub fn study(plan: &Plan, ctx: &Ctx) -> Result<Vec<Row>, ExpError> {
             scns.push((name.to_string(), label.to_string(), s));
         }
     }
-    study_of(plan, ctx, &scns)
+    Ok(scns)
 }
+
+/// The longest step $T/N$ of the layer grids: $N = 16$, $k = 0.89\tau$.
+pub const LAYER_N: usize = 16;
+
+/// The layer grids' halvings $J$: the first step from $T/32$ down to $T/(16 \cdot
+/// 2^{J})$, as far as the reference's steps allow.
+fn layer_halvings(plan: &Plan) -> Vec<u32> {
+    (1..=11)
+        .filter(|&j| plan.n_ref.is_multiple_of(LAYER_N << j))
+        .collect()
+}
+
+// ANCHOR: layer
+/// The time grid into the initial layer against the uniform levels `uniform` of the
+/// same study: `time_layer.csv` (each grid's errors) and `adaptive_time.csv` (the
+/// steps each family needs for 1 % and 0.1 %, largest over time and at T).
+fn layer(plan: &Plan, ctx: &Ctx, uniform: &[Row]) -> Result<(), ExpError> {
+    use evhi::study::time_layer;
+    let halvings = layer_halvings(plan);
+    let rows = time_layer::study(plan, ctx, &scenes()?, LAYER_N, &halvings)?;
+    let common = format!(
+        "fixed mesh n = 1/h = {}, reference N_ref = {} uniform steps on the same mesh,          solver {}, errors measured as in time_study.csv over each grid's own times",
+        plan.n, plan.n_ref, plan.solver.name
+    );
+    ctx.write(
+        "time_layer.csv",
+        &time_layer::table(&rows),
+        &format!(
+            "{common}; time grids into the initial layer (evhi::time_grid): longest step              T/N with N = n_longest, first step k_first = (T/N)/2^J for J = halvings, each              step growing as k (1 + k/(2 tau)) rounded down to T/N over a power of two;              steps = the grid's count"
+        ),
+    )?;
+    ctx.write(
+        "adaptive_time.csv",
+        &time_layer::savings(uniform, &rows),
+        &format!(
+            "{common}; per scene, history, measure (max: largest error over time; T: at t =              T) and target: the steps the uniform levels of time_study.csv (N = {:?}) and              the layer grids of time_layer.csv need, where the log-log line through the              first run at or below the target and the one before crosses it              (`interpolated`), the first run's count where it already is (`at most`), NaN              where none reaches it; layer_over_uniform their ratio. The adaptive choice              of k is not built",
+            plan.levels
+        ),
+    )?;
+    Ok(())
+}
+// ANCHOR_END: layer
 
 // ANCHOR: controls
 /// The controls of the layer. (1) Under the constant load, the relaxation time

@@ -1,0 +1,248 @@
+//! What the time grid into the initial layer ([`crate::time_grid`]) saves: for each
+//! scene of a time study, the error of the layer grids with longest step $T/N$ and
+//! first step $(T/N)/2^J$, $J = 1, 2, \dots$, measured as [`super::time_error`]
+//! measures the uniform levels (the largest error over the grid's times against a
+//! much finer uniform reference on the same mesh, and the error at $T$), and then
+//! how many steps each family needs to reach a target error.
+//!
+//! The reference has $N_{ref}$ uniform steps; a layer grid's times are multiples of
+//! $(T/N)/2^J$, so $N 2^J$ must divide $N_{ref}$, and every time of the grid is a
+//! reference time. Runs on the reduced loop (proportional damping, as every scene of
+//! the book's time study has): one factorisation of $B$ serves the reference and
+//! every grid, and each error is the energy norm of a difference of reduced states.
+
+use super::time_error::{Plan, Row};
+use super::{Ctx, ExpError};
+use crate::output::csv::Table;
+use crate::scenario::Scenario;
+use crate::time_grid::TimeGrid;
+
+/// One layer grid's measure for one scene.
+#[derive(Debug, Clone)]
+pub struct LayerRow {
+    /// The scene and its load history (as in the time study's rows).
+    pub scenario: String,
+    pub history: String,
+    /// $N$ (longest step $T/N$) and $J$ (first step $(T/N)/2^J$).
+    pub n: usize,
+    pub halvings: u32,
+    /// The grid's steps.
+    pub steps: usize,
+    /// The first step.
+    pub k_first: f64,
+    /// Largest error over the grid's times relative to the reference's largest norm
+    /// there, and the relative error at $T$.
+    pub err_max: f64,
+    pub err_t: f64,
+}
+
+/// Measures the layer grids of longest step $T/N$ (`n`) and each $J$ in `halvings`
+/// for the scenes `scns` (name, history label, scene) on `plan`'s mesh and reference.
+pub fn study(
+    plan: &Plan,
+    ctx: &Ctx,
+    scns: &[(String, String, Scenario)],
+    n: usize,
+    halvings: &[u32],
+) -> Result<Vec<LayerRow>, ExpError> {
+    let Some(first) = scns.first() else {
+        return Ok(vec![]);
+    };
+    if let Some(&j) = halvings
+        .iter()
+        .find(|&&j| j > 30 || !plan.n_ref.is_multiple_of(n << j))
+    {
+        return Err(crate::error::InputError::field(
+            "time layer halvings",
+            j,
+            format!(
+                "a J with N 2^J dividing the reference's {} steps (N = {n})",
+                plan.n_ref
+            ),
+        )
+        .into());
+    }
+    let sim = super::runs::simulation(&first.2, plan.n, plan.n_ref)?;
+    let disc = sim.discretisation();
+    if crate::reduced::proportional(&first.2, &disc).is_none() {
+        return Err(crate::error::InputError::field(
+            "scenario",
+            &first.0,
+            "a scene with proportional damping: the layer study runs on the reduced loop",
+        )
+        .into());
+    }
+    let mut timings = crate::scheme::Timings::default();
+    let op = sim.reduced_operator(&disc, &mut timings)?;
+    let tol = crate::scheme::CERTIFICATE_TOL;
+    let mut rows = vec![];
+    ctx.add_units(scns.len());
+    for (name, label, scn) in scns {
+        let load = op.load_of(scn);
+        // The reference's state and norm at every one of its steps.
+        let mut refs = Vec::with_capacity(plan.n_ref);
+        op.march(
+            scn,
+            &load,
+            plan.n_ref,
+            plan.solver.build().as_mut(),
+            tol,
+            &|_| false,
+            &mut timings,
+            &mut |s| refs.push((s.state.clone(), op.energy(&load, s.state))),
+        )?;
+        for &j in halvings {
+            let grid = TimeGrid::of(scn, n, j)?;
+            let stride = plan.n_ref / (n << j) as usize;
+            let last = grid.len();
+            let (mut e_max, mut r_max, mut e_t) = (0.0f64, 0.0f64, f64::NAN);
+            op.march_on(
+                scn,
+                &load,
+                &grid,
+                plan.solver.build().as_mut(),
+                tol,
+                &|_| false,
+                &mut timings,
+                &mut |s| {
+                    let at = grid.units(s.step) as usize * stride - 1;
+                    let (st_ref, r) = &refs[at];
+                    let e = op.energy_diff(&load, st_ref, s.state);
+                    e_max = e_max.max(e);
+                    r_max = r_max.max(*r);
+                    if s.step == last {
+                        e_t = e / r;
+                    }
+                },
+            )?;
+            rows.push(LayerRow {
+                scenario: name.clone(),
+                history: label.clone(),
+                n,
+                halvings: j,
+                steps: last,
+                k_first: grid.k(1),
+                err_max: e_max / r_max,
+                err_t: e_t,
+            });
+        }
+        ctx.log(&format!("time layer: {name} {label}"));
+    }
+    Ok(rows)
+}
+
+/// The steps a family of runs needs to reach `target` (relative): the family's
+/// `(steps, error)` sorted by steps, the first that reaches it, and between it and the
+/// one before, the count at which the log–log line through the two crosses the
+/// target. `None` where no run reaches it; the first run's count where it already
+/// does (then the true need is at most that).
+pub fn steps_to(family: &[(usize, f64)], target: f64) -> Option<(f64, &'static str)> {
+    let mut f: Vec<(usize, f64)> = family.to_vec();
+    f.sort_by_key(|p| p.0);
+    let i = f.iter().position(|p| p.1 <= target)?;
+    if i == 0 {
+        return Some((f[0].0 as f64, "at most"));
+    }
+    let ((s0, e0), (s1, e1)) = (f[i - 1], f[i]);
+    let (ls0, ls1) = ((s0 as f64).ln(), (s1 as f64).ln());
+    let (le0, le1) = (e0.ln(), e1.ln());
+    if le1 == le0 {
+        return Some((s1 as f64, "interpolated"));
+    }
+    let ls = ls0 + (target.ln() - le0) * (ls1 - ls0) / (le1 - le0);
+    Some((ls.exp().clamp(s0 as f64, s1 as f64), "interpolated"))
+}
+
+/// The targets of [`savings`], relative: 1 % and 0.1 %.
+pub const TARGETS: [f64; 2] = [0.01, 0.001];
+
+/// Per scene and history, per measure (largest over time, at $T$) and target: the
+/// steps the uniform levels `uniform` and the layer grids `layer` need, and their
+/// ratio.
+pub fn savings(uniform: &[Row], layer: &[LayerRow]) -> Table {
+    let mut keys: Vec<(String, String)> = layer
+        .iter()
+        .map(|r| (r.scenario.clone(), r.history.clone()))
+        .collect();
+    keys.dedup();
+    let mut cols: (Vec<String>, Vec<String>, Vec<String>, Vec<f64>) = Default::default();
+    let mut need: [(Vec<f64>, Vec<String>); 2] = Default::default();
+    let mut ratio = vec![];
+    for (scn, hist) in &keys {
+        let uni: Vec<&Row> = (uniform.iter())
+            .filter(|r| &r.scenario == scn && &r.history == hist)
+            .collect();
+        let lay: Vec<&LayerRow> = (layer.iter())
+            .filter(|r| &r.scenario == scn && &r.history == hist)
+            .collect();
+        for measure in ["max", "T"] {
+            let pick_u = |r: &&Row| if measure == "max" { r.err_max } else { r.err_t };
+            let pick_l = |r: &&LayerRow| if measure == "max" { r.err_max } else { r.err_t };
+            let fu: Vec<(usize, f64)> = uni.iter().map(|r| (r.steps, pick_u(r))).collect();
+            let fl: Vec<(usize, f64)> = lay.iter().map(|r| (r.steps, pick_l(r))).collect();
+            for target in TARGETS {
+                cols.0.push(scn.clone());
+                cols.1.push(hist.clone());
+                cols.2.push(measure.into());
+                cols.3.push(100.0 * target);
+                let mut counts = [f64::NAN; 2];
+                for (k, fam) in [&fu, &fl].into_iter().enumerate() {
+                    let (s, how) = steps_to(fam, target).unwrap_or((f64::NAN, "not reached"));
+                    need[k].0.push(s);
+                    need[k].1.push(how.into());
+                    counts[k] = s;
+                }
+                ratio.push(counts[1] / counts[0]);
+            }
+        }
+    }
+    let [(u, uh), (l, lh)] = need;
+    Table::new()
+        .str("scenario", cols.0)
+        .str("history", cols.1)
+        .str("measure", cols.2)
+        .f64("target_percent", cols.3)
+        .f64("uniform_steps", u)
+        .str("uniform_how", uh)
+        .f64("layer_steps", l)
+        .str("layer_how", lh)
+        .f64("layer_over_uniform", ratio)
+}
+
+/// The layer grids' table.
+pub fn table(rows: &[LayerRow]) -> Table {
+    Table::new()
+        .str(
+            "scenario",
+            rows.iter().map(|r| r.scenario.clone()).collect(),
+        )
+        .str("history", rows.iter().map(|r| r.history.clone()).collect())
+        .u64("n_longest", rows.iter().map(|r| r.n as u64).collect())
+        .u64("halvings", rows.iter().map(|r| r.halvings as u64).collect())
+        .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
+        .f64("k_first", rows.iter().map(|r| r.k_first).collect())
+        .f64(
+            "rel_err_max_percent",
+            rows.iter().map(|r| 100.0 * r.err_max).collect(),
+        )
+        .f64(
+            "rel_err_T_percent",
+            rows.iter().map(|r| 100.0 * r.err_t).collect(),
+        )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steps_to_a_target_cross_the_log_log_line() {
+        let fam = [(4, 0.1), (8, 0.05), (16, 0.025)];
+        assert_eq!(steps_to(&fam, 0.2), Some((4.0, "at most")));
+        let (s, how) = steps_to(&fam, 0.04).unwrap();
+        assert_eq!(how, "interpolated");
+        // error ~ 0.4/N: 0.04 at N = 10
+        assert!((s - 10.0).abs() < 1e-9, "{s}");
+        assert_eq!(steps_to(&fam, 0.01), None);
+    }
+}
