@@ -93,7 +93,7 @@ pub fn study(
         )?;
         for &j in halvings {
             let grid = TimeGrid::of(scn, n, j)?;
-            let stride = plan.n_ref / (n << j) as usize;
+            let stride = plan.n_ref / (n << j);
             let last = grid.len();
             let (mut e_max, mut r_max, mut e_t) = (0.0f64, 0.0f64, f64::NAN);
             op.march_on(
