@@ -95,6 +95,12 @@ impl Forest {
         d(p[0], p[1]).max(d(p[1], p[2])).max(d(p[2], p[0]))
     }
 
+    /// How many triangles the forest holds (every level's, leaves or not): the ids
+    /// are `0..triangle_count()`.
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
+    }
+
     /// Depth of triangle `t` in the forest.
     pub fn depth(&self, t: usize) -> u32 {
         self.depth[t]
