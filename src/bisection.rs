@@ -180,6 +180,29 @@ impl Forest {
         ))
     }
 
+    /// The coarsest conforming mesh of the forest that refines both `mesh` and `other`:
+    /// `mesh` refined wherever one of its triangles is a strict ancestor of a
+    /// triangle of `other` (and wherever conformity then asks). Two meshes of one
+    /// forest then both embed in it exactly ([`Forest::interpolation`]).
+    pub fn refine_to_contain(&mut self, mesh: &Leaves, other: &Leaves) -> Leaves {
+        let mut parent = vec![usize::MAX; self.tris.len()];
+        for (t, c) in self.children.iter().enumerate() {
+            if let Some([a, b]) = c {
+                parent[*a] = t;
+                parent[*b] = t;
+            }
+        }
+        let mut above = vec![false; self.tris.len()];
+        for &t in &other.0 {
+            let mut p = parent[t];
+            while p != usize::MAX && !above[p] {
+                above[p] = true;
+                p = parent[p];
+            }
+        }
+        self.refine(mesh, |_, t| above.get(t) == Some(&true))
+    }
+
     /// The mesh of `leaves` for the solver: its nodes renumbered in the order of
     /// the forest's (so coarser meshes' nodes come first), boundary parts from
     /// the coordinates. `n` names the level (the uniform mesh it refines).

@@ -21,7 +21,10 @@ fn refuse_others(args: &SolveArgs) -> Result<(), InputError> {
                grid that resolves the scene and writes the estimator's eta itself)";
     let given = [
         ("--n", args.n.map(|n| n.to_string())),
-        ("--mesh", (args.mesh != "uniform").then(|| args.mesh.clone())),
+        (
+            "--mesh",
+            (args.mesh != "uniform").then(|| args.mesh.clone()),
+        ),
         ("--grading", args.grading.map(|g| g.to_string())),
         ("--estimate", args.estimate.then(|| "true".to_string())),
         ("--vtk-every", args.vtk_every.map(|k| k.to_string())),

@@ -51,7 +51,7 @@ const REGIME_COUNTS: &[Heading] = &[
 ];
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const EXPERIMENTS: [Experiment; 15] = [
+pub const EXPERIMENTS: [Experiment; 16] = [
     Experiment {
         name: "hypotheses",
         about: "the constants of H(A)...H(s) and H(f)/H(0) for the shipped scenarios",
@@ -149,6 +149,14 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         paper: false,
         cost: 6.0,
         run: super::graded::run,
+        tables: &[],
+    },
+    Experiment {
+        name: "adaptive",
+        about: "meshes that adapt themselves (Dörfler marking on the residual estimator) against uniform and graded ones",
+        paper: false,
+        cost: 40.0,
+        run: super::adaptive::run,
         tables: &[],
     },
     Experiment {
