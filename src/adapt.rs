@@ -169,7 +169,8 @@ pub struct AdaptLevel {
     pub estimate: f64,
     /// $(\sum_T \bar\eta^2_T)^{1/2}$, absolute.
     pub eta: f64,
-    /// Triangles marked for the next level (0 at the last).
+    /// Triangles Dörfler's criterion marked for the next level: 0 where the tolerance
+    /// is met; at a level the budget ends, those whose refinement would have passed it.
     pub marked: usize,
     /// Wall seconds of the level: solve, indicators, marking.
     pub wall_s: f64,

@@ -35,6 +35,13 @@ fn refuse_others(args: &SolveArgs) -> Result<(), InputError> {
     }
 }
 
+/// A refusal of an adaptive setting named by its option.
+fn flags(e: InputError) -> InputError {
+    e.for_flag("tol", "--adapt")
+        .for_flag("theta", "--theta")
+        .for_flag("max_dofs", "--max-dofs")
+}
+
 /// The adaptive settings the options ask for (checked by the library).
 fn adapt_settings(args: &SolveArgs, tol: f64) -> AdaptSettings {
     let mut s = AdaptSettings::default().with_tol(tol);
@@ -60,11 +67,7 @@ pub fn run(
 ) -> Result<(), Box<dyn std::error::Error>> {
     refuse_others(args)?;
     let settings = adapt_settings(args, tol);
-    settings.check().map_err(|e| {
-        e.for_flag("tol", "--adapt")
-            .for_flag("theta", "--theta")
-            .for_flag("max_dofs", "--max-dofs")
-    })?;
+    settings.check().map_err(flags)?;
     let (forest, root, n0) = evhi::adapt::initial_forest(&scn)?;
     let run_settings = super::solve::settings(args).with_n(n0);
     let out = RunDir::open(&args.out)?;
@@ -103,7 +106,7 @@ pub fn run(
     }
     let (adaptation, h_s) = adaptation;
     let adaptation = adaptation.map_err(|e| match e {
-        evhi::scheme::RunError::Input(e) => super::solve::settings_flag(e).into(),
+        evhi::scheme::RunError::Input(e) => flags(super::solve::settings_flag(e)).into(),
         other => other,
     })?;
     if let Some(e) = cli.error.take() {
