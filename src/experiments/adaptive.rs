@@ -350,6 +350,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         .collect();
     let family_index = |f: &str| FAMILIES.iter().position(|x| *x == f).unwrap_or(0);
     rows.sort_by_key(|(l, ..)| (l.scene, family_index(l.family), l.level));
+    let walls = recorded_walls(ctx, &rows, plan.steps);
     let t = Table::new()
         .str(
             "scenario",
@@ -371,7 +372,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             "efficiency",
             rows.iter().map(|r| r.0.estimate / r.2).collect(),
         )
-        .f64("wall_s", recorded_walls(ctx, &rows, plan.steps));
+        .f64("wall_s", walls.clone());
     let params = format!(
         "every mesh from newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n (n = {:?}); graded: <= D min(1, max(r, D^(1/mu))^(1-mu)), D = 2 sqrt2 / n, mu = {MU}, r = distance to the nearest clamp end or top corner (n = {:?}); adaptive: evhi::adapt with theta = {}, indicators at their {} over the steps, from n = 4 until the next mesh would pass {} dofs (told nothing of the corners); adaptive (time mean): the same with each indicator's mean over the steps; N = {} steps on every level and the reference; reference: graded level {} ({graded_ref_dofs} dofs) refined to hold each adaptive family's last mesh ({} dofs); err_T, err_max = relative energy error ||u_ref - u||_E / ||u_ref||_E at T and its maximum over t_j = j T / N (fractions); estimator = the estimated relative error of evhi::adapt (sum of the indicators' per-triangle maximum over the steps, over the maximum of ||sigma||^2, square root); efficiency = estimator / err_max; wall_s = the level's solve with its indicators (adaptive: with the marking), one scene, as measured by the run that last moved another column (a rerun that reproduces every other column bit for bit keeps the recorded times, so that reproduce leaves this table as it was)",
         plan.uniform,
@@ -384,6 +385,13 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         ref_dofs.count
     );
     let path = ctx.write("adaptive_convergence.csv", &t, &params)?;
+    ctx.write(
+        "adaptive_summary.csv",
+        &summary(&rows, &walls),
+        &format!(
+            "adaptive_convergence.csv by scene and family: its levels, the last level's unknowns and errors (percent), order_last = -2 d ln(err_T) / d ln(dofs) fitted by least squares over the last {FIT} levels, the efficiency index's smallest and largest value over the levels, and the family's wall time summed over its levels (s)"
+        ),
+    )?;
     // An adaptive mesh of each scene, triangle by triangle.
     let (mut scene, mut v) = (vec![], vec![vec![]; 6]);
     for (i, (_, _, f)) in drawn.iter().enumerate() {
@@ -411,6 +419,60 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         ),
     )?;
     draw(&ctx.figures, &path, &mesh_path)
+}
+
+/// The levels the summary's order is fitted over.
+const FIT: usize = 5;
+
+/// `adaptive_summary.csv`: one row a scene and family.
+fn summary(rows: &[(&Lev, f64, f64)], walls: &[f64]) -> Table {
+    let (mut scn, mut fam, mut levels, mut dofs) = (vec![], vec![], vec![], vec![]);
+    let (mut err_t, mut err_max, mut order, mut eff_lo, mut eff_hi, mut wall) =
+        (vec![], vec![], vec![], vec![], vec![], vec![]);
+    for scene in 0..LOADS.len() {
+        for family in FAMILIES {
+            let idx: Vec<usize> = (0..rows.len())
+                .filter(|&i| rows[i].0.scene == scene && rows[i].0.family == family)
+                .collect();
+            let Some(&last) = idx.last() else { continue };
+            let fit = &idx[idx.len().saturating_sub(FIT)..];
+            let pts: Vec<(f64, f64)> = (fit.iter())
+                .map(|&i| ((rows[i].0.dofs as f64).ln(), rows[i].1.ln()))
+                .collect();
+            let n = pts.len() as f64;
+            let (mx, my) = (
+                pts.iter().map(|p| p.0).sum::<f64>() / n,
+                pts.iter().map(|p| p.1).sum::<f64>() / n,
+            );
+            let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+                / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+            let eff: Vec<f64> = idx
+                .iter()
+                .map(|&i| rows[i].0.estimate / rows[i].2)
+                .collect();
+            scn.push(LOADS[scene].to_string());
+            fam.push(family.to_string());
+            levels.push(idx.len() as u64);
+            dofs.push(rows[last].0.dofs as u64);
+            err_t.push(100.0 * rows[last].1);
+            err_max.push(100.0 * rows[last].2);
+            order.push(-2.0 * slope);
+            eff_lo.push(eff.iter().copied().fold(f64::INFINITY, f64::min));
+            eff_hi.push(eff.iter().copied().fold(0.0, f64::max));
+            wall.push(idx.iter().map(|&i| walls[i]).sum());
+        }
+    }
+    Table::new()
+        .str("scenario", scn)
+        .str("family", fam)
+        .u64("levels", levels)
+        .u64("dofs", dofs)
+        .f64("err_T_percent", err_t)
+        .f64("err_max_percent", err_max)
+        .f64("order_last", order)
+        .f64("efficiency_min", eff_lo)
+        .f64("efficiency_max", eff_hi)
+        .f64("wall_total_s", wall)
 }
 
 /// The wall times of `rows`: those of the table already at the output path if it

@@ -157,7 +157,15 @@ pub const EXPERIMENTS: [Experiment; 16] = [
         paper: false,
         cost: 40.0,
         run: super::adaptive::run,
-        tables: &[],
+        tables: &[table("adaptive_summary.csv", 2, 10).headed(&[
+            ("dofs", "unknowns (last)"),
+            ("err_T_percent", "error at T, %"),
+            ("err_max_percent", "max error, %"),
+            ("order_last", "order (last 5)"),
+            ("efficiency_min", "efficiency min"),
+            ("efficiency_max", "efficiency max"),
+            ("wall_total_s", "wall, s (all levels)"),
+        ])],
     },
     Experiment {
         name: "time",
