@@ -231,6 +231,7 @@ pub struct Adaptation {
     pub eta_sq: Vec<f64>,
 }
 
+// ANCHOR: dorfler
 /// The smallest set of indices whose `eta_sq` sum to at least `theta` of the total
 /// (Dörfler's bulk criterion), largest first; none if the total is zero.
 pub fn dorfler(eta_sq: &[f64], theta: f64) -> Vec<usize> {
@@ -252,6 +253,7 @@ pub fn dorfler(eta_sq: &[f64], theta: f64) -> Vec<usize> {
     }
     out
 }
+// ANCHOR_END: dorfler
 
 /// The forest of an adaptive run on a rectangle scene: the structured mesh of the
 /// first of 4, 8, 16, … (then any multiple of 4) segments whose nodes hold every end
