@@ -337,7 +337,7 @@ pub fn adapt_from(
         observer.level_started(level, &mesh, sim.steps());
         let est = solve_estimating(&sim, settings.aggregate, observer)?;
         let total: f64 = est.eta_sq.iter().sum();
-        if !(est.norm_sq > 0.0) {
+        if est.norm_sq.is_nan() || est.norm_sq <= 0.0 {
             return Err(InputError::field(
                 "scenario",
                 &scn.name,
@@ -347,7 +347,18 @@ pub fn adapt_from(
             .into());
         }
         let estimate = (total / est.norm_sq).sqrt();
-        let done = !(estimate >= settings.tol);
+        if !estimate.is_finite() {
+            return Err(InputError::field(
+                "scenario",
+                scn.name(),
+                format!(
+                    "a run whose indicators are finite: level {level} ({dofs} unknowns) \
+                     estimated {estimate}"
+                ),
+            )
+            .into());
+        }
+        let done = estimate < settings.tol;
         let marked = if done {
             vec![]
         } else {

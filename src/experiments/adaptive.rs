@@ -429,7 +429,7 @@ fn summary(rows: &[(&Lev, f64, f64)], walls: &[f64]) -> Table {
     let (mut scn, mut fam, mut levels, mut dofs) = (vec![], vec![], vec![], vec![]);
     let (mut err_t, mut err_max, mut order, mut eff_lo, mut eff_hi, mut wall) =
         (vec![], vec![], vec![], vec![], vec![], vec![]);
-    for scene in 0..LOADS.len() {
+    for (scene, load) in LOADS.iter().enumerate() {
         for family in FAMILIES {
             let idx: Vec<usize> = (0..rows.len())
                 .filter(|&i| rows[i].0.scene == scene && rows[i].0.family == family)
@@ -450,7 +450,7 @@ fn summary(rows: &[(&Lev, f64, f64)], walls: &[f64]) -> Table {
                 .iter()
                 .map(|&i| rows[i].0.estimate / rows[i].2)
                 .collect();
-            scn.push(LOADS[scene].to_string());
+            scn.push(load.to_string());
             fam.push(family.to_string());
             levels.push(idx.len() as u64);
             dofs.push(rows[last].0.dofs as u64);
@@ -515,11 +515,15 @@ fn recorded_walls(ctx: &Ctx, rows: &[(&Lev, f64, f64)], steps: usize) -> Vec<f64
     if same { old[6].clone() } else { measured }
 }
 
+/// A chart's series: label, (unknowns, error %) points, colour, whether solid (the
+/// first load) or dashed.
+type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
+
 /// The figure: each scene's last adaptive mesh, and the error at T against the
 /// unknowns for every family and scene.
 struct Fig {
     meshes: Vec<(String, Vec<[[f64; 2]; 3]>)>,
-    series: Vec<(String, Vec<(f64, f64)>, RGBColor, bool)>,
+    series: Vec<Series>,
 }
 
 fn draw(

@@ -353,8 +353,7 @@ fn adaptive_quick_claims() {
     for l in ["figure", "literal"] {
         let last = |f: &str| {
             (0..scn.len())
-                .filter(|&i| scn[i] == l && family[i] == f)
-                .next_back()
+                .rfind(|&i| scn[i] == l && family[i] == f)
                 .unwrap()
         };
         let (a, g) = (last("adaptive"), last("graded"));
