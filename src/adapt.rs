@@ -303,7 +303,20 @@ pub fn initial_forest(scn: &Scenario) -> Result<(Forest, Leaves, usize), InputEr
 }
 
 /// Adapts the mesh of `scn` from its initial forest ([`initial_forest`]); `run` holds
-/// the time steps, the solver and the loop (its `n` and `mesh` are not used).
+/// the time steps, the solver and the loop (its `n` and `mesh` are not used). Each
+/// level's mesh is labelled by the uniform level whose cells bound all its triangles
+/// (`n` in the run's summary).
+///
+/// ```
+/// use evhi::adapt::{AdaptSettings, Stop, adapt};
+/// use evhi::prelude::*;
+/// let settings = AdaptSettings::default().with_tol(1e-3).with_max_dofs(300);
+/// let a = adapt(&Scenario::load("figure")?, &RunSettings::default().with_steps(2), &settings, &mut ())?;
+/// // The budget ends it here, each level finer than the one before.
+/// assert_eq!(a.stop, Stop::DofBudget);
+/// assert!(a.levels.windows(2).all(|w| w[1].dofs > w[0].dofs && w[1].estimate < w[0].estimate));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn adapt(
     scn: &Scenario,
     run: &RunSettings,
@@ -311,12 +324,20 @@ pub fn adapt(
     observer: &mut dyn AdaptObserver,
 ) -> Result<Adaptation, RunError> {
     settings.check()?;
-    let (forest, root, _) = initial_forest(scn)?;
-    adapt_from(forest, root, scn, run, settings, observer)
+    let (forest, root, n0) = initial_forest(scn)?;
+    adapt_from(
+        forest,
+        root,
+        scn,
+        &run.clone().with_n(n0),
+        settings,
+        observer,
+    )
 }
 
 /// [`adapt`] from the mesh `root` of `forest` (a study builds its other families in the
-/// same forest, so that every mesh embeds in a common refinement).
+/// same forest, so that every mesh embeds in a common refinement), `run.n` the
+/// segments of the forest's grid.
 pub fn adapt_from(
     mut forest: Forest,
     root: Leaves,
@@ -328,8 +349,13 @@ pub fn adapt_from(
     settings.check()?;
     let mut leaves = root;
     let mut levels = vec![];
-    let label = run.n;
-    let mut mesh = Arc::new(forest.mesh(&leaves, label));
+    // A level's label n: the uniform level of the initial grid (`run.n` segments)
+    // whose cells bound every triangle, two bisections halving a cell.
+    let label = |forest: &Forest, leaves: &Leaves| {
+        let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
+        run.n << (shallowest / 2).min(20)
+    };
+    let mut mesh = Arc::new(forest.mesh(&leaves, label(&forest, &leaves)));
     let mut dofs = Dofs::new(&mesh, true).count;
     if dofs > settings.max_dofs {
         return Err(InputError::field(
@@ -342,7 +368,7 @@ pub fn adapt_from(
     loop {
         let clock = Instant::now();
         let level = levels.len();
-        let sim = Simulation::on_mesh(scn.clone(), run.clone(), mesh.clone())?;
+        let sim = Simulation::on_mesh(scn.clone(), run.clone().with_n(mesh.n), mesh.clone())?;
         observer.level_started(level, &mesh, sim.steps());
         let est = solve_estimating(&sim, settings.aggregate, observer)?;
         let total: f64 = est.eta_sq.iter().sum();
@@ -403,7 +429,7 @@ pub fn adapt_from(
         let stop = match next {
             None => Some(Stop::Tolerance),
             Some(next) => {
-                let next_mesh = Arc::new(forest.mesh(&next, label));
+                let next_mesh = Arc::new(forest.mesh(&next, label(&forest, &next)));
                 let next_dofs = Dofs::new(&next_mesh, true).count;
                 if next_dofs > settings.max_dofs {
                     Some(Stop::DofBudget)
