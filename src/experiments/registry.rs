@@ -155,7 +155,7 @@ pub const EXPERIMENTS: [Experiment; 16] = [
         name: "adaptive",
         about: "meshes that adapt themselves (Dörfler marking on the residual estimator) against uniform and graded ones",
         paper: false,
-        cost: 40.0,
+        cost: 48.0,
         run: super::adaptive::run,
         tables: &[table("adaptive_summary.csv", 2, 10).headed(&[
             ("dofs", "unknowns (last)"),
