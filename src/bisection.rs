@@ -30,8 +30,15 @@ pub struct Forest {
     /// Depth in the forest (0 for the initial triangles).
     depth: Vec<u32>,
     midpoints: HashMap<(usize, usize), usize>,
-    /// The initial grid: $n_0$ segments on the bottom, $n_{y,0}$ rows, cells
-    /// `cell` wide and tall.
+    /// The initial grid, for a forest grown from one ([`Forest::new`]); `None` for one
+    /// grown from a triangulation ([`Forest::from_triangles`]).
+    grid: Option<Grid>,
+}
+
+/// The structured grid a forest grew from: $n_0$ segments on the bottom, $n_{y,0}$
+/// rows, cells `cell` wide and tall, on `geometry`.
+#[derive(Debug, Clone)]
+struct Grid {
     n0: usize,
     ny0: usize,
     cell: [f64; 2],
@@ -74,13 +81,91 @@ impl Forest {
                 depth: vec![0; count],
                 tris,
                 midpoints: HashMap::new(),
-                n0,
-                ny0,
-                cell,
-                geometry: geometry.clone(),
+                grid: Some(Grid {
+                    n0,
+                    ny0,
+                    cell,
+                    geometry: geometry.clone(),
+                }),
             },
             Leaves((0..count).collect()),
         ))
+    }
+
+    /// Any conforming triangulation (`triangles` counter-clockwise on `nodes`) as the
+    /// forest's roots. Each triangle's refinement edge is its longest, ties broken by
+    /// the edge's node numbers, so that every edge has one rank in a strict order:
+    /// refining a triangle first refines its neighbour across that edge only when the
+    /// neighbour's own refinement edge ranks higher, and the conforming closure ends.
+    /// Such a forest refines and interpolates as one from a grid does; its leaves
+    /// become a mesh by [`Forest::leaf_triangles`] (the scene's boundary parts are
+    /// not carried over).
+    pub fn from_triangles(
+        nodes: Vec<[f64; 2]>,
+        triangles: &[[usize; 3]],
+    ) -> Result<(Forest, Leaves), InputError> {
+        let len = |a: usize, b: usize| {
+            let (p, q) = (nodes[a], nodes[b]);
+            (p[0] - q[0]).hypot(p[1] - q[1])
+        };
+        let mut tris = Vec::with_capacity(triangles.len());
+        for (i, t) in triangles.iter().enumerate() {
+            if t.iter().any(|&v| v >= nodes.len()) || twice_area(t.map(|v| nodes[v])) <= 0.0 {
+                return Err(InputError::field(
+                    "triangles",
+                    format!("triangle {i} {t:?}"),
+                    format!(
+                        "three of the {} nodes, counter-clockwise, with a positive area",
+                        nodes.len()
+                    ),
+                ));
+            }
+            // Rotate so that the top-ranked edge is the last, bc (opposite the first).
+            let rank = |e: usize| {
+                let (a, b) = (t[(e + 1) % 3], t[(e + 2) % 3]);
+                (len(a, b), a.min(b), a.max(b))
+            };
+            let first = (0..3)
+                .max_by(|&x, &y| rank(x).partial_cmp(&rank(y)).expect("finite lengths"))
+                .expect("three edges");
+            tris.push([t[first], t[(first + 1) % 3], t[(first + 2) % 3]]);
+        }
+        let count = tris.len();
+        Ok((
+            Forest {
+                nodes,
+                children: vec![None; count],
+                depth: vec![0; count],
+                tris,
+                midpoints: HashMap::new(),
+                grid: None,
+            },
+            Leaves((0..count).collect()),
+        ))
+    }
+
+    /// The nodes and triangles (counter-clockwise) of `leaves`, the nodes renumbered
+    /// in the forest's order: the mesh of a forest grown from any triangulation.
+    pub fn leaf_triangles(&self, leaves: &Leaves) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+        let mut local = vec![usize::MAX; self.nodes.len()];
+        for &t in &leaves.0 {
+            for v in self.tris[t] {
+                local[v] = 0;
+            }
+        }
+        let mut nodes = vec![];
+        for (g, l) in local.iter_mut().enumerate() {
+            if *l == 0 {
+                *l = nodes.len();
+                nodes.push(self.nodes[g]);
+            }
+        }
+        let tris = leaves
+            .0
+            .iter()
+            .map(|&t| self.tris[t].map(|v| local[v]))
+            .collect();
+        (nodes, tris)
     }
 
     /// The vertices of triangle `t`.
@@ -93,6 +178,12 @@ impl Forest {
         let p = self.triangle(t);
         let d = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
         d(p[0], p[1]).max(d(p[1], p[2])).max(d(p[2], p[0]))
+    }
+
+    /// How many triangles the forest holds (every level's, leaves or not): the ids
+    /// are `0..triangle_count()`.
+    pub fn triangle_count(&self) -> usize {
+        self.tris.len()
     }
 
     /// Depth of triangle `t` in the forest.
@@ -174,10 +265,40 @@ impl Forest {
         ))
     }
 
+    /// The coarsest conforming mesh of the forest that refines both `mesh` and `other`:
+    /// `mesh` refined wherever one of its triangles is a strict ancestor of a
+    /// triangle of `other` (and wherever conformity then asks). Two meshes of one
+    /// forest then both embed in it exactly ([`Forest::interpolation`]).
+    pub fn refine_to_contain(&mut self, mesh: &Leaves, other: &Leaves) -> Leaves {
+        let mut parent = vec![usize::MAX; self.tris.len()];
+        for (t, c) in self.children.iter().enumerate() {
+            if let Some([a, b]) = c {
+                parent[*a] = t;
+                parent[*b] = t;
+            }
+        }
+        let mut above = vec![false; self.tris.len()];
+        for &t in &other.0 {
+            let mut p = parent[t];
+            while p != usize::MAX && !above[p] {
+                above[p] = true;
+                p = parent[p];
+            }
+        }
+        self.refine(mesh, |_, t| above.get(t) == Some(&true))
+    }
+
     /// The mesh of `leaves` for the solver: its nodes renumbered in the order of
     /// the forest's (so coarser meshes' nodes come first), boundary parts from
     /// the coordinates. `n` names the level (the uniform mesh it refines).
+    ///
+    /// The forest must have grown from a grid ([`Forest::new`]); one grown from a
+    /// triangulation gives its leaves by [`Forest::leaf_triangles`].
     pub fn mesh(&self, leaves: &Leaves, n: usize) -> Mesh {
+        let grid = self
+            .grid
+            .as_ref()
+            .expect("Forest::mesh is for a forest grown from a grid");
         let mut used = vec![false; self.nodes.len()];
         for &t in &leaves.0 {
             for v in self.tris[t] {
@@ -198,7 +319,7 @@ impl Forest {
             .iter()
             .map(|&t| self.tris[t].map(|v| local[v]))
             .collect();
-        let geo = &self.geometry;
+        let geo = &grid.geometry;
         let fixed = nodes.iter().map(|&p| geo.fixed_at(p)).collect();
         // The boundary edges: both ends on one side, ordered along it (the load takes
         // an edge's length as the difference of its coordinates along the side).
@@ -224,8 +345,8 @@ impl Forest {
         });
         // The rows of the uniform level n this mesh stands for (a label: its nodes are
         // the forest's).
-        let ny = if n.is_multiple_of(self.n0) {
-            n / self.n0 * self.ny0
+        let ny = if n.is_multiple_of(grid.n0) {
+            n / grid.n0 * grid.ny0
         } else {
             crate::mesh::rows(n, geo)
         };
@@ -257,8 +378,7 @@ impl Forest {
                 local.insert(g, i);
             }
         }
-        let (nx, ny) = (self.n0, self.ny0);
-        let [side, dy] = self.cell;
+        let roots = self.depth.iter().take_while(|&&d| d == 0).count();
         let weights = fine
             .nodes
             .iter()
@@ -271,13 +391,23 @@ impl Forest {
                     [1.0 - l1 - l2, l1, l2]
                 };
                 let worst = |l: [f64; 3]| l[0].min(l[1]).min(l[2]);
-                let i = ((p[0] / side).floor() as usize).min(nx - 1);
-                let j = ((p[1] / dy).floor() as usize).min(ny - 1);
-                let cell = j * nx + i;
-                let mut t = if worst(bary(2 * cell)) >= worst(bary(2 * cell + 1)) {
-                    2 * cell
-                } else {
-                    2 * cell + 1
+                let mut t = match &self.grid {
+                    Some(g) => {
+                        let (nx, ny) = (g.n0, g.ny0);
+                        let [side, dy] = g.cell;
+                        let i = ((p[0] / side).floor() as usize).min(nx - 1);
+                        let j = ((p[1] / dy).floor() as usize).min(ny - 1);
+                        let cell = j * nx + i;
+                        if worst(bary(2 * cell)) >= worst(bary(2 * cell + 1)) {
+                            2 * cell
+                        } else {
+                            2 * cell + 1
+                        }
+                    }
+                    // Any triangulation: the root that holds p best.
+                    None => (0..roots)
+                        .max_by(|&a, &b| worst(bary(a)).total_cmp(&worst(bary(b))))
+                        .expect("a root"),
                 };
                 while !in_coarse[t] {
                     let [c0, c1] = self.children[t].expect("the fine mesh refines the coarse one");

@@ -39,6 +39,7 @@
 //! (`experiments`). They call the library through `evhi::…` as any program would, and
 //! the library never names them. A room imports only from rooms below it.
 
+pub mod adapt;
 pub mod assembly;
 pub mod bisection;
 pub mod body;

@@ -178,3 +178,105 @@ fn refinement_stops_at_its_node_bound() {
         .unwrap();
     assert_eq!(a.mesh(&fine, 16).triangles, b.mesh(&bounded, 16).triangles);
 }
+
+/// A forest grown from a mesh scene's triangulation (the holed block read from its
+/// Gmsh file, longest edges as the first refinement edges): marking a handful of
+/// triangles round after round ends in conforming meshes, with no hanging node (an
+/// edge of one triangle lies on the file's boundary), the same area, and nested P1
+/// spaces that embed exactly.
+#[test]
+fn a_forest_from_any_triangulation_refines_conformingly() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenarios/examples/holed_block.toml");
+    let (scn, _) = evhi::scenario::Scenario::read(path.to_str().unwrap()).unwrap();
+    let base = scn.body_mesh().expect("a mesh scene");
+    let (mut forest, root) = Forest::from_triangles(base.nodes.clone(), &base.triangles).unwrap();
+    let area = |nodes: &[[f64; 2]], tris: &[[usize; 3]]| -> f64 {
+        tris.iter()
+            .map(|t| {
+                let a = 0.5 * evhi::element::twice_area(t.map(|v| nodes[v]));
+                assert!(a > 0.0, "{t:?} is not counter-clockwise");
+                a
+            })
+            .sum()
+    };
+    let edges = |tris: &[[usize; 3]]| {
+        let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+        for t in tris {
+            for e in 0..3 {
+                let (a, b) = (t[e], t[(e + 1) % 3]);
+                *count.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        count
+    };
+    let boundary: Vec<([f64; 2], [f64; 2])> = edges(&base.triangles)
+        .into_iter()
+        .filter(|(_, c)| *c == 1)
+        .map(|((a, b), _)| (base.nodes[a], base.nodes[b]))
+        .collect();
+    let on_boundary = |p: [f64; 2], q: [f64; 2]| {
+        boundary.iter().any(|&(a, b)| {
+            let on = |x: [f64; 2]| {
+                let cross = (b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0]);
+                let dot = (x[0] - a[0]) * (b[0] - a[0]) + (x[1] - a[1]) * (b[1] - a[1]);
+                let len2 = (b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2);
+                cross.abs() <= 1e-12 * len2.sqrt() && dot >= -1e-12 && dot <= len2 * (1.0 + 1e-12)
+            };
+            on(p) && on(q)
+        })
+    };
+    let total = area(&base.nodes, &base.triangles);
+    let target = base.nodes[base.contact[base.contact.len() / 2]];
+    let mut leaves = root.clone();
+    for round in 0..6 {
+        // The few triangles nearest the middle contact node.
+        let (nodes, tris) = forest.leaf_triangles(&leaves);
+        let mut by_distance: Vec<(f64, usize)> = tris
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let c = [0, 1].map(|k| t.iter().map(|&v| nodes[v][k]).sum::<f64>() / 3.0);
+                ((c[0] - target[0]).hypot(c[1] - target[1]), leaves.0[i])
+            })
+            .collect();
+        by_distance.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let marked: Vec<usize> = by_distance.iter().take(5).map(|x| x.1).collect();
+        let next = forest.refine(&leaves, |_, t| marked.contains(&t));
+        let (nodes, tris) = forest.leaf_triangles(&next);
+        assert!(tris.len() >= leaves.0.len() + 5, "round {round}");
+        assert!(
+            (area(&nodes, &tris) - total).abs() <= 1e-12 * total,
+            "round {round}"
+        );
+        for ((a, b), c) in edges(&tris) {
+            assert!(
+                c == 2 || (c == 1 && on_boundary(nodes[a], nodes[b])),
+                "round {round}: edge {a}-{b} in {c} triangle(s)"
+            );
+        }
+        // The coarser mesh's affine fields are reproduced on the finer one.
+        let (cn, _) = forest.leaf_triangles(&leaves);
+        let f = |p: [f64; 2]| [0.5 * p[0] - p[1], p[1] + 0.25];
+        let coarse: Vec<[f64; 2]> = cn.iter().map(|&p| f(p)).collect();
+        let mut fine = base.clone();
+        fine.nodes = nodes.clone();
+        let v = forest.interpolation(&leaves, &fine).apply(&coarse);
+        for (p, w) in nodes.iter().zip(&v) {
+            let e = f(*p);
+            assert!((e[0] - w[0]).abs() < 1e-12 && (e[1] - w[1]).abs() < 1e-12);
+        }
+        leaves = next;
+    }
+    // Refinement went where it was asked: the smallest triangle is near the target.
+    let (nodes, tris) = forest.leaf_triangles(&leaves);
+    let smallest = tris
+        .iter()
+        .min_by(|a, b| {
+            let ar = |t: &[usize; 3]| evhi::element::twice_area(t.map(|v| nodes[v]));
+            ar(a).total_cmp(&ar(b))
+        })
+        .unwrap();
+    let c = [0, 1].map(|k| smallest.iter().map(|&v| nodes[v][k]).sum::<f64>() / 3.0);
+    assert!((c[0] - target[0]).hypot(c[1] - target[1]) < 0.1, "{c:?}");
+}

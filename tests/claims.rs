@@ -11,6 +11,8 @@ mod common;
 
 // The claims of "Beyond the paper", "Your own scenario", "Errata", "Results", "Time"
 // and the newer ones of "Exact solutions", one module each.
+#[path = "claims/adaptive.rs"]
+mod adaptive;
 #[path = "claims/beyond.rs"]
 mod beyond;
 #[path = "claims/errata.rs"]

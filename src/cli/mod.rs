@@ -5,6 +5,7 @@
 //! the experiments it runs ([`crate::experiments::reproduce`]). Nothing here imports
 //! the experiments.
 
+pub mod adapt;
 pub mod bench;
 pub mod outputs;
 pub mod show;

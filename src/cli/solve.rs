@@ -126,6 +126,34 @@ pub struct SolveArgs {
     /// (reduced where the damping is proportional).
     #[arg(long, default_value = "auto", value_parser = ["auto", "general", "reduced"])]
     pub path: String,
+    /// Adapt the mesh to the scene (the library's `adapt` module): solve the whole run
+    /// on the coarsest grid that resolves the scene, estimate every step's error per
+    /// triangle (the residual estimator of `--estimate`), take each triangle's maximum
+    /// over the steps, mark by Dörfler's bulk criterion (`--theta`), refine by
+    /// newest-vertex bisection, and solve again from t = 0, until the estimated
+    /// relative error (the estimate over the L2 norm of the step's stress, both at
+    /// their maximum over time) is below TOL (in [1e-6, 1]) or the next mesh would have more
+    /// unknowns than `--max-dofs`. Each level is printed on one line, and the line
+    /// that ends the run says which rule stopped it. Writes adapt.csv (one row a
+    /// level), the last level's usual outputs, and estimator.csv with the cell field
+    /// `eta` in solution.vtu (the per-triangle maximum over time that was marked by).
+    /// Rectangle scenes only; not with --n, --mesh graded, --grading, --estimate or
+    /// --vtk-every.
+    #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
+    pub adapt: Option<f64>,
+    /// Dörfler's bulk parameter of `--adapt`: the marked triangles carry at least this
+    /// share of the squared estimate, the fewest that do (in (0, 1]; default 0.5).
+    #[arg(long, requires = "adapt", allow_hyphen_values = true)]
+    pub theta: Option<f64>,
+    /// The budget of unknowns of `--adapt`: a mesh with more is not solved, and the run
+    /// stops at the last one within it (default 20000).
+    #[arg(long, requires = "adapt", value_name = "DOFS")]
+    pub max_dofs: Option<usize>,
+    /// How `--adapt` gathers each triangle's indicators over the steps: `max` (the
+    /// default: the worst step) or `sum` (the time mean, in which the initial layer's
+    /// steps weigh as little as their duration).
+    #[arg(long, requires = "adapt", value_parser = ["max", "sum"])]
+    pub aggregate: Option<String>,
 }
 
 /// Parses `FX,FY` into two finite numbers.
@@ -165,6 +193,9 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(n) = args.n {
         scn.refuse_level_on_mesh(n)
             .map_err(|e| e.for_flag("n", "--n"))?;
+    }
+    if let Some(tol) = args.adapt {
+        return super::adapt::run(&args, scn, &toml, tol, wall);
     }
     if args.estimate && scn.body().is_some() {
         return Err(evhi::error::InputError::field(
@@ -269,7 +300,7 @@ pub fn settings_flag(e: evhi::error::InputError) -> evhi::error::InputError {
 }
 
 /// The run settings the options ask for (checked by [`Simulation::new`]).
-fn settings(args: &SolveArgs) -> RunSettings {
+pub fn settings(args: &SolveArgs) -> RunSettings {
     let mut settings = RunSettings::default()
         .with_n(args.n.unwrap_or(64))
         .with_mesh(if args.mesh == "graded" {
@@ -339,8 +370,21 @@ fn write_estimate(
     // The last step's time and length (the grid into the layer ends with steps of T/N).
     let t = run.records.last().map_or(scn.t_end(), |r| r.t);
     let eta = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact).eta();
+    write_eta(out, scn, run, &eta)
+}
+
+/// `estimator.csv` (centroid x, y and `eta` of each triangle of the run's mesh) and
+/// `solution.vtu` again with the cell field `eta`.
+pub fn write_eta(
+    out: &RunDir,
+    scn: &Scenario,
+    run: &evhi::scheme::Run,
+    eta: &[f64],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mesh = &run.mesh;
+    let dofs = evhi::mesh::Dofs::new(mesh, true);
     let mut csv = String::from("x,y,eta\n");
-    for (tri, e) in mesh.triangles.iter().zip(&eta) {
+    for (tri, e) in mesh.triangles.iter().zip(eta) {
         let p = tri.map(|v| mesh.nodes[v]);
         let c = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
         csv += &format!("{},{},{:e}\n", c[0], c[1], e);
@@ -350,7 +394,7 @@ fn write_estimate(
     let codes: Vec<i32> = (run.contact.iter())
         .map(|c| c.regime_code(scn.law(), scn.g()))
         .collect();
-    let vtu = evhi::output::vtu::vtu_cells(mesh, &disp, &run.contact, &codes, &[("eta", &eta)]);
+    let vtu = evhi::output::vtu::vtu_cells(mesh, &disp, &run.contact, &codes, &[("eta", eta)]);
     out.write("solution.vtu", vtu.as_bytes())?;
     Ok(())
 }

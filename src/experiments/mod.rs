@@ -6,6 +6,7 @@
 //! disagree. `quick` mode uses coarse levels (seconds) and is what the tests
 //! snapshot; the full mode is what `evhi reproduce` runs.
 
+pub mod adaptive;
 pub mod convergence;
 pub mod exact;
 pub mod example;

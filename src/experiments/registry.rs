@@ -230,7 +230,7 @@ const HERTZ_FINEST_SPLIT: &[Heading] = &[
 ];
 
 /// The experiments, in the order `evhi reproduce` runs them.
-pub const EXPERIMENTS: [Experiment; 15] = [
+pub const EXPERIMENTS: [Experiment; 16] = [
     Experiment {
         name: "hypotheses",
         about: "the constants of H(A)...H(s) and H(f)/H(0) for the shipped scenarios",
@@ -329,6 +329,22 @@ pub const EXPERIMENTS: [Experiment; 15] = [
         cost: 6.0,
         run: super::graded::run,
         tables: &[],
+    },
+    Experiment {
+        name: "adaptive",
+        about: "meshes that adapt themselves (Dörfler marking on the residual estimator) against uniform and graded ones",
+        paper: false,
+        cost: 48.0,
+        run: super::adaptive::run,
+        tables: &[table("adaptive_summary.csv", 2, 10).headed(&[
+            ("dofs", "unknowns (last)"),
+            ("err_T_percent", "error at T, %"),
+            ("err_max_percent", "max error, %"),
+            ("order_last", "order (last 5)"),
+            ("efficiency_min", "efficiency min"),
+            ("efficiency_max", "efficiency max"),
+            ("wall_total_s", "wall, s (all levels)"),
+        ])],
     },
     Experiment {
         name: "time",

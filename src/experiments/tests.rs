@@ -59,6 +59,44 @@ fn snapshot_outputs(name: &str, files: &[&str], figures: &[&str]) {
 
 /// Numbers below `floor` are snapshotted as `<floor` (round-off columns).
 fn snapshot_outputs_floor(name: &str, files: &[&str], figures: &[&str], floor: f64) {
+    snapshot_outputs_dropping(name, files, figures, floor, &[])
+}
+
+/// The CSV text without the columns named in `drop` (comment lines kept), its fields
+/// split at every comma: a table with a quoted comma is taken as it is.
+fn without_columns(text: &str, drop: &[&str]) -> String {
+    if drop.is_empty() {
+        return text.to_string();
+    }
+    let mut keep: Vec<bool> = vec![];
+    text.lines()
+        .map(|l| {
+            if l.starts_with('#') {
+                return l.to_string();
+            }
+            let fields: Vec<&str> = l.split(',').collect();
+            if keep.is_empty() {
+                keep = fields.iter().map(|f| !drop.contains(f)).collect();
+            }
+            (fields.iter().zip(&keep))
+                .filter(|(_, k)| **k)
+                .map(|(f, _)| *f)
+                .collect::<Vec<_>>()
+                .join(",")
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// [`snapshot_outputs_floor`] without the columns named in `drop` (wall times, which
+/// no two runs share).
+fn snapshot_outputs_dropping(
+    name: &str,
+    files: &[&str],
+    figures: &[&str],
+    floor: f64,
+    drop: &[&str],
+) {
     let c = ctx(name);
     run(name, &c).unwrap_or_else(|e| panic!("{name}: {e}"));
     for f in files {
@@ -72,7 +110,7 @@ fn snapshot_outputs_floor(name: &str, files: &[&str], figures: &[&str], floor: f
         insta::with_settings!({snapshot_path => SNAPSHOTS, prepend_module_to_snapshot => false}, {
             insta::assert_snapshot!(
                 format!("experiments__{name}__{f}"),
-                rounded_csv_floor(&text, 6, floor)
+                rounded_csv_floor(&without_columns(&text, drop), 6, floor)
             );
         });
     }
@@ -292,6 +330,64 @@ fn graded_orders() {
 }
 
 #[test]
+fn adaptive_meshes() {
+    snapshot_outputs_dropping(
+        "adaptive",
+        &["adaptive_convergence.csv"],
+        &["adaptive_meshes"],
+        0.0,
+        &["wall_s"],
+    );
+}
+
+/// The adaptive family on the quick levels (8 steps, reference graded n = 64): told
+/// nothing of the corners, its last level's error, carried to the graded family's
+/// last unknowns by the order-1 law N^(-1/2), is at most the graded one's, for both
+/// loads, and every efficiency index stays within [1, 5].
+#[test]
+fn adaptive_quick_claims() {
+    use crate::experiments::{col_f64, col_str, read_csv};
+    let c = ctx("adaptive-quick");
+    run("adaptive", &c).unwrap();
+    let df = read_csv(&c.data.join("adaptive_convergence.csv")).unwrap();
+    let (scn, family) = (
+        col_str(&df, "scenario").unwrap(),
+        col_str(&df, "family").unwrap(),
+    );
+    let (dofs, err, eff) = (
+        col_f64(&df, "dofs").unwrap(),
+        col_f64(&df, "err_T").unwrap(),
+        col_f64(&df, "efficiency").unwrap(),
+    );
+    for l in ["figure", "literal"] {
+        let last = |f: &str| {
+            (0..scn.len())
+                .rfind(|&i| scn[i] == l && family[i] == f)
+                .unwrap()
+        };
+        let (a, g) = (last("adaptive"), last("graded"));
+        // At the graded level's unknowns by the order-1 law err ~ N^(-1/2).
+        let scaled = err[a] * (dofs[a] / dofs[g]).sqrt();
+        assert!(
+            scaled <= err[g],
+            "{l}: adaptive {} dofs {}, graded {} dofs {}",
+            dofs[a],
+            err[a],
+            dofs[g],
+            err[g]
+        );
+        for i in (0..scn.len()).filter(|&i| scn[i] == l) {
+            assert!(
+                (1.0..=5.0).contains(&eff[i]),
+                "{l} row {i}: efficiency {}",
+                eff[i]
+            );
+        }
+    }
+    std::fs::remove_dir_all(c.data.parent().unwrap()).ok();
+}
+
+#[test]
 fn static_control() {
     snapshot_outputs("static", &["static_control.csv"], &["static_control"]);
 }
@@ -422,7 +518,8 @@ fn every_experiment_is_tested_here() {
     for name in names() {
         assert!(
             src.contains(&format!("snapshot_outputs(\"{name}\""))
-                || src.contains(&format!("snapshot_outputs_floor(\"{name}\"")),
+                || src.contains(&format!("snapshot_outputs_floor(\"{name}\""))
+                || src.contains(&format!("snapshot_outputs_dropping(\"{name}\"")),
             "experiment {name} has no snapshot test"
         );
     }
@@ -439,6 +536,7 @@ fn progress_units_match_the_work_done() {
         "paths",
         "forensics",
         "graded",
+        "adaptive",
         "time",
         "static",
         "example",

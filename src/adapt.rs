@@ -1,0 +1,638 @@
+//! Adaptive refinement in space: solve, estimate, mark, refine, and solve again.
+//!
+//! On a mesh $\mathcal T$ the whole run $n = 1, \dots, N$ is solved, and each step's
+//! residual indicators $\eta^2_{T,n}$ ([`crate::estimator`]) are gathered over time per
+//! triangle, by default as their maximum
+//! $$\bar\eta^2_T = \max_{1\le n\le N} \eta^2_{T,n}$$
+//! ([`Aggregate::Max`]; [`Aggregate::Sum`] takes $\bar\eta^2_T = \sum_n k\,\eta^2_{T,n}/T$
+//! instead). The estimated relative error of the mesh is
+//! $$\varepsilon_{\mathcal T} = \Big(\sum_T \bar\eta^2_T\Big)^{1/2} \Big/ \bar\sigma, \qquad
+//!   \bar\sigma^2 = \max_n \|\sigma^n\|^2_{L^2(\Omega)},$$
+//! the step's stress $\sigma^n = \mathcal C\varepsilon((u_n - u_{n-1})/k) + \mathcal G\varepsilon(u_n)$
+//! that the indicators test (the time mean for [`Aggregate::Sum`]): the indicators
+//! measure a residual in units of stress times length, as $\|\sigma^n\|_{L^2}$ does, so
+//! the ratio is free of the material's scale. The residual bounds the error's energy
+//! norm only up to constants (and, for the nonmonotone law, not proved at all: see the
+//! estimator's chapter); the ratio is an estimate, not a bound. If it is at least the tolerance, Dörfler's
+//! bulk criterion marks the smallest set $\mathcal M$ of triangles with
+//! $$\sum_{T\in\mathcal M} \bar\eta^2_T \ \ge\ \theta \sum_{T\in\mathcal T} \bar\eta^2_T,$$
+//! newest-vertex bisection refines them and whatever conformity asks
+//! ([`crate::bisection::Forest::refine`]), and the run starts again from $t = 0$ on the
+//! new mesh. One mesh serves a whole run, so the reduced loop factorises once per
+//! level. The loop stops when $\varepsilon_{\mathcal T}$ is below the tolerance, or
+//! when the next mesh would pass the budget of unknowns ([`Stop`] says which).
+//!
+//! Nothing here knows where a scene's singular points are: the refinement goes where
+//! the indicators are large.
+
+use crate::bisection::{Forest, Leaves};
+use crate::certificate::ContactState;
+use crate::error::InputError;
+use crate::mesh::{Dofs, Mesh};
+use crate::scenario::Scenario;
+use crate::scheme::RunError;
+use crate::simulation::{Observer, RunSettings, Simulation, Solution};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// How a triangle's indicators of the $N$ steps become one number to mark by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Aggregate {
+    /// $\max_n \eta^2_{T,n}$: a triangle is refined if it is bad at any time.
+    #[default]
+    Max,
+    /// $\sum_n k\,\eta^2_{T,n} / T$, the time mean: a triangle bad over a short time
+    /// (the initial layer) weighs little.
+    Sum,
+}
+
+impl Aggregate {
+    /// The name the command line and the tables use: `max` or `sum`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Aggregate::Max => "max",
+            Aggregate::Sum => "sum",
+        }
+    }
+}
+
+/// The choices of an adaptive run; [`AdaptSettings::default`] gives each default.
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq)]
+pub struct AdaptSettings {
+    /// Stop once the estimated relative error is below this; in $[10^{-6}, 1]$
+    /// (default 0.05).
+    pub tol: f64,
+    /// Dörfler's bulk parameter $\theta$ in $(0, 1]$: the marked triangles carry at
+    /// least this share of $\sum_T\bar\eta^2_T$ (default 0.5).
+    pub theta: f64,
+    /// The budget of unknowns: a mesh with more is not solved (default 20 000; at least
+    /// the initial mesh's).
+    pub max_dofs: usize,
+    /// How the steps' indicators are gathered.
+    pub aggregate: Aggregate,
+}
+
+impl Default for AdaptSettings {
+    fn default() -> Self {
+        AdaptSettings {
+            tol: 0.05,
+            theta: 0.5,
+            max_dofs: 20_000,
+            aggregate: Aggregate::Max,
+        }
+    }
+}
+
+impl AdaptSettings {
+    /// The tolerance ([`AdaptSettings::tol`]).
+    pub fn with_tol(mut self, tol: f64) -> Self {
+        self.tol = tol;
+        self
+    }
+    /// Dörfler's parameter ([`AdaptSettings::theta`]).
+    pub fn with_theta(mut self, theta: f64) -> Self {
+        self.theta = theta;
+        self
+    }
+    /// The budget of unknowns ([`AdaptSettings::max_dofs`]).
+    pub fn with_max_dofs(mut self, max_dofs: usize) -> Self {
+        self.max_dofs = max_dofs;
+        self
+    }
+    /// The aggregation over time ([`AdaptSettings::aggregate`]).
+    pub fn with_aggregate(mut self, aggregate: Aggregate) -> Self {
+        self.aggregate = aggregate;
+        self
+    }
+
+    /// Refuses a value out of range, naming the field.
+    pub fn check(&self) -> Result<(), InputError> {
+        if !(1e-6..=1.0).contains(&self.tol) {
+            return Err(InputError::field(
+                "tol",
+                self.tol,
+                "an estimated relative error in [1e-6, 1] (0.05 stops at about 5 %)",
+            ));
+        }
+        if !(self.theta > 0.0 && self.theta <= 1.0) {
+            return Err(InputError::field(
+                "theta",
+                self.theta,
+                "a share in (0, 1]: Dörfler's bulk parameter, the part of the squared \
+                 estimate the marked triangles carry (0.5 by default; 1 marks every triangle)",
+            ));
+        }
+        if self.max_dofs < 2 {
+            return Err(InputError::field(
+                "max_dofs",
+                self.max_dofs,
+                "a budget of at least the initial mesh's unknowns",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Why an adaptive run stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stop {
+    /// The estimated relative error went below the tolerance.
+    Tolerance,
+    /// The next mesh would have had more unknowns than the budget.
+    DofBudget,
+}
+
+impl Stop {
+    /// One phrase for the command line and the tables.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Stop::Tolerance => "the estimated relative error is below the tolerance",
+            Stop::DofBudget => "the next mesh would pass the budget of unknowns",
+        }
+    }
+}
+
+/// One solved level of an adaptive run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AdaptLevel {
+    /// 0 for the initial mesh.
+    pub level: usize,
+    /// Unknowns (free dofs).
+    pub dofs: usize,
+    /// Triangles.
+    pub triangles: usize,
+    /// Time steps $N$.
+    pub steps: usize,
+    /// The estimated relative error $\varepsilon_{\mathcal T}$ (the estimate over the
+    /// stress's $L^2$ norm).
+    pub estimate: f64,
+    /// $(\sum_T \bar\eta^2_T)^{1/2}$, absolute.
+    pub eta: f64,
+    /// Triangles Dörfler's criterion marked for the next level: 0 where the tolerance
+    /// is met; at a level the budget ends, those whose refinement would have passed it.
+    pub marked: usize,
+    /// Wall seconds of the level: solve, indicators, marking.
+    pub wall_s: f64,
+}
+
+/// What the caller is told while an adaptive run goes; every method has a default.
+pub trait AdaptObserver {
+    /// Level `level` starts solving on `mesh` with `steps` steps.
+    fn level_started(&mut self, _level: usize, _mesh: &Arc<Mesh>, _steps: usize) {}
+    /// Step `n` at time `t` of the current level is done: its field (free dofs) and
+    /// the state of every contact node.
+    fn step(&mut self, _n: usize, _t: f64, _u: &[f64], _contact: &[ContactState]) {}
+    /// The level's run starts again from $t = 0$ (a fallback solver, see
+    /// [`Simulation::solve`]): forget its steps told so far.
+    fn restart(&mut self) {}
+    /// Whether [`Solved::fields`] should hold every step's field.
+    fn keep_fields(&self) -> bool {
+        false
+    }
+    /// A level is solved (before it is marked).
+    fn level_done(&mut self, _solved: &Solved) {}
+}
+
+impl AdaptObserver for () {}
+
+/// A level as it is solved, for the observer.
+pub struct Solved<'a> {
+    /// The level's figures.
+    pub level: &'a AdaptLevel,
+    /// The forest of every level.
+    pub forest: &'a Forest,
+    /// The level's triangles in the forest.
+    pub leaves: &'a Leaves,
+    /// The level's mesh.
+    pub mesh: &'a Arc<Mesh>,
+    /// The solution at $T$.
+    pub solution: &'a Solution,
+    /// $\bar\eta^2_T$ per triangle, in the mesh's order.
+    pub eta_sq: &'a [f64],
+    /// The field of each step $0, \dots, N$ (free dofs; step 0 is zero), if
+    /// [`AdaptObserver::keep_fields`]; else empty.
+    pub fields: &'a [Vec<f64>],
+}
+
+/// The result of an adaptive run.
+pub struct Adaptation {
+    /// Each solved level.
+    pub levels: Vec<AdaptLevel>,
+    /// Why it stopped.
+    pub stop: Stop,
+    /// The forest of every level's triangles.
+    pub forest: Forest,
+    /// The last level's triangles.
+    pub leaves: Leaves,
+    /// The last level's solution (its mesh is `solution.run.mesh`).
+    pub solution: Solution,
+    /// The last level's $\bar\eta^2_T$ per triangle, in the mesh's order.
+    pub eta_sq: Vec<f64>,
+}
+
+// ANCHOR: dorfler
+/// The smallest set of indices whose `eta_sq` sum to at least `theta` of the total
+/// (Dörfler's bulk criterion), largest first; none if the total is zero.
+pub fn dorfler(eta_sq: &[f64], theta: f64) -> Vec<usize> {
+    let total: f64 = eta_sq.iter().sum();
+    if total <= 0.0 || total.is_nan() {
+        return vec![];
+    }
+    let mut order: Vec<usize> = (0..eta_sq.len()).collect();
+    order.sort_by(|&a, &b| eta_sq[b].total_cmp(&eta_sq[a]).then(a.cmp(&b)));
+    let goal = theta * total;
+    let mut sum = 0.0;
+    let mut out = vec![];
+    for i in order {
+        if sum >= goal {
+            break;
+        }
+        sum += eta_sq[i];
+        out.push(i);
+    }
+    out
+}
+// ANCHOR_END: dorfler
+
+/// The forest of an adaptive run on a rectangle scene: the structured mesh of the
+/// first of 4, 8, 16, … (then any multiple of 4) segments whose nodes hold every end
+/// of the scene's supports, tractions and $\Gamma_3$. A mesh scene and a pattern other
+/// than the paper's diagonal are refused by name.
+pub fn initial_forest(scn: &Scenario) -> Result<(Forest, Leaves, usize), InputError> {
+    if let Some(body) = scn.body() {
+        return Err(InputError::field(
+            "geometry.mesh",
+            &body.file,
+            "a rectangle scene for an adaptive run, for now: the estimator does not read a \
+             mesh scene's boundary parts yet, and a refined mesh would need the file's \
+             groups carried over to it (the file's triangulation itself bisects: \
+             evhi::bisection::Forest::from_triangles)",
+        ));
+    }
+    if scn.pattern != crate::mesh::Pattern::Diagonal {
+        return Err(InputError::field(
+            "geometry.pattern",
+            scn.pattern.name(),
+            "\"diagonal\" for an adaptive run (bisection starts from the paper's diagonal cut)",
+        ));
+    }
+    let mut first = None;
+    for n0 in crate::mesh::grid_candidates(crate::mesh::MAX_N) {
+        if scn.check_traction_ends(n0).is_err() {
+            continue;
+        }
+        let Ok((forest, root)) = Forest::new(n0, &scn.geometry) else {
+            continue;
+        };
+        match scn.check_ends_on(&forest.mesh(&root, n0)) {
+            Ok(()) => return Ok((forest, root, n0)),
+            Err(e) => {
+                first.get_or_insert(e);
+            }
+        }
+    }
+    Err(first.unwrap_or_else(|| {
+        InputError::field(
+            "geometry",
+            &scn.name,
+            "a rectangle whose supports, tractions and contact segment end on the nodes of \
+             a structured grid of at most 4096 segments",
+        )
+    }))
+}
+
+/// Adapts the mesh of `scn` from its initial forest ([`initial_forest`]); `run` holds
+/// the time steps, the solver and the loop (its `n` and `mesh` are not used). Each
+/// level's mesh is labelled by the uniform level whose cells bound all its triangles
+/// (`n` in the run's summary).
+///
+/// ```
+/// use evhi::adapt::{AdaptSettings, Stop, adapt};
+/// use evhi::prelude::*;
+/// let settings = AdaptSettings::default().with_tol(1e-3).with_max_dofs(300);
+/// let a = adapt(&Scenario::load("figure")?, &RunSettings::default().with_steps(2), &settings, &mut ())?;
+/// // The budget ends it here, each level finer than the one before.
+/// assert_eq!(a.stop, Stop::DofBudget);
+/// assert!(a.levels.windows(2).all(|w| w[1].dofs > w[0].dofs && w[1].estimate < w[0].estimate));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn adapt(
+    scn: &Scenario,
+    run: &RunSettings,
+    settings: &AdaptSettings,
+    observer: &mut dyn AdaptObserver,
+) -> Result<Adaptation, RunError> {
+    settings.check()?;
+    let (forest, root, n0) = initial_forest(scn)?;
+    adapt_from(
+        forest,
+        root,
+        scn,
+        &run.clone().with_n(n0),
+        settings,
+        observer,
+    )
+}
+
+/// [`adapt`] from the mesh `root` of `forest` (a study builds its other families in the
+/// same forest, so that every mesh embeds in a common refinement), `run.n` the
+/// segments of the forest's grid.
+pub fn adapt_from(
+    mut forest: Forest,
+    root: Leaves,
+    scn: &Scenario,
+    run: &RunSettings,
+    settings: &AdaptSettings,
+    observer: &mut dyn AdaptObserver,
+) -> Result<Adaptation, RunError> {
+    settings.check()?;
+    let mut leaves = root;
+    let mut levels = vec![];
+    // A level's label n: the uniform level of the initial grid (`run.n` segments)
+    // whose cells bound every triangle, two bisections halving a cell.
+    let label = |forest: &Forest, leaves: &Leaves| {
+        let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
+        run.n << (shallowest / 2).min(20)
+    };
+    let mut mesh = Arc::new(forest.mesh(&leaves, label(&forest, &leaves)));
+    let mut dofs = Dofs::new(&mesh, true).count;
+    if dofs > settings.max_dofs {
+        return Err(InputError::field(
+            "max_dofs",
+            settings.max_dofs,
+            format!("at least the initial mesh's {dofs} unknowns"),
+        )
+        .into());
+    }
+    loop {
+        let clock = Instant::now();
+        let level = levels.len();
+        let sim = Simulation::on_mesh(scn.clone(), run.clone().with_n(mesh.n), mesh.clone())?;
+        observer.level_started(level, &mesh, sim.steps());
+        let est = solve_estimating(&sim, settings.aggregate, observer)?;
+        let total: f64 = est.eta_sq.iter().sum();
+        if est.norm_sq.is_nan() || est.norm_sq <= 0.0 {
+            return Err(InputError::field(
+                "scenario",
+                &scn.name,
+                "a scene whose solution is not zero at every step: the estimated error is \
+                 relative to the field's energy, which is 0 here (no loads)",
+            )
+            .into());
+        }
+        let estimate = (total / est.norm_sq).sqrt();
+        if !estimate.is_finite() {
+            return Err(InputError::field(
+                "scenario",
+                scn.name(),
+                format!(
+                    "a run whose indicators are finite: level {level} ({dofs} unknowns) \
+                     estimated {estimate}"
+                ),
+            )
+            .into());
+        }
+        let done = estimate < settings.tol;
+        let marked = if done {
+            vec![]
+        } else {
+            dorfler(&est.eta_sq, settings.theta)
+        };
+        let mut row = AdaptLevel {
+            level,
+            dofs,
+            triangles: mesh.triangles.len(),
+            steps: sim.steps(),
+            estimate,
+            eta: total.sqrt(),
+            marked: marked.len(),
+            wall_s: 0.0,
+        };
+        // The mesh's triangles are the leaves in order ([`Forest::mesh`]).
+        let mut mark = vec![false; forest.triangle_count()];
+        for &i in &marked {
+            mark[leaves.0[i]] = true;
+        }
+        let next = (!done).then(|| forest.refine(&leaves, |_, t| mark.get(t) == Some(&true)));
+        row.wall_s = clock.elapsed().as_secs_f64();
+        observer.level_done(&Solved {
+            level: &row,
+            forest: &forest,
+            leaves: &leaves,
+            mesh: &mesh,
+            solution: &est.solution,
+            eta_sq: &est.eta_sq,
+            fields: &est.fields,
+        });
+        levels.push(row);
+        let stop = match next {
+            None => Some(Stop::Tolerance),
+            Some(next) => {
+                let next_mesh = Arc::new(forest.mesh(&next, label(&forest, &next)));
+                let next_dofs = Dofs::new(&next_mesh, true).count;
+                if next_dofs > settings.max_dofs {
+                    Some(Stop::DofBudget)
+                } else {
+                    (leaves, mesh, dofs) = (next, next_mesh, next_dofs);
+                    None
+                }
+            }
+        };
+        if let Some(stop) = stop {
+            return Ok(Adaptation {
+                levels,
+                stop,
+                forest,
+                leaves,
+                solution: est.solution,
+                eta_sq: est.eta_sq,
+            });
+        }
+    }
+}
+
+/// A run with its indicators gathered over time.
+pub struct Estimated {
+    /// The run.
+    pub solution: Solution,
+    /// $\bar\eta^2_T$ per triangle.
+    pub eta_sq: Vec<f64>,
+    /// $\bar\sigma^2$, the same aggregate of $\|\sigma^n\|^2_{L^2(\Omega)}$.
+    pub norm_sq: f64,
+    /// Every step's field (free dofs, step 0 first) if the observer keeps them.
+    pub fields: Vec<Vec<f64>>,
+}
+
+/// Solves `sim` with every step's field formed, and gathers each step's indicators
+/// ([`crate::estimator::estimate_scene`]) by `aggregate`.
+pub fn solve_estimating(
+    sim: &Simulation,
+    aggregate: Aggregate,
+    outer: &mut dyn AdaptObserver,
+) -> Result<Estimated, RunError> {
+    let mesh = sim.mesh().clone();
+    let scn = sim.scenario();
+    let steps = sim.steps();
+    let keep = outer.keep_fields();
+    let mut obs = Gather {
+        scn,
+        mesh: &mesh,
+        dofs: Dofs::new(&mesh, true),
+        k: scn.t_end / steps as f64,
+        steps,
+        aggregate,
+        keep,
+        prev: vec![],
+        eta_sq: vec![],
+        norm_sq: 0.0,
+        fields: vec![],
+        outer,
+    };
+    obs.restart();
+    let solution = sim.solve(&mut obs)?;
+    let (eta_sq, fields, norm_sq) = (obs.eta_sq, obs.fields, obs.norm_sq);
+    Ok(Estimated {
+        solution,
+        eta_sq,
+        norm_sq,
+        fields,
+    })
+}
+
+/// The observer that forms each step's indicators and folds them in.
+struct Gather<'a> {
+    scn: &'a Scenario,
+    mesh: &'a Mesh,
+    dofs: Dofs,
+    k: f64,
+    steps: usize,
+    aggregate: Aggregate,
+    keep: bool,
+    /// $u_{n-1}$ by node.
+    prev: Vec<[f64; 2]>,
+    eta_sq: Vec<f64>,
+    norm_sq: f64,
+    fields: Vec<Vec<f64>>,
+    outer: &'a mut dyn AdaptObserver,
+}
+
+/// $\|\sigma\|^2_{L^2(\Omega)}$ of the step's stress
+/// $\mathcal C\varepsilon((u - u_{prev})/k) + \mathcal G\varepsilon(u)$, constant on each
+/// triangle (nodal displacements).
+pub fn stress_norm_sq(
+    scn: &Scenario,
+    mesh: &Mesh,
+    u: &[[f64; 2]],
+    u_prev: &[[f64; 2]],
+    k: f64,
+) -> f64 {
+    let (g, c) = (scn.elasticity(), scn.viscosity());
+    let apply = |t: &crate::material::Isotropic, e: [f64; 3]| {
+        let tr = e[0] + e[1];
+        [t.a * tr + t.b * e[0], t.a * tr + t.b * e[1], t.b * e[2]]
+    };
+    mesh.triangles
+        .iter()
+        .map(|tri| {
+            let (area, bm) = crate::element::strain_matrix(tri.map(|v| mesh.nodes[v]));
+            let strain = |f: &dyn Fn(usize) -> [f64; 2]| {
+                let mut e = [0.0; 3];
+                for (a, &v) in tri.iter().enumerate() {
+                    let x = f(v);
+                    for (r, er) in e.iter_mut().enumerate() {
+                        *er += bm[(r, 2 * a)] * x[0] + bm[(r, 2 * a + 1)] * x[1];
+                    }
+                }
+                e[2] *= 0.5; // the third row is 2 eps_12
+                e
+            };
+            let eu = strain(&|v| u[v]);
+            let ed = strain(&|v| [(u[v][0] - u_prev[v][0]) / k, (u[v][1] - u_prev[v][1]) / k]);
+            let (sg, sc) = (apply(&g, eu), apply(&c, ed));
+            let s = [sg[0] + sc[0], sg[1] + sc[1], sg[2] + sc[2]];
+            area * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2])
+        })
+        .sum()
+}
+
+impl Observer for Gather<'_> {
+    fn wants_field(&self, _step: usize) -> bool {
+        true
+    }
+
+    fn step(&mut self, n: usize, t: f64, u: Option<&[f64]>, contact: &[ContactState]) {
+        let Some(u) = u else { return };
+        if n == 0 {
+            return;
+        }
+        let un = self.dofs.expand(u);
+        let est = crate::estimator::estimate_scene(
+            self.scn, self.mesh, &un, &self.prev, self.k, t, contact,
+        );
+        let sigma_sq = stress_norm_sq(self.scn, self.mesh, &un, &self.prev, self.k);
+        match self.aggregate {
+            Aggregate::Max => {
+                (self.eta_sq.iter_mut())
+                    .zip(&est.eta_sq)
+                    .for_each(|(a, &e)| *a = a.max(e));
+                self.norm_sq = self.norm_sq.max(sigma_sq);
+            }
+            Aggregate::Sum => {
+                let w = 1.0 / self.steps as f64;
+                (self.eta_sq.iter_mut())
+                    .zip(&est.eta_sq)
+                    .for_each(|(a, &e)| *a += w * e);
+                self.norm_sq += w * sigma_sq;
+            }
+        }
+        self.prev = un;
+        if self.keep {
+            self.fields.push(u.to_vec());
+        }
+        self.outer.step(n, t, u, contact);
+    }
+
+    fn restart(&mut self) {
+        self.prev = vec![[0.0; 2]; self.mesh.nodes.len()];
+        self.eta_sq = vec![0.0; self.mesh.triangles.len()];
+        self.norm_sq = 0.0;
+        self.fields.clear();
+        if self.keep {
+            self.fields.push(vec![0.0; self.dofs.count]);
+        }
+        self.outer.restart();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dorfler_takes_the_fewest_largest() {
+        // Total 10: half is 5, reached by 4 + 1 (the two largest are 4 and 3: 7 >= 5).
+        let eta = [1.0, 4.0, 0.5, 3.0, 1.5];
+        assert_eq!(dorfler(&eta, 0.5), vec![1, 3]);
+        // 0.4 of 10 is 4: the largest alone.
+        assert_eq!(dorfler(&eta, 0.4), vec![1]);
+        assert_eq!(dorfler(&eta, 1.0).len(), 5);
+        assert!(dorfler(&[0.0, 0.0], 0.5).is_empty());
+    }
+
+    #[test]
+    fn bad_settings_are_refused_by_name() {
+        let bad = [
+            (AdaptSettings::default().with_tol(0.0), "`tol`"),
+            (AdaptSettings::default().with_tol(f64::NAN), "`tol`"),
+            (AdaptSettings::default().with_theta(0.0), "`theta`"),
+            (AdaptSettings::default().with_theta(1.5), "`theta`"),
+            (AdaptSettings::default().with_max_dofs(0), "`max_dofs`"),
+        ];
+        for (s, field) in bad {
+            let e = s.check().expect_err("refused").to_string();
+            assert!(e.contains(field), "{e}");
+        }
+        AdaptSettings::default().check().expect("the defaults pass");
+    }
+}

@@ -1,0 +1,238 @@
+//! Adaptive meshes (`src/adapt.rs`, `evhi solve --adapt`): the loop's levels and
+//! stop rules, the common refinement of two bisection meshes, and the command on every
+//! shipped rectangle scene.
+
+mod common;
+use common::*;
+use evhi::adapt::{AdaptSettings, Aggregate, Stop, adapt, initial_forest};
+use evhi::bisection::Forest;
+use evhi::geometry::Geometry;
+use evhi::prelude::*;
+
+/// On `figure` with a small budget: the levels grow, each within the budget, the
+/// estimate falls from the first level to the last, the next mesh would have passed
+/// the budget, and the last level's indicators are those of its mesh.
+#[test]
+fn levels_grow_within_the_budget_and_the_estimate_falls() {
+    let scn = Scenario::load("figure").unwrap();
+    let run = RunSettings::default().with_steps(4);
+    let settings = AdaptSettings::default().with_tol(1e-6).with_max_dofs(600);
+    let a = adapt(&scn, &run, &settings, &mut ()).unwrap();
+    assert_eq!(a.stop, Stop::DofBudget);
+    assert!(a.levels.len() >= 5, "{:?}", a.levels);
+    for w in a.levels.windows(2) {
+        assert!(w[1].dofs > w[0].dofs && w[1].dofs <= 600, "{:?}", a.levels);
+        assert!(w[0].marked > 0);
+    }
+    let (first, last) = (&a.levels[0], a.levels.last().unwrap());
+    assert!(last.estimate < 0.6 * first.estimate, "{first:?} {last:?}");
+    // The budget ended it: the last level marked a mesh that would have passed it.
+    assert!(last.marked > 0);
+    assert_eq!(a.eta_sq.len(), a.solution.run.mesh.triangles.len());
+    assert_eq!(last.triangles, a.leaves.0.len());
+    assert!(a.solution.max_certificate() <= 1e-10);
+}
+
+/// A tolerance met ends the run by that rule, at the first level below it; and
+/// the estimate of the first level is the same whatever the tolerance.
+#[test]
+fn a_met_tolerance_ends_the_run_by_that_rule() {
+    let scn = Scenario::load("literal").unwrap();
+    let run = RunSettings::default().with_steps(2);
+    let a = adapt(&scn, &run, &AdaptSettings::default().with_tol(1.0), &mut ()).unwrap();
+    let b = adapt(
+        &scn,
+        &run,
+        &AdaptSettings::default().with_tol(1e-6).with_max_dofs(40),
+        &mut (),
+    )
+    .unwrap();
+    // The first level's estimate of literal is above 1 (the 4-segment grid is coarse);
+    // with tol = 1 the run goes on until it is below.
+    let last = a.levels.last().unwrap();
+    assert_eq!(a.stop, Stop::Tolerance);
+    assert!(last.estimate < 1.0 && last.marked == 0, "{:?}", a.levels);
+    assert_eq!(a.levels[0].estimate, b.levels[0].estimate);
+}
+
+/// The two aggregates see the same steps: on one step they agree.
+#[test]
+fn one_step_max_and_mean_agree() {
+    let scn = Scenario::load("figure").unwrap();
+    let run = RunSettings::default().with_steps(1);
+    let s = AdaptSettings::default().with_tol(1e-6).with_max_dofs(30);
+    let max = adapt(&scn, &run, &s, &mut ()).unwrap();
+    let sum = adapt(&scn, &run, &s.with_aggregate(Aggregate::Sum), &mut ()).unwrap();
+    assert_eq!(max.levels[0].estimate, sum.levels[0].estimate);
+}
+
+/// Bad settings are refused by field, before any work; a budget below the first mesh
+/// names that mesh's unknowns.
+#[test]
+fn bad_settings_are_refused() {
+    let scn = Scenario::load("figure").unwrap();
+    let run = RunSettings::default().with_steps(2);
+    for (s, needle) in [
+        (AdaptSettings::default().with_tol(2.0), "`tol`"),
+        (AdaptSettings::default().with_theta(-0.1), "`theta`"),
+        (AdaptSettings::default().with_max_dofs(10), "22 unknowns"),
+    ] {
+        let e = adapt(&scn, &run, &s, &mut ())
+            .err()
+            .expect("refused")
+            .to_string();
+        assert!(e.contains(needle), "{e}");
+    }
+}
+
+/// The forest starts from the coarsest grid whose nodes hold the scene's ends: 4
+/// segments for the paper's scene.
+#[test]
+fn the_initial_grid_is_the_coarsest_that_resolves_the_scene() {
+    let (_, root, n0) = initial_forest(&Scenario::load("figure").unwrap()).unwrap();
+    assert_eq!((n0, root.0.len()), (4, 16));
+}
+
+/// The common refinement of two meshes of one forest refines both: every triangle of
+/// each embeds exactly (the interpolation of a P1 field is exact), and it is no finer
+/// than the two need where they agree.
+#[test]
+fn refine_to_contain_refines_both() {
+    let geo = Geometry::paper();
+    let (mut forest, root) = Forest::new(4, &geo).unwrap();
+    // One mesh refined near the left end, another near the right.
+    let near = |x: f64| {
+        move |f: &Forest, t: usize| {
+            let c = evhi::bisection::centroid(f, t);
+            (c[0] - x).hypot(c[1] - 0.5) < 0.3 && f.diameter(t) > 0.05
+        }
+    };
+    let a = forest.refine(&root, near(0.0));
+    let b = forest.refine(&root, near(2.0));
+    let both = forest.refine_to_contain(&a, &b);
+    let mesh = forest.mesh(&both, 4);
+    // An affine field on each mesh is reproduced exactly on the common one.
+    for leaves in [&a, &b] {
+        let coarse = forest.mesh(leaves, 4);
+        let f = |p: [f64; 2]| [0.3 * p[0] - p[1], 2.0 * p[1] + 0.1];
+        let u: Vec<[f64; 2]> = coarse.nodes.iter().map(|&p| f(p)).collect();
+        let v = forest.interpolation(leaves, &mesh).apply(&u);
+        for (p, w) in mesh.nodes.iter().zip(&v) {
+            let e = f(*p);
+            assert!((e[0] - w[0]).abs() < 1e-12 && (e[1] - w[1]).abs() < 1e-12);
+        }
+    }
+    assert!(both.0.len() < a.0.len() + b.0.len());
+    // A mesh contains itself: nothing to refine.
+    assert_eq!(forest.refine_to_contain(&a, &a), a);
+}
+
+/// `solve --adapt` on every shipped rectangle scene (data/scenarios and its examples)
+/// with a small budget: a line per
+/// level, the stop rule named, adapt.csv with its levels, and the last level's run
+/// directory with `eta` in solution.vtu.
+#[test]
+fn solve_adapt_runs_every_shipped_scene() {
+    let dir = scratch("adapt-scenes");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenarios");
+    // The scenes and the examples; those read from a mesh file are refused (below).
+    let mut scenes: Vec<_> = [root.clone(), root.join("examples")]
+        .iter()
+        .flat_map(|d| std::fs::read_dir(d).unwrap())
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| {
+            !read(p)
+                .lines()
+                .any(|l| l.trim_start().starts_with("mesh ="))
+        })
+        .collect();
+    scenes.sort();
+    assert!(scenes.len() >= 8, "{scenes:?}");
+    for scn in &scenes {
+        let name = scn.file_stem().unwrap().to_string_lossy().to_string();
+        let out = dir.join(&name);
+        let o = evhi_with("solve --adapt 0.001 --max-dofs 400 --steps 4 --scenario")
+            .arg(scn)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = ok(&o);
+        assert_contains(&err, &["level  0:", "level  1:", "stopped after", "budget"]);
+        let csv = Csv::read(out.join("adapt.csv"));
+        assert!(csv.len() >= 2, "{name}: {} levels", csv.len());
+        let dofs = csv.column_f64("dofs");
+        assert!(dofs.windows(2).all(|w| w[1] > w[0]) && dofs.iter().all(|&d| d <= 400.0));
+        let vtu = read(out.join("solution.vtu"));
+        assert!(
+            vtu.contains("Name=\"eta\""),
+            "{name}: no eta in solution.vtu"
+        );
+        let summary = Csv::read(out.join("summary.csv"));
+        assert!(summary.get(0, "mesh").starts_with("adaptive"), "{name}");
+        assert_eq!(
+            summary.f64(0, "dofs"),
+            *dofs.last().unwrap(),
+            "{name}: the run directory is the last level's"
+        );
+    }
+}
+
+/// A tolerance met is said as such.
+#[test]
+fn solve_adapt_says_the_tolerance_stopped_it() {
+    let dir = scratch("adapt-tol");
+    let o = evhi_with("solve --scenario figure --adapt 0.9 --steps 2 --out")
+        .arg(dir.join("run"))
+        .output()
+        .unwrap();
+    let err = ok(&o);
+    assert_contains(
+        &err,
+        &["the estimated relative error is below the tolerance"],
+    );
+}
+
+/// Bad values and options that mean nothing with --adapt are refused by their flag.
+#[test]
+fn solve_adapt_refuses_bad_input() {
+    let dir = scratch("adapt-bad");
+    let out = dir.join("run");
+    for (args, needles) in [
+        ("--adapt 0", &["--adapt", "[1e-6, 1]"][..]),
+        ("--adapt 0.1 --theta 1.5", &["--theta", "(0, 1]"]),
+        ("--adapt 0.1 --max-dofs 5", &["--max-dofs", "22 unknowns"]),
+        ("--adapt 0.1 --n 16", &["--n", "not with --adapt"]),
+        ("--adapt 0.1 --mesh graded", &["--mesh", "not with --adapt"]),
+        (
+            "--adapt 0.1 --estimate",
+            &["--estimate", "not with --adapt"],
+        ),
+        ("--theta 0.5", &["--adapt"]),
+    ] {
+        let o = evhi_with(&format!("solve --scenario figure --steps 2 {args} --out"))
+            .arg(&out)
+            .output()
+            .unwrap();
+        refused(&o, needles);
+    }
+    // A mesh scene is refused with what it needs.
+    let block = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenarios/examples/holed_block.toml");
+    let o = evhi_with("solve --adapt 0.1 --steps 2 --scenario")
+        .arg(&block)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    refused(
+        &o,
+        &[
+            "geometry.mesh",
+            "holed_block.msh",
+            "adaptive run, for now",
+            "boundary parts",
+        ],
+    );
+}

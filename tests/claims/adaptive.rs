@@ -1,0 +1,194 @@
+//! The claims of the chapter "Meshes that adapt themselves" (adaptive.md); helpers
+//! from tests/claims.rs.
+
+use super::{after, column, fix, max, min, rows};
+
+const CONV: &str = "adaptive_convergence.csv";
+const SUMMARY: &str = "adaptive_summary.csv";
+const MESHES: &str = "adaptive_meshes.csv";
+
+/// The provenance lines of `data/<file>`.
+fn header(file: &str) -> String {
+    let text = std::fs::read_to_string(super::root().join("data").join(file)).unwrap();
+    text.lines()
+        .filter(|l| l.starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// (dofs, err_T) of a scene's family, level by level.
+fn family(scn: &str, fam: &str) -> Vec<(f64, f64)> {
+    let d = column(CONV, &[("scenario", scn), ("family", fam)], "dofs");
+    let e = column(CONV, &[("scenario", scn), ("family", fam)], "err_T");
+    d.into_iter().zip(e).collect()
+}
+
+/// The error of `pts` at `dofs` by log-log interpolation between the two levels
+/// around it.
+fn at(pts: &[(f64, f64)], dofs: f64) -> f64 {
+    let w = pts
+        .windows(2)
+        .find(|w| w[0].0 <= dofs && dofs <= w[1].0)
+        .unwrap_or_else(|| panic!("{dofs} outside {pts:?}"));
+    let s = (dofs / w[0].0).ln() / (w[1].0 / w[0].0).ln();
+    (w[0].1.ln() + s * (w[1].1 / w[0].1).ln()).exp()
+}
+
+/// The summary's value of `col` for a scene and family.
+fn summary(scn: &str, fam: &str, col: &str) -> f64 {
+    let v = column(SUMMARY, &[("scenario", scn), ("family", fam)], col);
+    assert_eq!(v.len(), 1, "{scn} {fam}");
+    v[0]
+}
+
+#[test]
+fn adaptive_reference() {
+    let h = header(CONV);
+    assert_eq!(after(&h, "reference: graded level 256 ("), 358974.0);
+    assert_eq!(after(&h, "last mesh ("), 358982.0);
+    assert!(
+        h.contains("N = 32 steps on every level and the reference"),
+        "{h}"
+    );
+    // 16 times the unknowns of the finest adaptive level at least.
+    let finest = max(&column(CONV, &[("family", "adaptive")], "dofs"));
+    assert!(358982.0 / finest >= 16.0, "{finest}");
+}
+
+#[test]
+fn adaptive_orders() {
+    for (scn, stated) in [("figure", "1.08"), ("literal", "1.13")] {
+        let o = summary(scn, "adaptive", "order_last");
+        assert_eq!(fix(o, 2), stated, "{scn}");
+        assert!(o >= 0.95);
+        assert_eq!(summary(scn, "adaptive", "levels"), 25.0);
+    }
+}
+
+/// At the unknowns of each graded level from n = 4 to 32, the adaptive error
+/// (interpolated between its levels) over the graded one.
+#[test]
+fn adaptive_against_graded() {
+    for (scn, lo, hi) in [("figure", "0.94", "0.97"), ("literal", "0.84", "0.88")] {
+        let (a, g) = (family(scn, "adaptive"), family(scn, "graded"));
+        let ratios: Vec<f64> = g[..g.len() - 1]
+            .iter()
+            .map(|&(d, e)| at(&a, d) / e)
+            .collect();
+        assert_eq!(ratios.len(), 4);
+        assert_eq!(
+            [fix(min(&ratios), 2), fix(max(&ratios), 2)],
+            [lo, hi],
+            "{scn}"
+        );
+        assert!(max(&ratios) <= 1.2);
+        // The finest graded level lies past the last adaptive one, which has fewer
+        // unknowns and a smaller error.
+        let (la, lg) = (a[a.len() - 1], g[g.len() - 1]);
+        assert!(la.0 < lg.0 && la.1 < lg.1, "{la:?} {lg:?}");
+    }
+}
+
+#[test]
+fn adaptive_against_uniform() {
+    for (scn, stated) in [("figure", "0.32"), ("literal", "0.33")] {
+        let (a, u) = (family(scn, "adaptive"), family(scn, "uniform"));
+        let (d, e) = u[u.len() - 1];
+        assert_eq!(d, 16638.0);
+        assert_eq!(fix(at(&a, d) / e, 2), stated, "{scn}");
+    }
+}
+
+#[test]
+fn adaptive_efficiency() {
+    let mut all = vec![];
+    for (scn, lo, hi) in [("figure", "2.2", "2.9"), ("literal", "2.1", "2.7")] {
+        let (a, b) = (
+            summary(scn, "adaptive", "efficiency_min"),
+            summary(scn, "adaptive", "efficiency_max"),
+        );
+        assert_eq!([fix(a, 1), fix(b, 1)], [lo, hi], "{scn}");
+        assert!(b / a < 1.4);
+        all.extend([a, b]);
+    }
+    assert!(min(&all) >= 1.0 && max(&all) <= 5.0);
+}
+
+/// The time mean against the maximum: their errors at equal unknowns (at the graded
+/// levels n = 4 ... 32, each interpolated) differ by at most 1.5 %.
+#[test]
+fn adaptive_time_mean() {
+    let mut worst: f64 = 0.0;
+    for scn in ["figure", "literal"] {
+        let (a, m, g) = (
+            family(scn, "adaptive"),
+            family(scn, "adaptive (time mean)"),
+            family(scn, "graded"),
+        );
+        for &(d, _) in &g[..g.len() - 1] {
+            worst = worst.max((at(&m, d) / at(&a, d) - 1.0).abs());
+        }
+    }
+    assert!(worst <= 0.015, "{worst}");
+    assert!(
+        worst > 0.005,
+        "{worst}: the sentence says they differ at all"
+    );
+}
+
+/// The wall time the adaptive family spends, summed over its levels up to the first
+/// whose error is below the graded family's finest, against the graded family's sum.
+#[test]
+fn adaptive_wall_time() {
+    let stated = [("figure", "3.8", "1.1"), ("literal", "2.4", "1.2")];
+    for (scn, adaptive, graded) in stated {
+        let target = family(scn, "graded").last().unwrap().1;
+        let e = column(CONV, &[("scenario", scn), ("family", "adaptive")], "err_T");
+        let w = column(CONV, &[("scenario", scn), ("family", "adaptive")], "wall_s");
+        let reach = e.iter().position(|&x| x <= target).expect("reached");
+        let spent: f64 = w[..=reach].iter().sum();
+        let g = summary(scn, "graded", "wall_total_s");
+        assert_eq!([fix(spent, 1), fix(g, 1)], [adaptive, graded], "{scn}");
+        assert!(spent > g, "{scn}: the goal is stated as not met");
+    }
+}
+
+/// In the drawn meshes, each of the four points (clamp ends and top corners) has
+/// triangles at least 32 times smaller in area than any triangle farther than 1/4
+/// from all of them.
+#[test]
+fn adaptive_meshes_find_the_corners() {
+    let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
+    for scn in ["figure", "literal"] {
+        let tris: Vec<([f64; 2], f64)> = rows(MESHES)
+            .iter()
+            .filter(|r| r["scenario"] == scn)
+            .map(|r| {
+                let v: Vec<f64> = ["x0", "y0", "x1", "y1", "x2", "y2"]
+                    .iter()
+                    .map(|k| super::num(r, k))
+                    .collect();
+                let area =
+                    0.5 * ((v[2] - v[0]) * (v[5] - v[1]) - (v[4] - v[0]) * (v[3] - v[1])).abs();
+                (
+                    [(v[0] + v[2] + v[4]) / 3.0, (v[1] + v[3] + v[5]) / 3.0],
+                    area,
+                )
+            })
+            .collect();
+        let dist = |c: [f64; 2], p: [f64; 2]| (c[0] - p[0]).hypot(c[1] - p[1]);
+        let far = tris
+            .iter()
+            .filter(|(c, _)| points.iter().all(|&p| dist(*c, p) > 0.25))
+            .map(|t| t.1)
+            .fold(f64::INFINITY, f64::min);
+        for p in points {
+            let near = tris
+                .iter()
+                .filter(|(c, _)| dist(*c, p) < 0.05)
+                .map(|t| t.1)
+                .fold(f64::INFINITY, f64::min);
+            assert!(far / near >= 32.0, "{scn} {p:?}: {near} against {far}");
+        }
+    }
+}
