@@ -253,7 +253,7 @@ impl NodeGraph {
 }
 
 /// Node sets of at most this many nodes are not cut further.
-const LEAF_NODES: usize = 64;
+const LEAF_NODES: usize = 16;
 
 /// Recursive coordinate bisection with vertex separators.
 struct Bisector<'a> {
