@@ -12,7 +12,16 @@
 //!   near-optimal order (George 1973), and the first cut, the line $x = 1$, splits
 //!   the factor into two independent subtrees that two threads solve at once.
 //!
-//! Both are written as `fwd[new] = old`.
+//! - [`Ordering::coordinate_dissection`]: nested dissection of any triangle mesh by
+//!   recursive coordinate bisection. A node set is split at the median of its
+//!   coordinate along the longer side of its bounding box into $A$ and $B$; the
+//!   nodes of one side with a triangle edge to the other side form the separator
+//!   $S$ (the smaller of the two such sets), and the order is $A \setminus S$,
+//!   $B \setminus S$ (each dissected the same way), then $S$. No matrix entry
+//!   couples $A \setminus S$ with $B \setminus S$, so the first cut again gives two
+//!   independent subtrees.
+//!
+//! All are written as `fwd[new] = old`.
 
 use crate::assembly::SpMat;
 use crate::error::FactorError;
@@ -113,6 +122,49 @@ impl Ordering {
     }
     // ANCHOR_END: nested_dissection
 
+    // ANCHOR: coordinate_dissection
+    /// Nested dissection of any `mesh` by recursive coordinate bisection of its
+    /// nodes, then `last` at the end.
+    pub fn coordinate_dissection(mesh: &Mesh, dofs: &Dofs, last: &[usize]) -> Ordering {
+        let graph = NodeGraph::new(mesh);
+        let is_last = mark(dofs.count, last);
+        let mut cut = Bisector {
+            mesh,
+            graph: &graph,
+            stamp: vec![0; mesh.nodes.len()],
+            side: vec![0; mesh.nodes.len()],
+            level: 0,
+        };
+        let mut nodes = Vec::with_capacity(mesh.nodes.len());
+        let all: Vec<usize> = (0..mesh.nodes.len()).collect();
+        // Top level by hand, to record where the halves end.
+        let (a, b, sep) = cut.split(all);
+        cut.order(a, &mut nodes);
+        let na = nodes.len();
+        cut.order(b, &mut nodes);
+        let nb = nodes.len();
+        nodes.extend_from_slice(&sep);
+        let mut fwd = Vec::with_capacity(dofs.count);
+        let mut ends = [0; 2];
+        for (k, &v) in nodes.iter().enumerate() {
+            fwd.extend((0..2).filter_map(|c| dofs.of(v, c).filter(|&d| !is_last[d])));
+            if k + 1 == na {
+                ends[0] = fwd.len();
+            }
+            if k + 1 == nb {
+                ends[1] = fwd.len();
+            }
+        }
+        fwd.extend_from_slice(last);
+        let halves = (ends[0] > 0 && ends[1] > ends[0]).then_some((ends[0], ends[1] - ends[0]));
+        Ordering {
+            fwd,
+            m: last.len(),
+            halves,
+        }
+    }
+    // ANCHOR_END: coordinate_dissection
+
     /// `inv[old] = new`.
     pub fn inverse(&self) -> Vec<usize> {
         let mut inv = vec![0usize; self.fwd.len()];
@@ -163,5 +215,128 @@ fn dissect(
         for i in i0..=i1 {
             emit(fwd, i, s);
         }
+    }
+}
+
+/// The nodes that share a triangle edge with each node (compressed rows).
+struct NodeGraph {
+    start: Vec<usize>,
+    adj: Vec<usize>,
+}
+
+impl NodeGraph {
+    fn new(mesh: &Mesh) -> NodeGraph {
+        let mut pairs: Vec<(usize, usize)> = Vec::with_capacity(6 * mesh.triangles.len());
+        for t in &mesh.triangles {
+            for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+                pairs.push((t[i], t[j]));
+                pairs.push((t[j], t[i]));
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut start = vec![0; mesh.nodes.len() + 1];
+        for &(v, _) in &pairs {
+            start[v + 1] += 1;
+        }
+        for v in 0..mesh.nodes.len() {
+            start[v + 1] += start[v];
+        }
+        NodeGraph {
+            start,
+            adj: pairs.into_iter().map(|(_, w)| w).collect(),
+        }
+    }
+    fn of(&self, v: usize) -> &[usize] {
+        &self.adj[self.start[v]..self.start[v + 1]]
+    }
+}
+
+/// Node sets of at most this many nodes are not cut further.
+const LEAF_NODES: usize = 16;
+
+/// Recursive coordinate bisection with vertex separators.
+struct Bisector<'a> {
+    mesh: &'a Mesh,
+    graph: &'a NodeGraph,
+    /// `side[v]` (1 = A, 2 = B) is valid for the cut numbered `stamp[v]`.
+    stamp: Vec<u32>,
+    side: Vec<u8>,
+    level: u32,
+}
+
+impl Bisector<'_> {
+    /// Splits `set` into (A without S, B without S, S).
+    fn split(&mut self, mut set: Vec<usize>) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+        let nodes = &self.mesh.nodes;
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for &v in &set {
+            for c in 0..2 {
+                lo[c] = lo[c].min(nodes[v][c]);
+                hi[c] = hi[c].max(nodes[v][c]);
+            }
+        }
+        let c = usize::from(hi[1] - lo[1] > hi[0] - lo[0]);
+        let key = |v: usize| (nodes[v][c], v);
+        let mid = set.len() / 2;
+        set.select_nth_unstable_by(mid, |&p, &q| key(p).partial_cmp(&key(q)).unwrap());
+        // Nodes on the median's coordinate all go to B, so that a grid line is cut
+        // whole; if that leaves A empty, the cut is at the middle position.
+        let pivot = nodes[set[mid]][c];
+        let (mut a, mut b): (Vec<usize>, Vec<usize>) =
+            set.iter().partition(|&&v| nodes[v][c] < pivot);
+        if a.is_empty() {
+            let (x, y) = set.split_at(mid);
+            (a, b) = (x.to_vec(), y.to_vec());
+        }
+        self.level += 1;
+        for (s, part) in [(1, &a), (2, &b)] {
+            for &v in part.iter() {
+                self.stamp[v] = self.level;
+                self.side[v] = s;
+            }
+        }
+        let touching = |me: &Vec<usize>, other: u8| -> Vec<bool> {
+            me.iter()
+                .map(|&v| {
+                    self.graph
+                        .of(v)
+                        .iter()
+                        .any(|&w| self.stamp[w] == self.level && self.side[w] == other)
+                })
+                .collect()
+        };
+        let (ta, tb) = (touching(&a, 2), touching(&b, 1));
+        let (na, nb) = (
+            ta.iter().filter(|&&t| t).count(),
+            tb.iter().filter(|&&t| t).count(),
+        );
+        // (the part without its separator nodes, the separator)
+        let take = |part: Vec<usize>, t: Vec<bool>| -> (Vec<usize>, Vec<usize>) {
+            let (mut rest, mut s) = (Vec::with_capacity(part.len()), vec![]);
+            for (v, on) in part.into_iter().zip(t) {
+                if on { s.push(v) } else { rest.push(v) }
+            }
+            (rest, s)
+        };
+        if na <= nb {
+            let (a, s) = take(a, ta);
+            (a, b, s)
+        } else {
+            let (b, s) = take(b, tb);
+            (a, b, s)
+        }
+    }
+
+    /// Appends `set` in nested-dissection order to `out`.
+    fn order(&mut self, set: Vec<usize>, out: &mut Vec<usize>) {
+        if set.len() <= LEAF_NODES {
+            out.extend_from_slice(&set);
+            return;
+        }
+        let (a, b, s) = self.split(set);
+        self.order(a, out);
+        self.order(b, out);
+        out.extend_from_slice(&s);
     }
 }

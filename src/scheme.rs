@@ -452,7 +452,8 @@ pub struct Settings {
 /// Which fill-reducing ordering the factorisation uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OrderingKind {
-    /// Geometric nested dissection of the structured grid (the default).
+    /// Geometric nested dissection: of the structured grid by its lines (the default
+    /// there), of any other mesh by coordinate bisection (the default on a mesh scene).
     NestedDissection,
     /// faer's approximate minimum degree.
     Amd,
@@ -813,7 +814,10 @@ pub(crate) fn factorise(
         OrderingKind::NestedDissection if grid => {
             Ordering::nested_dissection(&disc.mesh, &disc.dofs, cdofs)
         }
-        _ => Ordering::amd(mat, cdofs)?,
+        OrderingKind::NestedDissection => {
+            Ordering::coordinate_dissection(&disc.mesh, &disc.dofs, cdofs)
+        }
+        OrderingKind::Amd => Ordering::amd(mat, cdofs)?,
     };
     let mut chol = Cholesky::factor(mat, &order)?;
     if !parallel || chol.nnz_l() < PARALLEL_MIN_NNZ {

@@ -81,8 +81,9 @@ pub struct RunSettings {
     pub solver: Option<String>,
     /// The time loop.
     pub path: Loop,
-    /// The fill-reducing ordering (`None`: nested dissection on a uniform mesh, AMD on
-    /// a graded one, which nested dissection cannot cut).
+    /// The fill-reducing ordering (`None`: nested dissection on a uniform mesh, by the
+    /// grid's lines, and on a mesh scene's mesh, by coordinate bisection; AMD on a
+    /// graded or bisected one).
     pub ordering: Option<OrderingKind>,
     /// Threads of the triangular sweeps, 1 or 2 (`None`: 2 with nested dissection, 1
     /// with AMD, whose elimination tree has no two halves).
@@ -388,27 +389,15 @@ impl Simulation {
                 "nothing unless the mesh is graded (it is the graded mesh's exponent)",
             ));
         }
-        // Nested dissection cuts the lines of a structured grid; any other mesh is
-        // ordered by AMD.
+        // Nested dissection by default on the structured grid (its lines) and on a
+        // mesh scene's mesh (coordinate bisection, which fills less than AMD there);
+        // a graded or bisected mesh is ordered by AMD unless asked otherwise.
         let grid = match &given {
             Some(mesh) => mesh.pattern.is_grid(),
             None => !graded && scenario.body().is_none(),
         };
-        let ordering = match (s.ordering, grid) {
-            (Some(OrderingKind::NestedDissection), false) => {
-                let which = if given.is_some() {
-                    "a bisected mesh"
-                } else if scenario.body().is_some() {
-                    "a mesh scene's mesh"
-                } else {
-                    "a graded mesh"
-                };
-                return Err(InputError::field(
-                    "ordering",
-                    "nd",
-                    format!("amd with {which} (nested dissection cuts the uniform grid's lines)"),
-                ));
-            }
+        let dissect = grid || (given.is_none() && scenario.body().is_some());
+        let ordering = match (s.ordering, dissect) {
             (Some(o), _) => o,
             (None, false) => OrderingKind::Amd,
             (None, true) => OrderingKind::NestedDissection,

@@ -906,7 +906,6 @@ fn a_new_scene_solves_draws_and_writes_vtk_from_the_cli() {
     for (args, field) in [
         ("--steps 4", "steps"),
         ("--grading 0.3", "grading"),
-        ("--mesh graded --ordering nd", "ordering"),
         ("--mesh graded --grading 1.5", "grading"),
         ("--n 10", "n"),
     ] {

@@ -301,3 +301,74 @@ fn contact_forward_sweeps_skip_the_interior_bit_for_bit() {
         }
     }
 }
+
+/// The mesh scenes the coordinate dissection is tried on: the paper's rectangle read
+/// from its mesh file, the holed block and the Hertz cylinder.
+const MESH_SCENES: [&str; 3] = [
+    "data/scenarios/examples/paper_mesh.toml",
+    "data/scenarios/examples/holed_block.toml",
+    "data/scenarios/examples/hertz.toml",
+];
+
+#[test]
+fn coordinate_dissection_is_a_permutation_with_uncoupled_halves() {
+    for name in MESH_SCENES {
+        let (disc, k) = operators(name, 16);
+        assert!(!disc.mesh.pattern.is_grid(), "{name}: read as a grid");
+        let m = disc.contact_dofs.len();
+        let ord = Ordering::coordinate_dissection(&disc.mesh, &disc.dofs, &disc.contact_dofs);
+        assert!(is_permutation(&ord.fwd), "{name}: not a permutation");
+        assert_eq!(ord.fwd.len(), disc.dofs.count);
+        assert_eq!(ord.fwd[ord.fwd.len() - m..], disc.contact_dofs[..]);
+        let (n1, n2) = ord.halves.expect("two halves");
+        assert!(n1 > 0 && n2 > 0 && n1 + n2 < ord.fwd.len() - m, "{name}");
+        let inv = ord.inverse();
+        let half = |d: usize| match inv[d] {
+            p if p < n1 => 1,
+            p if p < n1 + n2 => 2,
+            _ => 0,
+        };
+        let (ptr, idx) = (k.col_ptr(), k.row_idx());
+        let mut inside = [0usize; 2];
+        for j in 0..k.ncols() {
+            for &i in &idx[ptr[j]..ptr[j + 1]] {
+                let (hi, hj) = (half(i), half(j));
+                assert!(
+                    hi == 0 || hj == 0 || hi == hj,
+                    "{name}: K[{i},{j}] couples the halves"
+                );
+                if hi == hj && hi > 0 {
+                    inside[hi - 1] += 1;
+                }
+            }
+        }
+        assert!(inside[0] > 0 && inside[1] > 0, "{name}: {inside:?}");
+    }
+}
+
+#[test]
+fn coordinate_dissection_solves_as_amd_does_on_mesh_scenes() {
+    for name in MESH_SCENES {
+        let (disc, k) = operators(name, 16);
+        let b: Vec<f64> = (0..k.nrows())
+            .map(|i| ((i * 7919) % 101) as f64 - 50.0)
+            .collect();
+        let cd = Ordering::coordinate_dissection(&disc.mesh, &disc.dofs, &disc.contact_dofs);
+        let par = Cholesky::factor(&k, &cd).unwrap();
+        assert!(
+            par.is_parallel(),
+            "{name}: the halves should split the factor"
+        );
+        let amd = Cholesky::factor(&k, &Ordering::amd(&k, &disc.contact_dofs).unwrap()).unwrap();
+        let (x, y) = (par.solve(&b), amd.solve(&b));
+        let r = rel_residual(&k, &x, &b);
+        assert!(r < 1e-12, "{name}: relative residual {r:e}");
+        let d = x
+            .iter()
+            .zip(&y)
+            .map(|(a, c)| (a - c).abs())
+            .fold(0.0, f64::max);
+        let scale = y.iter().map(|a| a.abs()).fold(0.0, f64::max);
+        assert!(d <= 1e-12 * scale, "{name}: the orderings differ by {d:e}");
+    }
+}

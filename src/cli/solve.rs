@@ -105,9 +105,10 @@ pub struct SolveArgs {
     /// Fail a step whose certificate exceeds this relative residual (in [1e-15, 1e-4]).
     #[arg(long, default_value_t = evhi::scheme::CERTIFICATE_TOL, allow_hyphen_values = true)]
     pub certificate_tol: f64,
-    /// Fill-reducing ordering of A + kB: `nd` (nested dissection of the grid, whose
-    /// two halves two threads solve at once; the default on a uniform mesh) or `amd`
-    /// (approximate minimum degree; the default, and the only one, on a graded mesh).
+    /// Fill-reducing ordering of A + kB: `nd` (nested dissection, whose two halves two
+    /// threads solve at once: by the grid's lines on a uniform mesh, by coordinate
+    /// bisection on any other; the default on a uniform mesh and on a mesh scene) or
+    /// `amd` (approximate minimum degree; the default on a graded mesh).
     #[arg(long, value_parser = ["nd", "amd"])]
     pub ordering: Option<String>,
     /// Threads for the triangular sweeps: 1 or 2 (default: 2 with `--ordering nd`,
@@ -260,7 +261,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     let t_est = t_est.elapsed();
     // The run's figures, drawn from the tables just written.
-    evhi::output::runplot::draw(&out.path(""))?;
+    evhi::output::runplot::draw_scene(
+        &out.path(""),
+        Some(evhi::output::runplot::Written {
+            scene: scn,
+            triangles: &run.mesh.triangles,
+        }),
+    )?;
     out.publish()?;
     if args.timings {
         let (output, total) = (t_out.elapsed(), wall.elapsed());

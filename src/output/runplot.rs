@@ -223,6 +223,25 @@ fn check_g(
 
 /// Draws both figures of the run directory `dir` into it.
 pub fn draw(dir: &Path) -> Result<(), FileError> {
+    draw_scene(dir, None)
+}
+
+/// What the process that has just written a run directory still holds of the run,
+/// so that drawing its figures need not read it back.
+#[derive(Clone, Copy)]
+pub struct Written<'a> {
+    /// The scene solved (read back, a mesh scene's mesh would be parsed and built
+    /// again from the run's scenario.toml).
+    pub scene: &'a crate::scenario::Scenario,
+    /// The mesh's triangles, as triangles.csv holds them.
+    pub triangles: &'a [[usize; 3]],
+}
+
+/// [`draw`] for a run directory, with what its writer still holds (`evhi solve`):
+/// the tables were written by this process a moment ago, so they are not checked
+/// again (the checks refuse tables from elsewhere, for `evhi plot`), and the scene
+/// and the triangles are taken as given.
+pub fn draw_scene(dir: &Path, written: Option<Written>) -> Result<(), FileError> {
     let not_a_run = |what: &str| FileError::NotThere {
         message: format!(
             "{what}; `evhi plot` redraws the figures of a run directory that `evhi solve` \
@@ -239,7 +258,9 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
     if !dir.join("summary.csv").is_file() {
         return Err(not_a_run("not a run directory: it has no summary.csv"));
     }
-    validate_tables(dir)?;
+    if written.is_none() {
+        validate_tables(dir)?;
+    }
     let summary_path = dir.join("summary.csv");
     let (line, summary) = SummaryRow::read_lines(&summary_path)?
         .into_iter()
@@ -298,7 +319,9 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
         }
         stride
     };
-    check_claims(dir, &summary_at, &summary)?;
+    if written.is_none() {
+        check_claims(dir, &summary_at, &summary)?;
+    }
     // h as the summary gives it: 1/n on the paper's rectangle, W/(2n) on another.
     let h = summary.h;
     let h_text = if (h * n as f64 - 1.0).abs() < 1e-12 {
@@ -324,6 +347,7 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
                     String::new()
                 }
             ),
+            written,
         )
     };
     // The two figures at once (each writes its PNG and SVG on two threads).

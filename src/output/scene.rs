@@ -21,10 +21,24 @@ pub fn draw_run(
     g: f64,
     cells: usize,
     title: String,
+    written: Option<crate::output::runplot::Written>,
 ) -> Result<(), FileError> {
     let mut panel = Panel::from_csv(&dir.join("contact.csv"), &dir.join("nodes.csv"), g, cells)?;
     let tri = dir.join("triangles.csv");
-    if tri.exists() {
+    if let (true, Some(w)) = (tri.exists(), written) {
+        // The triangles this process wrote to triangles.csv.
+        let nodes = panel.x.len();
+        if let Some(bad) = w.triangles.iter().find(|t| t.iter().any(|&k| k >= nodes)) {
+            return Err(FileError::Table {
+                path: tri.display().to_string(),
+                message: format!(
+                    "the triangle {bad:?} names a node beyond the {nodes} of nodes.csv"
+                ),
+            });
+        }
+        panel.triangles = Some(w.triangles.to_vec());
+        panel.body = body_view(dir, &panel, Some(w.scene))?;
+    } else if tri.exists() {
         // Read as numbers, so that a row of NaN, -5 or 1.5 is refused as a triangle.
         let text = Text::read(&tri)?;
         let corners = (TriangleRow::COLUMNS.iter())
@@ -49,7 +63,7 @@ pub fn draw_run(
             list.push(raw.map(|x| x as usize));
         }
         panel.triangles = Some(list);
-        panel.body = body_view(dir, &panel)?;
+        panel.body = body_view(dir, &panel, None)?;
     } else {
         panel.check_lattice(&dir.join("nodes.csv"))?;
     }
@@ -72,15 +86,24 @@ pub fn draw_run(
 /// run's `scenario.toml`), each contact node's arc length and deformed position
 /// (matched to `nodes.csv` by its coordinates); `None` for a run that is no mesh scene
 /// (or whose scenario does not read).
-fn body_view(dir: &std::path::Path, panel: &Panel) -> Result<Option<BodyView>, FileError> {
-    let scenario = dir.join("scenario.toml");
-    let Some(foundation) = Scenario::load(&scenario.display().to_string())
-        .ok()
-        .and_then(|scn| {
-            scn.body()
-                .map(|b| (b.foundation.point, b.foundation.normal))
-        })
-    else {
+fn body_view(
+    dir: &std::path::Path,
+    panel: &Panel,
+    scene: Option<&Scenario>,
+) -> Result<Option<BodyView>, FileError> {
+    let of = |scn: &Scenario| {
+        scn.body()
+            .map(|b| (b.foundation.point, b.foundation.normal))
+    };
+    // The run's own scene when the caller holds it (`evhi solve`), so that its mesh
+    // is not read and built a second time; else the run's scenario.toml.
+    let foundation = match scene {
+        Some(scn) => of(scn),
+        None => Scenario::load(&dir.join("scenario.toml").display().to_string())
+            .ok()
+            .and_then(|scn| of(&scn)),
+    };
+    let Some(foundation) = foundation else {
         // A graded rectangle, or a run without its scenario: drawn as the rectangle.
         return Ok(None);
     };
