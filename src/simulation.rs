@@ -330,6 +330,10 @@ impl Solution {
     }
 }
 
+/// The nodes from which a mesh scene's file mesh is ordered by nested dissection by
+/// default (below, AMD).
+pub const MIN_NODES_TO_DISSECT: usize = 20_000;
+
 impl Simulation {
     /// Checks `settings` against `scenario` and builds the mesh. Every refusal names
     /// the field (the command line's option name) and what it allows.
@@ -390,13 +394,19 @@ impl Simulation {
             ));
         }
         // Nested dissection by default on the structured grid (its lines) and on a
-        // mesh scene's mesh (coordinate bisection, which fills less than AMD there);
+        // large mesh scene's mesh (coordinate bisection, which fills less than AMD
+        // there: paper_n512 27.9 M entries of L against 33.6 M);
         // a graded or bisected mesh is ordered by AMD unless asked otherwise.
         let grid = match &given {
             Some(mesh) => mesh.pattern.is_grid(),
             None => !graded && scenario.body().is_none(),
         };
-        let dissect = grid || (given.is_none() && scenario.body().is_some());
+        // On a small file mesh AMD fills less (the shipped Hertz scene's mesh: 139 k
+        // entries of L against 157 k; the paper's n = 16 mesh: 9.1 k against 10.1 k),
+        // and a second sweep thread does not pay there anyway.
+        let large_file = (scenario.body())
+            .is_some_and(|b| b.mesh.nodes.len() >= MIN_NODES_TO_DISSECT);
+        let dissect = grid || (given.is_none() && large_file);
         let ordering = match (s.ordering, dissect) {
             (Some(o), _) => o,
             (None, false) => OrderingKind::Amd,

@@ -93,7 +93,7 @@ fn a_mesh_scene_solves_from_the_command_line_and_keeps_its_mesh() {
     let _ = o;
     let summary = Csv::read(out.join("summary.csv"));
     assert_eq!(summary.get(0, "mesh"), "file ../../meshes/paper_n16.msh");
-    assert_eq!(summary.get(0, "ordering"), "nd");
+    assert_eq!(summary.get(0, "ordering"), "amd");
     assert_eq!(summary.get(0, "tractions"), "1");
     // The run keeps the mesh it read, and its scenario.toml names that copy.
     assert_eq!(
