@@ -22,7 +22,10 @@
 //! boundary edge is on $\Gamma_2$ and contributes the components its nodes leave free.
 //! A node of $\Gamma_3$ that is not a contact node (its normal component held) has no
 //! discrete contact stress; there $\sigma^h_\nu$ is taken as the element's own
-//! $\sigma_\nu - f_{3,\nu}$, so that end adds no normal residual.
+//! $\sigma_\nu - f_{3,\nu}$, so that end adds no normal residual. The loads $f_2$, $f_3$
+//! are those of the rectangle's sides or, on a mesh scene, of its named parts
+//! ([`SceneLoads`]), found by where the edge lies, so a refined mesh's pieces of a
+//! part's edge carry its load too.
 
 use crate::material::Isotropic;
 use crate::mesh::Mesh;
@@ -30,6 +33,9 @@ use std::collections::HashMap;
 
 /// A load on a line at a point with a unit normal: `(x, n) -> value`.
 pub type LineLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
+
+/// A constant load on a boundary edge given by its two ends: `(a, b) -> value`.
+pub type EdgeLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
 
 /// What the estimator needs of the problem besides the fields: the tensors and the
 /// loads, as functions of the point.
@@ -49,17 +55,24 @@ pub struct Problem<'a> {
     /// piecewise, such as a P1 field of a coarser mesh, is the solution of data with
     /// such a load; then the jump term measures $[\sigma^n\nu] - \ell$.
     pub line: Option<LineLoad<'a>>,
+    /// A traction carried by named boundary parts (a mesh scene's), constant on each
+    /// boundary edge and added to `surface` there; `None` when the data have none.
+    pub part: Option<EdgeLoad<'a>>,
 }
 
 /// A rectangle scene's loads at one time, as the estimator asks for them: the volume
 /// force $\varphi(t) f_0 (1 + a\cos\pi x)$ and each traction $\varphi(t) f$ on its segment
-/// of a side, a side known by its outward normal (as [`crate::assembly::load`] places them).
-/// A mesh scene's named boundary parts are not read here yet.
+/// of a side, a side known by its outward normal (as [`crate::assembly::load`] places them);
+/// on a mesh scene, each traction $\varphi(t) f$ on the edges of its named part (as
+/// [`crate::scenario::Scenario::load_vector`] places them).
 #[derive(Debug, Clone)]
 pub struct SceneLoads {
     pub f0: [f64; 2],
     pub modulation: f64,
     pub tractions: Vec<crate::geometry::Traction>,
+    /// A mesh scene's tractions: each edge of a loaded part, as its two ends, with
+    /// the part's $f$ (empty on the rectangle).
+    pub parts: Vec<([[f64; 2]; 2], [f64; 2])>,
     /// The load history's factor $\varphi(t)$ at the step.
     pub phi: f64,
 }
@@ -71,8 +84,22 @@ impl SceneLoads {
             f0: scn.f0(),
             modulation: scn.f0_modulation(),
             tractions: scn.tractions(),
+            parts: scn.body().map_or_else(Vec::new, part_edges),
             phi: scn.history().phi(t),
         }
+    }
+    /// The parts' traction on the boundary edge from `a` to `b`: the sum of the loaded
+    /// part edges that hold both ends (an edge of the file, or a piece of one on a
+    /// refined mesh), zero off every loaded part.
+    pub fn part_at(&self, a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+        let mut out = [0.0; 2];
+        for ([p, q], f) in &self.parts {
+            if on_segment(a, *p, *q) && on_segment(b, *p, *q) {
+                out[0] += self.phi * f[0];
+                out[1] += self.phi * f[1];
+            }
+        }
+        out
     }
     /// $f_0$ at `x`.
     pub fn f0_at(&self, x: [f64; 2]) -> [f64; 2] {
@@ -99,6 +126,32 @@ impl SceneLoads {
         }
         out
     }
+}
+
+/// The loaded edges of a mesh scene's body, with their part's force density.
+fn part_edges(body: &crate::body::Body) -> Vec<([[f64; 2]; 2], [f64; 2])> {
+    let mut out = Vec::new();
+    for t in &body.tractions {
+        let part = body
+            .mesh
+            .group(&t.part)
+            .expect("checked when the scene was read");
+        for e in &part.edges {
+            out.push((e.map(|v| body.mesh.nodes[v]), t.f));
+        }
+    }
+    out
+}
+
+/// Whether `x` lies on the segment from `p` to `q` (to $10^{-9}$ of its length).
+fn on_segment(x: [f64; 2], p: [f64; 2], q: [f64; 2]) -> bool {
+    let d = [q[0] - p[0], q[1] - p[1]];
+    let r = [x[0] - p[0], x[1] - p[1]];
+    let len_sq = d[0] * d[0] + d[1] * d[1];
+    // Distances of 1e-9 |q - p| along and across, times |q - p|.
+    let tol = 1e-9 * len_sq;
+    let along = r[0] * d[0] + r[1] * d[1];
+    (d[0] * r[1] - d[1] * r[0]).abs() <= tol && along >= -tol && along <= len_sq + tol
 }
 
 /// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
@@ -162,8 +215,8 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
     [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
 }
 
-/// The indicators of a step of a rectangle scene `scn` at time `t`: its loads read by
-/// [`SceneLoads`], its tensors, no line load, and the discrete contact stress
+/// The indicators of a step of a scene `scn` (a rectangle or a mesh scene) at time `t`:
+/// its loads read by [`SceneLoads`], its tensors, no line load, and the discrete contact stress
 /// $\sigma^1_\nu + \sigma^2_\nu$ of each contact state in `contact` (in
 /// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`].
 pub fn estimate_scene(
@@ -178,12 +231,14 @@ pub fn estimate_scene(
     let loads = SceneLoads::new(scn, t);
     let f0 = |x: [f64; 2]| loads.f0_at(x);
     let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+    let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
     let pb = Problem {
         elast: scn.elasticity(),
         visc: Some(scn.viscosity()),
         f0: &f0,
         surface: &surface,
         line: None,
+        part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
     };
     let sigma_h: Vec<f64> = (contact.iter())
         .map(|c| c.sigma_nu1 + c.sigma_nu2)
@@ -288,9 +343,14 @@ pub fn estimate(
         let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
         let sn = traction(stress[t], n);
         let at = |s: f64| [pa[0] + s * (pb_[0] - pa[0]), pa[1] + s * (pb_[1] - pa[1])];
+        let on_part = pb.part.map_or([0.0; 2], |l| l(pa, pb_));
+        let load = |x: [f64; 2]| {
+            let f = (pb.surface)(x, n);
+            [f[0] + on_part[0], f[1] + on_part[1]]
+        };
         let mut r = 0.0;
         if contact {
-            let f3 = |x: [f64; 2]| (pb.surface)(x, n);
+            let f3 = load;
             // sigma_nu - f3_nu of the element at an end that is not a contact node.
             let own = |x: [f64; 2]| {
                 let f = f3(x);
@@ -314,7 +374,7 @@ pub fn estimate(
             // Gamma_2: the components left free at both ends.
             let free = [0, 1].map(|c| !(mesh.fixed[a][c] && mesh.fixed[b][c]));
             for (s, w) in GAUSS3 {
-                let f = (pb.surface)(at(s), n);
+                let f = load(at(s));
                 for c in 0..2 {
                     if free[c] {
                         r += w * he * (f[c] - sn[c]).powi(2);
@@ -376,6 +436,7 @@ mod tests {
             f0: &f0,
             surface: &surface,
             line: None,
+            part: None,
         };
         let sn = traction(sig, mesh.normal);
         let sigma_nu = sn[0] * mesh.normal[0] + sn[1] * mesh.normal[1];

@@ -98,8 +98,8 @@ pub struct SolveArgs {
     /// interior-jump, traction and contact residuals of sigma = A eps((u_N - u_N-1)/k) +
     /// B eps(u_N); the equation heads the library's `estimator` module): writes
     /// estimator.csv (centroid x, y and eta of each triangle) and adds the cell field
-    /// `eta` to solution.vtu. Rectangle scenes only, for now. Without it nothing of this
-    /// is computed.
+    /// `eta` to solution.vtu. On a rectangle or a mesh scene (whose tractions act on
+    /// their named parts). Without it nothing of this is computed.
     #[arg(long)]
     pub estimate: bool,
     /// Fail a step whose certificate exceeds this relative residual (in [1e-15, 1e-4]).
@@ -165,14 +165,6 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(n) = args.n {
         scn.refuse_level_on_mesh(n)
             .map_err(|e| e.for_flag("n", "--n"))?;
-    }
-    if args.estimate && scn.body().is_some() {
-        return Err(evhi::error::InputError::field(
-            "--estimate",
-            "true",
-            "only on a rectangle scene for now (a mesh scene's boundary parts are not read by the estimator yet)",
-        )
-        .into());
     }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());
