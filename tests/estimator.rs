@@ -13,7 +13,7 @@
 
 mod common;
 
-use common::{Csv, evhi_with, read, scratch, succeed};
+use common::{Csv, evhi_with, read, scratch, stderr, succeed};
 use evhi::manufactured::run::{ExactRun, run_estimated};
 use evhi::manufactured::{SOLUTIONS, Solution};
 use evhi::scenario::Scenario;
@@ -230,7 +230,19 @@ fn indicators_concentrate_where_the_boundary_data_change() {
 fn solve_estimate_writes_the_indicators() {
     let dir = scratch("estimate");
     let out = dir.join("run");
-    succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --estimate --out").arg(&out));
+    let o = succeed(
+        evhi_with("solve --scenario figure --n 16 --steps 4 --estimate --timings --out").arg(&out),
+    );
+    // The estimator is a phase of --timings, beside the solve's.
+    let said = stderr(&o);
+    let line = said
+        .lines()
+        .find(|l| l.starts_with("timings (s):"))
+        .unwrap();
+    assert!(
+        line.contains("  estimator ") && line.contains("% of the solve") && line.contains("steps "),
+        "{line}"
+    );
     let csv = Csv::read(out.join("estimator.csv"));
     // One row per triangle of the n = 16 mesh (16 x 8 cells, two triangles each).
     assert_eq!(csv.len(), 2 * 16 * 8);
@@ -242,7 +254,9 @@ fn solve_estimate_writes_the_indicators() {
     assert!(vtu.contains(r#"<CellData>"#) && vtu.contains(r#"Name="eta""#));
     // Without the flag, neither.
     let plain = dir.join("plain");
-    succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --out").arg(&plain));
+    let o =
+        succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --timings --out").arg(&plain));
+    assert!(!stderr(&o).contains("estimator"));
     assert!(!plain.join("estimator.csv").exists());
     assert!(!read(plain.join("solution.vtu")).contains("CellData"));
 }
