@@ -26,6 +26,11 @@
 //! are those of the rectangle's sides or, on a mesh scene, of its named parts
 //! ([`SceneLoads`]), found by where the edge lies, so a refined mesh's pieces of a
 //! part's edge carry its load too.
+//!
+//! Apart from $\eta_T^2$, the limit's complementarity term
+//! $c_T = \int_{\partial T\cap\Gamma_3}\mu_h\,|g - u_{\nu h}|$ ([`complementarity`]), with
+//! $\mu = -\sigma^2_\nu$ the limit's multiplier: it is nonzero only on the edges where a node
+//! at the limit neighbours one off it.
 
 use crate::material::Isotropic;
 use crate::mesh::Mesh;
@@ -154,13 +159,19 @@ fn on_segment(x: [f64; 2], p: [f64; 2], q: [f64; 2]) -> bool {
     (d[0] * r[1] - d[1] * r[0]).abs() <= tol && along >= -tol && along <= len_sq + tol
 }
 
-/// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
+/// The estimate of one step: per triangle $\eta^2_T$, the four sums by kind, and the
+/// complementarity term of the limit apart.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Estimate {
     /// $\eta_T^2$ per triangle, in the mesh's order.
     pub eta_sq: Vec<f64>,
     /// $\sum_T$ of the element, jump, $\Gamma_2$ and $\Gamma_3$ terms.
     pub parts: [f64; 4],
+    /// Per triangle, the complementarity term of the unilateral limit on its $\Gamma_3$
+    /// edges, $c_T = \int_{\partial T\cap\Gamma_3}\mu_h\,|g - u_{\nu h}|$ (pressure times
+    /// area; see [`complementarity`]). It has other units than $\eta_T^2$ and is not
+    /// added to it. Zero from [`estimate`], which is not given the multiplier.
+    pub complementarity: Vec<f64>,
 }
 
 impl Estimate {
@@ -172,7 +183,54 @@ impl Estimate {
     pub fn eta(&self) -> Vec<f64> {
         self.eta_sq.iter().map(|e| e.sqrt()).collect()
     }
+    /// $\sum_T c_T$, the complementarity term over $\Gamma_3$.
+    pub fn complementarity_total(&self) -> f64 {
+        self.complementarity.iter().sum()
+    }
 }
+
+// ANCHOR: complementarity
+/// The complementarity term of the limit, per triangle: on each edge $e$ of
+/// $\Gamma_3$ between contact nodes $i, j$, the multiplier $\mu = -\sigma^2_\nu \ge 0$
+/// (the part of the contact pressure that the limit carries,
+/// [`crate::certificate::split_node`]) and the distance to the limit
+/// $d = |g - u_\nu|$, both linear along $e$, give
+/// $$\int_e \mu_h d_h = \tfrac{|e|}{6}\big(2\mu_i d_i + 2\mu_j d_j + \mu_i d_j + \mu_j d_i\big),$$
+/// added to the triangle that holds $e$. The discrete solution keeps $\mu_i d_i = 0$ at
+/// each node, so the term is zero unless a node at the limit ($\mu_i > 0$, $d_i = 0$)
+/// neighbours one off it: it measures where the limit's zone ends between nodes.
+/// With no limit ($g$ infinite) it is zero. `contact` is in [`Mesh::contact`]'s order.
+pub fn complementarity(
+    mesh: &Mesh,
+    g: f64,
+    contact: &[crate::certificate::ContactState],
+) -> Vec<f64> {
+    let mut out = vec![0.0; mesh.triangles.len()];
+    if !g.is_finite() {
+        return out;
+    }
+    let mut at: Vec<Option<(f64, f64)>> = vec![None; mesh.nodes.len()];
+    for (&v, c) in mesh.contact.iter().zip(contact) {
+        at[v] = Some(((-c.sigma_nu2).max(0.0), (g - c.u_nu).abs()));
+    }
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            let (Some((ma, da)), Some((mb, db))) = (at[a], at[b]) else {
+                continue;
+            };
+            // Only an edge of Gamma_3: consecutive along it.
+            let on = mesh.gamma3.windows(2).any(|w| w == [a, b] || w == [b, a]);
+            if !on || (ma == 0.0 && mb == 0.0) {
+                continue;
+            }
+            let len = dist(mesh.nodes[a], mesh.nodes[b]);
+            out[t] += len / 6.0 * (2.0 * ma * da + 2.0 * mb * db + ma * db + mb * da);
+        }
+    }
+    out
+}
+// ANCHOR_END: complementarity
 
 /// Gauss–Legendre on $[0, 1]$, 3 points (exact to degree 5).
 const GAUSS3: [(f64, f64); 3] = [
@@ -218,7 +276,8 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
 /// The indicators of a step of a scene `scn` (a rectangle or a mesh scene) at time `t`:
 /// its loads read by [`SceneLoads`], its tensors, no line load, and the discrete contact stress
 /// $\sigma^1_\nu + \sigma^2_\nu$ of each contact state in `contact` (in
-/// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`].
+/// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`]. The
+/// complementarity term ([`complementarity`]) is formed from the same states and `scn`'s $g$.
 pub fn estimate_scene(
     scn: &crate::scenario::Scenario,
     mesh: &Mesh,
@@ -243,7 +302,9 @@ pub fn estimate_scene(
     let sigma_h: Vec<f64> = (contact.iter())
         .map(|c| c.sigma_nu1 + c.sigma_nu2)
         .collect();
-    estimate(mesh, &pb, u, u_prev, k, &sigma_h)
+    let mut est = estimate(mesh, &pb, u, u_prev, k, &sigma_h);
+    est.complementarity = complementarity(mesh, scn.g(), contact);
+    est
 }
 
 // ANCHOR: estimate
@@ -262,6 +323,7 @@ pub fn estimate(
     let mut out = Estimate {
         eta_sq: vec![0.0; nt],
         parts: [0.0; 4],
+        complementarity: vec![0.0; nt],
     };
     let nf = mesh.normal;
     let mut on_g3 = vec![false; mesh.nodes.len()];

@@ -308,6 +308,19 @@ fn last_estimate(
     scn: Scenario,
     settings: evhi::simulation::RunSettings,
 ) -> (evhi::estimator::Estimate, evhi::mesh::Mesh) {
+    let (est, mesh, _) = last_estimate_and_contact(scn, settings);
+    (est, mesh)
+}
+
+/// [`last_estimate`] with the last step's contact states.
+fn last_estimate_and_contact(
+    scn: Scenario,
+    settings: evhi::simulation::RunSettings,
+) -> (
+    evhi::estimator::Estimate,
+    evhi::mesh::Mesh,
+    Vec<evhi::certificate::ContactState>,
+) {
     use evhi::estimator::estimate_scene;
     use evhi::simulation::Simulation;
     let steps = settings.steps.expect("the test sets the steps") as f64;
@@ -321,7 +334,46 @@ fn last_estimate(
     );
     let k = scn.t_end() / steps;
     let est = estimate_scene(scn, mesh, &u, &u_prev, k, obs.t, &obs.contact);
-    (est, (**mesh).clone())
+    (est, (**mesh).clone(), obs.contact)
+}
+
+/// The limit's complementarity term: zero on the `figure` scene with g = 1, which no
+/// node reaches, and with its own g = 0.1, which some nodes reach at T, positive and
+/// finite on the triangles whose Gamma_3 edge joins a node at the limit to one off it,
+/// zero elsewhere.
+#[test]
+fn complementarity_is_zero_off_the_limit_and_positive_at_its_ends() {
+    use evhi::simulation::RunSettings;
+    let settings = RunSettings::default().with_n(16).with_steps(16);
+    let figure = Scenario::load("figure").unwrap();
+    let far = figure.clone().with_g(1.0).unwrap();
+    let (est, _, contact) = last_estimate_and_contact(far, settings.clone());
+    assert!(contact.iter().all(|c| !c.at_limit));
+    assert_eq!(est.complementarity.len(), est.eta_sq.len());
+    assert!(est.complementarity.iter().all(|c| *c == 0.0));
+    let (est, mesh, contact) = last_estimate_and_contact(figure.with_g(0.02).unwrap(), settings);
+    let at: Vec<usize> = (mesh.contact.iter().zip(&contact))
+        .filter(|(_, c)| c.at_limit)
+        .map(|(&v, _)| v)
+        .collect();
+    assert!(
+        !at.is_empty() && at.len() < contact.len(),
+        "{} at the limit",
+        at.len()
+    );
+    let total = est.complementarity_total();
+    assert!(total.is_finite() && total > 0.0, "{total}");
+    let g3: std::collections::HashSet<usize> = mesh.gamma3.iter().copied().collect();
+    for (t, c) in est.complementarity.iter().enumerate() {
+        assert!(c.is_finite() && *c >= 0.0);
+        let tri = mesh.triangles[t];
+        let on_g3 = tri.iter().filter(|v| g3.contains(v)).count() >= 2;
+        let touches = tri.iter().any(|v| at.contains(v));
+        if *c > 0.0 {
+            assert!(on_g3 && touches, "triangle {t}: {c}");
+        }
+    }
+    println!("{} nodes at the limit, complementarity {total:e}", at.len());
 }
 
 /// data/meshes/paper_n16.msh is the built-in n = 16 mesh, and paper_mesh.toml puts the

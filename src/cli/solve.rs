@@ -98,7 +98,9 @@ pub struct SolveArgs {
     /// Also estimate the error of the last step by the residual estimator (element,
     /// interior-jump, traction and contact residuals of sigma = A eps((u_N - u_N-1)/k) +
     /// B eps(u_N); the equation heads the library's `estimator` module): writes
-    /// estimator.csv (centroid x, y and eta of each triangle) and adds the cell field
+    /// estimator.csv (centroid x, y, eta of each triangle, and the limit's
+    /// complementarity term mu |g - u_nu| integrated over its edges on Gamma_3, zero
+    /// off the limit's ends) and adds the cell field
     /// `eta` to solution.vtu. On a rectangle or a mesh scene (whose tractions act on
     /// their named parts). Without it nothing of this is computed.
     #[arg(long)]
@@ -332,13 +334,14 @@ fn write_estimate(
     // The last step's time and length (the grid into the layer ends with steps of T/N).
     let t = run.records.last().map_or(scn.t_end(), |r| r.t);
     let clock = Instant::now();
-    let eta = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact).eta();
+    let est = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact);
     let seconds = clock.elapsed().as_secs_f64();
-    let mut csv = String::from("x,y,eta\n");
-    for (tri, e) in mesh.triangles.iter().zip(&eta) {
+    let eta = est.eta();
+    let mut csv = String::from("x,y,eta,complementarity\n");
+    for ((tri, e), c) in mesh.triangles.iter().zip(&eta).zip(&est.complementarity) {
         let p = tri.map(|v| mesh.nodes[v]);
-        let c = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
-        csv += &format!("{},{},{:e}\n", c[0], c[1], e);
+        let x = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
+        csv += &format!("{},{},{:e},{:e}\n", x[0], x[1], e, c);
     }
     out.write("estimator.csv", csv.as_bytes())?;
     let disp = mesh.displacement(&dofs, &run.u);
