@@ -14,7 +14,7 @@
 //! discrete contact stress $\sigma^1_\nu + \sigma^2_\nu$ of the step
 //! ([`crate::certificate::ContactState`]), linear between the contact nodes. The
 //! estimate is $\eta = (\sum_T \eta^2_T)^{1/2}$; each term is formed in one pass over the
-//! triangles and their edges, so the cost is $O(\#T)$.
+//! triangles and one over their edges (bucketed by node, no hashing), so the cost is $O(\#T)$.
 //!
 //! Which boundary edge is which is read from the mesh, not from a side's name: an
 //! edge of one triangle whose two nodes are on $\Gamma_3$ is a contact edge; one whose
@@ -34,7 +34,6 @@
 
 use crate::material::Isotropic;
 use crate::mesh::Mesh;
-use std::collections::HashMap;
 
 /// A load on a line at a point with a unit normal: `(x, n) -> value`.
 pub type LineLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
@@ -333,9 +332,8 @@ pub fn estimate(
         .iter()
         .enumerate()
         .for_each(|(i, &v)| contact_at[v] = Some(i));
-    // Stresses, and each edge's first triangle (for the interior jumps).
+    // Stresses and element residuals.
     let mut stress = Vec::with_capacity(nt);
-    let mut edges: HashMap<[usize; 2], (usize, [usize; 2])> = HashMap::with_capacity(2 * nt);
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let p = tri.map(|v| mesh.nodes[v]);
         let un = tri.map(|v| u[v]);
@@ -343,58 +341,83 @@ pub fn estimate(
             let (a, b) = (u[v], u_prev[v]);
             [(a[0] - b[0]) / k, (a[1] - b[1]) / k]
         });
-        let s = element_stress(p, un, du, pb);
-        stress.push(s);
+        stress.push(element_stress(p, un, du, pb));
         // Element residual: h_T^2 ||f0||^2 (Div sigma = 0 on a P1 triangle).
         let h_t = (0..3)
             .map(|i| dist(p[i], p[(i + 1) % 3]))
             .fold(0.0, f64::max);
-        let r: f64 = crate::quadrature::triangle_points(p, &[])
-            .into_iter()
-            .map(|(x, w)| {
+        // The 7-point rule of crate::quadrature on T itself (no cuts, no allocation).
+        let area = 0.5 * crate::element::twice_area(p).abs();
+        let r: f64 = (crate::quadrature::TRI7.iter())
+            .map(|&(l, w)| {
+                let x = [0, 1].map(|c| l[0] * p[0][c] + l[1] * p[1][c] + l[2] * p[2][c]);
                 let f = (pb.f0)(x);
-                w * (f[0] * f[0] + f[1] * f[1])
+                w * area * (f[0] * f[0] + f[1] * f[1])
             })
             .sum();
         let term = h_t * h_t * r;
         out.eta_sq[t] += term;
         out.parts[0] += term;
+    }
+    // The triangles' edges bucketed by their smaller node (a counting sort, no hashing):
+    // an edge met twice is interior, once on the boundary.
+    let nn = mesh.nodes.len();
+    let mut start = vec![0usize; nn + 1];
+    for tri in &mesh.triangles {
         for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            let key = [a.min(b), a.max(b)];
-            match edges.remove(&key) {
-                Some((t0, _)) => {
-                    // Interior: h_e |[sigma nu]|^2 h_e, half to each side.
-                    let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
-                    let he = dist(pa, pb_);
-                    let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
-                    let s0 = stress[t0];
-                    let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
-                    let r = match pb.line {
-                        None => he * (j[0] * j[0] + j[1] * j[1]),
-                        Some(line) => GAUSS3
-                            .iter()
-                            .map(|&(q, w)| {
-                                let x =
-                                    [pa[0] + q * (pb_[0] - pa[0]), pa[1] + q * (pb_[1] - pa[1])];
-                                let l = line(x, n);
-                                w * he * ((j[0] - l[0]).powi(2) + (j[1] - l[1]).powi(2))
-                            })
-                            .sum(),
-                    };
-                    let term = he * r;
-                    out.eta_sq[t] += 0.5 * term;
-                    out.eta_sq[t0] += 0.5 * term;
-                    out.parts[1] += term;
-                }
-                None => {
-                    edges.insert(key, (t, [a, b]));
-                }
-            }
+            start[tri[i].min(tri[(i + 1) % 3]) + 1] += 1;
         }
     }
-    // The edges left are the boundary's, each with its one triangle (a -> b counter-clockwise).
-    for (_, (t, [a, b])) in edges {
+    for v in 0..nn {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    // (larger node, triangle, the edge as the triangle runs it)
+    let mut slot = vec![(0usize, 0usize, [0usize; 2]); 3 * nt];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            slot[fill[a.min(b)]] = (a.max(b), t, [a, b]);
+            fill[a.min(b)] += 1;
+        }
+    }
+    let mut boundary = Vec::new();
+    for lo in 0..nn {
+        let bucket = &slot[start[lo]..start[lo + 1]];
+        for (i, &(hi, t, [a, b])) in bucket.iter().enumerate() {
+            let Some(j) = (0..bucket.len()).find(|&j| j != i && bucket[j].0 == hi) else {
+                boundary.push((t, [a, b]));
+                continue;
+            };
+            if j < i {
+                continue; // met from its other side already
+            }
+            let t0 = bucket[j].1;
+            // Interior: h_e |[sigma nu]|^2 h_e, half to each side.
+            let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
+            let he = dist(pa, pb_);
+            let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
+            let (s, s0) = (stress[t], stress[t0]);
+            let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
+            let r = match pb.line {
+                None => he * (j[0] * j[0] + j[1] * j[1]),
+                Some(line) => GAUSS3
+                    .iter()
+                    .map(|&(q, w)| {
+                        let x = [pa[0] + q * (pb_[0] - pa[0]), pa[1] + q * (pb_[1] - pa[1])];
+                        let l = line(x, n);
+                        w * he * ((j[0] - l[0]).powi(2) + (j[1] - l[1]).powi(2))
+                    })
+                    .sum(),
+            };
+            let term = he * r;
+            out.eta_sq[t] += 0.5 * term;
+            out.eta_sq[t0] += 0.5 * term;
+            out.parts[1] += term;
+        }
+    }
+    // The boundary's edges, each with its one triangle (a -> b counter-clockwise).
+    for (t, [a, b]) in boundary {
         let both_fixed = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
         let contact = on_g3[a] && on_g3[b];
         if !contact && both_fixed(a) && both_fixed(b) {
