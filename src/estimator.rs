@@ -14,7 +14,7 @@
 //! discrete contact stress $\sigma^1_\nu + \sigma^2_\nu$ of the step
 //! ([`crate::certificate::ContactState`]), linear between the contact nodes. The
 //! estimate is $\eta = (\sum_T \eta^2_T)^{1/2}$; each term is formed in one pass over the
-//! triangles and their edges, so the cost is $O(\#T)$.
+//! triangles and one over their edges (bucketed by node, no hashing), so the cost is $O(\#T)$.
 //!
 //! Which boundary edge is which is read from the mesh, not from a side's name: an
 //! edge of one triangle whose two nodes are on $\Gamma_3$ is a contact edge; one whose
@@ -22,14 +22,24 @@
 //! boundary edge is on $\Gamma_2$ and contributes the components its nodes leave free.
 //! A node of $\Gamma_3$ that is not a contact node (its normal component held) has no
 //! discrete contact stress; there $\sigma^h_\nu$ is taken as the element's own
-//! $\sigma_\nu - f_{3,\nu}$, so that end adds no normal residual.
+//! $\sigma_\nu - f_{3,\nu}$, so that end adds no normal residual. The loads $f_2$, $f_3$
+//! are those of the rectangle's sides or, on a mesh scene, of its named parts
+//! ([`SceneLoads`]), found by where the edge lies, so a refined mesh's pieces of a
+//! part's edge carry its load too.
+//!
+//! Apart from $\eta_T^2$, the limit's complementarity term
+//! $c_T = \int_{\partial T\cap\Gamma_3}\mu_h\,|g - u_{\nu h}|$ ([`complementarity`]), with
+//! $\mu = -\sigma^2_\nu$ the limit's multiplier: it is nonzero only on the edges where a node
+//! at the limit neighbours one off it.
 
 use crate::material::Isotropic;
 use crate::mesh::Mesh;
-use std::collections::HashMap;
 
 /// A load on a line at a point with a unit normal: `(x, n) -> value`.
 pub type LineLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
+
+/// A constant load on a boundary edge given by its two ends: `(a, b) -> value`.
+pub type EdgeLoad<'a> = &'a dyn Fn([f64; 2], [f64; 2]) -> [f64; 2];
 
 /// What the estimator needs of the problem besides the fields: the tensors and the
 /// loads, as functions of the point.
@@ -49,17 +59,24 @@ pub struct Problem<'a> {
     /// piecewise, such as a P1 field of a coarser mesh, is the solution of data with
     /// such a load; then the jump term measures $[\sigma^n\nu] - \ell$.
     pub line: Option<LineLoad<'a>>,
+    /// A traction carried by named boundary parts (a mesh scene's), constant on each
+    /// boundary edge and added to `surface` there; `None` when the data have none.
+    pub part: Option<EdgeLoad<'a>>,
 }
 
 /// A rectangle scene's loads at one time, as the estimator asks for them: the volume
 /// force $\varphi(t) f_0 (1 + a\cos\pi x)$ and each traction $\varphi(t) f$ on its segment
-/// of a side, a side known by its outward normal (as [`crate::assembly::load`] places them).
-/// A mesh scene's named boundary parts are not read here yet.
+/// of a side, a side known by its outward normal (as [`crate::assembly::load`] places them);
+/// on a mesh scene, each traction $\varphi(t) f$ on the edges of its named part (as
+/// [`crate::scenario::Scenario::load_vector`] places them).
 #[derive(Debug, Clone)]
 pub struct SceneLoads {
     pub f0: [f64; 2],
     pub modulation: f64,
     pub tractions: Vec<crate::geometry::Traction>,
+    /// A mesh scene's tractions: each edge of a loaded part, as its two ends, with
+    /// the part's $f$ (empty on the rectangle).
+    pub parts: Vec<([[f64; 2]; 2], [f64; 2])>,
     /// The load history's factor $\varphi(t)$ at the step.
     pub phi: f64,
 }
@@ -71,8 +88,22 @@ impl SceneLoads {
             f0: scn.f0(),
             modulation: scn.f0_modulation(),
             tractions: scn.tractions(),
+            parts: scn.body().map_or_else(Vec::new, part_edges),
             phi: scn.history().phi(t),
         }
+    }
+    /// The parts' traction on the boundary edge from `a` to `b`: the sum of the loaded
+    /// part edges that hold both ends (an edge of the file, or a piece of one on a
+    /// refined mesh), zero off every loaded part.
+    pub fn part_at(&self, a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+        let mut out = [0.0; 2];
+        for ([p, q], f) in &self.parts {
+            if on_segment(a, *p, *q) && on_segment(b, *p, *q) {
+                out[0] += self.phi * f[0];
+                out[1] += self.phi * f[1];
+            }
+        }
+        out
     }
     /// $f_0$ at `x`.
     pub fn f0_at(&self, x: [f64; 2]) -> [f64; 2] {
@@ -101,13 +132,45 @@ impl SceneLoads {
     }
 }
 
-/// The estimate of one step: per triangle $\eta^2_T$, and the four sums by kind.
+/// The loaded edges of a mesh scene's body, with their part's force density.
+fn part_edges(body: &crate::body::Body) -> Vec<([[f64; 2]; 2], [f64; 2])> {
+    let mut out = Vec::new();
+    for t in &body.tractions {
+        let part = body
+            .mesh
+            .group(&t.part)
+            .expect("checked when the scene was read");
+        for e in &part.edges {
+            out.push((e.map(|v| body.mesh.nodes[v]), t.f));
+        }
+    }
+    out
+}
+
+/// Whether `x` lies on the segment from `p` to `q` (to $10^{-9}$ of its length).
+fn on_segment(x: [f64; 2], p: [f64; 2], q: [f64; 2]) -> bool {
+    let d = [q[0] - p[0], q[1] - p[1]];
+    let r = [x[0] - p[0], x[1] - p[1]];
+    let len_sq = d[0] * d[0] + d[1] * d[1];
+    // Distances of 1e-9 |q - p| along and across, times |q - p|.
+    let tol = 1e-9 * len_sq;
+    let along = r[0] * d[0] + r[1] * d[1];
+    (d[0] * r[1] - d[1] * r[0]).abs() <= tol && along >= -tol && along <= len_sq + tol
+}
+
+/// The estimate of one step: per triangle $\eta^2_T$, the four sums by kind, and the
+/// complementarity term of the limit apart.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Estimate {
     /// $\eta_T^2$ per triangle, in the mesh's order.
     pub eta_sq: Vec<f64>,
     /// $\sum_T$ of the element, jump, $\Gamma_2$ and $\Gamma_3$ terms.
     pub parts: [f64; 4],
+    /// Per triangle, the complementarity term of the unilateral limit on its $\Gamma_3$
+    /// edges, $c_T = \int_{\partial T\cap\Gamma_3}\mu_h\,|g - u_{\nu h}|$ (pressure times
+    /// area; see [`complementarity`]). It has other units than $\eta_T^2$ and is not
+    /// added to it. Zero from [`estimate`], which is not given the multiplier.
+    pub complementarity: Vec<f64>,
 }
 
 impl Estimate {
@@ -119,7 +182,54 @@ impl Estimate {
     pub fn eta(&self) -> Vec<f64> {
         self.eta_sq.iter().map(|e| e.sqrt()).collect()
     }
+    /// $\sum_T c_T$, the complementarity term over $\Gamma_3$.
+    pub fn complementarity_total(&self) -> f64 {
+        self.complementarity.iter().sum()
+    }
 }
+
+// ANCHOR: complementarity
+/// The complementarity term of the limit, per triangle: on each edge $e$ of
+/// $\Gamma_3$ between contact nodes $i, j$, the multiplier $\mu = -\sigma^2_\nu \ge 0$
+/// (the part of the contact pressure that the limit carries,
+/// [`crate::certificate::split_node`]) and the distance to the limit
+/// $d = |g - u_\nu|$, both linear along $e$, give
+/// $$\int_e \mu_h d_h = \tfrac{|e|}{6}\big(2\mu_i d_i + 2\mu_j d_j + \mu_i d_j + \mu_j d_i\big),$$
+/// added to the triangle that holds $e$. The discrete solution keeps $\mu_i d_i = 0$ at
+/// each node, so the term is zero unless a node at the limit ($\mu_i > 0$, $d_i = 0$)
+/// neighbours one off it: it measures where the limit's zone ends between nodes.
+/// With no limit ($g$ infinite) it is zero. `contact` is in [`Mesh::contact`]'s order.
+pub fn complementarity(
+    mesh: &Mesh,
+    g: f64,
+    contact: &[crate::certificate::ContactState],
+) -> Vec<f64> {
+    let mut out = vec![0.0; mesh.triangles.len()];
+    if !g.is_finite() {
+        return out;
+    }
+    let mut at: Vec<Option<(f64, f64)>> = vec![None; mesh.nodes.len()];
+    for (&v, c) in mesh.contact.iter().zip(contact) {
+        at[v] = Some(((-c.sigma_nu2).max(0.0), (g - c.u_nu).abs()));
+    }
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            let (Some((ma, da)), Some((mb, db))) = (at[a], at[b]) else {
+                continue;
+            };
+            // Only an edge of Gamma_3: consecutive along it.
+            let on = mesh.gamma3.windows(2).any(|w| w == [a, b] || w == [b, a]);
+            if !on || (ma == 0.0 && mb == 0.0) {
+                continue;
+            }
+            let len = dist(mesh.nodes[a], mesh.nodes[b]);
+            out[t] += len / 6.0 * (2.0 * ma * da + 2.0 * mb * db + ma * db + mb * da);
+        }
+    }
+    out
+}
+// ANCHOR_END: complementarity
 
 /// Gauss–Legendre on $[0, 1]$, 3 points (exact to degree 5).
 const GAUSS3: [(f64, f64); 3] = [
@@ -162,10 +272,11 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
     [s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]]
 }
 
-/// The indicators of a step of a rectangle scene `scn` at time `t`: its loads read by
-/// [`SceneLoads`], its tensors, no line load, and the discrete contact stress
+/// The indicators of a step of a scene `scn` (a rectangle or a mesh scene) at time `t`:
+/// its loads read by [`SceneLoads`], its tensors, no line load, and the discrete contact stress
 /// $\sigma^1_\nu + \sigma^2_\nu$ of each contact state in `contact` (in
-/// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`].
+/// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`]. The
+/// complementarity term ([`complementarity`]) is formed from the same states and `scn`'s $g$.
 pub fn estimate_scene(
     scn: &crate::scenario::Scenario,
     mesh: &Mesh,
@@ -178,17 +289,21 @@ pub fn estimate_scene(
     let loads = SceneLoads::new(scn, t);
     let f0 = |x: [f64; 2]| loads.f0_at(x);
     let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+    let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
     let pb = Problem {
         elast: scn.elasticity(),
         visc: Some(scn.viscosity()),
         f0: &f0,
         surface: &surface,
         line: None,
+        part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
     };
     let sigma_h: Vec<f64> = (contact.iter())
         .map(|c| c.sigma_nu1 + c.sigma_nu2)
         .collect();
-    estimate(mesh, &pb, u, u_prev, k, &sigma_h)
+    let mut est = estimate(mesh, &pb, u, u_prev, k, &sigma_h);
+    est.complementarity = complementarity(mesh, scn.g(), contact);
+    est
 }
 
 // ANCHOR: estimate
@@ -207,6 +322,7 @@ pub fn estimate(
     let mut out = Estimate {
         eta_sq: vec![0.0; nt],
         parts: [0.0; 4],
+        complementarity: vec![0.0; nt],
     };
     let nf = mesh.normal;
     let mut on_g3 = vec![false; mesh.nodes.len()];
@@ -216,9 +332,8 @@ pub fn estimate(
         .iter()
         .enumerate()
         .for_each(|(i, &v)| contact_at[v] = Some(i));
-    // Stresses, and each edge's first triangle (for the interior jumps).
+    // Stresses and element residuals.
     let mut stress = Vec::with_capacity(nt);
-    let mut edges: HashMap<[usize; 2], (usize, [usize; 2])> = HashMap::with_capacity(2 * nt);
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let p = tri.map(|v| mesh.nodes[v]);
         let un = tri.map(|v| u[v]);
@@ -226,58 +341,83 @@ pub fn estimate(
             let (a, b) = (u[v], u_prev[v]);
             [(a[0] - b[0]) / k, (a[1] - b[1]) / k]
         });
-        let s = element_stress(p, un, du, pb);
-        stress.push(s);
+        stress.push(element_stress(p, un, du, pb));
         // Element residual: h_T^2 ||f0||^2 (Div sigma = 0 on a P1 triangle).
         let h_t = (0..3)
             .map(|i| dist(p[i], p[(i + 1) % 3]))
             .fold(0.0, f64::max);
-        let r: f64 = crate::quadrature::triangle_points(p, &[])
-            .into_iter()
-            .map(|(x, w)| {
+        // The 7-point rule of crate::quadrature on T itself (no cuts, no allocation).
+        let area = 0.5 * crate::element::twice_area(p).abs();
+        let r: f64 = (crate::quadrature::TRI7.iter())
+            .map(|&(l, w)| {
+                let x = [0, 1].map(|c| l[0] * p[0][c] + l[1] * p[1][c] + l[2] * p[2][c]);
                 let f = (pb.f0)(x);
-                w * (f[0] * f[0] + f[1] * f[1])
+                w * area * (f[0] * f[0] + f[1] * f[1])
             })
             .sum();
         let term = h_t * h_t * r;
         out.eta_sq[t] += term;
         out.parts[0] += term;
+    }
+    // The triangles' edges bucketed by their smaller node (a counting sort, no hashing):
+    // an edge met twice is interior, once on the boundary.
+    let nn = mesh.nodes.len();
+    let mut start = vec![0usize; nn + 1];
+    for tri in &mesh.triangles {
         for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            let key = [a.min(b), a.max(b)];
-            match edges.remove(&key) {
-                Some((t0, _)) => {
-                    // Interior: h_e |[sigma nu]|^2 h_e, half to each side.
-                    let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
-                    let he = dist(pa, pb_);
-                    let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
-                    let s0 = stress[t0];
-                    let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
-                    let r = match pb.line {
-                        None => he * (j[0] * j[0] + j[1] * j[1]),
-                        Some(line) => GAUSS3
-                            .iter()
-                            .map(|&(q, w)| {
-                                let x =
-                                    [pa[0] + q * (pb_[0] - pa[0]), pa[1] + q * (pb_[1] - pa[1])];
-                                let l = line(x, n);
-                                w * he * ((j[0] - l[0]).powi(2) + (j[1] - l[1]).powi(2))
-                            })
-                            .sum(),
-                    };
-                    let term = he * r;
-                    out.eta_sq[t] += 0.5 * term;
-                    out.eta_sq[t0] += 0.5 * term;
-                    out.parts[1] += term;
-                }
-                None => {
-                    edges.insert(key, (t, [a, b]));
-                }
-            }
+            start[tri[i].min(tri[(i + 1) % 3]) + 1] += 1;
         }
     }
-    // The edges left are the boundary's, each with its one triangle (a -> b counter-clockwise).
-    for (_, (t, [a, b])) in edges {
+    for v in 0..nn {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    // (larger node, triangle, the edge as the triangle runs it)
+    let mut slot = vec![(0usize, 0usize, [0usize; 2]); 3 * nt];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            slot[fill[a.min(b)]] = (a.max(b), t, [a, b]);
+            fill[a.min(b)] += 1;
+        }
+    }
+    let mut boundary = Vec::new();
+    for lo in 0..nn {
+        let bucket = &slot[start[lo]..start[lo + 1]];
+        for (i, &(hi, t, [a, b])) in bucket.iter().enumerate() {
+            let Some(j) = (0..bucket.len()).find(|&j| j != i && bucket[j].0 == hi) else {
+                boundary.push((t, [a, b]));
+                continue;
+            };
+            if j < i {
+                continue; // met from its other side already
+            }
+            let t0 = bucket[j].1;
+            // Interior: h_e |[sigma nu]|^2 h_e, half to each side.
+            let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
+            let he = dist(pa, pb_);
+            let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
+            let (s, s0) = (stress[t], stress[t0]);
+            let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
+            let r = match pb.line {
+                None => he * (j[0] * j[0] + j[1] * j[1]),
+                Some(line) => GAUSS3
+                    .iter()
+                    .map(|&(q, w)| {
+                        let x = [pa[0] + q * (pb_[0] - pa[0]), pa[1] + q * (pb_[1] - pa[1])];
+                        let l = line(x, n);
+                        w * he * ((j[0] - l[0]).powi(2) + (j[1] - l[1]).powi(2))
+                    })
+                    .sum(),
+            };
+            let term = he * r;
+            out.eta_sq[t] += 0.5 * term;
+            out.eta_sq[t0] += 0.5 * term;
+            out.parts[1] += term;
+        }
+    }
+    // The boundary's edges, each with its one triangle (a -> b counter-clockwise).
+    for (t, [a, b]) in boundary {
         let both_fixed = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
         let contact = on_g3[a] && on_g3[b];
         if !contact && both_fixed(a) && both_fixed(b) {
@@ -288,9 +428,14 @@ pub fn estimate(
         let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
         let sn = traction(stress[t], n);
         let at = |s: f64| [pa[0] + s * (pb_[0] - pa[0]), pa[1] + s * (pb_[1] - pa[1])];
+        let on_part = pb.part.map_or([0.0; 2], |l| l(pa, pb_));
+        let load = |x: [f64; 2]| {
+            let f = (pb.surface)(x, n);
+            [f[0] + on_part[0], f[1] + on_part[1]]
+        };
         let mut r = 0.0;
         if contact {
-            let f3 = |x: [f64; 2]| (pb.surface)(x, n);
+            let f3 = load;
             // sigma_nu - f3_nu of the element at an end that is not a contact node.
             let own = |x: [f64; 2]| {
                 let f = f3(x);
@@ -314,7 +459,7 @@ pub fn estimate(
             // Gamma_2: the components left free at both ends.
             let free = [0, 1].map(|c| !(mesh.fixed[a][c] && mesh.fixed[b][c]));
             for (s, w) in GAUSS3 {
-                let f = (pb.surface)(at(s), n);
+                let f = load(at(s));
                 for c in 0..2 {
                     if free[c] {
                         r += w * he * (f[c] - sn[c]).powi(2);
@@ -376,6 +521,7 @@ mod tests {
             f0: &f0,
             surface: &surface,
             line: None,
+            part: None,
         };
         let sn = traction(sig, mesh.normal);
         let sigma_nu = sn[0] * mesh.normal[0] + sn[1] * mesh.normal[1];

@@ -404,8 +404,8 @@ impl Simulation {
         // On a small file mesh AMD fills less (the shipped Hertz scene's mesh: 139 k
         // entries of L against 157 k; the paper's n = 16 mesh: 9.1 k against 10.1 k),
         // and a second sweep thread does not pay there anyway.
-        let large_file = (scenario.body())
-            .is_some_and(|b| b.mesh.nodes.len() >= MIN_NODES_TO_DISSECT);
+        let large_file =
+            (scenario.body()).is_some_and(|b| b.mesh.nodes.len() >= MIN_NODES_TO_DISSECT);
         let dissect = grid || (given.is_none() && large_file);
         let ordering = match (s.ordering, dissect) {
             (Some(o), _) => o,

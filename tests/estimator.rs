@@ -13,7 +13,7 @@
 
 mod common;
 
-use common::{Csv, evhi_with, read, refused, scratch, succeed};
+use common::{Csv, evhi_with, read, scratch, stderr, succeed};
 use evhi::manufactured::run::{ExactRun, run_estimated};
 use evhi::manufactured::{SOLUTIONS, Solution};
 use evhi::scenario::Scenario;
@@ -230,7 +230,19 @@ fn indicators_concentrate_where_the_boundary_data_change() {
 fn solve_estimate_writes_the_indicators() {
     let dir = scratch("estimate");
     let out = dir.join("run");
-    succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --estimate --out").arg(&out));
+    let o = succeed(
+        evhi_with("solve --scenario figure --n 16 --steps 4 --estimate --timings --out").arg(&out),
+    );
+    // The estimator is a phase of --timings, beside the solve's.
+    let said = stderr(&o);
+    let line = said
+        .lines()
+        .find(|l| l.starts_with("timings (s):"))
+        .unwrap();
+    assert!(
+        line.contains("  estimator ") && line.contains("% of the solve") && line.contains("steps "),
+        "{line}"
+    );
     let csv = Csv::read(out.join("estimator.csv"));
     // One row per triangle of the n = 16 mesh (16 x 8 cells, two triangles each).
     assert_eq!(csv.len(), 2 * 16 * 8);
@@ -242,23 +254,155 @@ fn solve_estimate_writes_the_indicators() {
     assert!(vtu.contains(r#"<CellData>"#) && vtu.contains(r#"Name="eta""#));
     // Without the flag, neither.
     let plain = dir.join("plain");
-    succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --out").arg(&plain));
+    let o =
+        succeed(evhi_with("solve --scenario figure --n 16 --steps 4 --timings --out").arg(&plain));
+    assert!(!stderr(&o).contains("estimator"));
     assert!(!plain.join("estimator.csv").exists());
     assert!(!read(plain.join("solution.vtu")).contains("CellData"));
 }
 
+/// The shipped mesh scenes (`[geometry] mesh = ...`) and the steps to run them with
+/// (`hertz` is steady: one solve at T).
+const MESH_SCENES: [(&str, &str); 3] = [("paper_mesh", "4"), ("holed_block", "4"), ("hertz", "1")];
+
+fn example(name: &str) -> String {
+    format!(
+        "{}/data/scenarios/examples/{name}.toml",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
 #[test]
-fn solve_estimate_is_refused_on_a_mesh_scene() {
+fn solve_estimate_works_on_each_shipped_mesh_scene() {
     let dir = scratch("estimate-mesh");
-    let scene = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/data/scenarios/examples/paper_mesh.toml"
+    for (name, steps) in MESH_SCENES {
+        let out = dir.join(name);
+        succeed(
+            evhi_with("solve --estimate --steps")
+                .arg(steps)
+                .arg("--scenario")
+                .arg(example(name))
+                .arg("--out")
+                .arg(&out),
+        );
+        let scn = Scenario::load(&example(name)).unwrap();
+        let triangles = scn.body().unwrap().mesh.triangles.len();
+        let csv = Csv::read(out.join("estimator.csv"));
+        assert_eq!(csv.len(), triangles, "{name}");
+        let eta: Vec<f64> = (0..csv.len())
+            .map(|r| csv.get(r, "eta").parse().unwrap())
+            .collect();
+        assert!(
+            eta.iter().all(|e| e.is_finite() && *e >= 0.0) && eta.iter().any(|e| *e > 0.0),
+            "{name}"
+        );
+        assert!(
+            read(out.join("solution.vtu")).contains(r#"Name="eta""#),
+            "{name}"
+        );
+    }
+}
+
+/// The step's estimate of `scn` with `settings`, and the run's mesh.
+fn last_estimate(
+    scn: Scenario,
+    settings: evhi::simulation::RunSettings,
+) -> (evhi::estimator::Estimate, evhi::mesh::Mesh) {
+    let (est, mesh, _) = last_estimate_and_contact(scn, settings);
+    (est, mesh)
+}
+
+/// [`last_estimate`] with the last step's contact states.
+fn last_estimate_and_contact(
+    scn: Scenario,
+    settings: evhi::simulation::RunSettings,
+) -> (
+    evhi::estimator::Estimate,
+    evhi::mesh::Mesh,
+    Vec<evhi::certificate::ContactState>,
+) {
+    use evhi::estimator::estimate_scene;
+    use evhi::simulation::Simulation;
+    let steps = settings.steps.expect("the test sets the steps") as f64;
+    let sim = Simulation::new(scn, settings).unwrap();
+    let mut obs = LastTwo::default();
+    sim.solve(&mut obs).unwrap();
+    let (disc, mesh, scn) = (sim.discretisation(), sim.mesh(), sim.scenario());
+    let (u, u_prev) = (
+        disc.dofs.expand(&obs.fields[1]),
+        disc.dofs.expand(&obs.fields[0]),
     );
-    let o = evhi_with("solve --estimate --scenario")
-        .arg(scene)
-        .arg("--out")
-        .arg(dir.join("run"))
-        .output()
-        .unwrap();
-    refused(&o, &["--estimate", "rectangle"]);
+    let k = scn.t_end() / steps;
+    let est = estimate_scene(scn, mesh, &u, &u_prev, k, obs.t, &obs.contact);
+    (est, (**mesh).clone(), obs.contact)
+}
+
+/// The limit's complementarity term: zero on the `figure` scene with g = 1, which no
+/// node reaches, and with its own g = 0.1, which some nodes reach at T, positive and
+/// finite on the triangles whose Gamma_3 edge joins a node at the limit to one off it,
+/// zero elsewhere.
+#[test]
+fn complementarity_is_zero_off_the_limit_and_positive_at_its_ends() {
+    use evhi::simulation::RunSettings;
+    let settings = RunSettings::default().with_n(16).with_steps(16);
+    let figure = Scenario::load("figure").unwrap();
+    let far = figure.clone().with_g(1.0).unwrap();
+    let (est, _, contact) = last_estimate_and_contact(far, settings.clone());
+    assert!(contact.iter().all(|c| !c.at_limit));
+    assert_eq!(est.complementarity.len(), est.eta_sq.len());
+    assert!(est.complementarity.iter().all(|c| *c == 0.0));
+    let (est, mesh, contact) = last_estimate_and_contact(figure.with_g(0.02).unwrap(), settings);
+    let at: Vec<usize> = (mesh.contact.iter().zip(&contact))
+        .filter(|(_, c)| c.at_limit)
+        .map(|(&v, _)| v)
+        .collect();
+    assert!(
+        !at.is_empty() && at.len() < contact.len(),
+        "{} at the limit",
+        at.len()
+    );
+    let total = est.complementarity_total();
+    assert!(total.is_finite() && total > 0.0, "{total}");
+    let g3: std::collections::HashSet<usize> = mesh.gamma3.iter().copied().collect();
+    for (t, c) in est.complementarity.iter().enumerate() {
+        assert!(c.is_finite() && *c >= 0.0);
+        let tri = mesh.triangles[t];
+        let on_g3 = tri.iter().filter(|v| g3.contains(v)).count() >= 2;
+        let touches = tri.iter().any(|v| at.contains(v));
+        if *c > 0.0 {
+            assert!(on_g3 && touches, "triangle {t}: {c}");
+        }
+    }
+    println!("{} nodes at the limit, complementarity {total:e}", at.len());
+}
+
+/// data/meshes/paper_n16.msh is the built-in n = 16 mesh, and paper_mesh.toml puts the
+/// `figure` loads on its named parts: the estimate is the built-in scene's, triangle by
+/// triangle, so the parts (the top's traction, the clamps, the contact base) are read
+/// right.
+#[test]
+fn the_paper_mesh_gives_the_built_in_estimate_to_1e_12() {
+    use evhi::simulation::RunSettings;
+    let settings = RunSettings::default().with_n(16).with_steps(16);
+    let (file, fm) = last_estimate(
+        Scenario::load(&example("paper_mesh")).unwrap(),
+        settings.clone(),
+    );
+    let (built, bm) = last_estimate(Scenario::load("figure").unwrap(), settings);
+    assert_eq!((&fm.nodes, &fm.triangles), (&bm.nodes, &bm.triangles));
+    let scale = built.eta_sq.iter().cloned().fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    for (a, b) in file.eta_sq.iter().zip(&built.eta_sq) {
+        assert!((a - b).abs() <= 1e-12 * scale, "{a} against {b}");
+    }
+    for (a, b) in file.parts.iter().zip(&built.parts) {
+        assert!(
+            (a - b).abs() <= 1e-12 * a.abs().max(*b),
+            "{:?} against {:?}",
+            file.parts,
+            built.parts
+        );
+    }
+    // The top's traction is read: every kind of term is there.
+    assert!(built.parts.iter().all(|p| *p > 0.0), "{:?}", built.parts);
 }

@@ -1,8 +1,10 @@
 //! What `evhi bench` measures beyond the phases of a solve: the triangular sweeps
 //! against a ready-made factorisation (`sweeps`), and the paper's and our work against
-//! the precision reached (`workprec`), the time to read a mesh scene (`meshread`), with the tables of the bench (`tables`) and
+//! the precision reached (`workprec`), the time to read a mesh scene (`meshread`), the
+//! residual estimator's cost beside the solve (`estimator`), with the tables of the bench (`tables`) and
 //! the ones the book shows.
 
+pub mod estimator;
 pub mod meshread;
 pub mod sweeps;
 pub mod tables;

@@ -335,6 +335,21 @@ row! {
     }
 }
 
+row! {
+    /// One row of `bench_estimator.csv`: the solve of one level and the residual
+    /// estimator on its last step.
+    pub struct EstimatorRow {
+        n: u64 => "n" if AT_LEAST_ONE,
+        steps: u64 => "steps" if AT_LEAST_ONE,
+        triangles: u64 => "triangles" if AT_LEAST_ONE,
+        dofs: u64 => "dofs" if AT_LEAST_ONE,
+        solve_s: f64 => "solve_s" if SECONDS,
+        estimator_s: f64 => "estimator_s" if SECONDS,
+        one_step_percent: f64 => "one_step_percent" if POSITIVE,
+        every_step_percent: f64 => "every_step_percent" if POSITIVE,
+    }
+}
+
 /// The rows of `bench_mesh.csv`, checked: at least one, each n once, and each the
 /// refined paper mesh's counts at its n (`2 n^2 / 2` triangles, `(n+1)(n/2+1)` nodes).
 pub fn read_mesh(path: &Path) -> Result<Vec<(usize, MeshReadRow)>, FileError> {

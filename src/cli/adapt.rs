@@ -159,7 +159,7 @@ pub fn run(
     ));
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     let eta: Vec<f64> = adaptation.eta_sq.iter().map(|e| e.sqrt()).collect();
-    super::solve::write_eta(&out, &scn, run, &eta)?;
+    super::solve::write_eta(&out, &scn, run, &eta, None)?;
     evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     evhi::diag!(

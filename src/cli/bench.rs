@@ -57,6 +57,17 @@ pub struct BenchArgs {
     /// 262 144 triangles).
     #[arg(long, value_delimiter = ',', default_value = "128,256,512")]
     pub mesh_read_levels: Vec<usize>,
+    /// Only the estimator's cost: the `figure` scene at each of --estimator-levels
+    /// with --estimator-steps steps, solved, and the residual estimator on its last
+    /// step, both timed (data/bench_estimator.csv).
+    #[arg(long)]
+    pub estimator: bool,
+    /// Levels n of the estimator's rows.
+    #[arg(long, value_delimiter = ',', default_value = "64,128,256")]
+    pub estimator_levels: Vec<usize>,
+    /// Steps of the estimator's runs.
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u64).range(2..))]
+    pub estimator_steps: u64,
     /// Levels n = steps of the SciPy comparison.
     #[arg(long, value_delimiter = ',', default_value = "32,64,128")]
     pub scipy_levels: Vec<usize>,
@@ -130,7 +141,7 @@ fn child_run(
 /// --data without the `table1.csv` whose errors the work-precision chart draws.
 fn check_args(args: &BenchArgs, ctx: &evhi::study::Ctx) -> Result<(), evhi::error::InputError> {
     use evhi::error::InputError;
-    let full = !args.sweeps && !args.scipy && !args.mesh_read;
+    let full = !args.sweeps && !args.scipy && !args.mesh_read && !args.estimator;
     for &n in args
         .mesh_read_levels
         .iter()
@@ -138,8 +149,9 @@ fn check_args(args: &BenchArgs, ctx: &evhi::study::Ctx) -> Result<(), evhi::erro
     {
         crate::bench::meshread::check_level(n)?;
     }
-    let lists: [(&str, &[usize], bool); 3] = [
+    let lists: [(&str, &[usize], bool); 4] = [
         ("--levels", &args.levels, full),
+        ("--estimator-levels", &args.estimator_levels, args.estimator),
         ("--solver-levels", &args.solver_levels, full),
         ("--scipy-levels", &args.scipy_levels, args.scipy),
     ];
@@ -210,6 +222,16 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     }
     if args.scipy {
         return scipy(&ctx, &args, &machine);
+    }
+    if args.estimator {
+        crate::bench::estimator::run(
+            &ctx,
+            &args.estimator_levels,
+            args.estimator_steps as usize,
+            args.repeat,
+            &machine,
+        )?;
+        return Ok(());
     }
     if args.mesh_read {
         crate::bench::meshread::run(&ctx, &args.mesh_read_levels, args.repeat, &machine)?;

@@ -91,15 +91,18 @@ pub struct SolveArgs {
     /// solution.pvd, the collection with the times (open it to animate).
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
     pub vtk_every: Option<u64>,
-    /// Print the wall time of each phase (assembly, factorisation, condensation, steps).
+    /// Print the wall time of each phase (assembly, factorisation, condensation, steps,
+    /// and the estimator on the last step with --estimate).
     #[arg(long)]
     pub timings: bool,
     /// Also estimate the error of the last step by the residual estimator (element,
     /// interior-jump, traction and contact residuals of sigma = A eps((u_N - u_N-1)/k) +
     /// B eps(u_N); the equation heads the library's `estimator` module): writes
-    /// estimator.csv (centroid x, y and eta of each triangle) and adds the cell field
-    /// `eta` to solution.vtu. Rectangle scenes only, for now. Without it nothing of this
-    /// is computed.
+    /// estimator.csv (centroid x, y, eta of each triangle, and the limit's
+    /// complementarity term mu |g - u_nu| integrated over its edges on Gamma_3, zero
+    /// off the limit's ends) and adds the cell field
+    /// `eta` to solution.vtu. On a rectangle or a mesh scene (whose tractions act on
+    /// their named parts). Without it nothing of this is computed.
     #[arg(long)]
     pub estimate: bool,
     /// Fail a step whose certificate exceeds this relative residual (in [1e-15, 1e-4]).
@@ -198,14 +201,6 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(tol) = args.adapt {
         return super::adapt::run(&args, scn, &toml, tol, wall);
     }
-    if args.estimate && scn.body().is_some() {
-        return Err(evhi::error::InputError::field(
-            "--estimate",
-            "true",
-            "only on a rectangle scene for now (a mesh scene's boundary parts are not read by the estimator yet)",
-        )
-        .into());
-    }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
@@ -255,11 +250,11 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         seconds,
         &h_s,
     )?;
-    let t_est = Instant::now();
-    if args.estimate {
-        write_estimate(&out, scn, run, &last)?;
-    }
-    let t_est = t_est.elapsed();
+    let t_est = if args.estimate {
+        Some(write_estimate(&out, scn, run, &last)?)
+    } else {
+        None
+    };
     // The run's figures, drawn from the tables just written.
     evhi::output::runplot::draw_scene(
         &out.path(""),
@@ -271,10 +266,10 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     out.publish()?;
     if args.timings {
         let (output, total) = (t_out.elapsed(), wall.elapsed());
-        evhi::diag_text!("{}", evhi::output::run::timings(&sim, run, output, total));
-        if args.estimate {
-            evhi::diag_text!("estimator (last step): {:.3} s\n", t_est.as_secs_f64());
-        }
+        evhi::diag_text!(
+            "{}",
+            evhi::output::run::timings(&sim, run, output, total, t_est)
+        );
     }
     evhi::diag!(
         "solved: {} steps, n = {}, largest certificate {:.1e}, {:.2} s wall; run directory {}",
@@ -358,13 +353,13 @@ struct Progress<'a> {
 
 /// The residual estimate of the run's last step: `estimator.csv` and `solution.vtu`
 /// again with the cell field `eta`. $u^{N-1}$ is the field before the last (zero for
-/// a run of one step).
+/// a run of one step). Returns the seconds the estimate took (not the writing).
 fn write_estimate(
     out: &RunDir,
     scn: &Scenario,
     run: &evhi::scheme::Run,
     last: &[(usize, Vec<f64>)],
-) -> Result<(), Box<dyn std::error::Error>> {
+) -> Result<f64, Box<dyn std::error::Error>> {
     use evhi::estimator::estimate_scene;
     let mesh = &run.mesh;
     let dofs = evhi::mesh::Dofs::new(mesh, true);
@@ -376,25 +371,36 @@ fn write_estimate(
     };
     // The last step's time and length (the grid into the layer ends with steps of T/N).
     let t = run.records.last().map_or(scn.t_end(), |r| r.t);
-    let eta = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact).eta();
-    write_eta(out, scn, run, &eta)
+    let clock = Instant::now();
+    let est = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact);
+    let seconds = clock.elapsed().as_secs_f64();
+    write_eta(out, scn, run, &est.eta(), Some(&est.complementarity))?;
+    Ok(seconds)
 }
 
-/// `estimator.csv` (centroid x, y and `eta` of each triangle of the run's mesh) and
-/// `solution.vtu` again with the cell field `eta`.
+/// `estimator.csv` (centroid x, y and `eta` of each triangle of the run's mesh, and
+/// its `complementarity` term where given) and `solution.vtu` again with the cell
+/// field `eta`.
 pub fn write_eta(
     out: &RunDir,
     scn: &Scenario,
     run: &evhi::scheme::Run,
     eta: &[f64],
+    complementarity: Option<&[f64]>,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let mesh = &run.mesh;
     let dofs = evhi::mesh::Dofs::new(mesh, true);
-    let mut csv = String::from("x,y,eta\n");
-    for (tri, e) in mesh.triangles.iter().zip(eta) {
+    let mut csv = String::from(match complementarity {
+        Some(_) => "x,y,eta,complementarity\n",
+        None => "x,y,eta\n",
+    });
+    for (i, (tri, e)) in mesh.triangles.iter().zip(eta).enumerate() {
         let p = tri.map(|v| mesh.nodes[v]);
-        let c = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
-        csv += &format!("{},{},{:e}\n", c[0], c[1], e);
+        let x = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
+        match complementarity {
+            Some(c) => csv += &format!("{},{},{:e},{:e}\n", x[0], x[1], e, c[i]),
+            None => csv += &format!("{},{},{:e}\n", x[0], x[1], e),
+        }
     }
     out.write("estimator.csv", csv.as_bytes())?;
     let disp = mesh.displacement(&dofs, &run.u);

@@ -435,6 +435,7 @@ fn run_rules_options(
                     f0: &f0,
                     surface: &surface,
                     line: Some(&line),
+                    part: None,
                 };
                 let eta = crate::estimator::estimate(&mesh, &pb, &nodal_h, &prev_h[i], k, &sigma_h)
                     .total();

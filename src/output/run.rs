@@ -553,17 +553,27 @@ pub fn step_work(r: &[crate::scheme::StepRecord]) -> Table {
 
 /// The `--timings` report of a solve: the phases, the sizes, the cost of one solve
 /// against the run and the peak memory; `output` and `total` are the seconds spent
-/// writing the run directory and in all.
+/// writing the run directory and in all, `estimator` the seconds of the residual
+/// estimator on the last step when `--estimate` asked for it (a phase of its own,
+/// with what estimating every step would cost against the solve).
 pub fn timings(
     sim: &crate::simulation::Simulation,
     run: &crate::scheme::Run,
     output: std::time::Duration,
     total: std::time::Duration,
+    estimator: Option<f64>,
 ) -> String {
     let t = &run.timings;
+    let solve = t.assembly + t.factorisation + t.condensation + t.steps;
+    let est = estimator.map_or(String::new(), |e| {
+        format!(
+            "  estimator {e:.4} (one step; every step would be {:.1} % of the solve)",
+            100.0 * run.steps as f64 * e / solve
+        )
+    });
     format!(
         "timings (s): assembly {:.4}  factorisation {:.4}  condensation {:.4}  steps {:.4} \
-         (step solver {:.4}, certificates {:.4})  output {:.4}  total {:.4}\n\
+         (step solver {:.4}, certificates {:.4}){est}  output {:.4}  total {:.4}\n\
          dofs {}  contact nodes {}  nnz(L) {} ({}, {} sweep thread(s))\n\
          one solve {:.4} s; run / (factorisation + N solves) = {:.3}; peak memory {:.0} MB\n",
         t.assembly,
