@@ -140,7 +140,7 @@ fn adaptive_time_mean() {
 /// whose error is below the graded family's finest, against the graded family's sum.
 #[test]
 fn adaptive_wall_time() {
-    let stated = [("figure", "3.8", "1.1"), ("literal", "2.4", "1.2")];
+    let stated = [("figure", "3.0", "0.6"), ("literal", "1.8", "0.7")];
     for (scn, adaptive, graded) in stated {
         let target = family(scn, "graded").last().unwrap().1;
         let e = column(CONV, &[("scenario", scn), ("family", "adaptive")], "err_T");
