@@ -1,7 +1,7 @@
 //! `evhi solve --adapt TOL`: the library's adaptive loop ([`evhi::adapt`]) from the
 //! command line, one line per level, and the last level's run directory.
 
-use super::solve::SolveArgs;
+use super::solve_args::SolveArgs;
 use evhi::adapt::{AdaptLevel, AdaptObserver, AdaptSettings, Aggregate, Solved};
 use evhi::certificate::ContactState;
 use evhi::error::InputError;
@@ -69,7 +69,7 @@ pub fn run(
     let settings = adapt_settings(args, tol);
     settings.check().map_err(flags)?;
     let (forest, root, n0) = evhi::adapt::initial_forest(&scn)?;
-    let run_settings = super::solve::settings(args).with_n(n0);
+    let run_settings = super::solve_args::settings(args).with_n(n0);
     let out = RunDir::open(&args.out)?;
     evhi::diag!(
         "adapting `{}` from the grid of {n0} segments: tol {tol}, theta {}, at most {} unknowns, \
@@ -106,7 +106,7 @@ pub fn run(
     }
     let (adaptation, h_s) = adaptation;
     let adaptation = adaptation.map_err(|e| match e {
-        evhi::scheme::RunError::Input(e) => flags(super::solve::settings_flag(e)).into(),
+        evhi::scheme::RunError::Input(e) => flags(super::solve_args::settings_flag(e)).into(),
         other => other,
     })?;
     if let Some(e) = cli.error.take() {
@@ -159,7 +159,7 @@ pub fn run(
     ));
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     let eta: Vec<f64> = adaptation.eta_sq.iter().map(|e| e.sqrt()).collect();
-    super::solve::write_eta(&out, &scn, run, &eta, None)?;
+    super::outputs::write_eta(&out, &scn, run, &eta, None)?;
     evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     evhi::diag!(

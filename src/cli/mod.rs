@@ -10,3 +10,4 @@ pub mod bench;
 pub mod outputs;
 pub mod show;
 pub mod solve;
+pub mod solve_args;

@@ -129,3 +129,37 @@ fn temporary_pid(name: &str) -> Option<u32> {
         .map(|(_, rest)| rest.split('.').next().unwrap_or(""))
         .and_then(|p| p.parse::<u32>().ok())
 }
+
+/// `estimator.csv` (centroid x, y and `eta` of each triangle of the run's mesh, and
+/// its `complementarity` term where given) and `solution.vtu` again with the cell
+/// field `eta`.
+pub fn write_eta(
+    out: &evhi::output::rundir::RunDir,
+    scn: &evhi::scenario::Scenario,
+    run: &evhi::scheme::Run,
+    eta: &[f64],
+    complementarity: Option<&[f64]>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let mesh = &run.mesh;
+    let dofs = evhi::mesh::Dofs::new(mesh, true);
+    let mut csv = String::from(match complementarity {
+        Some(_) => "x,y,eta,complementarity\n",
+        None => "x,y,eta\n",
+    });
+    for (i, (tri, e)) in mesh.triangles.iter().zip(eta).enumerate() {
+        let p = tri.map(|v| mesh.nodes[v]);
+        let x = [0, 1].map(|i| (p[0][i] + p[1][i] + p[2][i]) / 3.0);
+        match complementarity {
+            Some(c) => csv += &format!("{},{},{:e},{:e}\n", x[0], x[1], e, c[i]),
+            None => csv += &format!("{},{},{:e}\n", x[0], x[1], e),
+        }
+    }
+    out.write("estimator.csv", csv.as_bytes())?;
+    let disp = mesh.displacement(&dofs, &run.u);
+    let codes: Vec<i32> = (run.contact.iter())
+        .map(|c| c.regime_code(scn.law(), scn.g()))
+        .collect();
+    let vtu = evhi::output::vtu::vtu_cells(mesh, &disp, &run.contact, &codes, &[("eta", eta)]);
+    out.write("solution.vtu", vtu.as_bytes())?;
+    Ok(())
+}

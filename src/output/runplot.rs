@@ -226,16 +226,7 @@ pub fn draw(dir: &Path) -> Result<(), FileError> {
     draw_scene(dir, None)
 }
 
-/// What the process that has just written a run directory still holds of the run,
-/// so that drawing its figures need not read it back.
-#[derive(Clone, Copy)]
-pub struct Written<'a> {
-    /// The scene solved (read back, a mesh scene's mesh would be parsed and built
-    /// again from the run's scenario.toml).
-    pub scene: &'a crate::scenario::Scenario,
-    /// The mesh's triangles, as triangles.csv holds them.
-    pub triangles: &'a [[usize; 3]],
-}
+pub use crate::output::scene::Written;
 
 /// [`draw`] for a run directory, with what its writer still holds (`evhi solve`):
 /// the tables were written by this process a moment ago, so they are not checked

@@ -21,7 +21,7 @@ pub fn draw_run(
     g: f64,
     cells: usize,
     title: String,
-    written: Option<crate::output::runplot::Written>,
+    written: Option<Written>,
 ) -> Result<(), FileError> {
     let mut panel = Panel::from_csv(&dir.join("contact.csv"), &dir.join("nodes.csv"), g, cells)?;
     let tri = dir.join("triangles.csv");
@@ -775,4 +775,15 @@ mod tests {
             "the lower half of the box: {area}"
         );
     }
+}
+
+/// What the process that has just written a run directory still holds of the run,
+/// so that drawing its figures need not read it back.
+#[derive(Clone, Copy)]
+pub struct Written<'a> {
+    /// The scene solved (read back, a mesh scene's mesh would be parsed and built
+    /// again from the run's scenario.toml).
+    pub scene: &'a crate::scenario::Scenario,
+    /// The mesh's triangles, as triangles.csv holds them.
+    pub triangles: &'a [[usize; 3]],
 }
