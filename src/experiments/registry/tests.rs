@@ -19,7 +19,7 @@ fn experiment_names_are_spelled_in_the_registry_only() {
     let other_meaning: [(&str, &str); 11] = [
         ("src/experiments/adaptive.rs", "graded"), // a mesh family's label
         ("src/experiments/adaptive.rs", "adaptive"), // a mesh family's label
-        ("src/cli/solve.rs", "graded"),            // the mesh kind of --mesh
+        ("src/cli/solve_args.rs", "graded"),       // the mesh kind of --mesh
         ("src/study/mod.rs", "time"),              // the study `evhi study time`
         ("src/study/mod.rs", "stability"),         // the study `evhi study stability`
         ("src/study/convergence.rs", "graded"),    // a mesh family's label
