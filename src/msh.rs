@@ -99,6 +99,63 @@ pub fn read_bytes(path: &Path, file: &str) -> Result<Vec<u8>, InputError> {
     std::fs::read(path).map_err(io)
 }
 
+/// Node tag -> the node's position in the file's order: a table over the tags'
+/// range when they are about dense (as Gmsh writes them), else a hash map.
+enum TagIndex {
+    Dense { min: u64, at: Vec<usize> },
+    Sparse(HashMap<u64, usize>),
+}
+
+impl TagIndex {
+    fn new(nodes: &mshio::Nodes<u64, i32, f64>) -> TagIndex {
+        let count: usize = nodes.node_blocks.iter().map(|b| b.nodes.len()).sum();
+        let (min, max) = (nodes.min_node_tag, nodes.max_node_tag);
+        let span = max.saturating_sub(min).saturating_add(1);
+        if min <= max && span <= 2 * count as u64 + 1024 {
+            TagIndex::Dense {
+                min,
+                at: vec![usize::MAX; span as usize],
+            }
+        } else {
+            TagIndex::Sparse(HashMap::with_capacity(count))
+        }
+    }
+    /// Records `tag` at `v`; false if the tag was recorded before.
+    fn insert(&mut self, tag: u64, v: usize) -> bool {
+        match self {
+            TagIndex::Dense { min, at } => {
+                match tag.checked_sub(*min).and_then(|k| at.get_mut(k as usize)) {
+                    Some(slot) if *slot == usize::MAX => {
+                        *slot = v;
+                        true
+                    }
+                    Some(_) => false,
+                    // A tag outside the header's range: kept, as the map would.
+                    None => {
+                        let mut map: HashMap<u64, usize> = (at.iter().enumerate())
+                            .filter(|&(_, &w)| w != usize::MAX)
+                            .map(|(k, &w)| (*min + k as u64, w))
+                            .collect();
+                        map.insert(tag, v);
+                        *self = TagIndex::Sparse(map);
+                        true
+                    }
+                }
+            }
+            TagIndex::Sparse(map) => map.insert(tag, v).is_none(),
+        }
+    }
+    fn get(&self, tag: u64) -> Option<usize> {
+        match self {
+            TagIndex::Dense { min, at } => (tag.checked_sub(*min))
+                .and_then(|k| at.get(k as usize))
+                .copied()
+                .filter(|&v| v != usize::MAX),
+            TagIndex::Sparse(map) => map.get(&tag).copied(),
+        }
+    }
+}
+
 /// Parses the bytes of an MSH 4.1 file; `file` names it in messages.
 pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
     let refuse = |m: String| InputError::mesh(file, m);
@@ -133,7 +190,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
     // The nodes, by tag. Dense tags are not stored by mshio: they run from the
     // smallest tag in the file's order, as Gmsh writes them.
     let mut coords: Vec<[f64; 3]> = Vec::new();
-    let mut index: HashMap<u64, usize> = HashMap::new();
+    let mut index = TagIndex::new(&nodes);
     let mut next = nodes.min_node_tag;
     for block in &nodes.node_blocks {
         let mut tags: Vec<(u64, usize)> = match &block.node_tags {
@@ -146,7 +203,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
         next += block.nodes.len() as u64;
         for (tag, i) in tags {
             let p = &block.nodes[i];
-            if index.insert(tag, coords.len()).is_some() {
+            if !index.insert(tag, coords.len()) {
                 return Err(refuse(format!(
                     "node {tag} is defined twice: save the mesh again from Gmsh"
                 )));
@@ -171,11 +228,13 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
             p[0], p[1], p[2]
         )));
     }
-    let node = |tag: u64, what: &str| {
-        index.get(&tag).copied().ok_or_else(|| {
+    // `what` names the element, made only for the message.
+    let node = |tag: u64, what: &dyn Fn() -> String| {
+        index.get(tag).ok_or_else(|| {
             refuse(format!(
-                "{what} uses node {tag}, which the file does not define: save the mesh again \
-                 from Gmsh"
+                "{} uses node {tag}, which the file does not define: save the mesh again \
+                 from Gmsh",
+                what()
             ))
         })
     };
@@ -188,7 +247,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
         match kind(ty, block.entity_dim) {
             Kind::Triangle => {
                 for e in &block.elements {
-                    let what = format!("triangle {}", e.element_tag);
+                    let what = || format!("triangle {}", e.element_tag);
                     let t = [
                         node(e.nodes[0], &what)?,
                         node(e.nodes[1], &what)?,
@@ -199,7 +258,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
             }
             Kind::Line => {
                 for e in &block.elements {
-                    let what = format!("line element {}", e.element_tag);
+                    let what = || format!("line element {}", e.element_tag);
                     let a = node(e.nodes[0], &what)?;
                     let b = node(e.nodes[1], &what)?;
                     curve_edges.push((block.entity_tag, [a, b], e.element_tag));
@@ -266,20 +325,27 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
 
     // Each directed edge once: two counter-clockwise triangles on the same side of an
     // edge overlap (the mesh is folded), and an edge of three triangles is no surface.
-    let mut directed: HashMap<(usize, usize), usize> = HashMap::with_capacity(3 * tris.len());
+    // Sorted (a, b, triangle, edge) entries put the triangles of one directed edge
+    // side by side; the refusal names the pair a scan in the file's order meets first.
+    let mut directed: Vec<(usize, usize, usize, usize)> = Vec::with_capacity(3 * tris.len());
     for (i, t) in tris.iter().enumerate() {
         for e in 0..3 {
-            let (a, b) = (t[e], t[(e + 1) % 3]);
-            if let Some(j) = directed.insert((a, b), i) {
-                let [pa, pb] = [kept[a], kept[b]];
-                return Err(refuse(format!(
-                    "the mesh is tangled: triangles {} and {} lie on the same side of the edge \
-                     from ({}, {}) to ({}, {}) (they overlap, or the edge has more than two \
-                     triangles): mesh the surface again, without overlapping or folded parts",
-                    triangles[j].1, triangles[i].1, pa[0], pa[1], pb[0], pb[1]
-                )));
-            }
+            directed.push((t[e], t[(e + 1) % 3], i, e));
         }
+    }
+    directed.sort_unstable();
+    let folded = (directed.windows(2))
+        .filter(|w| (w[0].0, w[0].1) == (w[1].0, w[1].1))
+        .min_by_key(|w| (w[1].2, w[1].3));
+    if let Some(w) = folded {
+        let ((a, b, j, _), i) = (w[0], w[1].2);
+        let [pa, pb] = [kept[a], kept[b]];
+        return Err(refuse(format!(
+            "the mesh is tangled: triangles {} and {} lie on the same side of the edge \
+             from ({}, {}) to ({}, {}) (they overlap, or the edge has more than two \
+             triangles): mesh the surface again, without overlapping or folded parts",
+            triangles[j].1, triangles[i].1, pa[0], pa[1], pb[0], pb[1]
+        )));
     }
 
     // One piece: the triangles joined through shared nodes.
@@ -316,6 +382,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
     }
 
     // The groups of curves, each edge oriented as the boundary runs.
+    let has = |a: usize, b: usize| (directed.binary_search_by(|x| (x.0, x.1).cmp(&(a, b)))).is_ok();
     let mut by_tag: std::collections::BTreeMap<i32, Vec<[usize; 2]>> = Default::default();
     for (entity, [a, b], tag) in &curve_edges {
         let Some(groups) = curve_groups.get(entity).filter(|g| !g.is_empty()) else {
@@ -328,12 +395,12 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<MshMesh, InputError> {
                  curves must lie on the body's boundary"
             )));
         }
-        let edge = if directed.contains_key(&(a, b)) && !directed.contains_key(&(b, a)) {
+        let edge = if has(a, b) && !has(b, a) {
             [a, b]
-        } else if directed.contains_key(&(b, a)) && !directed.contains_key(&(a, b)) {
+        } else if has(b, a) && !has(a, b) {
             [b, a]
         } else {
-            let inside = directed.contains_key(&(a, b));
+            let inside = has(a, b);
             return Err(refuse(format!(
                 "line element {tag} (curve {entity}, from ({}, {}) to ({}, {})) is {}: a \
                  group's curves must lie on the body's boundary (mesh the curves with the \

@@ -29,6 +29,10 @@ use crate::mesh::{Dofs, Mesh};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 
+/// The nodes from which a file mesh is ordered by coordinate dissection by default
+/// (below, AMD): the run's factorisation and the trace constant's alike.
+pub const MIN_NODES_TO_DISSECT: usize = 100_000;
+
 /// A symmetric permutation of the dofs with `m` given dofs last.
 #[derive(Debug, Clone)]
 pub struct Ordering {

@@ -330,9 +330,7 @@ impl Solution {
     }
 }
 
-/// The nodes from which a mesh scene's file mesh is ordered by nested dissection by
-/// default (below, AMD).
-pub const MIN_NODES_TO_DISSECT: usize = 100_000;
+pub use crate::ordering::MIN_NODES_TO_DISSECT;
 
 impl Simulation {
     /// Checks `settings` against `scenario` and builds the mesh. Every refusal names

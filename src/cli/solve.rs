@@ -87,12 +87,18 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     } else {
         None
     };
-    // The run's figures, drawn from the tables just written.
+    // The run's figures, drawn from the tables just written (a mesh scene's nodes
+    // from memory).
+    let disp = run
+        .mesh
+        .displacement(&evhi::mesh::Dofs::new(&run.mesh, true), &run.u);
     evhi::output::runplot::draw_scene(
         &out.path(""),
         Some(evhi::output::runplot::Written {
             scene: scn,
             triangles: &run.mesh.triangles,
+            nodes: &run.mesh.nodes,
+            disp: &disp,
         }),
     )?;
     out.publish()?;
