@@ -87,11 +87,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     } else {
         None
     };
-    // The run's figures, drawn from the tables just written (a mesh scene's nodes
-    // from memory).
-    let disp = run
-        .mesh
-        .displacement(&evhi::mesh::Dofs::new(&run.mesh, true), &run.u);
+    // The run's figures, drawn from the tables just written; a mesh that is no
+    // lattice (its nodes.csv holds every node) has its nodes drawn from memory.
+    let disp = if run.mesh.pattern.is_grid() {
+        Vec::new()
+    } else {
+        (run.mesh).displacement(&evhi::mesh::Dofs::new(&run.mesh, true), &run.u)
+    };
     evhi::output::runplot::draw_scene(
         &out.path(""),
         Some(evhi::output::runplot::Written {

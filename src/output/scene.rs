@@ -24,7 +24,8 @@ pub fn draw_run(
     written: Option<Written>,
 ) -> Result<(), FileError> {
     let tri = dir.join("triangles.csv");
-    let held = written.filter(|w| tri.exists() && w.nodes.len() == w.disp.len());
+    let every_node = tri.exists();
+    let held = written.filter(|w| every_node && w.nodes.len() == w.disp.len());
     let contact = dir.join("contact.csv");
     let mut panel = match held {
         Some(w) => {
@@ -39,7 +40,7 @@ pub fn draw_run(
         }
         None => Panel::from_csv(&contact, &dir.join("nodes.csv"), g, cells)?,
     };
-    if let (true, Some(w)) = (tri.exists(), written) {
+    if let (true, Some(w)) = (every_node, written) {
         // The triangles this process wrote to triangles.csv.
         let nodes = panel.x.len();
         if let Some(bad) = w.triangles.iter().find(|t| t.iter().any(|&k| k >= nodes)) {
@@ -52,7 +53,7 @@ pub fn draw_run(
         }
         panel.triangles = Some(w.triangles.to_vec());
         panel.body = body_view(dir, &panel, Some(w.scene))?;
-    } else if tri.exists() {
+    } else if every_node {
         // Read as numbers, so that a row of NaN, -5 or 1.5 is refused as a triangle.
         let text = Text::read(&tri)?;
         let corners = (TriangleRow::COLUMNS.iter())
@@ -825,6 +826,7 @@ pub struct Written<'a> {
     /// it holds every node (a mesh that is no lattice): reading 131 k rows back took
     /// 0.3 s of a 3 s run (paper_n512).
     pub nodes: &'a [[f64; 2]],
-    /// The displacement of each of `nodes`.
+    /// The displacement of each of `nodes`; empty when nodes.csv is a lattice (the
+    /// figure then reads it, as it does for a run drawn by `evhi plot`).
     pub disp: &'a [[f64; 2]],
 }
