@@ -246,7 +246,7 @@ impl<'d> Reduced<'d> {
         at: &AtK,
         scn: &Scenario,
         load: &Load,
-        (u_prev, u): (&[f64], &[f64]),
+        (u_prev, u, s): (&[f64], &[f64], &[f64]),
         t: f64,
     ) -> (Certificate, Vec<ContactState>) {
         let d = self.disc;
@@ -263,6 +263,7 @@ impl<'d> Reduced<'d> {
             ku_abs,
             &b,
             u,
+            s,
             &d.contact_dofs,
             &d.gap,
             &at.kw,
@@ -412,7 +413,7 @@ impl<'d> Reduced<'d> {
             let mut check = Check::Condensed;
             if let Some((u_prev, u)) = &field {
                 let full = timed(&mut timings.certificates, || {
-                    self.certify_full(&at, scn, load, (u_prev, u), t)
+                    self.certify_full(&at, scn, load, (u_prev, u, &s), t)
                 });
                 // The full certificate checks every equation, the contact conditions
                 // among them, on the assembled system: it replaces the condensed one.

@@ -555,7 +555,7 @@ pub(crate) fn run_batch_states(
         for (i, info) in infos.into_iter().enumerate() {
             let (rec, states) = timed(&mut timings.certificates, || {
                 op.record(
-                    &next[i],
+                    (&next[i], &r[i]),
                     &b[i],
                     &mut au[i],
                     &scns[i],
@@ -966,11 +966,11 @@ impl<'d> StepOperator<'d> {
     // ANCHOR_END: step
 
     /// The record of a step: $Au_n$ (kept in `au` for the next step), $Bu_n$, the
-    /// certificate of $u_n$ against $K u = b_n$ and the contact conditions, the
-    /// energy norm.
+    /// certificate of $u_n$ against $K u = b_n$ and the contact conditions at the step
+    /// solver's contact variables `s` (see [`certify`]), the energy norm.
     pub fn record(
         &self,
-        u: &[f64],
+        (u, s): (&[f64], &[f64]),
         b: &[f64],
         au: &mut Vec<f64>,
         scn: &Scenario,
@@ -996,6 +996,7 @@ impl<'d> StepOperator<'d> {
             ku_abs,
             b,
             u,
+            s,
             &self.cdofs,
             &self.gap,
             &self.kw,

@@ -84,3 +84,45 @@ fn condensed_and_full_certificates_agree_on_a_run() {
         assert!(rec.certificate.max() < 1e-13, "step {}: {rec:?}", rec.step);
     }
 }
+
+/// A law that jumps up at s = 0 (p = 0 behind the foundation, p(0+) = 5): a node may
+/// rest exactly on s = 0 with any pressure in [0, 5]. The step solvers put nodes there;
+/// the recovered field must keep them there, or the certificate sees a node a few units
+/// of rounding inside the layer, where the pressure must equal p(0+) = 5, and refuses a
+/// correct step (it did, at 1.4e-1, for every solver and both loops).
+#[test]
+fn a_node_resting_on_an_upward_jump_is_certified() {
+    use evhi::law::Law;
+    use evhi::simulation::{Loop, RunSettings, Simulation};
+    let base = Scenario::load("data/scenarios/examples/cantilever.toml").unwrap();
+    let law = Law::new(&[0.0, 0.02], &[0.0, 500.0, 200.0], &[5.0, -4.0], 0.0).unwrap();
+    let general = base.clone().with_law(law.clone()).unwrap();
+    // Proportional damping (C = 0.1 G) for the reduced loop.
+    let el = base.elasticity();
+    let proportional = general
+        .clone()
+        .with_viscosity(0.1 * el.a, 0.1 * el.b)
+        .unwrap();
+    for (scene, path) in [(&general, Loop::General), (&proportional, Loop::Reduced)] {
+        for solver in ["newton", "proxgrad"] {
+            let settings = RunSettings::default()
+                .with_n(16)
+                .with_steps(16)
+                .with_path(path)
+                .with_solver(solver);
+            let what = format!("{path:?}, {solver}");
+            let run = Simulation::new(scene.clone(), settings)
+                .unwrap()
+                .solve(&mut ())
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(run.max_certificate() <= 1e-10, "{what}");
+            // Some nodes rest on the jump with a pressure strictly inside (0, 5).
+            let on_jump = run
+                .contact()
+                .iter()
+                .filter(|c| c.u_nu == 0.0 && -c.sigma_nu1 > 1e-3 && -c.sigma_nu1 < 5.0 - 1e-3)
+                .count();
+            assert!(on_jump > 0, "{what}: {:?}", run.contact());
+        }
+    }
+}

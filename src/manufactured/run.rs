@@ -383,7 +383,8 @@ fn run_rules_options(
                 &mut Timings::default(),
             );
             let info = infos.into_iter().next().expect("one solve");
-            let (rec, states) = op.record(&u[0], &b, &mut au[i], scn, (step, t, 0.0), info);
+            let (rec, states) =
+                op.record((&u[0], &r[i]), &b, &mut au[i], scn, (step, t, 0.0), info);
             // The nodal rule is certified on the full system; the exact rule, whose
             // step is another problem, by its own KKT residual (the recovery of u
             // from r is the same code as the nodal rule's).
