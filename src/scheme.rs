@@ -290,6 +290,9 @@ pub enum RunError {
         /// The steps completed before this one.
         partial: Box<Partial>,
     },
+    /// A converged step whose full certificate failed because the recovered
+    /// displacement is the small difference of the load's free response and the
+    /// contact's, which exceeds $g$ more than [`CANCELLATION_RATIO`] times.
     #[error(
         "scenario `{scenario}`, step {step} (t = {t:e}): the solver `{solver}` solved the step's \
          condensed problem (residual {residual:.1e}), but the displacement recovered from it \
@@ -326,6 +329,8 @@ pub enum RunError {
         /// The steps completed before this one.
         partial: Box<Partial>,
     },
+    /// A step the solver did not converge on, or whose certificate exceeded the
+    /// tolerance.
     #[error(
         "{}. What may help: another step solver (`proxgrad` and `newton-no-line-search` \
          certify too), a smaller k (more time steps), or, where the law softens, a stiffer \
