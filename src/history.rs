@@ -20,7 +20,7 @@ pub enum History {
     Constant,
     /// φ(t) = min(t / t_r, 1): a linear ramp to the full load at t_r.
     Ramp {
-        /// The ramp time $t_r$ (s) at which the full load is reached.
+        /// The ramp time $t_r$ at which the full load is reached.
         t_r: f64,
     },
     /// φ piecewise linear through (t_i, φ_i), t_i strictly increasing.
