@@ -287,7 +287,9 @@ impl<'a> Pair<'a> {
 
 /// The products of [`Pair::products`].
 pub struct Products {
+    /// $Ax$.
     pub ax: Vec<f64>,
+    /// $Bx$.
     pub bx: Vec<f64>,
     /// $\|\,|A + kB|\,|x|\,\|_\infty$.
     pub abs_norm: f64,

@@ -44,7 +44,9 @@ use std::sync::Arc;
 /// A support on a named part.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartSupport {
+    /// The part's name: a physical group of curves of the mesh file.
     pub part: String,
+    /// What holds the part (clamped, rollers, free or a spring).
     pub hold: Hold,
     /// The components it fixes at each node of the part (x, y).
     pub fixes: [bool; 2],
@@ -55,7 +57,9 @@ pub struct PartSupport {
 /// A constant force density `f` (N/m) on a named part.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartTraction {
+    /// The part's name: a physical group of curves of the mesh file.
     pub part: String,
+    /// The force density $(f_x, f_y)$ on the part, in N/m.
     pub f: [f64; 2],
     /// Where the scenario says it (`loads.traction[0]`), for messages.
     pub field: String,
@@ -65,7 +69,9 @@ pub struct PartTraction {
 /// support holds).
 #[derive(Debug, Clone, PartialEq)]
 pub struct PartDisplacement {
+    /// The held part's name: a physical group of curves of the mesh file.
     pub part: String,
+    /// The displacement $d = (d_x, d_y)$ of every node of the part, in m.
     pub u: [f64; 2],
     /// Where the scenario says it (`geometry.displacement`), for messages.
     pub field: String,
@@ -75,7 +81,9 @@ pub struct PartDisplacement {
 /// (pointing from the body to the foundation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Foundation {
+    /// A point $x_f$ on the line, in m.
     pub point: [f64; 2],
+    /// The outward unit normal $n_f$, from the body to the foundation.
     pub normal: [f64; 2],
 }
 
@@ -120,7 +128,9 @@ impl Foundation {
 pub struct Body {
     /// The file as the scenario names it (`geometry.mesh`).
     pub file: String,
+    /// The triangulated mesh read from the file, with its physical groups.
     pub mesh: Arc<MshMesh>,
+    /// The supports of the parts, in the order the scenario gives them.
     pub supports: Vec<PartSupport>,
     /// The contact part's name.
     pub contact: String,
@@ -130,6 +140,7 @@ pub struct Body {
     pub foundation: Foundation,
     /// The initial gap $g_{0,i}$ of each node of `gamma3`.
     pub gap0: Vec<f64>,
+    /// The constant tractions on parts of $\Gamma_2$.
     pub tractions: Vec<PartTraction>,
     /// A prescribed displacement of a held part, if any.
     pub displacement: Option<PartDisplacement>,

@@ -120,8 +120,14 @@ pub fn resolved_length(law: &Law, g: f64) -> f64 {
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Certificate {
+    /// The stationarity residual: $\|\rho - E_C^\top(\text{admissible reaction})\|_\infty$
+    /// over $\max(\|b\|_\infty, \|\,|K|\,|u|\,\|_\infty)$, a normwise backward error.
     pub stationarity: f64,
+    /// The feasibility residual: $\max_i (u_{\nu,i} - g - \delta)^+ / g$, the overshoot of
+    /// the limit beyond rounding, relative to $g$.
     pub feasibility: f64,
+    /// The complementarity residual: $\max_i k w_i \mu_i |g - u_{\nu,i}|$ over the
+    /// product of the force and displacement scales.
     pub complementarity: f64,
     /// The largest distance between the step solver's contact values and those of the
     /// field recovered from them, on the displacement scale $\max(g, \|u\|_\infty)$ (0 for
@@ -148,8 +154,12 @@ impl Certificate {
 #[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactState {
+    /// The contact variable $s_i = u_{\nu,i} - g_{0,i}$ (the node's $u_\nu$ where its gap
+    /// is zero, as in the paper's scene).
     pub u_nu: f64,
+    /// $\sigma^1_\nu = -\xi_i$, the part of the pressure in the law's subdifferential.
     pub sigma_nu1: f64,
+    /// $\sigma^2_\nu = -\mu_i \le 0$, the unilateral part (zero off the limit).
     pub sigma_nu2: f64,
     /// Whether the node sits on the limit $g$ (see [`at_limit`]).
     pub at_limit: bool,

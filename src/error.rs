@@ -9,20 +9,30 @@ pub enum InputError {
     /// A field holds a value outside its allowed set.
     #[error("invalid value for `{field}`: got {value}, expected {allowed}")]
     Field {
+        /// The field's name as the scene spells it (e.g. `loads.f2`, `loads.f0[1]`).
         field: String,
+        /// The value that was refused, as printed (long numbers in exponent notation).
         value: String,
+        /// What the field accepts.
         allowed: String,
     },
     /// The scenario file could not be read or parsed.
     #[error("cannot read scenario {source_name}: {message}")]
     Parse {
+        /// The scenario as it was named: a built-in name or a file path.
         source_name: String,
+        /// The reader's account of what went wrong.
         message: String,
     },
     /// A mesh file that cannot be read, or whose mesh or groups cannot make the body
     /// (see [`crate::msh`]): the message names the element or group and what to change.
     #[error("cannot use mesh {file}: {message}")]
-    Mesh { file: String, message: String },
+    Mesh {
+        /// The mesh file, as the scene names it.
+        file: String,
+        /// What is wrong: the element or group, and what to change.
+        message: String,
+    },
 }
 
 impl InputError {
@@ -33,6 +43,9 @@ impl InputError {
             message: message.into(),
         }
     }
+    /// A refusal of `value` for the field `field`, with `allowed` saying what the field
+    /// accepts. Long numbers in `value` are printed in exponent notation, and long
+    /// values are cut to 200 characters.
     pub fn field(
         field: impl Into<String>,
         value: impl Display,
@@ -154,10 +167,17 @@ pub fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<f64, InputError
 #[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FactorError {
+    /// The Cholesky factorisation met a pivot that is not positive: the step matrix
+    /// $A + kB$ is not positive definite.
     #[error(
         "the step matrix A + kB is not positive definite (pivot {index}); check the material constants"
     )]
-    NotPositiveDefinite { index: usize },
+    NotPositiveDefinite {
+        /// The index of the failing pivot, as the sparse factorisation reports it.
+        index: usize,
+    },
+    /// Any other failure of the sparse factorisation (a mismatched ordering, memory,
+    /// a factor of unexpected form), with its description.
     #[error("sparse factorisation failed: {0}")]
     Other(String),
 }

@@ -71,8 +71,12 @@ pub struct Problem<'a> {
 /// [`crate::scenario::Scenario::load_vector`] places them).
 #[derive(Debug, Clone)]
 pub struct SceneLoads {
+    /// The volume force $f_0$, before $\varphi(t)$ and the modulation.
     pub f0: [f64; 2],
+    /// $a$ in the volume force $f_0 (1 + a\cos\pi x)$.
     pub modulation: f64,
+    /// The rectangle's tractions on segments of its sides ($f_2$ on the top first),
+    /// before $\varphi(t)$.
     pub tractions: Vec<crate::geometry::Traction>,
     /// A mesh scene's tractions: each edge of a loaded part, as its two ends, with
     /// the part's $f$ (empty on the rectangle).

@@ -17,13 +17,18 @@ use crate::support::Hold;
 /// A side of the rectangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Side {
+    /// $x = 0$.
     Left,
+    /// $x = W$.
     Right,
+    /// $y = 0$, where $\Gamma_3$ lies.
     Bottom,
+    /// $y = H$.
     Top,
 }
 
 impl Side {
+    /// The four sides: left, right, bottom, top.
     pub const ALL: [Side; 4] = [Side::Left, Side::Right, Side::Bottom, Side::Top];
 
     /// The name used in scenario files.
@@ -54,9 +59,13 @@ impl Side {
 /// A held segment of one side, from `from` to `to` along it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Segment {
+    /// The side the segment lies on.
     pub side: Side,
+    /// Where the segment starts, in the coordinate along the side ([`Side::along`]).
     pub from: f64,
+    /// Where the segment ends, in the coordinate along the side ([`Side::along`]).
     pub to: f64,
+    /// What holds the segment.
     pub hold: Hold,
     /// Where the scenario says it (`geometry.supports.left[0]`), for messages.
     pub field: String,
@@ -65,9 +74,13 @@ pub struct Segment {
 /// A traction: a constant force density `f` (N/m) on `[from, to]` along `side`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Traction {
+    /// The side the traction acts on.
     pub side: Side,
+    /// Where it starts, in the coordinate along the side ([`Side::along`]).
     pub from: f64,
+    /// Where it ends, in the coordinate along the side ([`Side::along`]).
     pub to: f64,
+    /// The force density $(f_x, f_y)$, in N/m.
     pub f: [f64; 2],
     /// Where the scenario says it (`loads.traction[0]`, `loads.f2`), for messages.
     pub field: String,
@@ -78,8 +91,13 @@ pub struct Traction {
 /// $\Gamma_3$ inside the bottom, where the free boundary meets the contact zone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Singularity {
+    /// The point $(x, y)$.
     pub point: [f64; 2],
+    /// The holds that meet there: inside a side, the hold just before and just after
+    /// the point along it; at a corner, the hold of the left or right side, then that
+    /// of the bottom or top, each just beside the corner.
     pub holds: [Hold; 2],
+    /// Whether the point is a corner of the rectangle.
     pub corner: bool,
     /// An end of $\Gamma_3$ inside the bottom: the boundary condition changes from free
     /// to normal compliance (and, where the limit is reached there, to a unilateral
@@ -91,7 +109,9 @@ pub struct Singularity {
 /// The rectangle, its supports and its contact segment.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Geometry {
+    /// The width $W$ (extent in $x$).
     pub width: f64,
+    /// The height $H$ (extent in $y$).
     pub height: f64,
     /// The segments a scenario names (clamped, rollers, or free); the rest of the
     /// boundary is free.

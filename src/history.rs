@@ -19,9 +19,16 @@ pub enum History {
     #[default]
     Constant,
     /// φ(t) = min(t / t_r, 1): a linear ramp to the full load at t_r.
-    Ramp { t_r: f64 },
+    Ramp {
+        /// The ramp time $t_r$ at which the full load is reached.
+        t_r: f64,
+    },
     /// φ piecewise linear through (t_i, φ_i), t_i strictly increasing.
-    Table { points: Vec<(f64, f64)> },
+    Table {
+        /// The points $(t_i, \varphi_i)$; before the first and after the last, φ
+        /// keeps the end value.
+        points: Vec<(f64, f64)>,
+    },
 }
 
 impl History {

@@ -12,7 +12,9 @@ use serde::Deserialize;
 /// The tensor $\tau \mapsto a\,(\operatorname{tr}\tau) I + b\,\tau$ on $\mathbb S^2$.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Isotropic {
+    /// The coefficient $a$ of $(\operatorname{tr}\tau) I$ ($\alpha$ for $\mathcal C$).
     pub a: f64,
+    /// The coefficient $b$ of $\tau$ ($\beta$ for $\mathcal C$).
     pub b: f64,
 }
 
@@ -192,11 +194,19 @@ pub enum MaterialForm {
     #[default]
     PlaneStrain,
     /// `E` and `kappa` of a plane-stress body (`plane = "stress"`): its $E_s$, $\nu_s$.
-    PlaneStress { e: f64, nu: f64 },
+    PlaneStress {
+        /// The plane-stress Young's modulus $E_s$ the file gave.
+        e: f64,
+        /// The plane-stress Poisson's ratio $\nu_s$ the file gave.
+        nu: f64,
+    },
     /// Lamé's `lambda` and `mu`, of a plane-strain or (`plane_stress`) plane-stress body.
     Lame {
+        /// Lamé's first constant $\lambda$, as the file gave it.
         lambda: f64,
+        /// Lamé's second constant (shear modulus) $\mu$, as the file gave it.
         mu: f64,
+        /// Whether the constants are those of a plane-stress body.
         plane_stress: bool,
     },
 }

@@ -11,14 +11,18 @@ use crate::geometry::{Geometry, Side};
 
 pub use crate::geometry::Pattern;
 
+/// A P1 triangulation: the structured mesh of the scene's rectangle, or the mesh of a
+/// mesh scene's body ([`Mesh::from_body`]), with the components its supports hold,
+/// its contact nodes and their gaps, and its boundary edges.
 #[derive(Debug, Clone)]
 pub struct Mesh {
     /// Number of segments on the bottom, $n = 1/h$ on the paper's scene.
     pub n: usize,
     /// Rows of cells of the structured mesh of level $n$ ($n/2$ on the paper's scene).
     pub ny: usize,
-    /// The rectangle's width and height.
+    /// The rectangle's width $W$ (a body's: its bounding box's).
     pub width: f64,
+    /// The rectangle's height $H$ (a body's: its bounding box's).
     pub height: f64,
     /// How the cells are cut.
     pub pattern: Pattern,
@@ -527,6 +531,7 @@ impl Mesh {
 pub struct Dofs {
     /// `map[2 * node + c]` is the dof of component `c` of `node`, if free.
     pub map: Vec<Option<usize>>,
+    /// The number of dofs (the free ones, or all with `clamp = false`).
     pub count: usize,
     /// The contact frame and which nodes carry it; `None` when every pair is Cartesian.
     frame: Option<(crate::frame::Frame, Vec<bool>)>,
@@ -625,6 +630,10 @@ pub struct Interpolation {
 }
 
 impl Interpolation {
+    /// The interpolation from `coarse` to the nodes of `fine`, by search: each fine
+    /// node takes, among the coarse triangles whose centroids lie in its cell of the
+    /// coarse grid or a neighbouring one, the triangle whose smallest barycentric
+    /// weight is largest (the one that holds it, up to rounding).
     pub fn new(coarse: &Mesh, fine: &Mesh) -> Interpolation {
         // Bucket the coarse triangles by the cell of their centroid.
         let (nx, ny) = (coarse.n, coarse.ny);

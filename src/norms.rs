@@ -66,10 +66,16 @@ pub fn trace_norm_sq(scn: &crate::scenario::Scenario, n: usize) -> Result<f64, S
 /// $v_\nu = -v_y$, all exact for P1.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FieldNorms {
+    /// The energy $\tfrac12(\mathcal G\varepsilon(v), \varepsilon(v))$.
     pub energy_sq: f64,
+    /// $\|v\|^2_{L^2(\Omega)}$.
     pub l2_sq: f64,
+    /// The squared $H^1$ seminorm $\|\nabla v\|^2_{L^2(\Omega)}$.
     pub h1_sq: f64,
+    /// The largest nodal length $\max_i |v(x_i)|$ (not squared).
     pub max: f64,
+    /// $\|v_\nu\|^2_{L^2(\Gamma_3)}$, $v_\nu = v\cdot n_f$ at the contact nodes
+    /// ($-v_y$ on the paper's foundation).
     pub gamma_sq: f64,
 }
 
@@ -127,6 +133,7 @@ impl Shape {
 }
 
 impl NormGeometry {
+    /// The triangles of `mesh` and the table of their distinct shapes.
     pub fn new(mesh: &crate::mesh::Mesh) -> NormGeometry {
         let mut index: std::collections::HashMap<[u64; 7], usize> = Default::default();
         let mut shapes = vec![];

@@ -54,18 +54,24 @@ pub fn proportional(scn: &Scenario, disc: &Discretisation) -> Option<f64> {
 /// $B$ factorised with the contact dofs last and condensed onto them: the
 /// operator of every reduced run on one mesh, whatever $k$.
 pub struct Reduced<'d> {
+    /// The mesh's discretisation: the assembled $A$ and $B$, dofs, contact dofs,
+    /// weights and gaps.
     pub disc: &'d Discretisation,
     /// The relaxation time $c$ ($A = cB$).
     pub c: f64,
+    /// The Cholesky factor of $B$, contact dofs last.
     pub chol: Cholesky,
     /// $S_B$, the Schur complement of $B$ on the contact normal dofs.
     pub s_b: Mat<f64>,
+    /// The smallest eigenvalue of $S_B$.
     pub lambda_min: f64,
+    /// The largest eigenvalue of $S_B$.
     pub lambda_max: f64,
 }
 
 /// A load on the mesh and what the loop needs of it.
 pub struct Load {
+    /// The load vector $f$ (at $\varphi = 1$).
     pub f: Vec<f64>,
     /// $B^{-1} f$.
     pub binv_f: Vec<f64>,
@@ -79,17 +85,26 @@ pub struct Load {
 /// and $r = -E_C u_n$.
 #[derive(Debug, Clone)]
 pub struct State {
+    /// $Y_n$, the load's coefficient.
     pub y: f64,
+    /// $W_n$, the accumulated contact reactions, one per contact node.
     pub w: Vec<f64>,
+    /// $r_n = -E_C u_n$, the normal displacement $u_\nu$ of each contact node.
     pub r: Vec<f64>,
 }
 
 /// What the observer of a reduced run sees after each step.
 pub struct Stepped<'a> {
+    /// The step's number $n$, from 1.
     pub step: usize,
+    /// The time $t_n$ at the end of the step.
     pub t: f64,
+    /// The state after the step.
     pub state: &'a State,
+    /// The step's record: solver status, iterations, certificate, energy norm, time.
     pub record: &'a StepRecord,
+    /// The contact nodes' states, from the full certificate where the field was
+    /// formed, from the condensed one elsewhere.
     pub contact: &'a [ContactState],
     /// $u_n$, at the steps whose field was asked for.
     pub field: Option<&'a [f64]>,
@@ -503,6 +518,7 @@ pub type FieldObserver<'a> = dyn FnMut(usize, f64, Option<&[f64]>, &[ContactStat
 
 /// What [`Reduced::march`] returns besides what it showed the observer.
 pub struct March {
+    /// The record of every step, in order.
     pub records: Vec<StepRecord>,
     /// The step operator's curvature bound (see [`Run::hessian_min`]).
     pub hessian_min: f64,

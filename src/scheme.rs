@@ -25,6 +25,7 @@ use std::time::Instant;
 pub struct Discretisation {
     /// Shared with the runs made on it (a [`Run`] keeps its mesh).
     pub mesh: std::sync::Arc<Mesh>,
+    /// The numbering of the free dofs (held components removed).
     pub dofs: Dofs,
     /// Viscosity operator $A$.
     pub a: SpMat,
@@ -93,6 +94,7 @@ pub enum Check {
 }
 
 impl Check {
+    /// The check's name in `steps.csv`: `full` or `condensed`.
     pub fn name(self) -> &'static str {
         match self {
             Check::Full => "full",
@@ -105,14 +107,22 @@ impl Check {
 #[non_exhaustive]
 #[derive(Debug, Clone)]
 pub struct StepRecord {
+    /// The step's number $n$, from 1.
     pub step: usize,
+    /// The time $t_n$ at the end of the step.
     pub t: f64,
+    /// How the step solver ended.
     pub status: Status,
+    /// The step solver's outer iterations (Newton steps, or convex subproblems).
     pub iterations: usize,
+    /// The step solver's inner iterations (line-search trials, or interior-point
+    /// iterations).
     pub inner_iterations: usize,
     /// The step solver's own residual on the condensed problem.
     pub solver_residual: f64,
+    /// The step's certificate, on the full or the condensed system (see `check`).
     pub certificate: Certificate,
+    /// The energy norm $\|u_n\|_E = \sqrt{u_n^\top B u_n / 2}$ of the step's field.
     pub energy_norm: f64,
     /// Wall time of the step (condensed solve and both solves with $K$), s.
     pub time_s: f64,
@@ -124,9 +134,16 @@ pub struct StepRecord {
 #[non_exhaustive]
 #[derive(Debug, Clone, Default)]
 pub struct Timings {
+    /// Building the discretisation: the operators and loads (and, in a
+    /// [`crate::simulation::Simulation`], the mesh).
     pub assembly: f64,
+    /// Forming, ordering and factorising the step matrix, every refactorisation for a
+    /// new $k$ included.
     pub factorisation: f64,
+    /// Condensing the factor onto the contact dofs ($S$, its eigenvalues and the step
+    /// curvature bound).
     pub condensation: f64,
+    /// The time loop, without the refactorisations for a new $k$.
     pub steps: f64,
     /// Of `steps`: time inside the step solver.
     pub step_solver: f64,
@@ -148,24 +165,32 @@ impl Timings {
 /// The result of a run.
 #[non_exhaustive]
 pub struct Run {
+    /// The mesh level $n$ of the settings (segments on the bottom of a structured mesh).
     pub n: usize,
+    /// The number of steps taken: $N$ on the uniform grid, more on a grid into the
+    /// initial layer.
     pub steps: usize,
     /// The time step $k = T/N$ (a grid into the initial layer: its longest step, and
     /// `steps` counts all of its steps) and the mesh size $h = 1/n$.
     pub k: f64,
+    /// The mesh size $h$ of the mesh solved on ([`Mesh::h`]).
     pub h: f64,
     /// The mesh the run solved on (outputs draw from it instead of rebuilding it).
     pub mesh: std::sync::Arc<Mesh>,
+    /// The number of free dofs.
     pub dofs: usize,
+    /// The number of stored entries of the Cholesky factor $L$ of $K$.
     pub nnz_l: usize,
     /// Threads of the triangular sweeps (2 only with nested dissection on a mesh
     /// large enough to pay).
     pub sweep_threads: usize,
     /// $u_N$ at $t = T$ (free dofs).
     pub u: Vec<f64>,
+    /// One record per step, in order.
     pub records: Vec<StepRecord>,
     /// Contact state at $t = T$.
     pub contact: Vec<ContactState>,
+    /// Wall times of the run's phases.
     pub timings: Timings,
     /// Extreme eigenvalues of the condensed stiffness $S$.
     pub s_eigen: (f64, f64),
@@ -222,12 +247,19 @@ pub const CANCELLATION_RATIO: f64 = 1e4;
 #[non_exhaustive]
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
+    /// An input the run cannot accept.
     #[error(transparent)]
     Input(#[from] InputError),
+    /// The factorisation of the step matrix failed.
     #[error(transparent)]
     Factor(#[from] FactorError),
+    /// The condensation onto the contact dofs, or the eigenvalues of the step
+    /// Hessian, failed; the message says why.
     #[error("condensation failed: {0}")]
     Condense(String),
+    /// A step whose contact values cannot be resolved in double precision against
+    /// $g$ and the law's breakpoints: its [`Certificate::resolution`] exceeds
+    /// [`crate::certificate::RESOLUTION_MAX`].
     #[error(
         "scenario `{scenario}`, step {step}: the displacements are too large for the contact \
          conditions to be resolved in double precision: u_nu is known to about {delta:.1e} \
@@ -237,17 +269,30 @@ pub enum RunError {
          breakpoint gaps (law.breakpoints)"
     )]
     Unresolvable {
+        /// The scenario's name.
         scenario: String,
+        /// The step's number $n$.
         step: usize,
+        /// The rounding tolerance $\delta$ in displacement, to which $u_\nu$ is known.
         delta: f64,
+        /// The displacement scale $\max(g, \|u\|_\infty)$ ($\delta$ over
+        /// [`crate::certificate::ROUNDING`]).
         scale: f64,
+        /// $\delta$ over `length`: the step's [`Certificate::resolution`].
         ratio: f64,
+        /// The smallest length the contact conditions must resolve
+        /// ([`crate::certificate::resolved_length`]).
         length: f64,
+        /// The largest `ratio` accepted, [`crate::certificate::RESOLUTION_MAX`].
         max: f64,
+        /// The limit $g$.
         g: f64,
         /// The steps completed before this one.
         partial: Box<Partial>,
     },
+    /// A converged step whose full certificate failed because the recovered
+    /// displacement is the small difference of the load's free response and the
+    /// contact's, which exceeds $g$ more than [`CANCELLATION_RATIO`] times.
     #[error(
         "scenario `{scenario}`, step {step} (t = {t:e}): the solver `{solver}` solved the step's \
          condensed problem (residual {residual:.1e}), but the displacement recovered from it \
@@ -260,19 +305,32 @@ pub enum RunError {
          or lower the loads"
     )]
     Cancellation {
+        /// The scenario's name.
         scenario: String,
+        /// The step's number $n$.
         step: usize,
+        /// The time $t_n$ at the end of the step.
         t: f64,
+        /// The step solver's name.
         solver: String,
+        /// The step solver's own residual on the condensed problem.
         residual: f64,
+        /// The largest residual of the step's certificate ([`Certificate::max`]).
         certificate: f64,
+        /// The certificate tolerance it exceeded.
         tol: f64,
+        /// The largest displacement of a contact node in the load's free response
+        /// (without contact).
         free: f64,
+        /// `free` over $|g|$.
         ratio: f64,
+        /// The limit $g$.
         g: f64,
         /// The steps completed before this one.
         partial: Box<Partial>,
     },
+    /// A step the solver did not converge on, or whose certificate exceeded the
+    /// tolerance.
     #[error(
         "{}. What may help: another step solver (`proxgrad` and `newton-no-line-search` \
          certify too), a smaller k (more time steps), or, where the law softens, a stiffer \
@@ -280,14 +338,23 @@ pub enum RunError {
         self.failed_step().unwrap_or_default()
     )]
     Step {
+        /// The scenario's name.
         scenario: Box<str>,
+        /// The step's number $n$.
         step: usize,
+        /// The time $t_n$ at the end of the step.
         t: f64,
+        /// The step solver's name.
         solver: Box<str>,
+        /// How the step solver ended.
         status: Status,
+        /// The step solver's outer iterations.
         iterations: usize,
+        /// The step solver's own residual on the condensed problem.
         residual: f64,
+        /// The largest residual of the step's certificate ([`Certificate::max`]).
         certificate: f64,
+        /// The certificate tolerance.
         tol: f64,
         /// The steps completed before this one.
         partial: Box<Partial>,
@@ -431,7 +498,10 @@ pub const CERTIFICATE_TOL: f64 = 1e-10;
 /// Settings of a run.
 #[derive(Debug, Clone)]
 pub struct Settings {
+    /// The mesh level $n$: segments on the bottom of the structured mesh ($h = 1/n$
+    /// on the paper's scene).
     pub n: usize,
+    /// The number $N$ of time steps ($k = T/N$ on the uniform grid).
     pub steps: usize,
     /// A step whose certificate exceeds this fails the run.
     pub certificate_tol: f64,
@@ -474,6 +544,9 @@ impl OrderingKind {
 pub const PARALLEL_MIN_NNZ: usize = 1_000_000;
 
 impl Settings {
+    /// The settings of a run with mesh level `n` and `steps` time steps: the default
+    /// certificate tolerance [`CERTIFICATE_TOL`], nested dissection, a second thread
+    /// allowed, the scenario's own mesh, a uniform time grid.
     pub fn new(n: usize, steps: usize) -> Self {
         Settings {
             n,
@@ -831,19 +904,25 @@ pub(crate) fn factorise(
 /// onto them ($S$), with the spectral bounds the step solvers and the convexity test
 /// need.
 pub struct StepOperator<'d> {
+    /// The step length $k$.
     pub k: f64,
     /// $A$ and $B$.
     pub a: &'d SpMat,
+    /// $B$ (see `a`).
     pub b: &'d SpMat,
+    /// The assembled step matrix $K = A + kB$.
     pub kmat: SpMat,
     /// $A$ and $B$ on one pattern, when they share it (the products then take one pass).
     pub pair: Option<Pair<'d>>,
+    /// The Cholesky factor of $K$, contact dofs last.
     pub chol: Cholesky,
     /// Threads of the triangular sweeps.
     pub threads: usize,
     /// The condensed stiffness $S$ on the contact normal dofs.
     pub s: faer::Mat<f64>,
+    /// The smallest eigenvalue of $S$.
     pub lambda_min: f64,
+    /// The largest eigenvalue of $S$.
     pub lambda_max: f64,
     /// $k w_i$ per contact node.
     pub kw: Vec<f64>,

@@ -138,9 +138,11 @@ impl Affine {
     pub fn p_left(&self) -> f64 {
         self.start[0]
     }
+    /// The slopes $c_0, \dots, c_K$, one per branch.
     pub fn slopes(&self) -> &[f64] {
         &self.slopes
     }
+    /// The number of branches, $K + 1$.
     pub fn n_branches(&self) -> usize {
         self.slopes.len()
     }
@@ -311,9 +313,16 @@ impl Affine {
 /// finite), cost `lin * t + 0.5 * quad * t^2`, entering $r$ with sign `dir`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConvexRun {
+    /// The run's direction from the anchor: $-1$ for the run left of it, $+1$ for the
+    /// runs right of it.
     pub dir: f64,
+    /// The run's length (to the next breakpoint below $g$, or to $g$); $+\infty$ for
+    /// the run left of the anchor.
     pub len: f64,
+    /// The cost's linear coefficient: $p_\cup = p - j_\cap'$ at the run's start, in
+    /// the run's direction.
     pub lin: f64,
+    /// The cost's quadratic coefficient, $c_b - c_{\min} \ge 0$ on the run's branch.
     pub quad: f64,
 }
 

@@ -38,7 +38,9 @@ use crate::error::InputError;
 /// A closed interval $[lo, hi]$ of the real line; `hi` may be $+\infty$.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Interval {
+    /// The left end $lo$.
     pub lo: f64,
+    /// The right end $hi$ (possibly $+\infty$).
     pub hi: f64,
 }
 
@@ -56,7 +58,9 @@ impl Interval {
 /// A normal compliance law, of one of the families.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Law {
+    /// A piecewise-affine law, possibly discontinuous (the paper's (5.1)).
     Affine(Affine),
+    /// The smooth softening law $p(s) = c\,s\,e^{-s/a}$ for $s > 0$.
     Softening(Softening),
 }
 
@@ -78,7 +82,9 @@ impl Law {
 /// `slope` $\cdot s$ there (exact on an affine piece).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Tangent {
+    /// The tangent's value at $s = 0$ (the piece extended affinely to 0).
     pub at_zero: f64,
+    /// The tangent's slope, $p'$ on the piece.
     pub slope: f64,
 }
 
@@ -100,8 +106,11 @@ pub struct Prox {
 /// $p \equiv 0$ left of contact), on branch $b$ of $p$, or at the unilateral limit $g$.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Regime {
+    /// No contact: $p \equiv 0$ there, left of contact.
     NoContact,
+    /// On branch $b$ of $p$, numbered by the law's family.
     Branch(usize),
+    /// At the unilateral limit $u_\nu = g$.
     Limit,
 }
 

@@ -42,14 +42,17 @@ impl Softening {
         Ok(Softening { c, a })
     }
 
+    /// The stiffness $c$: the slope of $p$ at $s = 0^+$.
     pub fn stiffness(&self) -> f64 {
         self.c
     }
 
+    /// The length $a$, where $p$ is largest.
     pub fn length(&self) -> f64 {
         self.a
     }
 
+    /// $p(s) = c\,s\,e^{-s/a}$ for $s > 0$, 0 for $s \le 0$.
     pub fn p(&self, s: f64) -> f64 {
         if s > 0.0 {
             self.c * s * (-s / self.a).exp()
@@ -88,6 +91,8 @@ impl Softening {
         -self.c * (-2.0f64).exp()
     }
 
+    /// The tangent of $p$ at `s`, the linearisation $p(s) + p'(s)(t - s)$ (slope
+    /// [`Softening::dp`]).
     pub fn tangent(&self, s: f64) -> Tangent {
         let slope = self.dp(s);
         Tangent {
@@ -96,6 +101,8 @@ impl Softening {
         }
     }
 
+    /// The regime of `s` not at the limit: no contact for $s \le 0$, `Branch(1)` while
+    /// $p$ rises ($0 < s \le a$), `Branch(2)` beyond.
     pub fn regime(&self, s: f64) -> Regime {
         if s <= 0.0 {
             Regime::NoContact
@@ -177,6 +184,8 @@ impl Softening {
         xs.into_iter().map(|x| (x, self.p(x))).collect()
     }
 
+    /// The law in words, one line each: the formula with $c$ and $a$, then the peak
+    /// $p(a)$ and the steepest softening $p'(2a)$.
     pub fn describe(&self) -> Vec<String> {
         vec![
             format!(

@@ -29,13 +29,18 @@ use std::path::Path;
 /// at $t_n$), or one steady solve at $t = T$.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Problem {
+    /// The paper's Kelvin–Voigt evolution (the default).
     #[default]
     Viscoelastic,
+    /// No viscosity: each time step the static problem with the loads at $t_n$.
     Elastic,
+    /// No viscosity: one solve at $t = T$ (one time step).
     Steady,
 }
 
 impl Problem {
+    /// The name in scenario files (`problem = "..."`): `viscoelastic`, `elastic` or
+    /// `steady`.
     pub fn name(self) -> &'static str {
         match self {
             Problem::Viscoelastic => "viscoelastic",
