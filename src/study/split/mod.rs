@@ -30,7 +30,8 @@ pub use figure::draw_split;
 
 /// Levels and reference of a study.
 pub struct Plan {
-    /// The levels $n$ of the families ($h = 1/n$, or $k = 1/n$ in the $k$ family).
+    /// The levels $n$ of the families: $h = 1/n$ in the $h = k$ and $h$ families, $n$
+    /// time steps in the $h = k$ and $k$ families.
     pub levels: Vec<usize>,
     /// The level of the reference, $h = k = 1/n_{ref}$.
     pub n_ref: usize,
