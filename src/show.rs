@@ -15,8 +15,12 @@ use std::fmt::Write;
 /// computed on the run's own mesh if that has at most [`TRACE_EXACT_NODES`] nodes.
 #[derive(Debug, Clone, Copy)]
 pub struct Smallness {
+    /// $\beta_B$, the coercivity constant of $\mathcal G$: the left side.
     pub beta_b: f64,
+    /// $m = \max(0, -\inf p')$, from the law's curvature lower bound.
     pub m: f64,
+    /// The discrete trace constant $\|\iota_h\|^2$ ([`crate::norms::trace_norm_sq`]); NaN
+    /// where unknown ([`Smallness::unknown`]).
     pub trace_sq: f64,
     /// The run's mesh.
     pub n: usize,
@@ -34,6 +38,9 @@ pub const TRACE_EXACT_MAX: usize = 512;
 pub const TRACE_EXACT_NODES: usize = 513 * 257;
 
 impl Smallness {
+    /// The sides for a run of `scn` with `n` segments, the trace constant computed
+    /// (or, above [`TRACE_EXACT_MAX`] segments, extrapolated) as the type says; an
+    /// error where the trace constant cannot be computed.
     pub fn of(scn: &Scenario, n: usize) -> Result<Smallness, String> {
         let trace = |n: usize| crate::norms::trace_norm_sq(scn, n);
         let (trace_sq, extrapolated) = if n <= TRACE_EXACT_MAX {
@@ -79,6 +86,7 @@ impl Smallness {
     pub fn rhs(&self) -> f64 {
         self.m * self.trace_sq
     }
+    /// Whether H(s) holds: $m\|\iota_h\|^2 < \beta_B$ (false with the trace constant unknown).
     pub fn holds(&self) -> bool {
         self.rhs() < self.beta_b
     }

@@ -74,7 +74,9 @@ pub struct ExactRule {
     pub x: Vec<f64>,
     /// The time step $k$.
     pub k: f64,
+    /// The relative KKT residual ([`ExactRule::residual`]) below which a solve has converged.
     pub tol: f64,
+    /// The largest number of projected Newton steps.
     pub max_iter: usize,
 }
 

@@ -48,7 +48,9 @@ impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
 /// Strains $(\varepsilon_{11}, \varepsilon_{22}, \varepsilon_{12})$ of $u$ and of $\dot u$ at a point.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Strains {
+    /// $\varepsilon(u)$, components 11, 22, 12.
     pub eps: [f64; 3],
+    /// $\varepsilon(\dot u)$, components 11, 22, 12.
     pub eps_dot: [f64; 3],
 }
 
@@ -142,11 +144,15 @@ pub fn energy_density(t: &Isotropic, e: [f64; 3]) -> f64 {
 
 /// The data of the problem: the solution, the operators' tensors, the law, $g$.
 pub struct Data<'a> {
+    /// The manufactured solution $u$.
     pub sol: Solution,
     /// $\mathcal C$, or `None` for the static problem.
     pub visc: Option<Isotropic>,
+    /// $\mathcal G$, the elasticity tensor.
     pub elast: Isotropic,
+    /// The normal compliance law $p$ (with its potential $j$).
     pub law: &'a Law,
+    /// The unilateral limit $g$ of $u_\nu$ on $\Gamma_3$.
     pub g: f64,
 }
 

@@ -37,13 +37,17 @@ pub const REGIMES: [&str; 5] = ["no_contact", "branch1", "branch2", "branch3", "
 /// One step's errors and Céa terms.
 #[derive(Debug, Clone, Default)]
 pub struct StepRow {
+    /// The step number $n$, from 1.
     pub step: usize,
+    /// The time $t_n = nk$ (0 for the static problem).
     pub t: f64,
-    /// $\|e_n\|_E$ and $\|e_n\|^2_V$.
+    /// $\|e_n\|_E$.
     pub err_e: f64,
+    /// $\|e_n\|^2_V$.
     pub err_v_sq: f64,
-    /// $\|u_n\|_E$ and $\|u_n\|^2_V$.
+    /// $\|u_n\|_E$.
     pub exact_e: f64,
+    /// $\|u_n\|^2_V$.
     pub exact_v_sq: f64,
     /// $\|u_n - \Pi^h u_n\|^2_V$.
     pub interp_v_sq: f64,
@@ -55,7 +59,10 @@ pub struct StepRow {
     pub r_n: f64,
     /// $\|\delta_n\|^2_V$.
     pub delta_v_sq: f64,
+    /// The step's certificate: for [`Rule::Nodal`] the largest relative residual of the
+    /// full system's certificate, for [`Rule::Exact`] the step solver's own KKT residual.
     pub certificate: f64,
+    /// The step solver's outer iterations.
     pub iterations: usize,
     /// Contact nodes in each of [`REGIMES`].
     pub regimes: [usize; 5],
@@ -71,12 +78,19 @@ pub struct StepRow {
 /// A run against the exact solution.
 #[derive(Debug, Clone)]
 pub struct ExactRun {
+    /// The manufactured solution.
     pub sol: Solution,
+    /// The mesh level: segments on the bottom, $n = 1/h$.
     pub n: usize,
+    /// The number of time steps (1 for a static solution).
     pub steps: usize,
+    /// The mesh size $h = 1/n$.
     pub h: f64,
+    /// The time step $k = T/N$ (1 for a static solution).
     pub k: f64,
+    /// One row per step, in order.
     pub rows: Vec<StepRow>,
+    /// Wall time of the whole run (all rules run in lockstep), s.
     pub wall_s: f64,
 }
 
@@ -137,6 +151,7 @@ impl ExactRun {
     pub fn max_exact_v_sq(&self) -> f64 {
         self.max(|r| r.exact_v_sq)
     }
+    /// The largest certificate over the steps ([`StepRow::certificate`]).
     pub fn max_certificate(&self) -> f64 {
         self.max(|r| r.certificate)
     }
@@ -210,6 +225,7 @@ pub enum Rule {
 }
 
 impl Rule {
+    /// The rule's name in messages: `nodal` or `exact`.
     pub fn name(self) -> &'static str {
         match self {
             Rule::Nodal => "nodal",

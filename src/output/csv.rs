@@ -5,8 +5,11 @@ use std::path::Path;
 
 /// One column of a table.
 pub enum Col {
+    /// Floating-point values, written in full (round-trip) precision.
     F64(Vec<f64>),
+    /// Unsigned integers.
     U64(Vec<u64>),
+    /// Text.
     Str(Vec<String>),
 }
 
@@ -17,17 +20,21 @@ pub struct Table {
 }
 
 impl Table {
+    /// A table with no columns.
     pub fn new() -> Self {
         Self::default()
     }
+    /// The table with a column `name` of floats appended.
     pub fn f64(mut self, name: &str, v: Vec<f64>) -> Self {
         self.cols.push((name.to_string(), Col::F64(v)));
         self
     }
+    /// The table with a column `name` of unsigned integers appended.
     pub fn u64(mut self, name: &str, v: Vec<u64>) -> Self {
         self.cols.push((name.to_string(), Col::U64(v)));
         self
     }
+    /// The table with a column `name` of text appended.
     pub fn str(mut self, name: &str, v: Vec<String>) -> Self {
         self.cols.push((name.to_string(), Col::Str(v)));
         self
@@ -278,6 +285,7 @@ pub fn split(line: &str) -> Option<Vec<String>> {
 /// A table read by [`read_csv`]: the data frame, and the file it came from, so that
 /// an error about a column names the file.
 pub struct Frame {
+    /// The table's contents.
     pub df: DataFrame,
     /// The file, as errors name it.
     pub path: String,

@@ -165,9 +165,13 @@ fn number(cell: &str, integer: bool) -> String {
 /// the page), the CSV's columns the rendering leaves out (an identifier the book
 /// names otherwise), and the columns' headings in words.
 pub struct BookTable {
+    /// The CSV file's name, such as `hypotheses.csv`.
     pub file: &'static str,
+    /// How many leading columns are keys, repeated in every part.
     pub keys: usize,
+    /// The most columns of one part, keys included.
     pub cols: usize,
+    /// CSV columns the rendering leaves out, by name.
     pub hide: &'static [&'static str],
     /// Headings in words, with units, by CSV column name (a column left out is headed
     /// by its name).

@@ -17,19 +17,37 @@ pub mod vtu;
 /// A table or figure file that could not be read or written.
 #[derive(Debug, thiserror::Error)]
 pub enum FileError {
+    /// The file system refused to read or write the file.
     #[error("{path}: {source}")]
     Io {
+        /// The file.
         path: String,
+        /// What the file system said.
         source: std::io::Error,
     },
+    /// A table whose text or contents are not what the reader expects.
     #[error("table {path}: {message}")]
-    Table { path: String, message: String },
+    Table {
+        /// The file, with `:line` when the fault is on one line.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A figure that could not be drawn or written.
     #[error("figure {path}: {message}")]
-    Plot { path: String, message: String },
+    Plot {
+        /// The figure's file.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
     /// A path that is not what the reader reads (not a run directory); the caller
     /// names the path.
     #[error("{message}")]
-    NotThere { message: String },
+    NotThere {
+        /// What is missing, and what the reader reads instead (without the path).
+        message: String,
+    },
 }
 
 use std::io::Write;

@@ -130,6 +130,7 @@ pub fn regime_label(regime: &str) -> &'static str {
     }
 }
 
+/// The contact regimes the figures count and colour, in this order (see [`regime_label`]).
 pub const REGIMES: [&str; 5] = ["no_contact", "branch1", "branch2", "branch3", "limit"];
 
 /// The candidate key points of a log axis that lie inside its range `(lo, hi)`:
@@ -144,6 +145,7 @@ pub fn keys_within(range: (f64, f64), candidates: impl IntoIterator<Item = f64>)
 
 /// A figure that can be drawn on any plotters backend.
 pub trait Figure {
+    /// Draws the figure on `root`; an error is said in words.
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,

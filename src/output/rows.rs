@@ -14,6 +14,7 @@ use super::csv::{Table, Text};
 pub trait Cell: Sized + Clone {
     /// What a cell of this kind holds, as an error says it ("a whole number >= 0").
     const KIND: &'static str;
+    /// `t` with a column `name` of the values `v` appended.
     fn put(t: Table, name: &str, v: Vec<Self>) -> Table;
     /// The value a cell's text holds, if it is of this kind.
     fn parse(text: &str) -> Option<Self>;
@@ -65,7 +66,9 @@ impl Cell for String {
 /// What a column allows beyond its kind: a test of a value, and the words an error
 /// says it in ("a finite number > 0").
 pub struct Allowed<T> {
+    /// Whether a value is allowed.
     pub test: fn(&T) -> bool,
+    /// What is allowed, in the words an error says it.
     pub says: &'static str,
 }
 
@@ -187,51 +190,90 @@ macro_rules! row {
 row! {
     /// One row of `summary.csv`: the run's size, result, data, costs and provenance.
     pub struct SummaryRow {
+        /// The mesh level: segments on the bottom.
         n: u64 => "n",
+        /// The number of time steps $N$.
         steps: u64 => "steps",
+        /// Degrees of freedom of the displacement.
         dofs: u64 => "dofs",
+        /// The energy norm $\|u_N\|_E$ of the last step, at $t = T$.
         energy_norm_t: f64 => "energy_norm_T",
+        /// The largest certificate over the steps ([`crate::certificate::Certificate::max`]).
         max_certificate: f64 => "max_certificate",
+        /// Wall time of the run when the table was written, s.
         wall_s: f64 => "wall_s",
+        /// The largest overshoot of the limit over $g$ ([`crate::output::run::max_overshoot`]).
         max_overshoot_over_g: f64 => "max_overshoot_over_g",
+        /// The scenario's name.
         scenario: String => "scenario",
+        /// The step solver that certified the run (a fallback's, if one did).
         solver: String => "solver",
+        /// The mesh size $h = W/(2n)$ ($1/n$ on the paper's scene).
         h: f64 => "h",
+        /// The time step $k$ (the longest step of a graded time grid).
         k: f64 => "k",
+        /// The unilateral limit $g$.
         g: f64 => "g",
+        /// The volume force $f_0$, $x$ component.
         f0_x: f64 => "f0_x",
+        /// The volume force $f_0$, $y$ component.
         f0_y: f64 => "f0_y",
+        /// The top traction $f_2$, $x$ component.
         f2_x: f64 => "f2_x",
+        /// The top traction $f_2$, $y$ component.
         f2_y: f64 => "f2_y",
+        /// The load history $\varphi$ as its display spells it (`constant`, `ramp t_r = …`, `table …`).
         load_history: String => "load_history",
+        /// `true` or `false`: whether the data meet H(0)'s compatibility condition at $u_0 = 0$.
         compatible_data: String => "compatible_data",
+        /// The step solver's outer iterations per step, on average.
         mean_iterations: f64 => "mean_iterations",
+        /// The smallest curvature a step problem can have ([`crate::scheme::Run::hessian_min`]).
         step_curvature_min: f64 => "step_curvature_min",
+        /// $\beta_B$, the coercivity of $\mathcal G$: the left side of H(s).
         beta_b: f64 => "beta_B",
         /// NaN where H(j) fails (a downward jump): there is no finite m, as the
         /// stability study writes it.
         m_trace_norm_sq: f64 => "m_trace_norm_sq",
+        /// Wall time of the assembly, s.
         assembly_s: f64 => "assembly_s",
+        /// Wall time of the factorisation of $K$, s.
         factorisation_s: f64 => "factorisation_s",
+        /// Wall time of the condensation onto the contact dofs, s.
         condensation_s: f64 => "condensation_s",
+        /// Wall time of the time steps, s.
         steps_s: f64 => "steps_s",
+        /// Nonzeros of the Cholesky factor $L$ of $K$.
         nnz_l: u64 => "nnz_l",
+        /// Wall time of one solve with the factor (forward and backward, median of three), s.
         one_solve_s: f64 => "one_solve_s",
+        /// Wall time against its floor, factorisation + $N$ solves ([`crate::scheme::Timings::floor_ratio`]).
         floor_ratio: f64 => "floor_ratio",
+        /// Peak resident memory of the process, MiB; NaN where unknown.
         peak_rss_mb: f64 => "peak_rss_mb",
+        /// The fill-reducing ordering of $K$.
         ordering: String => "ordering",
+        /// The time loop that ran: `general` or `reduced`.
         path: String => "path",
+        /// The mesh: `uniform`, `graded mu = …` or `file PATH`.
         mesh: String => "mesh",
+        /// Threads of the triangular sweeps.
         sweep_threads: u64 => "sweep_threads",
+        /// The program and its version, `evhi X.Y.Z`.
         version: String => "version",
         // Appended after the columns above, so that readers by position keep
         // working: the material the solver used (plane strain, converted where the
         // file gave plane stress or Lame constants) and the number of the file's
         // further tractions (the `#` lines name each).
+        /// Young's modulus $E$ (plane strain).
         e: f64 => "E",
+        /// Poisson's ratio $\kappa$ (plane strain).
         kappa: f64 => "kappa",
+        /// The viscosity constant $\alpha$.
         alpha: f64 => "alpha",
+        /// The viscosity constant $\beta$.
         beta: f64 => "beta",
+        /// The number of further tractions (the scenario's and the mesh file's).
         tractions: u64 => "tractions",
     }
 }
@@ -242,17 +284,29 @@ row! {
     /// step's time and which check certified it. The first six columns are the step's
     /// work ([`StepRow::WORK`]).
     pub struct StepRow {
+        /// The step number $n$.
         step: u64 => "step",
+        /// The time $t_n$.
         t: f64 => "t",
+        /// The step solver's outer iterations.
         iterations: u64 => "iterations",
+        /// The step solver's inner iterations.
         inner_iterations: u64 => "inner_iterations",
+        /// The step solver's own residual on the condensed problem.
         solver_residual: f64 => "solver_residual",
+        /// The certificate: the largest of its three relative residuals.
         certificate: f64 => "certificate",
+        /// The certificate's relative stationarity residual.
         stationarity: f64 => "stationarity",
+        /// The certificate's relative feasibility residual.
         feasibility: f64 => "feasibility",
+        /// The certificate's relative complementarity residual.
         complementarity: f64 => "complementarity",
+        /// The energy norm $\|u_n\|_E$.
         energy_norm: f64 => "energy_norm",
+        /// Wall time of the step, s.
         time_s: f64 => "time_s",
+        /// Which check certified the step: `full` or `condensed`.
         check: String => "check",
     }
 }
@@ -272,12 +326,19 @@ row! {
     /// contact part, where $x$ alone does not place it).
     #[non_exhaustive]
     pub struct ContactRow {
+        /// The node's $x$.
         x: f64 => "x",
+        /// The normal displacement $u_\nu$.
         u_nu: f64 => "u_nu",
+        /// $\sigma_\nu^1 = -p(u_\nu)$, the compliance part of the normal stress.
         sigma_nu1: f64 => "sigma_nu1",
+        /// $\sigma_\nu^2$, the limit's reaction.
         sigma_nu2: f64 => "sigma_nu2",
+        /// The node's regime on the law (`no_contact`, `branch1`, …, `limit`).
         regime: String => "regime",
+        /// The node's $y$.
         y: f64 => "y",
+        /// The arc length $s$ along $\Gamma_3$ from its first node.
         s: f64 => "s",
     }
 }
@@ -334,8 +395,11 @@ row! {
     /// One row of a graded run's `triangles.csv`: the three corners of a triangle, as
     /// indices into the rows of `nodes.csv`.
     pub struct TriangleRow {
+        /// The first corner.
         a: u64 => "a",
+        /// The second corner.
         b: u64 => "b",
+        /// The third corner.
         c: u64 => "c",
     }
 }

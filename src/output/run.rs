@@ -17,8 +17,12 @@ use std::collections::BTreeMap;
 /// Who produced a run: the command line, the step solver and the ordering.
 #[derive(Debug, Clone)]
 pub struct Provenance {
+    /// The command line that asked for the run, after the program's name (as
+    /// [`command_line`] gives it).
     pub command: String,
+    /// The step solver that certified the run (a fallback's, if one did).
     pub solver: String,
+    /// The fill-reducing ordering of $K$, by name.
     pub ordering: String,
     /// The time loop that ran: `general` or `reduced`.
     pub path: String,
@@ -68,7 +72,9 @@ impl Provenance {
 /// VTK series goes into (`evhi solve` and the example experiment hand it to
 /// [`crate::simulation::Simulation::solve`]).
 pub struct Recording<'a> {
+    /// What the run records as it goes.
     pub recorder: Recorder,
+    /// The run directory the VTK series is written into.
     pub out: &'a RunDir,
 }
 

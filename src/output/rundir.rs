@@ -81,21 +81,31 @@ pub enum OutError {
     /// a run being written, `run directory` for one `evhi plot` redraws).
     #[error("{role} `{path}`: {message}")]
     Unusable {
+        /// The directory as the command names it (`--out` or `run directory`).
         role: &'static str,
+        /// The directory.
         path: String,
+        /// Why it cannot be used.
         message: String,
     },
     /// Another process holds the directory's lock.
     #[error("{role} `{path}`: another evhi run is writing to it (lock `{lock}`); {remedy}")]
     Busy {
+        /// The directory as the command names it (`--out` or `run directory`).
         role: &'static str,
+        /// The directory.
         path: String,
+        /// The lock file, `.NAME.lock` beside the directory.
         lock: String,
+        /// What to do about it.
         remedy: &'static str,
     },
+    /// A file or directory of the run could not be written.
     #[error("writing `{path}`: {source}")]
     Io {
+        /// The file or directory.
         path: String,
+        /// What the file system said.
         source: std::io::Error,
     },
 }

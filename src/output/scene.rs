@@ -333,8 +333,12 @@ impl Panel {
     }
 }
 
+/// A figure of one or more solved scenes: each [`Panel`] the deformed body with its
+/// mesh and the interface forces on $\Gamma_3$, under one title.
 pub struct SceneFigure {
+    /// The panels, row by row.
     pub panels: Vec<Panel>,
+    /// The figure's title, above all panels.
     pub title: String,
     /// Label the branches with the paper's law (5.1); otherwise "branch b".
     pub paper_law: bool,

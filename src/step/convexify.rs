@@ -64,12 +64,15 @@ impl Settings {
     }
 }
 
+/// The convexification solver of the step problem (see the module docs).
 #[derive(Debug, Clone, Default)]
 pub struct Convexify {
+    /// Its tolerances, limits and polishing.
     pub settings: Settings,
 }
 
 impl Convexify {
+    /// The solver with the given settings.
     pub fn new(settings: Settings) -> Self {
         Convexify { settings }
     }

@@ -27,6 +27,7 @@ pub struct StepProblem<'a> {
     pub r0: &'a [f64],
     /// $k w_i$, the weights of the contact potential.
     pub kw: &'a [f64],
+    /// The normal compliance law: $p$ and its potential $j$.
     pub law: &'a Law,
     /// The unilateral limit $g$.
     pub g: f64,
@@ -49,7 +50,10 @@ pub enum Status {
     Failed(String),
     /// Stationary (the discrete inequality holds) but not a local minimiser: the
     /// Hessian on the nodes inside branches has this negative eigenvalue.
-    NotMinimum { lambda_min: f64 },
+    NotMinimum {
+        /// The negative eigenvalue.
+        lambda_min: f64,
+    },
 }
 
 impl Status {
@@ -67,6 +71,7 @@ impl Status {
 #[non_exhaustive]
 #[derive(Debug, Clone)]
 pub struct Info {
+    /// How the solve ended.
     pub status: Status,
     /// Outer iterations (Newton steps, or convex subproblems).
     pub iterations: usize,
@@ -83,6 +88,7 @@ pub struct Info {
 /// A solver of the condensed step problem. `r` holds the starting point on
 /// entry and the solution on exit.
 pub trait StepSolver {
+    /// Its name in messages (a registered solver's is its [`SolverEntry::name`]).
     fn name(&self) -> &'static str;
     /// Checks the solver's settings; the time loops call it before any work, so a bad
     /// setting is refused as an input error naming it, not as a failed first step.
@@ -100,6 +106,8 @@ pub trait StepSolver {
     fn certified(&self) -> bool {
         true
     }
+    /// Solves `p` from the starting point in `r`, leaving the solution there, and
+    /// says how it went.
     fn solve(&mut self, p: &StepProblem, r: &mut Vec<f64>) -> Info;
 }
 
@@ -298,6 +306,7 @@ pub fn solver(name: &str) -> Result<&'static SolverEntry, crate::error::InputErr
 }
 
 impl StepProblem<'_> {
+    /// The number $m$ of contact nodes (unknowns of the condensed problem).
     pub fn m(&self) -> usize {
         self.r0.len()
     }
@@ -451,6 +460,8 @@ impl StepProblem<'_> {
 /// an interval.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Piece {
+    /// Free, on a piece of the law where $p$ has this tangent.
     Free(crate::law::Tangent),
+    /// Pinned at this point: $g$ or a jump of $p$.
     Pinned(f64),
 }

@@ -7,6 +7,7 @@ use super::{Info, Status, StepProblem, StepSolver, inf_norm};
 /// (zero, $g$, $r_0$), recording the largest relative distance between answers:
 /// a nonzero spread means the step has several stationary points.
 pub struct MultiStart {
+    /// The solver run from each starting point.
     pub inner: Box<dyn StepSolver>,
     /// The largest relative distance between answers so far.
     pub spread: f64,

@@ -71,6 +71,7 @@ impl Default for Settings {
 /// The semismooth Newton / active-set step solver.
 #[derive(Debug, Clone, Default)]
 pub struct Newton {
+    /// Its tolerances, limits and switches.
     pub settings: Settings,
     /// The LU factor of the last Newton matrix, reused while the pieces stay.
     cache: Cache,
@@ -132,6 +133,7 @@ struct Eval {
 }
 
 impl Newton {
+    /// The solver with the given settings (and an empty factor cache).
     pub fn new(settings: Settings) -> Self {
         Newton {
             settings,

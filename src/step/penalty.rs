@@ -37,7 +37,9 @@ pub const RELATIVE_STIFFNESS: f64 = 1e3;
 /// Newton on the penalised law.
 #[derive(Debug, Clone)]
 pub struct Penalty {
+    /// The penalty stiffness $\varepsilon^{-1}$, absolute or relative to the step.
     pub stiffness: Stiffness,
+    /// The Newton solver of the penalised, unconstrained step.
     pub inner: Newton,
     cache: Option<(Law, f64, f64, Law)>,
 }

@@ -7,7 +7,9 @@
 /// How one edge of a wedge is held.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Edge {
+    /// Clamped: $u = 0$ on the edge.
     Clamped,
+    /// Free of traction: $\sigma n = 0$ on the edge.
     Free,
 }
 

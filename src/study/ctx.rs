@@ -88,10 +88,12 @@ impl Ctx {
         ]
     }
 
+    /// The path of the table `file` in the data directory.
     pub fn data_path(&self, file: &str) -> PathBuf {
         self.data.join(file)
     }
 
+    /// The path of the figure `stem.ext` in the figures directory.
     pub fn figure_path(&self, stem: &str, ext: &str) -> PathBuf {
         self.figures.join(format!("{stem}.{ext}"))
     }

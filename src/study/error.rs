@@ -4,8 +4,10 @@
 /// An experiment's failure.
 #[derive(Debug, thiserror::Error)]
 pub enum ExpError {
+    /// A run that failed.
     #[error(transparent)]
     Run(#[from] crate::scheme::RunError),
+    /// A value the program cannot accept (in a scenario, a setting).
     #[error(transparent)]
     Input(#[from] crate::error::InputError),
     /// A table or figure that could not be read or written.
@@ -14,7 +16,9 @@ pub enum ExpError {
     /// Where in a study or experiment the error arose (a family, a level).
     #[error("{context}: {source}")]
     At {
+        /// Where it arose, in words (say, "graded family, level n = 32").
         context: String,
+        /// The error itself.
         source: Box<ExpError>,
     },
     /// A failed step of a study's run ([`crate::scheme::RunError::failed_step`]), with
@@ -26,7 +30,10 @@ pub enum ExpError {
          material or a milder softening (a study sets its own time steps: it takes no \
          --steps)"
     )]
-    StudyStep { failed: String },
+    StudyStep {
+        /// The failed step in words, without `solve`'s advice.
+        failed: String,
+    },
 }
 
 impl ExpError {

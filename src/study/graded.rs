@@ -31,13 +31,19 @@ pub const MU: f64 = 0.4;
 /// times the unknowns of the uniform one with the same $n$, so the graded family
 /// stops a level earlier, four times coarser than its reference.
 pub struct Plan {
+    /// The levels $n$ of the uniform family.
     pub uniform: Vec<usize>,
+    /// The levels $n$ of each graded family.
     pub graded: Vec<usize>,
+    /// The level $n$ of the reference.
     pub n_ref: usize,
     /// The step solver of every run (the registry's; `newton` in the book's study).
     pub solver: &'static crate::step::SolverEntry,
 }
 
+/// The levels of the study: with `quick`, 4 to 32 in both families and a reference
+/// at 128; else uniform 4 to 128, graded 4 to 64 and a reference at 256; the default
+/// step solver.
 pub fn plan(quick: bool) -> Plan {
     if quick {
         Plan {
@@ -117,8 +123,13 @@ struct Row {
 /// The reference's own energy within radii `radius`, `radius`/2, ... (`halvings`
 /// of them) of each group gives the strength of its singular field.
 pub struct Split<'a> {
+    /// Each group: its name in the tables, its points, and the exponent $\lambda$ its
+    /// singular field $r^\lambda$ is expected to have (the strengths divide by
+    /// $\rho^\lambda$).
     pub groups: &'a [(&'a str, &'a [[f64; 2]], f64)],
+    /// The radius of each group's region, and the largest radius of the energy table.
     pub radius: f64,
+    /// How many times the energy table halves the radius.
     pub halvings: usize,
 }
 
@@ -153,8 +164,12 @@ fn edge_at(mesh: &Mesh, p: [f64; 2]) -> f64 {
 /// unknowns, and with a [`Split`] the error by region (`graded_regions.csv`) and the
 /// reference's energy near each group (`graded_corner_energy.csv`).
 pub struct Graded {
+    /// The table of `graded_convergence.csv`.
     pub table: Table,
+    /// The reference's unknowns (degrees of freedom).
     pub ref_dofs: usize,
+    /// With a [`Split`]: the tables of `graded_regions.csv` and
+    /// `graded_corner_energy.csv`, in this order.
     pub split: Option<(Table, Table)>,
 }
 

@@ -25,15 +25,33 @@ use crate::step::multistart::MultiStart;
 use plotters::prelude::*;
 use plotters::style::text_anchor::Pos;
 
+/// One cell of a stability map: a solver's run of a scenario at one time step, and
+/// how it went ([`map_cell`]).
 pub struct Cell {
+    /// The step solver, by its registry name or label.
     pub solver: &'static str,
+    /// The number of time steps $N$.
     pub steps: usize,
+    /// The scenario's softening slope $c_2$, as the caller records it (NaN where it
+    /// does not).
     pub c2: f64,
+    /// The outcome in words: `certified`, `several solutions`, `converged (…)` for an
+    /// uncertified solver, `failed: …` or `error: …`.
     pub outcome: String,
+    /// The step that failed (0 unless a step did).
     pub failed_step: u64,
+    /// The step solver's outer iterations per step, on average; NaN where the run
+    /// failed or did not start.
     pub mean_iterations: f64,
+    /// The largest certificate over the steps, or the step solver's residual at the
+    /// failed step; NaN where the run did not start.
     pub certificate: f64,
+    /// The smallest curvature a step problem can have
+    /// ([`crate::scheme::Run::hessian_min`]): positive when every step is strictly
+    /// convex; NaN where the run failed or did not start.
     pub hessian_min: f64,
+    /// With Newton: the largest relative distance between the answers from several
+    /// starts ([`MultiStart::spread`]); NaN for every other solver.
     pub spread: f64,
 }
 
@@ -143,9 +161,14 @@ pub fn solvers() -> Vec<&'static str> {
 /// A map: per cell (solver, k, row value, outcome, mean iterations, hessian_min); the
 /// rows are the distinct row values ascending, labelled by `row_label`.
 pub struct MapFigure {
+    /// The cells: (solver, $k$, row value, outcome, mean iterations, hessian_min); one
+    /// panel per solver, in the order they first appear.
     pub cells: Vec<(String, f64, f64, String, f64, f64)>,
+    /// The figure's title.
     pub title: String,
+    /// The description of the row axis.
     pub row_desc: String,
+    /// The label of a row value on its axis.
     pub row_label: fn(f64) -> String,
 }
 

@@ -37,13 +37,20 @@ use crate::scheme::Discretisation;
 /// Mesh, step levels and reference of a study.
 #[derive(Debug, Clone)]
 pub struct Plan {
+    /// The mesh level $n$ of every run, $h = 1/n$.
     pub n: usize,
+    /// The levels' numbers of steps $N$, $k = T/N$: each divides the largest.
     pub levels: Vec<usize>,
+    /// The reference's number of steps $N_{\text{ref}}$ on the same mesh, a multiple of
+    /// the largest level.
     pub n_ref: usize,
     /// The step solver of every run (the registry's; `newton` in the book's study).
     pub solver: &'static crate::step::SolverEntry,
 }
 
+/// The plan of the study: with `quick`, $n = 16$ and $N$ from 4 to 256 against
+/// $N_{\text{ref}} = 16384$; else $n = 32$ and $N$ from 4 to 1024 against 32768; the
+/// default step solver.
 pub fn plan(quick: bool) -> Plan {
     if quick {
         Plan {
@@ -91,20 +98,32 @@ pub fn scalar_model(tau: f64, history: &History, t_end: f64, n: usize, n_ref: us
 /// One row of the study.
 #[derive(Debug, Clone)]
 pub struct Row {
+    /// The scenario's name.
     pub scenario: String,
+    /// The row's label (its load history, or the variant of the scene).
     pub history: String,
+    /// The level's number of steps $N$.
     pub steps: usize,
+    /// $\max_n \|u_{ref}(t_n) - u_n\|_E / \max_n \|u_{ref}(t_n)\|_E$ over the level's times.
     pub err_max: f64,
+    /// $\|u_{ref}(T) - u_N\|_E / \|u_{ref}(T)\|_E$.
     pub err_t: f64,
+    /// The scalar model's error over time, measured as `err_max` ([`scalar_model`]);
+    /// NaN without a relaxation time.
     pub model_max: f64,
+    /// The scalar model's error at $T$, measured as `err_t`; NaN without a relaxation
+    /// time.
     pub model_t: f64,
     /// First time at which a contact node of the reference run sits at the limit $g$.
     pub t_first_limit: f64,
     /// The level's time $t_n$ where the error is largest.
     pub t_err_max: f64,
-    /// The relaxation time $\tau$ and the limit $g$ of the run, and its final time.
+    /// The relaxation time $\tau$ of the run, $\mathcal C = \tau\mathcal G$ (NaN where the
+    /// tensors are not proportional).
     pub tau: f64,
+    /// The limit $g$ of the run.
     pub g: f64,
+    /// The final time $T$ of the run.
     pub t_end: f64,
 }
 

@@ -20,19 +20,22 @@ use crate::time_grid::TimeGrid;
 /// One layer grid's measure for one scene.
 #[derive(Debug, Clone)]
 pub struct LayerRow {
-    /// The scene and its load history (as in the time study's rows).
+    /// The scene (as in the time study's rows).
     pub scenario: String,
+    /// The scene's load history label (as in the time study's rows).
     pub history: String,
-    /// $N$ (longest step $T/N$) and $J$ (first step $(T/N)/2^J$).
+    /// $N$: the longest step is $T/N$.
     pub n: usize,
+    /// $J$: the first step is $(T/N)/2^J$.
     pub halvings: u32,
     /// The grid's steps.
     pub steps: usize,
     /// The first step.
     pub k_first: f64,
     /// Largest error over the grid's times relative to the reference's largest norm
-    /// there, and the relative error at $T$.
+    /// there.
     pub err_max: f64,
+    /// The relative error at $T$.
     pub err_t: f64,
 }
 

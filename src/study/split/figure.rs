@@ -13,8 +13,11 @@ pub type Series = (String, Vec<(f64, f64)>, RGBColor, bool);
 
 /// One log–log panel of Fig. 5.
 pub struct Fig5 {
+    /// The panel's caption.
     pub title: String,
+    /// The description of the $x$ axis (the $y$ axis is the relative energy error, %).
     pub x_desc: String,
+    /// The series drawn.
     pub series: Vec<Series>,
 }
 

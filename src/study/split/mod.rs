@@ -30,12 +30,17 @@ pub use figure::draw_split;
 
 /// Levels and reference of a study.
 pub struct Plan {
+    /// The levels $n$ of the families: $h = 1/n$ in the $h = k$ and $h$ families, $n$
+    /// time steps in the $h = k$ and $k$ families.
     pub levels: Vec<usize>,
+    /// The level of the reference, $h = k = 1/n_{ref}$.
     pub n_ref: usize,
     /// The step solver of every run (the registry's; `newton` in the book's study).
     pub solver: &'static crate::step::SolverEntry,
 }
 
+/// The levels of the study: with `quick`, 4 to 16 against a reference at 32; else
+/// 4 to 128 against 512 (Table 1's); the default step solver.
 pub fn plan(quick: bool) -> Plan {
     if quick {
         Plan {
@@ -79,10 +84,16 @@ struct RefRun {
 /// Error of one level against the reference.
 #[derive(Debug, Clone)]
 pub struct LevelError {
+    /// The family: `h=k`, `h` or `k`.
     pub family: &'static str,
+    /// The mesh level $n$, $h = 1/n$.
     pub n: usize,
+    /// The number of time steps $N$.
     pub steps: usize,
+    /// The relative energy error at $T$, $\|e(T)\|_E / \|u_{ref}(T)\|_E$.
     pub rel_t: f64,
+    /// The relative energy error over time, $\max_n \|e_n\|_E / \max_n \|u_{ref,n}\|_E$
+    /// over the time levels shared with the reference.
     pub rel_max: f64,
     /// Squared error at $t = T$ in three regions: near the clamp ends, near $\Gamma_3$, the rest.
     pub regions: [f64; 3],
@@ -92,7 +103,10 @@ pub struct LevelError {
 /// $y = 0$, and the rest.
 #[derive(Debug, Clone)]
 pub struct Regions {
+    /// The singular points the first region surrounds.
     pub points: Vec<[f64; 2]>,
+    /// The radius of the first region around each point, and the width of the second
+    /// along $y = 0$.
     pub radius: f64,
     /// What the points are, naming the first share's column `share_<near>`.
     pub near: &'static str,
