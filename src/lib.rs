@@ -12,6 +12,7 @@
 //! TOML file or text) and [`simulation::RunSettings`], checked once; `solve` runs the
 //! time loop and returns the state at $T$ with every step's certificate:
 //!
+#![warn(missing_docs)]
 #![doc = concat!("```\n", include_str!("../examples/solve_a_scene.rs"), "```\n")]
 //!
 //! `examples/own_scene.rs` builds a scene in code and solves it for several limits.

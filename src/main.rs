@@ -50,12 +50,9 @@ enum Command {
     /// data/bench_solvers.csv and the work-precision chart figures/work_precision.png.
     Bench(cli::bench::BenchArgs),
     /// Run one of the book's studies on any scenario (built-in name or TOML file) and
-    /// write a self-describing directory: `convergence` (Table 1 for the scene: uniform
-    /// against graded meshes, increments, orders and the corner exponents the supports
-    /// predict, and, with proportional damping, the h = k, h and k families), `time`
-    /// (the time error at a fixed mesh, with the scalar layer model; viscoelastic
-    /// scenarios only) or `stability` (which step solver fails where on the scenario's
-    /// law, with H(s) and the step convexity).
+    /// write a self-describing directory; `evhi study --help` lists the studies (the
+    /// convergence in space and time, the time error, the stability map of the step
+    /// solvers) and `evhi study NAME --help` explains one.
     #[command(subcommand)]
     Study(study::Study),
     /// List the built-in scenarios with their descriptions.

@@ -13,7 +13,6 @@
 use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::PathBuf;
 
 mod convergence;
 pub mod corners;
@@ -32,35 +31,68 @@ pub use ctx::Ctx;
 pub use error::ExpError;
 mod time;
 
-/// A study of `evhi study`: its name on the command line and the figures it writes.
-/// Its options and help are its [`Study`] variant's, which a test ties to the entry.
-#[derive(Debug)]
+/// A study of `evhi study`: its name on the command line, the figures it writes, its
+/// command line (options and help) and how it runs.
 pub struct StudyEntry {
     /// Its subcommand's name (`evhi study NAME`).
     pub name: &'static str,
     /// The stems of the figures it writes in its directory (each as PNG and SVG), with
     /// the suffix the book's worked example gives its copy of each.
     pub figures: &'static [(&'static str, &'static str)],
+    /// Its options and help, as clap builds them from the study's arguments type.
+    pub command: fn() -> clap::Command,
+    /// Runs it from its parsed options, with the command line its provenance lines
+    /// name, announcing its cost first when asked (the command line asks; the worked
+    /// example does not); returns its summary.
+    pub run: StudyRun,
+}
+
+/// How a study runs: from its parsed options, the command line its provenance lines
+/// name and whether to announce its cost, to its summary.
+pub type StudyRun = fn(&clap::ArgMatches, &str, bool) -> Result<String, Box<dyn std::error::Error>>;
+
+impl std::fmt::Debug for StudyEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StudyEntry")
+            .field("name", &self.name)
+            .field("figures", &self.figures)
+            .finish_non_exhaustive()
+    }
 }
 
 /// The studies of `evhi study` (the experiments' computations on any scenario), each
-/// spelled once: the worked example of `evhi reproduce` runs every entry, and a test
-/// checks that the command line offers exactly these. A new study is its module, its
-/// [`Study`] variant with its arm in [`run_as`], and its entry here.
+/// spelled once: the command line offers exactly these, in this order, and the worked
+/// example of `evhi reproduce` runs every entry. A new study is its module (its
+/// arguments type, deriving `clap::Parser`, and its `from_matches`) and its entry here.
 pub const STUDIES: [StudyEntry; 3] = [
     StudyEntry {
         name: "convergence",
         figures: &[("convergence", ""), ("split", "_split")],
+        command: <convergence::ConvergenceArgs as clap::CommandFactory>::command,
+        run: convergence::from_matches,
     },
     StudyEntry {
         name: "time",
         figures: &[("time_study", "")],
+        command: <time::TimeArgs as clap::CommandFactory>::command,
+        run: time::from_matches,
     },
     StudyEntry {
         name: "stability",
         figures: &[("stability", "")],
+        command: <stability::StabilityArgs as clap::CommandFactory>::command,
+        run: stability::from_matches,
     },
 ];
+
+/// A study to run: its registry entry and its options as the command line gave them.
+/// `evhi study` parses it as a subcommand built from [`STUDIES`]; a program builds it
+/// with [`Study::parse`].
+#[derive(Debug, Clone)]
+pub struct Study {
+    entry: &'static StudyEntry,
+    matches: clap::ArgMatches,
+}
 
 /// The command line's words of a study, parsed as `evhi study WORDS…` parses them.
 #[derive(clap::Parser)]
@@ -72,8 +104,14 @@ struct Words {
 
 impl Study {
     /// The study that `evhi study WORDS…` runs (`words` from the study's name on), with
-    /// the command line's defaults and checks: `Study::parse(&["time", "--scenario",
-    /// "figure", "--quick", "--out", "runs/t"])`.
+    /// the command line's defaults and checks.
+    ///
+    /// ```
+    /// let study = evhi::study::Study::parse(&["time", "--scenario", "figure", "--quick", "--out", "runs/t"])?;
+    /// assert_eq!(study.entry().name, "time");
+    /// assert!(evhi::study::Study::parse(&["time", "--quick"]).is_err()); // no --scenario
+    /// # Ok::<(), clap::Error>(())
+    /// ```
     pub fn parse(words: &[&str]) -> Result<Study, clap::Error> {
         use clap::Parser;
         Ok(Words::try_parse_from(std::iter::once("study").chain(words.iter().copied()))?.study)
@@ -81,135 +119,56 @@ impl Study {
 
     /// Its registry entry.
     pub fn entry(&self) -> &'static StudyEntry {
-        let name = match self {
-            Study::Convergence(_) => "convergence",
-            Study::Time(_) => "time",
-            Study::Stability(_) => "stability",
-        };
-        STUDIES
-            .iter()
-            .find(|e| e.name == name)
-            .expect("every study has an entry (tested)")
+        self.entry
     }
 }
 
-#[derive(clap::Subcommand)]
-pub enum Study {
-    /// Convergence in space and time on the scenario's own scene: a uniform and a
-    /// graded family of nested meshes (newest-vertex bisection of the coarsest grid
-    /// that resolves the scene; the graded one refined, exponent 0.4, towards the
-    /// scene's singular points, where the supports change along the boundary, listed
-    /// in singular.csv), h and k = T/n refined together. Writes convergence.csv (per
-    /// level: unknowns, error at T against a finer graded reference, increments
-    /// ||u_n - u_2n||_E / ||u_2n||_E at T and their maximum over time, observed orders
-    /// in N_dof^(-1/2)), convergence.md (the table; the fitted exponents; a rough
-    /// estimate of the reference's own error and which rows it leaves unresolved; a
-    /// note where uniform orders exceed what the corners predict, with their trend),
-    /// singular.csv (each singular point, its kind and the corner exponent it predicts)
-    /// and convergence.png/svg; for a viscoelastic scenario with proportional damping
-    /// also split.csv and split.png/svg, Table 1's h = k, h-only and k-only families on
-    /// uniform meshes against a reference four times finer, with their own rough
-    /// reference-error estimate and resolved flags in the summary, where those meshes
-    /// nest (the summary says why they are absent otherwise: on a 64 x 1 strip the rows
-    /// of cells go from 1 at n = 32 to 4 at n = 256, and a level is not embedded in the
-    /// reference).
-    ///
-    /// Example: evhi study convergence --scenario data/scenarios/examples/cantilever.toml --quick --out runs/conv
-    Convergence(ConvergenceArgs),
-    /// The time error at a fixed mesh: backward Euler at k = T/N for N = 4, 8, …
-    /// against the same mesh with a far finer step, the maximum over time and at T,
-    /// orders, where the error peaks, and, where the damping is proportional
-    /// (C = tau G), the scalar model of the relaxation layer beside it. Writes
-    /// time_study.csv, time_study.md and time_study.png/svg. Viscoelastic scenarios
-    /// only: an elastic or steady one has no time error and is refused.
-    ///
-    /// Example: evhi study time --scenario data/scenarios/examples/five_branch.toml --quick --out runs/time
-    Time(TimeArgs),
-    /// Which step solver fails where on the scenario's own law: every registered
-    /// solver of the stability map at each mesh level n and time step k (certified;
-    /// several solutions from Newton's other starts; for the penalty, which has no
-    /// certificate, converged with u_nu past g, within g, or without a limit; failed
-    /// at which step; error where the run did not start; with mean iterations), and
-    /// per (n, k) the paper's smallness condition H(s) and the step convexity.
-    /// Writes stability.csv, hypotheses.csv, stability.md and stability.png/svg.
-    ///
-    /// Example: evhi study stability --scenario data/scenarios/examples/cantilever.toml --quick --out runs/stab
-    Stability(StabilityArgs),
+impl clap::FromArgMatches for Study {
+    fn from_arg_matches(m: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        let names = || STUDIES.map(|e| e.name).join(", ");
+        let Some((name, matches)) = m.subcommand() else {
+            let why = format!("a study is needed: one of {}", names());
+            return Err(clap::Error::raw(
+                clap::error::ErrorKind::MissingSubcommand,
+                why,
+            ));
+        };
+        let Some(entry) = STUDIES.iter().find(|e| e.name == name) else {
+            let why = format!("no study `{name}`: the studies are {}", names());
+            return Err(clap::Error::raw(
+                clap::error::ErrorKind::InvalidSubcommand,
+                why,
+            ));
+        };
+        Ok(Study {
+            entry,
+            matches: matches.clone(),
+        })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &clap::ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
 }
 
-#[derive(clap::Args)]
-pub struct TimeArgs {
-    /// A built-in scenario or the path of a scenario TOML file.
-    #[arg(long, value_parser = crate::scenario::arg_parser())]
-    pub scenario: String,
-    /// Mesh n = 16, N up to 256 and a reference with 16384 steps (seconds); without
-    /// it n = 32, N up to 1024 and 32768 reference steps.
-    #[arg(long)]
-    pub quick: bool,
-    /// Override the mesh level n (a multiple of 4 on which the scene resolves).
-    #[arg(long)]
-    pub n: Option<usize>,
-    /// The step solver of every run of the study (default newton), a certified one:
-    /// the study compares runs whose every step is certified.
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
-    pub solver: Option<String>,
-    /// Output directory (created if missing).
-    #[arg(long)]
-    pub out: PathBuf,
+impl clap::Subcommand for Study {
+    fn augment_subcommands(cmd: clap::Command) -> clap::Command {
+        (STUDIES.iter()).fold(cmd, |cmd, e| cmd.subcommand((e.command)().name(e.name)))
+    }
+
+    fn augment_subcommands_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_subcommands(cmd)
+    }
+
+    fn has_subcommand(name: &str) -> bool {
+        STUDIES.iter().any(|e| e.name == name)
+    }
 }
 
-#[derive(clap::Args)]
-pub struct StabilityArgs {
-    /// A built-in scenario or the path of a scenario TOML file.
-    #[arg(long, value_parser = crate::scenario::arg_parser())]
-    pub scenario: String,
-    /// Levels n0, 2 n0 and steps 1, 8 (seconds); without it n0, 2 n0, 4 n0 and steps
-    /// 1, 2, 4, …, 64 (a steady problem always takes one step). n0 is the coarsest
-    /// n (4, 8, 16, …) that resolves the scene, but at least 8: 8 on the paper's
-    /// scene.
-    #[arg(long)]
-    pub quick: bool,
-    /// Map this step solver only (any of the registry; default: every solver the
-    /// book's map runs).
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
-    pub solver: Option<String>,
-    /// Output directory (created if missing).
-    #[arg(long)]
-    pub out: PathBuf,
-}
-
-#[derive(clap::Args)]
-pub struct ConvergenceArgs {
-    /// A built-in scenario or the path of a scenario TOML file.
-    #[arg(long, value_parser = crate::scenario::arg_parser())]
-    pub scenario: String,
-    /// Four levels per family and a reference at 32 times the coarsest n, the split
-    /// on three levels against 16 times, within a budget of about 10 s of work (the
-    /// paper's scene's quick study is estimated at 3 s and takes under 1 s, on the
-    /// reduced loop): where the estimate is larger,
-    /// the plan drops a level at a time, its references with it, down to two levels per
-    /// family, and a scene still above the budget is refused before any work, with what
-    /// it would take. Without
-    /// it six uniform and five graded levels and a reference at 64 times, the split on
-    /// six levels against 128 times, Table 1's plan on the paper's scene (about 8 s
-    /// there on a two-core AMD EPYC: median of three whole runs, 7.7 to 8.8 s). Before
-    /// any work the study says what it will cost (its levels, its reference's size and
-    /// steps, and the seconds of work they take at the rate measured on that machine)
-    /// and solves its coarsest level as `solve` would, so that a scene the time loop
-    /// refuses is refused at once, with the loop's cause.
-    #[arg(long)]
-    pub quick: bool,
-    /// The step solver of every run of the study (default newton), a certified one:
-    /// the study compares runs whose every step is certified.
-    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
-    pub solver: Option<String>,
-    /// Output directory (created if missing).
-    #[arg(long)]
-    pub out: PathBuf,
-    /// Print the cost notice before any work (the command line does; a study run from
-    /// the library stays quiet).
-    #[arg(skip)]
-    pub announce: bool,
+/// A study's typed options from its parsed command line.
+fn typed<A: clap::FromArgMatches>(m: &clap::ArgMatches) -> Result<A, clap::Error> {
+    A::from_arg_matches(m)
 }
 
 /// The registry entry of a study's `--solver` (newton when none is named), refused by
@@ -237,25 +196,27 @@ fn study_solver(
     Ok(entry)
 }
 
-pub fn run(mut study: Study) -> Result<(), Box<dyn std::error::Error>> {
+/// Runs a study as `evhi study` does: its cost announced first where it has one, its
+/// summary printed, its provenance naming this process's command line.
+pub fn run(study: Study) -> Result<(), Box<dyn std::error::Error>> {
     let command = crate::output::run::one_line(&crate::output::run::command_line());
-    if let Study::Convergence(args) = &mut study {
-        args.announce = true;
-    }
-    crate::diag_text!("{}", run_as(study, &command)?);
+    crate::diag_text!("{}", run_quiet_or_not(study, &command, true)?);
     Ok(())
 }
 
 /// [`run`] with the command line its provenance lines name (`evhi reproduce example`
-/// runs the studies on the worked example under a fixed one); returns the summary
-/// `run` prints.
+/// runs the studies on the worked example under a fixed one), without the cost
+/// notice; returns the summary `run` prints.
 pub fn run_as(study: Study, command: &str) -> Result<String, Box<dyn std::error::Error>> {
-    match study {
-        Study::Convergence(args) => convergence::run(args, command),
-        Study::Time(args) => time::run(args, command),
-        Study::Stability(args) => stability::run(args, command),
-    }
-    .map_err(study_advice)
+    run_quiet_or_not(study, command, false)
+}
+
+fn run_quiet_or_not(
+    study: Study,
+    command: &str,
+    announce: bool,
+) -> Result<String, Box<dyn std::error::Error>> {
+    (study.entry.run)(&study.matches, command, announce).map_err(study_advice)
 }
 
 /// A study's error with a failed step's advice fitted to the studies
@@ -354,7 +315,7 @@ mod tests {
 
     /// Every entry of the registry is a subcommand of `evhi study`, and every
     /// subcommand an entry, in the same order; each parses with the options the worked
-    /// example gives it and names its own entry.
+    /// example gives it and names its own entry, and its help is its own.
     #[test]
     fn the_command_line_offers_the_registry() {
         use clap::Subcommand;
@@ -362,10 +323,13 @@ mod tests {
         let names: Vec<&str> = cmd.get_subcommands().map(|c| c.get_name()).collect();
         let entries: Vec<&str> = STUDIES.iter().map(|e| e.name).collect();
         assert_eq!(names, entries);
-        for e in &STUDIES {
+        for (e, sub) in STUDIES.iter().zip(cmd.get_subcommands()) {
             let words = [e.name, "--scenario", "figure", "--quick", "--out", "x"];
             let study = Study::parse(&words).unwrap();
             assert_eq!(study.entry().name, e.name);
+            let about = sub.get_about().map(|a| a.to_string()).unwrap_or_default();
+            assert!(!about.is_empty(), "{}", e.name);
         }
+        assert!(Study::parse(&["nothing"]).is_err());
     }
 }

@@ -22,12 +22,19 @@ use std::sync::Arc;
 crate::row! {
     /// One row of a mesh scene's `convergence.csv`: a level of the uniform family.
     pub struct LevelRow {
+        /// The level: 0 for the file's mesh, one more per uniform refinement.
         level: u64 => "level",
+        /// The level's triangles.
         triangles: u64 => "triangles" if crate::output::rows::AT_LEAST_ONE,
+        /// Its displacement unknowns.
         dofs: u64 => "dofs" if crate::output::rows::AT_LEAST_ONE,
+        /// Its longest edge.
         h_max: f64 => "h_max" if crate::output::rows::POSITIVE,
+        /// Its time steps.
         steps: u64 => "steps" if crate::output::rows::AT_LEAST_ONE,
+        /// The relative error in the energy norm at $T$ against the reference, in percent.
         rel_err_t_percent: f64 => "rel_err_T_percent",
+        /// The observed order in $h$ from the level before (NaN at the first).
         order_h: f64 => "order_h",
     }
 }
@@ -60,7 +67,7 @@ fn h_max(mesh: &crate::mesh::Mesh) -> f64 {
 }
 
 pub(super) fn run(
-    args: super::ConvergenceArgs,
+    args: super::convergence::ConvergenceArgs,
     scn: Scenario,
     text: String,
     command: &str,

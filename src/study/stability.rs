@@ -21,8 +21,48 @@ const CURVATURE: &str = "smallest step curvature: lambda_min(S + k diag(w) c_min
      bound between the law's jumps (positive and no downward jump: every step is strictly convex, \
      so its minimiser is unique)";
 
+/// Which step solver fails where on the scenario's own law: every registered
+/// solver of the stability map at each mesh level n and time step k (certified;
+/// several solutions from Newton's other starts; for the penalty, which has no
+/// certificate, converged with u_nu past g, within g, or without a limit; failed
+/// at which step; error where the run did not start; with mean iterations), and
+/// per (n, k) the paper's smallness condition H(s) and the step convexity.
+/// Writes stability.csv, hypotheses.csv, stability.md and stability.png/svg.
+///
+/// Example: evhi study stability --scenario data/scenarios/examples/cantilever.toml --quick --out runs/stab
+#[derive(clap::Parser)]
+pub struct StabilityArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    #[arg(long, value_parser = crate::scenario::arg_parser())]
+    pub scenario: String,
+    /// Levels n0, 2 n0 and steps 1, 8 (seconds); without it n0, 2 n0, 4 n0 and steps
+    /// 1, 2, 4, …, 64 (a steady problem always takes one step). n0 is the coarsest
+    /// n (4, 8, 16, …) that resolves the scene, but at least 8: 8 on the paper's
+    /// scene.
+    #[arg(long)]
+    pub quick: bool,
+    /// Map this step solver only (any of the registry; default: every solver the
+    /// book's map runs).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    pub solver: Option<String>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: std::path::PathBuf,
+}
+
+/// Runs the study from its parsed command line (its [`super::StudyEntry::run`]).
+pub(super) fn from_matches(
+    m: &clap::ArgMatches,
+    command: &str,
+    announce: bool,
+) -> Result<String, Box<dyn std::error::Error>> {
+    let args: StabilityArgs = super::typed(m)?;
+    let _ = announce;
+    run(args, command)
+}
+
 pub(super) fn run(
-    args: super::StabilityArgs,
+    args: StabilityArgs,
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
     use super::map::{MapFigure, map_cell, solvers};

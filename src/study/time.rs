@@ -6,10 +6,47 @@ use crate::output::rundir::RunDir;
 use crate::scenario::Scenario;
 use std::fmt::Write as _;
 
-pub(super) fn run(
-    args: super::TimeArgs,
+/// The time error at a fixed mesh: backward Euler at k = T/N for N = 4, 8, …
+/// against the same mesh with a far finer step, the maximum over time and at T,
+/// orders, where the error peaks, and, where the damping is proportional
+/// (C = tau G), the scalar model of the relaxation layer beside it. Writes
+/// time_study.csv, time_study.md and time_study.png/svg. Viscoelastic scenarios
+/// only: an elastic or steady one has no time error and is refused.
+///
+/// Example: evhi study time --scenario data/scenarios/examples/five_branch.toml --quick --out runs/time
+#[derive(clap::Parser)]
+pub struct TimeArgs {
+    /// A built-in scenario or the path of a scenario TOML file.
+    #[arg(long, value_parser = crate::scenario::arg_parser())]
+    pub scenario: String,
+    /// Mesh n = 16, N up to 256 and a reference with 16384 steps (seconds); without
+    /// it n = 32, N up to 1024 and 32768 reference steps.
+    #[arg(long)]
+    pub quick: bool,
+    /// Override the mesh level n (a multiple of 4 on which the scene resolves).
+    #[arg(long)]
+    pub n: Option<usize>,
+    /// The step solver of every run of the study (default newton), a certified one:
+    /// the study compares runs whose every step is certified.
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(crate::step::solver_values()))]
+    pub solver: Option<String>,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    pub out: std::path::PathBuf,
+}
+
+/// Runs the study from its parsed command line (its [`super::StudyEntry::run`]).
+pub(super) fn from_matches(
+    m: &clap::ArgMatches,
     command: &str,
+    announce: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
+    let args: TimeArgs = super::typed(m)?;
+    let _ = announce;
+    run(args, command)
+}
+
+pub(super) fn run(args: TimeArgs, command: &str) -> Result<String, Box<dyn std::error::Error>> {
     use super::time_error as time;
     let (scn, text) = Scenario::read(&args.scenario)?;
     if scn.problem != crate::scenario::Problem::Viscoelastic {

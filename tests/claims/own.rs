@@ -363,7 +363,7 @@ fn own_scene_graded() {
 fn study_rows(
     file: &str,
     table: &str,
-    study: impl Fn(String, std::path::PathBuf) -> evhi::study::Study,
+    study: &str,
 ) -> Vec<std::collections::HashMap<String, String>> {
     let out = std::env::temp_dir().join(format!(
         "evhi-claim-{}-{}-{}",
@@ -379,7 +379,9 @@ fn study_rows(
     } else {
         file.to_string()
     };
-    evhi::study::run(study(scenario, out.clone())).unwrap();
+    let out_arg = out.display().to_string();
+    let words = [study, "--scenario", &scenario, "--quick", "--out", &out_arg];
+    evhi::study::run_as(evhi::study::Study::parse(&words).unwrap(), &words.join(" ")).unwrap();
     let text = std::fs::read_to_string(out.join(table)).unwrap();
     let _ = std::fs::remove_dir_all(&out);
     super::parse_rows(&text)
@@ -389,16 +391,7 @@ const CANTILEVER: &str = "data/scenarios/examples/cantilever.toml";
 
 #[test]
 fn own_study_cantilever() {
-    use evhi::study::{ConvergenceArgs, Study};
-    let rows = study_rows(CANTILEVER, "singular.csv", |scenario, out| {
-        Study::Convergence(ConvergenceArgs {
-            scenario,
-            quick: true,
-            solver: None,
-            announce: false,
-            out,
-        })
-    });
+    let rows = study_rows(CANTILEVER, "singular.csv", "convergence");
     assert_eq!(rows.len(), 2, "{rows:?}");
     let lambda: Vec<f64> = rows
         .iter()
@@ -423,16 +416,7 @@ fn own_study_cantilever() {
 /// Runs `evhi study time --quick` on the example `file` and returns its CSV rows by
 /// column name.
 fn time_study(file: &str) -> Vec<std::collections::HashMap<String, String>> {
-    use evhi::study::{Study, TimeArgs};
-    study_rows(file, "time_study.csv", |scenario, out| {
-        Study::Time(TimeArgs {
-            scenario,
-            quick: true,
-            n: None,
-            solver: None,
-            out,
-        })
-    })
+    study_rows(file, "time_study.csv", "time")
 }
 
 #[test]
@@ -484,15 +468,7 @@ fn own_study_time_cantilever() {
 
 #[test]
 fn own_study_stability_cantilever() {
-    use evhi::study::{StabilityArgs, Study};
-    let rows = study_rows(CANTILEVER, "stability.csv", |scenario, out| {
-        Study::Stability(StabilityArgs {
-            scenario,
-            quick: true,
-            solver: None,
-            out,
-        })
-    });
+    let rows = study_rows(CANTILEVER, "stability.csv", "stability");
     assert_eq!(rows.len(), 16, "four solvers, two levels, two step counts");
     for r in &rows {
         let expected = if r["solver"] == "penalty" {

@@ -3,7 +3,7 @@
 //! is a unit test of the binary; `tests/claims.rs` pairs it with its marker.
 
 use crate::experiments::{Ctx, col_f64, col_str, read_csv, run};
-use evhi::study::{ConvergenceArgs, Study, split_plan};
+use evhi::study::{Study, split_plan};
 
 /// Table 1 is the convergence study's h, k and h = k split applied to the built-ins:
 /// the study's full split plan on the paper's scene (coarsest n 4) is Table 1's, and
@@ -28,14 +28,16 @@ fn own_study_is_table1() {
     ctx.reference = Some(quick.n_ref);
     run("table1", &ctx).unwrap();
     let out = root.join("study");
-    evhi::study::run(Study::Convergence(ConvergenceArgs {
-        scenario: "figure".into(),
-        quick: true,
-        solver: None,
-        announce: false,
-        out: out.clone(),
-    }))
-    .unwrap();
+    let out_arg = out.display().to_string();
+    let words = [
+        "convergence",
+        "--scenario",
+        "figure",
+        "--quick",
+        "--out",
+        &out_arg,
+    ];
+    evhi::study::run_as(Study::parse(&words).unwrap(), &words.join(" ")).unwrap();
     // (family, n, steps, error at T, maximum over t) of each row of a table.
     let rows = |path: &std::path::Path, figure_only: bool| {
         let t = read_csv(path).unwrap();
