@@ -267,7 +267,8 @@ pub(super) fn run(
     use super::split;
     let (scn, text) = Scenario::read(&args.scenario)?;
     if scn.body().is_some() {
-        return super::refined::run(args, scn, text, command);
+        let how = (args.quick, args.solver.as_deref(), args.out.as_path());
+        return super::refined::run(how, scn, text, command);
     }
     let solver = super::study_solver(args.solver.as_deref())?;
     let Plans {

@@ -66,15 +66,17 @@ fn h_max(mesh: &crate::mesh::Mesh) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The convergence study of a mesh scene (`evhi study convergence` on a scene whose body
+/// is a mesh file): quick or full, with the named step solver, into `out`.
 pub(super) fn run(
-    args: super::convergence::ConvergenceArgs,
+    (quick, solver, out): (bool, Option<&str>, &std::path::Path),
     scn: Scenario,
     text: String,
     command: &str,
 ) -> Result<String, Box<dyn std::error::Error>> {
     let body = scn.body().expect("a mesh scene");
-    let solver = super::study_solver(args.solver.as_deref())?;
-    let count = levels(args.quick);
+    let solver = super::study_solver(solver)?;
+    let count = levels(quick);
     let coarse = body.mesh.triangles.len();
     let reference = coarse << (2 * count);
     if reference > MAX_REFERENCE_TRIANGLES {
@@ -87,8 +89,8 @@ pub(super) fn run(
                  {MAX_REFERENCE_TRIANGLES} the study builds; mesh the body coarser (the study \
                  refines it){}",
                 MAX_REFERENCE_TRIANGLES >> (2 * count),
-                if args.quick { "" } else { "a full " },
-                if args.quick {
+                if quick { "" } else { "a full " },
+                if quick {
                     ""
                 } else {
                     ", or take --quick (one level fewer)"
@@ -108,11 +110,11 @@ pub(super) fn run(
         scns.push(fine);
         embeds.push(r);
     }
-    let n0 = first_steps(&scn, args.quick);
+    let n0 = first_steps(&scn, quick);
     let steps = |l: usize| if n0 == 1 { 1 } else { n0 << l };
-    let out = RunDir::open(&args.out)?;
+    let out = RunDir::open(out)?;
     let progress = bar(count as u64 + 1);
-    let ctx = study_ctx(&out, args.quick, &progress, command);
+    let ctx = study_ctx(&out, quick, &progress, command);
     let g = scn.elasticity();
     // u(T) of each level, nodal, two components a node.
     let mut fields: Vec<(Arc<crate::mesh::Mesh>, usize, Vec<f64>)> = vec![];
@@ -179,7 +181,7 @@ pub(super) fn run(
          | level | triangles | unknowns | h_max | steps | error at T, % | order in h |\n\
          |---|---|---|---|---|---|---|\n",
         scn.name,
-        if args.quick { "quick" } else { "full" },
+        if quick { "quick" } else { "full" },
         lines[0],
         lines[1]
     );
