@@ -218,6 +218,16 @@ fn bench_sweeps_writes_every_variant() {
 fn bench_mesh_read_times_the_refined_paper_mesh() {
     let dir = scratch("bench-mesh");
     succeed(evhi_with("bench --mesh-read --mesh-read-levels 32,64 --repeat 1 --data").arg(&dir));
+    // Its provenance names the command as run, with its flags.
+    let first = read(dir.join("bench_mesh.csv"))
+        .lines()
+        .next()
+        .unwrap_or("")
+        .to_string();
+    assert_contains(
+        &first,
+        &["`evhi bench --mesh-read --mesh-read-levels 32,64 --repeat 1 --data"],
+    );
     let csv = Csv::read(dir.join("bench_mesh.csv"));
     assert_eq!(csv.column_f64("triangles"), [1024.0, 4096.0]);
     assert_eq!(csv.column_f64("nodes"), [561.0, 2145.0]);

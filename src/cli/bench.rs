@@ -200,7 +200,14 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         verbose: true,
         progress: None,
         reference: None,
-        command: None,
+        // The provenance lines name the command as run, flags and all; the tables
+        // --from-csv rebuilds name the measuring run's default command, as when the bench
+        // wrote them (they must come out byte for byte as committed).
+        command: Some(if args.from_csv {
+            "bench".to_string()
+        } else {
+            evhi::output::run::one_line(&evhi::output::run::command_line())
+        }),
         out_flags: String::new(),
         experiment: "bench",
         book_table: crate::bench::book_table,

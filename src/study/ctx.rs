@@ -72,10 +72,6 @@ impl Ctx {
                     env!("CARGO_PKG_VERSION"),
                     self.command.as_deref().unwrap_or_default()
                 ),
-                "bench" | "bench --sweeps" | "bench --scipy" => format!(
-                    "produced by evhi {} `evhi {experiment}`",
-                    env!("CARGO_PKG_VERSION")
-                ),
                 _ => format!(
                     "produced by evhi {} `evhi reproduce{}{experiment}{}{}`",
                     env!("CARGO_PKG_VERSION"),
