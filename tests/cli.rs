@@ -1340,6 +1340,16 @@ fn plot_refuses_a_summary_that_the_runs_tables_contradict() {
     let graded = dir.join("graded");
     succeed(solve("figure", "--n 24 --steps 2", &graded).args(["--mesh", "graded"]));
     ok(&plot(&graded));
+    // But its n and h edited together (round five: drawn) are refused: the scene's
+    // graded mesh of that n has other nodes.
+    let summary = read(graded.join("summary.csv"));
+    let h: f64 = Csv::parse(&summary).column_f64("h")[0];
+    let h2 = (h / 2.0).to_string();
+    let edited = with_cells(&summary, 4, &[("n", "48"), ("h", &h2)]);
+    std::fs::write(graded.join("summary.csv"), edited).unwrap();
+    refused(&plot(&graded), &["column `n` holds `48`", "nodes.csv has"]);
+    std::fs::write(graded.join("summary.csv"), &summary).unwrap();
+    ok(&plot(&graded));
 }
 
 /// `plot` of what is not a run directory says so, and names no flag it does not have

@@ -10,6 +10,7 @@ use crate::certificate::regime_order;
 use crate::output::plot::FONT;
 use crate::output::plot::{Figure, both, e2s, fit_title, regime_colour, side_legend};
 use crate::output::plot::{GREY, okabe_ito as oi};
+use crate::scenario::Scenario;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -132,6 +133,9 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
             ));
         }
     }
+    if let Some(mu) = summary.mesh.strip_prefix("graded mu = ") {
+        check_graded_n(dir, summary, mu, x.len(), &refuse)?;
+    }
     let h = width / (2.0 * n);
     if (summary.h - h).abs() > 1e-9 * h {
         return Err(refuse(
@@ -155,6 +159,45 @@ fn check_claims(dir: &Path, at: &str, summary: &SummaryRow) -> Result<(), FileEr
             format!(
                 "regimes.csv records {} step(s), the last numbered {last}",
                 step.len()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a graded run's n that its nodes contradict: the graded mesh is a function of
+/// the scene (the run's `scenario.toml`; the command line changes only g and the ramp,
+/// which it does not depend on), n and the exponent mu, so the mesh of the summary's n
+/// must have as many nodes as `nodes.csv`. (The bottom's cells do not give n here, as
+/// they do on a uniform mesh.)
+fn check_graded_n(
+    dir: &Path,
+    summary: &SummaryRow,
+    mu: &str,
+    nodes: usize,
+    refuse: &dyn Fn(&str, String, String) -> FileError,
+) -> Result<(), FileError> {
+    let Ok(mu) = mu.trim().parse::<f64>() else {
+        let why = "a graded run writes `graded mu = ` and its exponent".to_string();
+        return Err(refuse("mesh", summary.mesh.clone(), why));
+    };
+    let path = dir.join("scenario.toml");
+    let scene = Scenario::load(&path.display().to_string()).map_err(|e| FileError::Table {
+        path: path.display().to_string(),
+        message: format!("the scene of this graded run does not read: {e}"),
+    })?;
+    let n = usize::try_from(summary.n).unwrap_or(usize::MAX);
+    let rebuilt = scene.graded_mesh(n, mu).map_err(|e| {
+        let why = format!("the scene's graded mesh of that level is refused: {e}");
+        refuse("n", summary.n.to_string(), why)
+    })?;
+    if rebuilt.nodes.len() != nodes {
+        return Err(refuse(
+            "n",
+            summary.n.to_string(),
+            format!(
+                "the scene's mesh of that level graded with mu = {mu} has {} nodes, and                  nodes.csv has {nodes}",
+                rebuilt.nodes.len()
             ),
         ));
     }
