@@ -130,7 +130,8 @@ pub struct Certificate {
     /// product of the force and displacement scales.
     pub complementarity: f64,
     /// The largest distance between the step solver's contact values and those of the
-    /// field recovered from them, on the displacement scale $\max(g, \|u\|_\infty)$ (0 for
+    /// field recovered from them, on the displacement scale $\max(g, \|u\|_\infty)$
+    /// ($\|u\|_\infty$ alone without a limit; 0 for
     /// a certificate of the condensed problem alone, which has no recovered field).
     pub recovery: f64,
     /// The rounding tolerance in displacement over [`resolved_length`]: how finely the
@@ -212,7 +213,9 @@ pub fn certify(
     let apart = (contact_dofs.iter().zip(gap).zip(s))
         .map(|((&d, gi), si)| (-u[d] - gi - si).abs())
         .fold(0.0, f64::max);
-    let dscale = g.abs().max(u_norm).max(f64::MIN_POSITIVE);
+    // On the displacement scale, an infinite g (no limit) left out.
+    let own = if g.is_finite() { g.abs() } else { 0.0 };
+    let dscale = own.max(u_norm).max(f64::MIN_POSITIVE);
     let nodes = s.iter().copied().zip(contact_dofs.iter().copied());
     let (mut cert, states) = certify_residual(rho, nodes, kw, law, g, scales);
     cert.recovery = apart / dscale;

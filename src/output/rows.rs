@@ -294,7 +294,7 @@ row! {
         inner_iterations: u64 => "inner_iterations",
         /// The step solver's own residual on the condensed problem.
         solver_residual: f64 => "solver_residual",
-        /// The certificate: the largest of its three relative residuals.
+        /// The certificate: the largest of its four relative residuals.
         certificate: f64 => "certificate",
         /// The certificate's relative stationarity residual.
         stationarity: f64 => "stationarity",
@@ -308,6 +308,10 @@ row! {
         time_s: f64 => "time_s",
         /// Which check certified the step: `full` or `condensed`.
         check: String => "check",
+        /// The certificate's recovery residual: how far the field's contact values lie
+        /// from the step solver's (0 where only the condensed problem was checked).
+        /// Last, so that readers by position keep working.
+        recovery: f64 => "recovery",
     }
 }
 

@@ -547,6 +547,7 @@ pub fn step_rows(r: &[crate::scheme::StepRecord]) -> Vec<StepRow> {
             energy_norm: s.energy_norm,
             time_s: s.time_s,
             check: s.check.name().to_string(),
+            recovery: s.certificate.recovery,
         })
         .collect()
 }
