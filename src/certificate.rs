@@ -73,11 +73,16 @@ pub fn split_node(law: &Law, g: f64, s: f64, zeta: f64, delta: f64) -> NodeSplit
 }
 // ANCHOR_END: split
 
-/// The rounding tolerance in displacement: [`ROUNDING`] times $\max(g, \|u\|_\infty)$,
-/// with an infinite $g$ (no limit, as in the penalty method) left out.
+/// The rounding tolerance in displacement: [`ROUNDING`] times [`displacement_scale`].
 pub fn rounding_delta(g: f64, u_norm: f64) -> f64 {
+    ROUNDING * displacement_scale(g, u_norm)
+}
+
+/// The displacement scale $\max(g, \|u\|_\infty)$, with an infinite $g$ (no limit, as in
+/// the penalty method) left out.
+pub fn displacement_scale(g: f64, u_norm: f64) -> f64 {
     let g = if g.is_finite() { g.abs() } else { 0.0 };
-    ROUNDING * g.max(u_norm)
+    g.max(u_norm)
 }
 
 /// Whether $s$ sits on the limit $g$: within $10^{-8} g$ or within the rounding
@@ -213,9 +218,7 @@ pub fn certify(
     let apart = (contact_dofs.iter().zip(gap).zip(s))
         .map(|((&d, gi), si)| (-u[d] - gi - si).abs())
         .fold(0.0, f64::max);
-    // On the displacement scale, an infinite g (no limit) left out.
-    let own = if g.is_finite() { g.abs() } else { 0.0 };
-    let dscale = own.max(u_norm).max(f64::MIN_POSITIVE);
+    let dscale = displacement_scale(g, u_norm).max(f64::MIN_POSITIVE);
     let nodes = s.iter().copied().zip(contact_dofs.iter().copied());
     let (mut cert, states) = certify_residual(rho, nodes, kw, law, g, scales);
     cert.recovery = apart / dscale;

@@ -196,7 +196,8 @@ fn check_graded_n(
             "n",
             summary.n.to_string(),
             format!(
-                "the scene's mesh of that level graded with mu = {mu} has {} nodes, and                  nodes.csv has {nodes}",
+                "the scene's mesh of that level graded with mu = {mu} has {} nodes, and \
+                 nodes.csv has {nodes}",
                 rebuilt.nodes.len()
             ),
         ));

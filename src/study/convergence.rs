@@ -255,7 +255,7 @@ pub(super) fn from_matches(
     command: &str,
     announce: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    let args: ConvergenceArgs = super::typed(m)?;
+    let args = <ConvergenceArgs as clap::FromArgMatches>::from_arg_matches(m)?;
     let args = ConvergenceArgs { announce, ..args };
     run(args, command)
 }

@@ -166,11 +166,6 @@ impl clap::Subcommand for Study {
     }
 }
 
-/// A study's typed options from its parsed command line.
-fn typed<A: clap::FromArgMatches>(m: &clap::ArgMatches) -> Result<A, clap::Error> {
-    A::from_arg_matches(m)
-}
-
 /// The registry entry of a study's `--solver` (newton when none is named), refused by
 /// name when its steps cannot be certified.
 fn study_solver(

@@ -56,7 +56,7 @@ pub(super) fn from_matches(
     command: &str,
     announce: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    let args: StabilityArgs = super::typed(m)?;
+    let args = <StabilityArgs as clap::FromArgMatches>::from_arg_matches(m)?;
     let _ = announce;
     run(args, command)
 }

@@ -41,7 +41,7 @@ pub(super) fn from_matches(
     command: &str,
     announce: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
-    let args: TimeArgs = super::typed(m)?;
+    let args = <TimeArgs as clap::FromArgMatches>::from_arg_matches(m)?;
     let _ = announce;
     run(args, command)
 }
