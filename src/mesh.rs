@@ -56,6 +56,10 @@ pub struct Mesh {
     /// The boundary edges whose support adds a term $k_s\int_e u\cdot v\,ds$ to the
     /// elasticity operator, with its $k_s$ ([`crate::support::Hold::stiffness`]).
     pub boundary_terms: Vec<([usize; 2], f64)>,
+    /// The nodes in coordinate-dissection order, found once per mesh (by
+    /// [`crate::ordering::Ordering::coordinate_dissection`], which the run's
+    /// factorisation and the smallness check's both order by).
+    pub(crate) dissection: std::sync::OnceLock<crate::ordering::NodeDissection>,
 }
 
 /// The most segments a structured mesh may have on the bottom (some 17 million
@@ -335,6 +339,7 @@ impl Mesh {
             contact,
             boundary,
             boundary_terms,
+            dissection: Default::default(),
         }
     }
 
@@ -390,6 +395,7 @@ impl Mesh {
             contact,
             boundary: vec![],
             boundary_terms,
+            dissection: Default::default(),
         }
     }
 

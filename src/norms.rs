@@ -23,14 +23,20 @@ pub fn energy_norm_with(bv: &[f64], v: &[f64]) -> f64 {
 /// $S_V = L_{CC}L_{CC}^\top$ its Schur complement on the contact normal dofs,
 /// $\|\iota_h\|^2 = 1/\lambda_{\min}(W^{-1/2} S_V W^{-1/2})$.
 pub fn trace_norm_sq(scn: &crate::scenario::Scenario, n: usize) -> Result<f64, String> {
-    use crate::material::Isotropic;
     // A mesh scene has one mesh, its file's (`n` is then its contact segments).
     let mesh = match scn.body_mesh() {
         Some(mesh) => mesh,
         None => scn.mesh(n).map_err(|e| e.to_string())?,
     };
-    let dofs = crate::mesh::Dofs::new(&mesh, true);
-    let v = crate::assembly::stiffness(&mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });
+    trace_norm_sq_on(&mesh)
+}
+
+/// [`trace_norm_sq`] on a mesh at hand (a run's own: its coordinate dissection, if it
+/// has one, is then found once for both).
+pub fn trace_norm_sq_on(mesh: &crate::mesh::Mesh) -> Result<f64, String> {
+    use crate::material::Isotropic;
+    let dofs = crate::mesh::Dofs::new(mesh, true);
+    let v = crate::assembly::stiffness(mesh, &dofs, &Isotropic { a: 0.0, b: 1.0 });
     let cdofs: Vec<usize> = mesh
         .contact
         .iter()
@@ -39,9 +45,9 @@ pub fn trace_norm_sq(scn: &crate::scenario::Scenario, n: usize) -> Result<f64, S
     // The run's default orderings (`Simulation::new`): on a large file mesh AMD
     // fills a fifth more and takes the second core twice as long as the dissection.
     let order = if mesh.pattern.is_grid() {
-        crate::ordering::Ordering::nested_dissection(&mesh, &dofs, &cdofs)
+        crate::ordering::Ordering::nested_dissection(mesh, &dofs, &cdofs)
     } else if mesh.nodes.len() >= crate::ordering::MIN_NODES_TO_DISSECT {
-        crate::ordering::Ordering::coordinate_dissection(&mesh, &dofs, &cdofs)
+        crate::ordering::Ordering::coordinate_dissection(mesh, &dofs, &cdofs)
     } else {
         crate::ordering::Ordering::amd(&v, &cdofs).map_err(|e| e.to_string())?
     };

@@ -42,7 +42,21 @@ impl Smallness {
     /// (or, above [`TRACE_EXACT_MAX`] segments, extrapolated) as the type says; an
     /// error where the trace constant cannot be computed.
     pub fn of(scn: &Scenario, n: usize) -> Result<Smallness, String> {
-        let trace = |n: usize| crate::norms::trace_norm_sq(scn, n);
+        Smallness::of_run(scn, n, None)
+    }
+
+    /// [`Smallness::of`] for a run on `mesh`, the scene's uniform mesh of `n` segments
+    /// or its file's: where the constant is computed on that mesh, it is computed on
+    /// this one (not built again, and its ordering found once for the run and the check).
+    pub fn of_run(
+        scn: &Scenario,
+        n: usize,
+        mesh: Option<&crate::mesh::Mesh>,
+    ) -> Result<Smallness, String> {
+        let trace = |level: usize| match mesh {
+            Some(mesh) if level == n => crate::norms::trace_norm_sq_on(mesh),
+            _ => crate::norms::trace_norm_sq(scn, level),
+        };
         // A mesh scene has one mesh, whatever n: its constant is computed on it, once
         // (the extrapolation from levels 128, 256 and 512 factorised it three times).
         let (trace_sq, extrapolated) = if n <= TRACE_EXACT_MAX || scn.body().is_some() {

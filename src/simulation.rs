@@ -235,6 +235,9 @@ pub struct Simulation {
     /// Seconds spent building a uniform mesh (0 for a graded or given one), added to
     /// the run's assembly time.
     mesh_s: f64,
+    /// Whether `mesh` is the scene's own (its file's, or its uniform mesh of level n),
+    /// on which the smallness check may compute its trace constant too.
+    own_mesh: bool,
     reduced: bool,
     /// The time grid the loops step through.
     grid: crate::time_grid::TimeGrid,
@@ -463,6 +466,7 @@ impl Simulation {
         if graded {
             scenario.refuse_mesh_scene("--mesh graded")?;
         }
+        let own_mesh = given.is_none() && !graded;
         let (mesh, mesh_s) = match (given, scenario.body_mesh()) {
             (Some(mesh), _) => (mesh, 0.0),
             (None, Some(mesh)) => {
@@ -493,6 +497,7 @@ impl Simulation {
             opt,
             mesh,
             mesh_s,
+            own_mesh,
             reduced,
             grid: time_grid,
         })
@@ -576,7 +581,10 @@ impl Simulation {
         Result<crate::show::Smallness, String>,
     ) {
         std::thread::scope(|s| {
-            let h_s = s.spawn(|| crate::show::Smallness::of(&self.scenario, self.settings.n));
+            let own = self.own_mesh.then_some(&*self.mesh);
+            let h_s = s.spawn(move || {
+                crate::show::Smallness::of_run(&self.scenario, self.settings.n, own)
+            });
             let run = self.solve(observer);
             let h_s = h_s
                 .join()
