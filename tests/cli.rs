@@ -256,6 +256,58 @@ fn bench_mesh_read_times_the_refined_paper_mesh() {
     assert!(e.contains("bench_mesh.csv") && e.contains("262144"), "{e}");
 }
 
+/// `bench --mesh-solve`: the built-in scene and the same triangulation read from a
+/// file, each solved in a child process on both loops, the same unknowns on both, the
+/// built-in row the ratios' unit; a table whose built-in ratio is not 1 is refused.
+#[test]
+fn bench_mesh_solve_times_both_scenes_on_both_loops() {
+    let dir = scratch("bench-mesh-solve");
+    succeed(
+        evhi_with("bench --mesh-solve --mesh-solve-n 32 --mesh-solve-steps 4 --repeat 1 --data")
+            .arg(&dir),
+    );
+    let csv = Csv::read(dir.join("bench_mesh_solve.csv"));
+    assert_eq!(
+        csv.column_str("path"),
+        ["reduced", "reduced", "general", "general"]
+    );
+    assert_eq!(
+        csv.column_str("scene"),
+        ["built-in", "mesh", "built-in", "mesh"]
+    );
+    // n = 32: 33 x 17 nodes, the 33 of the clamped sides' ends held.
+    let dofs = csv.column_f64("dofs");
+    assert!(dofs.iter().all(|&d| d == dofs[0] && d > 1000.0), "{dofs:?}");
+    let (solve, ratio) = (csv.column_f64("solve_s"), csv.column_f64("solve_ratio"));
+    assert_eq!((ratio[0], ratio[2]), (1.0, 1.0));
+    assert!((ratio[1] - solve[1] / solve[0]).abs() < 1e-12, "{ratio:?}");
+    let o = evhi_with("bench --mesh-solve --mesh-solve-n 48 --data")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(failed(&o).contains("--mesh-solve-n"));
+    // A built-in row whose ratio is not 1 is refused by --from-csv.
+    let data = dir.join("copy/data");
+    std::fs::create_dir_all(&data).unwrap();
+    for f in BENCH_TABLES.iter().chain([&".evhi-outputs"]) {
+        std::fs::copy(Path::new("data").join(f), data.join(f)).unwrap();
+    }
+    let text = read(data.join("bench_mesh_solve.csv"));
+    let broken: Vec<String> = text
+        .lines()
+        .map(|l| match l.strip_suffix(",1.0,1.0") {
+            Some(head) if l.starts_with("reduced,built-in") => format!("{head},1.5,1.0"),
+            _ => l.to_string(),
+        })
+        .collect();
+    std::fs::write(data.join("bench_mesh_solve.csv"), broken.join("\n") + "\n").unwrap();
+    let e = failed(&from_csv(&dir.join("copy")));
+    assert!(
+        e.contains("bench_mesh_solve.csv") && e.contains("built-in row"),
+        "{e}"
+    );
+}
+
 /// Issue 12's cases that used to look right and were not, or were refused though valid.
 #[test]
 fn hostile_but_valid_input_is_solved_and_hostile_invalid_input_is_named() {
@@ -1444,9 +1496,10 @@ fn plot_names_the_file_line_and_column_of_an_edited_table() {
 }
 
 /// The bench's tables `bench --from-csv` reads, as committed.
-const BENCH_TABLES: [&str; 8] = [
+const BENCH_TABLES: [&str; 9] = [
     "bench.csv",
     "bench_mesh.csv",
+    "bench_mesh_solve.csv",
     "work_precision.csv",
     "bench_solvers.csv",
     "bench_scipy.csv",

@@ -4,8 +4,10 @@
 //! residual estimator's cost beside the solve (`estimator`), with the tables of the bench (`tables`) and
 //! the ones the book shows.
 
+pub mod child;
 pub mod estimator;
 pub mod meshread;
+pub mod meshsolve;
 pub mod sweeps;
 pub mod tables;
 pub mod workprec;
@@ -13,12 +15,29 @@ pub mod workprec;
 use evhi::output::markdown::{BookTable, Heading, book_table as table};
 
 /// The tables of `evhi bench` the book shows.
-pub const TABLES: [BookTable; 5] = [
+pub const TABLES: [BookTable; 6] = [
     table("bench_scipy.csv", 1, 5).headed(SCIPY),
     table("bench.csv", 3, 6).headed(BENCH),
     table("bench_sweeps.csv", 1, 5).headed(SWEEPS),
     table("bench_vs_paper.csv", 1, 6).headed(VS_PAPER),
     table("bench_solvers.csv", 2, 6).headed(SOLVERS),
+    table("bench_mesh_solve.csv", 2, 7)
+        .hiding(&["n", "steps", "dofs"])
+        .headed(MESH_SOLVE),
+];
+
+/// The headings of `bench_mesh_solve.csv` in the book.
+const MESH_SOLVE: &[Heading] = &[
+    ("path", "time loop"),
+    ("scene", "scene"),
+    ("assembly_s", "assembly (s)"),
+    ("factorisation_s", "factorisation (s)"),
+    ("condensation_s", "condensation (s)"),
+    ("steps_s", "time steps (s)"),
+    ("solve_s", "solve (s)"),
+    ("wall_s", "wall time (s)"),
+    ("solve_ratio", "solve over built-in"),
+    ("wall_ratio", "wall over built-in"),
 ];
 
 /// The headings of `bench.csv` in the book.
@@ -102,6 +121,7 @@ pub fn from_csv(ctx: &evhi::study::Ctx) -> Result<(), evhi::study::ExpError> {
     tables::read_scipy(&ctx.data_path("bench_scipy.csv"))?;
     tables::read_sweeps(&ctx.data_path("bench_sweeps.csv"))?;
     tables::read_mesh(&ctx.data_path("bench_mesh.csv"))?;
+    tables::read_mesh_solve(&ctx.data_path("bench_mesh_solve.csv"))?;
     chart.draw(ctx)?;
     workprec::write_paper_comparison(ctx, &bench)?;
     for t in &TABLES {

@@ -336,6 +336,32 @@ row! {
 }
 
 row! {
+    /// One row of `bench_mesh_solve.csv`: one scene's run on one time loop (median
+    /// seconds of each phase), beside the built-in scene's on the same loop.
+    pub struct MeshSolveRow {
+        path: String => "path" if LOOP,
+        scene: String => "scene" if SCENE,
+        n: u64 => "n" if AT_LEAST_ONE,
+        steps: u64 => "steps" if AT_LEAST_ONE,
+        dofs: f64 => "dofs" if WHOLE,
+        assembly_s: f64 => "assembly_s" if SECONDS,
+        factorisation_s: f64 => "factorisation_s" if SECONDS,
+        condensation_s: f64 => "condensation_s" if SECONDS,
+        steps_s: f64 => "steps_s" if SECONDS,
+        solve_s: f64 => "solve_s" if SECONDS,
+        wall_s: f64 => "wall_s" if SECONDS,
+        solve_ratio: f64 => "solve_ratio" if POSITIVE,
+        wall_ratio: f64 => "wall_ratio" if POSITIVE,
+    }
+}
+
+/// Which scene a row of `bench_mesh_solve.csv` ran.
+const SCENE: Allowed<String> = Allowed {
+    test: |s| s == "built-in" || s == "mesh",
+    says: "`built-in` or `mesh` (the scene)",
+};
+
+row! {
     /// One row of `bench_estimator.csv`: the solve of one level and the residual
     /// estimator on its last step.
     pub struct EstimatorRow {
@@ -348,6 +374,34 @@ row! {
         one_step_percent: f64 => "one_step_percent" if POSITIVE,
         every_step_percent: f64 => "every_step_percent" if POSITIVE,
     }
+}
+
+/// The rows of `bench_mesh_solve.csv`, checked: at least one, each scene once per
+/// loop, and every loop with its built-in row (the ratios' denominator, so its own
+/// ratios are 1).
+pub fn read_mesh_solve(path: &Path) -> Result<Vec<(usize, MeshSolveRow)>, FileError> {
+    let rows = MeshSolveRow::read_lines(path)?;
+    some(path, &rows)?;
+    once(path, &rows, |r| {
+        format!("the {} scene on the {} loop", r.scene, r.path)
+    })?;
+    for (line, r) in &rows {
+        let base = rows
+            .iter()
+            .any(|(_, b)| b.path == r.path && b.scene == "built-in");
+        let unit = r.scene != "built-in" || (r.solve_ratio == 1.0 && r.wall_ratio == 1.0);
+        if !base || !unit {
+            return Err(at(
+                path,
+                *line,
+                format!(
+                    "the {} loop's ratios need its built-in row, whose own ratios are 1",
+                    r.path
+                ),
+            ));
+        }
+    }
+    Ok(rows)
 }
 
 /// The rows of `bench_mesh.csv`, checked: at least one, each n once, and each the

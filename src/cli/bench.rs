@@ -1,5 +1,6 @@
 //! `evhi bench`: every phase timed at several levels, each run in a fresh process.
 
+use crate::bench::child::Scene;
 use crate::bench::tables::{BenchRow, ScipyRow, SolverRow, WorkPrecisionRow};
 use evhi::step::DEFAULT_SOLVER;
 use evhi::timing::{machine, median};
@@ -57,6 +58,18 @@ pub struct BenchArgs {
     /// 262 144 triangles).
     #[arg(long, value_delimiter = ',', default_value = "128,256,512")]
     pub mesh_read_levels: Vec<usize>,
+    /// Only the mesh scene's solve against the built-in scene's: the `figure` scene
+    /// at --mesh-solve-n built in and read from the paper mesh refined to that level,
+    /// in turn, each `evhi solve` in a fresh process, on both time loops
+    /// (data/bench_mesh_solve.csv; the full bench ends with it).
+    #[arg(long)]
+    pub mesh_solve: bool,
+    /// Level n of the mesh-solve rows (16 times a power of two).
+    #[arg(long, default_value_t = 512)]
+    pub mesh_solve_n: usize,
+    /// Steps of the mesh-solve runs.
+    #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u64).range(1..))]
+    pub mesh_solve_steps: u64,
     /// Only the estimator's cost: the `figure` scene at each of --estimator-levels
     /// with --estimator-steps steps, solved, and the residual estimator on its last
     /// step, both timed (data/bench_estimator.csv).
@@ -73,66 +86,15 @@ pub struct BenchArgs {
     pub scipy_levels: Vec<usize>,
 }
 
-/// `evhi solve` of the `figure` scene in a child process, into `dir`.
-fn solve_into(
-    dir: &std::path::Path,
-    n: usize,
-    steps: usize,
-    solver: &str,
-    path: &str,
-) -> Result<(), String> {
-    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-    let out = std::process::Command::new(exe)
-        .args(["solve", "--scenario", "figure", "--solver", solver])
-        .args(["--path", path, "--n", &n.to_string(), "--steps"])
-        .arg(steps.to_string())
-        .arg("--out")
-        .arg(dir)
-        .output()
-        .map_err(|e| e.to_string())?;
-    if !out.status.success() {
-        return Err(format!(
-            "n = {n}, steps = {steps}, {solver}, {path} path: {}",
-            String::from_utf8_lossy(&out.stderr)
-        ));
-    }
-    Ok(())
-}
-
-/// One configuration run in a child process; returns the numeric columns of its
-/// summary row (and the iteration totals of steps.csv) as name -> value.
+/// The `figure` scene at level `n` with `steps` steps, in a child process
+/// ([`crate::bench::child::run`]).
 fn child_run(
     n: usize,
     steps: usize,
     solver: &str,
     path: &str,
 ) -> Result<std::collections::HashMap<String, f64>, String> {
-    let dir = std::env::temp_dir().join(format!(
-        "evhi-bench-{}-{n}-{steps}-{solver}-{path}",
-        std::process::id()
-    ));
-    solve_into(&dir, n, steps, solver, path)?;
-    // Both files through their row types (the project's own CSV reader, polars); string
-    // columns are skipped.
-    use evhi::output::rows::{StepRow, SummaryRow};
-    let read = || -> Result<std::collections::HashMap<String, f64>, evhi::output::FileError> {
-        let summary = SummaryRow::read(&dir.join("summary.csv"))?;
-        let mut row: std::collections::HashMap<String, f64> = (summary.first().iter())
-            .flat_map(|s| s.numbers())
-            .map(|(name, x)| (name.to_string(), x))
-            .collect();
-        let steps = StepRow::read(&dir.join("steps.csv"))?;
-        let total = |f: fn(&StepRow) -> u64| steps.iter().map(|s| f(s) as f64).sum::<f64>();
-        row.insert("iterations_total".into(), total(|s| s.iterations));
-        row.insert(
-            "inner_iterations_total".into(),
-            total(|s| s.inner_iterations),
-        );
-        Ok(row)
-    };
-    let row = read().map_err(|e| e.to_string());
-    let _ = std::fs::remove_dir_all(&dir);
-    row
+    crate::bench::child::run(&Scene::figure(n), steps, solver, path)
 }
 
 /// Refuses, before any measurement, what the bench would refuse or fail on later: a
@@ -141,13 +103,18 @@ fn child_run(
 /// --data without the `table1.csv` whose errors the work-precision chart draws.
 fn check_args(args: &BenchArgs, ctx: &evhi::study::Ctx) -> Result<(), evhi::error::InputError> {
     use evhi::error::InputError;
-    let full = !args.sweeps && !args.scipy && !args.mesh_read && !args.estimator;
+    let full =
+        !args.sweeps && !args.scipy && !args.mesh_read && !args.mesh_solve && !args.estimator;
     for &n in args
         .mesh_read_levels
         .iter()
         .filter(|_| full || args.mesh_read)
     {
         crate::bench::meshread::check_level(n)?;
+    }
+    if full || args.mesh_solve {
+        crate::bench::meshread::check_level(args.mesh_solve_n)
+            .map_err(|e| e.for_flag("--mesh-read-levels", "--mesh-solve-n"))?;
     }
     let lists: [(&str, &[usize], bool); 4] = [
         ("--levels", &args.levels, full),
@@ -243,6 +210,18 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     if args.mesh_read {
         crate::bench::meshread::run(&ctx, &args.mesh_read_levels, args.repeat, &machine)?;
         return Ok(());
+    }
+    let mesh_solve = || {
+        crate::bench::meshsolve::run(
+            &ctx,
+            args.mesh_solve_n,
+            args.mesh_solve_steps as usize,
+            args.repeat,
+            &machine,
+        )
+    };
+    if args.mesh_solve {
+        return mesh_solve();
     }
     let f = |row: &std::collections::HashMap<String, f64>, k: &str| {
         row.get(k).copied().unwrap_or(f64::NAN)
@@ -348,6 +327,7 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
     crate::bench::workprec::draw(&ctx, &path)?;
     crate::bench::sweeps::run(&ctx, args.sweeps_n, &machine)?;
     crate::bench::meshread::run(&ctx, &args.mesh_read_levels, args.repeat, &machine)?;
+    mesh_solve()?;
     Ok(())
 }
 
@@ -409,7 +389,7 @@ fn scipy(
         // The run SciPy's answer is checked against (the reduced loop's).
         let check =
             std::env::temp_dir().join(format!("evhi-bench-scipy-{}-{n}", std::process::id()));
-        solve_into(&check, n, n, DEFAULT_SOLVER, "reduced")?;
+        crate::bench::child::solve_into(&check, &Scene::figure(n), n, DEFAULT_SOLVER, "reduced")?;
         let (mut sp, mut gen_, mut red) = (vec![], vec![], vec![]);
         for r in 0..args.repeat.max(1) {
             evhi::diag!("  scipy comparison: n = steps = {n}, round {}", r + 1);
