@@ -59,7 +59,18 @@ pub struct Mesh {
     /// The nodes in coordinate-dissection order, found once per mesh (by
     /// [`crate::ordering::Ordering::coordinate_dissection`], which the run's
     /// factorisation and the smallness check's both order by).
-    pub(crate) dissection: std::sync::OnceLock<crate::ordering::NodeDissection>,
+    pub(crate) dissection: std::sync::OnceLock<NodeOrder>,
+}
+
+/// A mesh's nodes in nested-dissection order: the first half's nodes (ending at
+/// `na`), the second's (ending at `nb`), then the separator between them. It depends
+/// on the mesh alone, not on which dofs are free, so the mesh keeps it for every
+/// factorisation on it (the ordering module finds it).
+#[derive(Debug, Clone)]
+pub(crate) struct NodeOrder {
+    pub(crate) nodes: Vec<usize>,
+    pub(crate) na: usize,
+    pub(crate) nb: usize,
 }
 
 /// The most segments a structured mesh may have on the bottom (some 17 million

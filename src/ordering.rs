@@ -25,7 +25,7 @@
 
 use crate::assembly::SpMat;
 use crate::error::FactorError;
-use crate::mesh::{Dofs, Mesh};
+use crate::mesh::{Dofs, Mesh, NodeOrder};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 
@@ -130,8 +130,7 @@ impl Ordering {
     /// Nested dissection of any `mesh` by recursive coordinate bisection of its
     /// nodes, then `last` at the end.
     pub fn coordinate_dissection(mesh: &Mesh, dofs: &Dofs, last: &[usize]) -> Ordering {
-        let NodeDissection { nodes, na, nb } =
-            mesh.dissection.get_or_init(|| NodeDissection::of(mesh));
+        let NodeOrder { nodes, na, nb } = mesh.dissection.get_or_init(|| dissect_nodes(mesh));
         let (na, nb) = (*na, *nb);
         let is_last = mark(dofs.count, last);
         let mut fwd = Vec::with_capacity(dofs.count);
@@ -209,39 +208,27 @@ fn dissect(
 }
 
 /// The nodes that share a triangle edge with each node (compressed rows).
-/// A mesh's nodes in nested-dissection order by recursive coordinate bisection: the
-/// first half's nodes, the second's, then the top separator. It depends on the mesh
-/// alone (not on which dofs are free), so a mesh keeps it ([`Mesh`]'s `dissection`)
-/// for every factorisation on it.
-#[derive(Debug, Clone)]
-pub struct NodeDissection {
-    nodes: Vec<usize>,
-    /// The first half's nodes end at `na`, the second's at `nb`.
-    na: usize,
-    nb: usize,
-}
-
-impl NodeDissection {
-    fn of(mesh: &Mesh) -> NodeDissection {
-        let graph = NodeGraph::new(mesh);
-        let mut cut = Bisector {
-            mesh,
-            graph: &graph,
-            stamp: vec![0; mesh.nodes.len()],
-            side: vec![0; mesh.nodes.len()],
-            level: 0,
-        };
-        let mut nodes = Vec::with_capacity(mesh.nodes.len());
-        let all: Vec<usize> = (0..mesh.nodes.len()).collect();
-        // Top level by hand, to record where the halves end.
-        let (a, b, sep) = cut.split(all);
-        cut.order(a, &mut nodes);
-        let na = nodes.len();
-        cut.order(b, &mut nodes);
-        let nb = nodes.len();
-        nodes.extend_from_slice(&sep);
-        NodeDissection { nodes, na, nb }
-    }
+/// A mesh's nodes in nested-dissection order by recursive coordinate bisection (the
+/// mesh keeps it: [`NodeOrder`]).
+fn dissect_nodes(mesh: &Mesh) -> NodeOrder {
+    let graph = NodeGraph::new(mesh);
+    let mut cut = Bisector {
+        mesh,
+        graph: &graph,
+        stamp: vec![0; mesh.nodes.len()],
+        side: vec![0; mesh.nodes.len()],
+        level: 0,
+    };
+    let mut nodes = Vec::with_capacity(mesh.nodes.len());
+    let all: Vec<usize> = (0..mesh.nodes.len()).collect();
+    // Top level by hand, to record where the halves end.
+    let (a, b, sep) = cut.split(all);
+    cut.order(a, &mut nodes);
+    let na = nodes.len();
+    cut.order(b, &mut nodes);
+    let nb = nodes.len();
+    nodes.extend_from_slice(&sep);
+    NodeOrder { nodes, na, nb }
 }
 
 struct NodeGraph {

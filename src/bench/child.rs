@@ -1,6 +1,5 @@
-//! One `evhi solve` in a child process, as a user runs it (a fresh process, its
-//! allocator and page cache cold as a user's are): the numbers of its summary row and
-//! the iteration totals of its steps.
+//! One `evhi solve` in a child process, started afresh as a user's run is: the numbers
+//! of its summary row and the iteration totals of its steps.
 
 /// What a child run solves: a scenario by name or file, and its level where the
 /// scene has levels (a mesh scene's mesh is its file's).
