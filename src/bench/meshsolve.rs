@@ -11,12 +11,10 @@
 //! loop; the phases are the run's own (`summary.csv`).
 
 use super::child::{Scene, run as child};
+use super::meshread::PAPER_N16;
 use super::tables::MeshSolveRow;
 use evhi::study::{Ctx, ExpError};
 use evhi::timing::median;
-
-/// The committed paper mesh the generated one refines.
-const PAPER_N16: &[u8] = include_bytes!("../../data/meshes/paper_n16.msh");
 
 /// The mesh scene of the paper's rectangle, whose mesh the bench replaces.
 const PAPER_MESH_TOML: &str = include_str!("../../data/scenarios/examples/paper_mesh.toml");
