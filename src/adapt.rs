@@ -174,6 +174,9 @@ pub struct AdaptLevel {
     pub marked: usize,
     /// Wall seconds of the level: solve, indicators, marking.
     pub wall_s: f64,
+    /// Of `wall_s`, the seconds the indicators took (the estimator's phase:
+    /// [`Estimated::estimator_s`]).
+    pub estimator_s: f64,
 }
 
 /// What the caller is told while an adaptive run goes; every method has a default.
@@ -408,6 +411,7 @@ pub fn adapt_from(
             eta: total.sqrt(),
             marked: marked.len(),
             wall_s: 0.0,
+            estimator_s: est.estimator_s,
         };
         // The mesh's triangles are the leaves in order ([`Forest::mesh`]).
         let mut mark = vec![false; forest.triangle_count()];
@@ -462,6 +466,9 @@ pub struct Estimated {
     pub norm_sq: f64,
     /// Every step's field (free dofs, step 0 first) if the observer keeps them.
     pub fields: Vec<Vec<f64>>,
+    /// The seconds spent on the indicators: preparing the mesh once
+    /// ([`crate::estimator::Estimator`]), then each step's estimate and its fold.
+    pub estimator_s: f64,
 }
 
 /// Solves `sim` with every step's field formed, and gathers each step's indicators
@@ -475,15 +482,20 @@ pub fn solve_estimating(
     let scn = sim.scenario();
     let steps = sim.steps();
     let keep = outer.keep_fields();
+    let clock = std::time::Instant::now();
+    let estimator = crate::estimator::Estimator::new(&mesh);
     let mut obs = Gather {
         scn,
         mesh: &mesh,
+        estimator,
+        seconds: clock.elapsed().as_secs_f64(),
         dofs: Dofs::new(&mesh, true),
         k: scn.t_end / steps as f64,
         steps,
         aggregate,
         keep,
         prev: vec![],
+        spare: vec![],
         eta_sq: vec![],
         norm_sq: 0.0,
         fields: vec![],
@@ -497,6 +509,7 @@ pub fn solve_estimating(
         eta_sq,
         norm_sq,
         fields,
+        estimator_s: obs.seconds,
     })
 }
 
@@ -504,6 +517,10 @@ pub fn solve_estimating(
 struct Gather<'a> {
     scn: &'a Scenario,
     mesh: &'a Mesh,
+    /// The mesh prepared for the indicators.
+    estimator: crate::estimator::Estimator<'a>,
+    /// The seconds spent forming the indicators (with the mesh's preparation).
+    seconds: f64,
     dofs: Dofs,
     k: f64,
     steps: usize,
@@ -511,49 +528,12 @@ struct Gather<'a> {
     keep: bool,
     /// $u_{n-1}$ by node.
     prev: Vec<[f64; 2]>,
+    /// The storage of the next step's $u_n$ (the one before last's).
+    spare: Vec<[f64; 2]>,
     eta_sq: Vec<f64>,
     norm_sq: f64,
     fields: Vec<Vec<f64>>,
     outer: &'a mut dyn AdaptObserver,
-}
-
-/// $\|\sigma\|^2_{L^2(\Omega)}$ of the step's stress
-/// $\mathcal C\varepsilon((u - u_{prev})/k) + \mathcal G\varepsilon(u)$, constant on each
-/// triangle (nodal displacements).
-pub fn stress_norm_sq(
-    scn: &Scenario,
-    mesh: &Mesh,
-    u: &[[f64; 2]],
-    u_prev: &[[f64; 2]],
-    k: f64,
-) -> f64 {
-    let (g, c) = (scn.elasticity(), scn.viscosity());
-    let apply = |t: &crate::material::Isotropic, e: [f64; 3]| {
-        let tr = e[0] + e[1];
-        [t.a * tr + t.b * e[0], t.a * tr + t.b * e[1], t.b * e[2]]
-    };
-    mesh.triangles
-        .iter()
-        .map(|tri| {
-            let (area, bm) = crate::element::strain_matrix(tri.map(|v| mesh.nodes[v]));
-            let strain = |f: &dyn Fn(usize) -> [f64; 2]| {
-                let mut e = [0.0; 3];
-                for (a, &v) in tri.iter().enumerate() {
-                    let x = f(v);
-                    for (r, er) in e.iter_mut().enumerate() {
-                        *er += bm[(r, 2 * a)] * x[0] + bm[(r, 2 * a + 1)] * x[1];
-                    }
-                }
-                e[2] *= 0.5; // the third row is 2 eps_12
-                e
-            };
-            let eu = strain(&|v| u[v]);
-            let ed = strain(&|v| [(u[v][0] - u_prev[v][0]) / k, (u[v][1] - u_prev[v][1]) / k]);
-            let (sg, sc) = (apply(&g, eu), apply(&c, ed));
-            let s = [sg[0] + sc[0], sg[1] + sc[1], sg[2] + sc[2]];
-            area * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2])
-        })
-        .sum()
 }
 
 impl Observer for Gather<'_> {
@@ -566,11 +546,11 @@ impl Observer for Gather<'_> {
         if n == 0 {
             return;
         }
-        let un = self.dofs.expand(u);
-        let est = crate::estimator::estimate_scene(
-            self.scn, self.mesh, &un, &self.prev, self.k, t, contact,
-        );
-        let sigma_sq = stress_norm_sq(self.scn, self.mesh, &un, &self.prev, self.k);
+        let clock = std::time::Instant::now();
+        let mut un = std::mem::take(&mut self.spare);
+        self.dofs.expand_into(u, &mut un);
+        let est = (self.estimator).estimate_scene(self.scn, &un, &self.prev, self.k, t, contact);
+        let sigma_sq = est.stress_sq;
         match self.aggregate {
             Aggregate::Max => {
                 (self.eta_sq.iter_mut())
@@ -586,7 +566,8 @@ impl Observer for Gather<'_> {
                 self.norm_sq += w * sigma_sq;
             }
         }
-        self.prev = un;
+        self.spare = std::mem::replace(&mut self.prev, un);
+        self.seconds += clock.elapsed().as_secs_f64();
         if self.keep {
             self.fields.push(u.to_vec());
         }

@@ -175,6 +175,8 @@ pub struct Estimate {
     /// area; see [`complementarity`]). It has other units than $\eta_T^2$ and is not
     /// added to it. Zero from [`estimate`], which is not given the multiplier.
     pub complementarity: Vec<f64>,
+    /// $\|\sigma^n\|^2_{L^2(\Omega)}$, the step's stress squared over the mesh.
+    pub stress_sq: f64,
 }
 
 impl Estimate {
@@ -208,29 +210,8 @@ pub fn complementarity(
     g: f64,
     contact: &[crate::certificate::ContactState],
 ) -> Vec<f64> {
-    let mut out = vec![0.0; mesh.triangles.len()];
-    if !g.is_finite() {
-        return out;
-    }
-    let mut at: Vec<Option<(f64, f64)>> = vec![None; mesh.nodes.len()];
-    for (&v, c) in mesh.contact.iter().zip(contact) {
-        at[v] = Some(((-c.sigma_nu2).max(0.0), (g - c.u_nu).abs()));
-    }
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            let (Some((ma, da)), Some((mb, db))) = (at[a], at[b]) else {
-                continue;
-            };
-            // Only an edge of Gamma_3: consecutive along it.
-            let on = mesh.gamma3.windows(2).any(|w| w == [a, b] || w == [b, a]);
-            if !on || (ma == 0.0 && mb == 0.0) {
-                continue;
-            }
-            let len = dist(mesh.nodes[a], mesh.nodes[b]);
-            out[t] += len / 6.0 * (2.0 * ma * da + 2.0 * mb * db + ma * db + mb * da);
-        }
-    }
+    let mut out = vec![];
+    Estimator::new(mesh).complementarity_into(g, contact, &mut out);
     out
 }
 // ANCHOR_END: complementarity
@@ -243,17 +224,23 @@ const GAUSS3: [(f64, f64); 3] = [
 ];
 
 /// The stress of a P1 field on a triangle: $\sigma = \mathcal C\varepsilon(\delta u) + \mathcal G\varepsilon(u)$
-/// (11, 22, 12), from nodal values of $u^n$ and $\delta u^n = (u^n - u^{n-1})/k$.
-fn element_stress(p: [[f64; 2]; 3], u: [[f64; 2]; 3], du: [[f64; 2]; 3], pb: &Problem) -> [f64; 3] {
-    let (_, bm) = crate::element::strain_matrix(p);
+/// (11, 22, 12), from the basis functions' gradients and the nodal values of $u^n$ and
+/// $\delta u^n = (u^n - u^{n-1})/k$ (the sums in the order of
+/// [`crate::element::strain_matrix`]'s columns).
+fn element_stress(
+    grad: &[[f64; 2]; 3],
+    u: [[f64; 2]; 3],
+    du: [[f64; 2]; 3],
+    pb: &Problem,
+) -> [f64; 3] {
     let strain = |v: [[f64; 2]; 3]| {
         let mut e = [0.0; 3];
         for a in 0..3 {
-            for c in 0..2 {
-                for (r, er) in e.iter_mut().enumerate() {
-                    *er += bm[(r, 2 * a + c)] * v[a][c];
-                }
-            }
+            let [dx, dy] = grad[a];
+            e[0] += dx * v[a][0];
+            e[1] += dy * v[a][1];
+            e[2] += dy * v[a][0];
+            e[2] += dx * v[a][1];
         }
         e[2] *= 0.5; // the strain matrix's third row is 2 eps_12
         e
@@ -281,6 +268,7 @@ fn traction(s: [f64; 3], n: [f64; 2]) -> [f64; 2] {
 /// $\sigma^1_\nu + \sigma^2_\nu$ of each contact state in `contact` (in
 /// [`Mesh::contact`]'s order); `u`, `u_prev` and `k` as in [`estimate`]. The
 /// complementarity term ([`complementarity`]) is formed from the same states and `scn`'s $g$.
+/// To estimate many steps of one mesh, prepare it once with [`Estimator::new`].
 pub fn estimate_scene(
     scn: &crate::scenario::Scenario,
     mesh: &Mesh,
@@ -290,30 +278,16 @@ pub fn estimate_scene(
     t: f64,
     contact: &[crate::certificate::ContactState],
 ) -> Estimate {
-    let loads = SceneLoads::new(scn, t);
-    let f0 = |x: [f64; 2]| loads.f0_at(x);
-    let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-    let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
-    let pb = Problem {
-        elast: scn.elasticity(),
-        visc: Some(scn.viscosity()),
-        f0: &f0,
-        surface: &surface,
-        line: None,
-        part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
-    };
-    let sigma_h: Vec<f64> = (contact.iter())
-        .map(|c| c.sigma_nu1 + c.sigma_nu2)
-        .collect();
-    let mut est = estimate(mesh, &pb, u, u_prev, k, &sigma_h);
-    est.complementarity = complementarity(mesh, scn.g(), contact);
-    est
+    Estimator::new(mesh)
+        .estimate_scene(scn, u, u_prev, k, t, contact)
+        .clone()
 }
 
 // ANCHOR: estimate
 /// The indicators of the step with nodal (Cartesian) displacements `u` $= u^n$ and
 /// `u_prev` $= u^{n-1}$, time step `k`, and `sigma_h` the discrete contact stress
 /// $\sigma^1_\nu + \sigma^2_\nu$ at each contact node (in [`Mesh::contact`]'s order).
+/// To estimate many steps of one mesh, prepare it once with [`Estimator::new`].
 pub fn estimate(
     mesh: &Mesh,
     pb: &Problem,
@@ -322,86 +296,329 @@ pub fn estimate(
     k: f64,
     sigma_h: &[f64],
 ) -> Estimate {
-    let nt = mesh.triangles.len();
-    let mut out = Estimate {
-        eta_sq: vec![0.0; nt],
-        parts: [0.0; 4],
-        complementarity: vec![0.0; nt],
-    };
-    let nf = mesh.normal;
-    let mut on_g3 = vec![false; mesh.nodes.len()];
-    mesh.gamma3.iter().for_each(|&v| on_g3[v] = true);
-    let mut contact_at: Vec<Option<usize>> = vec![None; mesh.nodes.len()];
-    mesh.contact
-        .iter()
-        .enumerate()
-        .for_each(|(i, &v)| contact_at[v] = Some(i));
-    // Stresses and element residuals.
-    let mut stress = Vec::with_capacity(nt);
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        let p = tri.map(|v| mesh.nodes[v]);
-        let un = tri.map(|v| u[v]);
-        let du = tri.map(|v| {
-            let (a, b) = (u[v], u_prev[v]);
-            [(a[0] - b[0]) / k, (a[1] - b[1]) / k]
-        });
-        stress.push(element_stress(p, un, du, pb));
-        // Element residual: h_T^2 ||f0||^2 (Div sigma = 0 on a P1 triangle).
-        let h_t = (0..3)
-            .map(|i| dist(p[i], p[(i + 1) % 3]))
-            .fold(0.0, f64::max);
-        // The 7-point rule of crate::quadrature on T itself (no cuts, no allocation).
-        let area = 0.5 * crate::element::twice_area(p).abs();
-        let r: f64 = (crate::quadrature::TRI7.iter())
-            .map(|&(l, w)| {
-                let x = [0, 1].map(|c| l[0] * p[0][c] + l[1] * p[1][c] + l[2] * p[2][c]);
-                let f = (pb.f0)(x);
-                w * area * (f[0] * f[0] + f[1] * f[1])
-            })
-            .sum();
-        let term = h_t * h_t * r;
-        out.eta_sq[t] += term;
-        out.parts[0] += term;
-    }
-    // The triangles' edges bucketed by their smaller node (a counting sort, no hashing):
-    // an edge met twice is interior, once on the boundary.
-    let nn = mesh.nodes.len();
-    let mut start = vec![0usize; nn + 1];
-    for tri in &mesh.triangles {
-        for i in 0..3 {
-            start[tri[i].min(tri[(i + 1) % 3]) + 1] += 1;
+    Estimator::new(mesh)
+        .estimate(pb, u, u_prev, k, sigma_h)
+        .clone()
+}
+// ANCHOR_END: estimate
+
+/// A mesh prepared for the estimator: what a step's indicators need of the mesh alone
+/// (each triangle's gradients, size and quadrature points; the interior edges paired
+/// with their two triangles, the boundary edges with their one; the contact edges of
+/// the complementarity term), found once, so that each step is one pass over the
+/// triangles and one over the edges with nothing sorted or searched. The indicators
+/// are the same, bit for bit, as those of a fresh [`estimate`].
+pub struct Estimator<'m> {
+    mesh: &'m Mesh,
+    /// Per triangle: the gradient $(\partial_x\phi_i, \partial_y\phi_i)$ of each P1 basis function.
+    grad: Vec<[[f64; 2]; 3]>,
+    /// Per triangle: half the signed determinant, its area when counter-clockwise.
+    half_det: Vec<f64>,
+    /// Per triangle: its longest edge $h_T$.
+    h_t: Vec<f64>,
+    /// Per triangle: the points of [`crate::quadrature::TRI7`].
+    points: Vec<[[f64; 2]; 7]>,
+    /// Interior edges: the triangle that meets the edge second, the one that met it first,
+    /// the edge's ends as the first runs it, its length and unit normal.
+    interior: Vec<Interior>,
+    /// Boundary edges: the triangle and the edge's ends as it runs them (counter-clockwise).
+    boundary: Vec<(usize, [usize; 2])>,
+    /// Whether each node is on $\Gamma_3$.
+    on_g3: Vec<bool>,
+    /// Each node's index in [`Mesh::contact`], if it is a contact node.
+    contact_at: Vec<Option<usize>>,
+    /// The triangle edges between two contact nodes consecutive along $\Gamma_3$:
+    /// (triangle, ends, length), in the order of the triangles and their edges.
+    contact_edges: Vec<(usize, [usize; 2], f64)>,
+    /// The volume force's modulation $1 + a\cos\pi x$ at each triangle's points, for
+    /// the $a$ it was formed with (a scene's $a$ is the same at every step).
+    modulation: Option<(f64, Vec<[f64; 7]>)>,
+    /// Each triangle's stress at the last step (reused from step to step).
+    stress: Vec<[f64; 3]>,
+    /// The last step's estimate (its storage reused from step to step).
+    out: Estimate,
+}
+
+struct Interior {
+    t: usize,
+    t0: usize,
+    ends: [usize; 2],
+    he: f64,
+    n: [f64; 2],
+}
+
+/// The volume force as the element term reads it.
+enum Volume<'a> {
+    /// Any field.
+    Field(&'a dyn Fn([f64; 2]) -> [f64; 2]),
+    /// A scene's $\varphi(t) f_0 (1 + a\cos\pi x)$, with $1 + a\cos\pi x$ at each
+    /// triangle's points given.
+    Scene {
+        f0: [f64; 2],
+        phi: f64,
+        m: &'a [[f64; 7]],
+    },
+}
+
+impl<'m> Estimator<'m> {
+    /// Prepares `mesh`.
+    pub fn new(mesh: &'m Mesh) -> Estimator<'m> {
+        let nt = mesh.triangles.len();
+        let (mut grad, mut half_det, mut h_t, mut points) = (
+            Vec::with_capacity(nt),
+            Vec::with_capacity(nt),
+            Vec::with_capacity(nt),
+            Vec::with_capacity(nt),
+        );
+        for tri in &mesh.triangles {
+            let p = tri.map(|v| mesh.nodes[v]);
+            let (half, bm) = crate::element::strain_matrix(p);
+            grad.push([0, 1, 2].map(|a| [bm[(0, 2 * a)], bm[(1, 2 * a + 1)]]));
+            half_det.push(half);
+            h_t.push(
+                (0..3)
+                    .map(|i| dist(p[i], p[(i + 1) % 3]))
+                    .fold(0.0, f64::max),
+            );
+            points
+                .push(crate::quadrature::TRI7.map(|(l, _)| {
+                    [0, 1].map(|c| l[0] * p[0][c] + l[1] * p[1][c] + l[2] * p[2][c])
+                }));
         }
-    }
-    for v in 0..nn {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    // (larger node, triangle, the edge as the triangle runs it)
-    let mut slot = vec![(0usize, 0usize, [0usize; 2]); 3 * nt];
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for i in 0..3 {
-            let (a, b) = (tri[i], tri[(i + 1) % 3]);
-            slot[fill[a.min(b)]] = (a.max(b), t, [a, b]);
-            fill[a.min(b)] += 1;
-        }
-    }
-    let mut boundary = Vec::new();
-    for lo in 0..nn {
-        let bucket = &slot[start[lo]..start[lo + 1]];
-        for (i, &(hi, t, [a, b])) in bucket.iter().enumerate() {
-            let Some(j) = (0..bucket.len()).find(|&j| j != i && bucket[j].0 == hi) else {
-                boundary.push((t, [a, b]));
-                continue;
-            };
-            if j < i {
-                continue; // met from its other side already
+        let mut on_g3 = vec![false; mesh.nodes.len()];
+        mesh.gamma3.iter().for_each(|&v| on_g3[v] = true);
+        let mut contact_at: Vec<Option<usize>> = vec![None; mesh.nodes.len()];
+        mesh.contact
+            .iter()
+            .enumerate()
+            .for_each(|(i, &v)| contact_at[v] = Some(i));
+        // The triangles' edges bucketed by their smaller node (a counting sort, no
+        // hashing): an edge met twice is interior, once on the boundary.
+        let nn = mesh.nodes.len();
+        let mut start = vec![0usize; nn + 1];
+        for tri in &mesh.triangles {
+            for i in 0..3 {
+                start[tri[i].min(tri[(i + 1) % 3]) + 1] += 1;
             }
-            let t0 = bucket[j].1;
-            // Interior: h_e |[sigma nu]|^2 h_e, half to each side.
-            let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
-            let he = dist(pa, pb_);
-            let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
-            let (s, s0) = (stress[t], stress[t0]);
+        }
+        for v in 0..nn {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        // (larger node, triangle, the edge as the triangle runs it)
+        let mut slot = vec![(0usize, 0usize, [0usize; 2]); 3 * nt];
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                let (a, b) = (tri[i], tri[(i + 1) % 3]);
+                slot[fill[a.min(b)]] = (a.max(b), t, [a, b]);
+                fill[a.min(b)] += 1;
+            }
+        }
+        let (mut interior, mut boundary) = (Vec::with_capacity(3 * nt / 2), Vec::new());
+        for lo in 0..nn {
+            let bucket = &slot[start[lo]..start[lo + 1]];
+            for (i, &(hi, t, [a, b])) in bucket.iter().enumerate() {
+                let Some(j) = (0..bucket.len()).find(|&j| j != i && bucket[j].0 == hi) else {
+                    boundary.push((t, [a, b]));
+                    continue;
+                };
+                if j < i {
+                    continue; // met from its other side already
+                }
+                let (pa, pb) = (mesh.nodes[a], mesh.nodes[b]);
+                let he = dist(pa, pb);
+                let n = [(pb[1] - pa[1]) / he, -(pb[0] - pa[0]) / he];
+                interior.push(Interior {
+                    t,
+                    t0: bucket[j].1,
+                    ends: [a, b],
+                    he,
+                    n,
+                });
+            }
+        }
+        let mut contact_edges = Vec::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                let (a, b) = (tri[i], tri[(i + 1) % 3]);
+                if contact_at[a].is_none() || contact_at[b].is_none() {
+                    continue;
+                }
+                // Only an edge of Gamma_3: consecutive along it.
+                if mesh.gamma3.windows(2).any(|w| w == [a, b] || w == [b, a]) {
+                    contact_edges.push((t, [a, b], dist(mesh.nodes[a], mesh.nodes[b])));
+                }
+            }
+        }
+        Estimator {
+            mesh,
+            grad,
+            half_det,
+            h_t,
+            points,
+            interior,
+            boundary,
+            on_g3,
+            contact_at,
+            contact_edges,
+            modulation: None,
+            stress: Vec::with_capacity(nt),
+            out: Estimate::default(),
+        }
+    }
+
+    /// The mesh prepared.
+    pub fn mesh(&self) -> &'m Mesh {
+        self.mesh
+    }
+
+    /// [`estimate_scene`] on the prepared mesh, with [`Estimate::stress_sq`] filled; the
+    /// estimate is kept until the next step's.
+    pub fn estimate_scene(
+        &mut self,
+        scn: &crate::scenario::Scenario,
+        u: &[[f64; 2]],
+        u_prev: &[[f64; 2]],
+        k: f64,
+        t: f64,
+        contact: &[crate::certificate::ContactState],
+    ) -> &Estimate {
+        let loads = SceneLoads::new(scn, t);
+        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+        let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
+        let f0 = |x: [f64; 2]| loads.f0_at(x);
+        let pb = Problem {
+            elast: scn.elasticity(),
+            visc: Some(scn.viscosity()),
+            f0: &f0,
+            surface: &surface,
+            line: None,
+            part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
+        };
+        // The volume force at the points, the cosines formed once for the scene.
+        let a = loads.modulation;
+        let mut modulation = match self.modulation.take() {
+            Some((b, m)) if b == a => m,
+            _ => (self.points.iter())
+                .map(|q| q.map(|x| 1.0 + a * (std::f64::consts::PI * x[0]).cos()))
+                .collect(),
+        };
+        let volume = Volume::Scene {
+            f0: loads.f0,
+            phi: loads.phi,
+            m: &modulation,
+        };
+        let sigma_h: Vec<f64> = (contact.iter())
+            .map(|c| c.sigma_nu1 + c.sigma_nu2)
+            .collect();
+        self.run(&pb, &volume, u, u_prev, k, &sigma_h);
+        self.modulation = Some((a, std::mem::take(&mut modulation)));
+        let mut comp = std::mem::take(&mut self.out.complementarity);
+        self.complementarity_into(scn.g(), contact, &mut comp);
+        self.out.complementarity = comp;
+        &self.out
+    }
+
+    /// [`estimate`] on the prepared mesh, with [`Estimate::stress_sq`] filled; the
+    /// estimate is kept until the next step's.
+    pub fn estimate(
+        &mut self,
+        pb: &Problem,
+        u: &[[f64; 2]],
+        u_prev: &[[f64; 2]],
+        k: f64,
+        sigma_h: &[f64],
+    ) -> &Estimate {
+        self.run(pb, &Volume::Field(pb.f0), u, u_prev, k, sigma_h);
+        &self.out
+    }
+
+    /// [`complementarity`] on the prepared mesh, written into `out`.
+    fn complementarity_into(
+        &self,
+        g: f64,
+        contact: &[crate::certificate::ContactState],
+        out: &mut Vec<f64>,
+    ) {
+        out.clear();
+        out.resize(self.mesh.triangles.len(), 0.0);
+        if !g.is_finite() {
+            return;
+        }
+        let at = |v: usize| {
+            let c = &contact[self.contact_at[v].expect("a contact node")];
+            ((-c.sigma_nu2).max(0.0), (g - c.u_nu).abs())
+        };
+        for &(t, [a, b], len) in &self.contact_edges {
+            let ((ma, da), (mb, db)) = (at(a), at(b));
+            if ma == 0.0 && mb == 0.0 {
+                continue;
+            }
+            out[t] += len / 6.0 * (2.0 * ma * da + 2.0 * mb * db + ma * db + mb * da);
+        }
+    }
+
+    /// Forms the step's estimate in `self.out`.
+    fn run(
+        &mut self,
+        pb: &Problem,
+        volume: &Volume,
+        u: &[[f64; 2]],
+        u_prev: &[[f64; 2]],
+        k: f64,
+        sigma_h: &[f64],
+    ) {
+        let mesh = self.mesh;
+        let nt = mesh.triangles.len();
+        let mut out = std::mem::take(&mut self.out);
+        for v in [&mut out.eta_sq, &mut out.complementarity] {
+            v.clear();
+            v.resize(nt, 0.0);
+        }
+        (out.parts, out.stress_sq) = ([0.0; 4], 0.0);
+        let nf = mesh.normal;
+        // Stresses, the stress norm and the element residuals.
+        let mut stress = std::mem::take(&mut self.stress);
+        stress.clear();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            let un = tri.map(|v| u[v]);
+            let du = tri.map(|v| {
+                let (a, b) = (u[v], u_prev[v]);
+                [(a[0] - b[0]) / k, (a[1] - b[1]) / k]
+            });
+            let s = element_stress(&self.grad[t], un, du, pb);
+            out.stress_sq += self.half_det[t] * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]);
+            stress.push(s);
+            // Element residual: h_T^2 ||f0||^2 (Div sigma = 0 on a P1 triangle), by the
+            // 7-point rule of crate::quadrature on T itself.
+            let area = self.half_det[t].abs();
+            let point = |i: usize| -> [f64; 2] {
+                match volume {
+                    Volume::Field(f0) => f0(self.points[t][i]),
+                    Volume::Scene { f0, phi, m } => {
+                        let w = phi * m[t][i];
+                        f0.map(|c| c * w)
+                    }
+                }
+            };
+            if let Volume::Scene { f0: [0.0, 0.0], .. } = volume {
+                continue; // every term is zero
+            }
+            let r: f64 = (crate::quadrature::TRI7.iter().enumerate())
+                .map(|(i, &(_, w))| {
+                    let f = point(i);
+                    w * area * (f[0] * f[0] + f[1] * f[1])
+                })
+                .sum();
+            let term = self.h_t[t] * self.h_t[t] * r;
+            out.eta_sq[t] += term;
+            out.parts[0] += term;
+        }
+        // Interior edges: h_e |[sigma nu]|^2 h_e, half to each side.
+        for e in &self.interior {
+            let (pa, pb_) = (mesh.nodes[e.ends[0]], mesh.nodes[e.ends[1]]);
+            let (he, n) = (e.he, e.n);
+            let (s, s0) = (stress[e.t], stress[e.t0]);
             let j = traction([s[0] - s0[0], s[1] - s0[1], s[2] - s0[2]], n);
             let r = match pb.line {
                 None => he * (j[0] * j[0] + j[1] * j[1]),
@@ -415,69 +632,69 @@ pub fn estimate(
                     .sum(),
             };
             let term = he * r;
-            out.eta_sq[t] += 0.5 * term;
-            out.eta_sq[t0] += 0.5 * term;
+            out.eta_sq[e.t] += 0.5 * term;
+            out.eta_sq[e.t0] += 0.5 * term;
             out.parts[1] += term;
         }
-    }
-    // The boundary's edges, each with its one triangle (a -> b counter-clockwise).
-    for (t, [a, b]) in boundary {
-        let both_fixed = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
-        let contact = on_g3[a] && on_g3[b];
-        if !contact && both_fixed(a) && both_fixed(b) {
-            continue;
-        }
-        let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
-        let he = dist(pa, pb_);
-        let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
-        let sn = traction(stress[t], n);
-        let at = |s: f64| [pa[0] + s * (pb_[0] - pa[0]), pa[1] + s * (pb_[1] - pa[1])];
-        let on_part = pb.part.map_or([0.0; 2], |l| l(pa, pb_));
-        let load = |x: [f64; 2]| {
-            let f = (pb.surface)(x, n);
-            [f[0] + on_part[0], f[1] + on_part[1]]
-        };
-        let mut r = 0.0;
-        if contact {
-            let f3 = load;
-            // sigma_nu - f3_nu of the element at an end that is not a contact node.
-            let own = |x: [f64; 2]| {
-                let f = f3(x);
-                (sn[0] - f[0]) * nf[0] + (sn[1] - f[1]) * nf[1]
-            };
-            let end = |v: usize, x: [f64; 2]| match contact_at[v] {
-                Some(i) => sigma_h[i],
-                None => own(x),
-            };
-            let (ha, hb) = (end(a, pa), end(b, pb_));
-            for (s, w) in GAUSS3 {
-                let x = at(s);
-                let f = f3(x);
-                let d = [sn[0] - f[0], sn[1] - f[1]];
-                let dn = d[0] * nf[0] + d[1] * nf[1];
-                let tau = [d[0] - dn * nf[0], d[1] - dn * nf[1]];
-                let rn = dn - (ha + s * (hb - ha));
-                r += w * he * (tau[0] * tau[0] + tau[1] * tau[1] + rn * rn);
+        // The boundary's edges, each with its one triangle (a -> b counter-clockwise).
+        for &(t, [a, b]) in &self.boundary {
+            let both_fixed = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
+            let contact = self.on_g3[a] && self.on_g3[b];
+            if !contact && both_fixed(a) && both_fixed(b) {
+                continue;
             }
-        } else {
-            // Gamma_2: the components left free at both ends.
-            let free = [0, 1].map(|c| !(mesh.fixed[a][c] && mesh.fixed[b][c]));
-            for (s, w) in GAUSS3 {
-                let f = load(at(s));
-                for c in 0..2 {
-                    if free[c] {
-                        r += w * he * (f[c] - sn[c]).powi(2);
+            let (pa, pb_) = (mesh.nodes[a], mesh.nodes[b]);
+            let he = dist(pa, pb_);
+            let n = [(pb_[1] - pa[1]) / he, -(pb_[0] - pa[0]) / he];
+            let sn = traction(stress[t], n);
+            let at = |s: f64| [pa[0] + s * (pb_[0] - pa[0]), pa[1] + s * (pb_[1] - pa[1])];
+            let on_part = pb.part.map_or([0.0; 2], |l| l(pa, pb_));
+            let load = |x: [f64; 2]| {
+                let f = (pb.surface)(x, n);
+                [f[0] + on_part[0], f[1] + on_part[1]]
+            };
+            let mut r = 0.0;
+            if contact {
+                let f3 = load;
+                // sigma_nu - f3_nu of the element at an end that is not a contact node.
+                let own = |x: [f64; 2]| {
+                    let f = f3(x);
+                    (sn[0] - f[0]) * nf[0] + (sn[1] - f[1]) * nf[1]
+                };
+                let end = |v: usize, x: [f64; 2]| match self.contact_at[v] {
+                    Some(i) => sigma_h[i],
+                    None => own(x),
+                };
+                let (ha, hb) = (end(a, pa), end(b, pb_));
+                for (s, w) in GAUSS3 {
+                    let x = at(s);
+                    let f = f3(x);
+                    let d = [sn[0] - f[0], sn[1] - f[1]];
+                    let dn = d[0] * nf[0] + d[1] * nf[1];
+                    let tau = [d[0] - dn * nf[0], d[1] - dn * nf[1]];
+                    let rn = dn - (ha + s * (hb - ha));
+                    r += w * he * (tau[0] * tau[0] + tau[1] * tau[1] + rn * rn);
+                }
+            } else {
+                // Gamma_2: the components left free at both ends.
+                let free = [0, 1].map(|c| !(mesh.fixed[a][c] && mesh.fixed[b][c]));
+                for (s, w) in GAUSS3 {
+                    let f = load(at(s));
+                    for c in 0..2 {
+                        if free[c] {
+                            r += w * he * (f[c] - sn[c]).powi(2);
+                        }
                     }
                 }
             }
+            let term = he * r;
+            out.eta_sq[t] += term;
+            out.parts[if contact { 3 } else { 2 }] += term;
         }
-        let term = he * r;
-        out.eta_sq[t] += term;
-        out.parts[if contact { 3 } else { 2 }] += term;
+        self.stress = stress;
+        self.out = out;
     }
-    out
 }
-// ANCHOR_END: estimate
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
@@ -537,5 +754,56 @@ mod tests {
         let off = vec![sigma_nu + 1e-3; mesh.contact.len()];
         let est = estimate(&mesh, &pb, &u, &u_prev, k, &off);
         assert!(est.parts[3] > 1e-8 && est.parts[0] + est.parts[1] + est.parts[2] < 1e-26);
+    }
+    /// A prepared mesh gives every step the estimate of a fresh one, bit for bit (its
+    /// buffers reused, the volume force's cosines formed once), and the scene's volume
+    /// force read from the cached cosines is the one the closure gives.
+    #[test]
+    fn a_prepared_mesh_estimates_each_step_as_a_fresh_one() {
+        let scn = crate::scenario::Scenario::load("smooth").expect("smooth");
+        assert!(scn.f0_modulation() != 0.0 && scn.f0() != [0.0, 0.0]);
+        let mesh = Mesh::structured(8).expect("mesh");
+        let field = |s: f64| -> Vec<[f64; 2]> {
+            (mesh.nodes.iter())
+                .map(|p| [s * (p[0] * p[1]).sin(), s * (p[0] - 2.0 * p[1]).cos() - s])
+                .collect()
+        };
+        let state = |i: usize| crate::certificate::ContactState {
+            u_nu: 0.01 * i as f64,
+            sigma_nu1: -(i as f64),
+            sigma_nu2: -0.5 * (i % 3) as f64,
+            at_limit: !i.is_multiple_of(3),
+        };
+        let contact: Vec<_> = (0..mesh.contact.len()).map(state).collect();
+        let mut prepared = Estimator::new(&mesh);
+        for (step, t) in [(1.0, 0.5), (2.0, 1.0), (3.0, 0.25)] {
+            let (u, u_prev) = (field(1e-3 * step), field(1e-3 * (step - 1.0)));
+            let again = prepared
+                .estimate_scene(&scn, &u, &u_prev, 0.1, t, &contact)
+                .clone();
+            let fresh = Estimator::new(&mesh)
+                .estimate_scene(&scn, &u, &u_prev, 0.1, t, &contact)
+                .clone();
+            assert_eq!(again, fresh);
+            // The closure's volume force, through the generic path.
+            let loads = SceneLoads::new(&scn, t);
+            let f0 = |x: [f64; 2]| loads.f0_at(x);
+            let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+            let pb = Problem {
+                elast: scn.elasticity(),
+                visc: Some(scn.viscosity()),
+                f0: &f0,
+                surface: &surface,
+                line: None,
+                part: None,
+            };
+            let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
+            let generic = estimate(&mesh, &pb, &u, &u_prev, 0.1, &sigma_h);
+            assert_eq!(generic.eta_sq, fresh.eta_sq);
+            assert!(
+                fresh.parts[0] > 0.0 && fresh.complementarity_total() > 0.0,
+                "{fresh:?}"
+            );
+        }
     }
 }

@@ -596,17 +596,21 @@ impl Dofs {
     /// Expands a vector of free dofs to one Cartesian value pair per node (zero where
     /// clamped).
     pub fn expand(&self, u: &[f64]) -> Vec<[f64; 2]> {
-        let mut out: Vec<[f64; 2]> = self
-            .map
-            .chunks(2)
-            .map(|d| [d[0].map_or(0.0, |i| u[i]), d[1].map_or(0.0, |i| u[i])])
-            .collect();
+        let mut out = Vec::new();
+        self.expand_into(u, &mut out);
+        out
+    }
+    /// [`Dofs::expand`] into `out`, whose storage is reused.
+    pub fn expand_into(&self, u: &[f64], out: &mut Vec<[f64; 2]>) {
+        out.clear();
+        out.extend(
+            (self.map.chunks(2)).map(|d| [d[0].map_or(0.0, |i| u[i]), d[1].map_or(0.0, |i| u[i])]),
+        );
         if let Some((f, on)) = &self.frame {
             for (val, _) in out.iter_mut().zip(on).filter(|(_, on)| **on) {
                 *val = f.to_cartesian(*val);
             }
         }
-        out
     }
     /// Adds the Cartesian nodal force `val` at `node` into `f` on its free dofs.
     pub fn add_nodal(&self, f: &mut [f64], node: usize, val: [f64; 2]) {

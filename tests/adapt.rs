@@ -164,6 +164,12 @@ fn solve_adapt_runs_every_shipped_scene() {
         assert!(csv.len() >= 2, "{name}: {} levels", csv.len());
         let dofs = csv.column_f64("dofs");
         assert!(dofs.windows(2).all(|w| w[1] > w[0]) && dofs.iter().all(|&d| d <= 400.0));
+        // The estimator's phase is part of each level's wall time.
+        let (wall, est) = (csv.column_f64("wall_s"), csv.column_f64("estimator_s"));
+        assert!(
+            wall.iter().zip(&est).all(|(w, e)| *e > 0.0 && e < w),
+            "{name}: {est:?} of {wall:?}"
+        );
         let vtu = read(out.join("solution.vtu"));
         assert!(
             vtu.contains("Name=\"eta\""),

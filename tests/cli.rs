@@ -259,6 +259,41 @@ fn bench_mesh_read_times_the_refined_paper_mesh() {
 /// `bench --mesh-solve`: the built-in scene and the same triangulation read from a
 /// file, each solved in a child process on both loops, the same unknowns on both, the
 /// built-in row the ratios' unit; a table whose built-in ratio is not 1 is refused.
+/// `bench --estimator` times each level plainly and estimating every step, on both
+/// loops; the estimator's phase is part of the estimating solve.
+#[test]
+fn bench_estimator_times_the_phase_on_both_loops() {
+    let dir = scratch("bench-estimator");
+    succeed(
+        evhi_with(
+            "bench --estimator --estimator-levels 8,16 --estimator-steps 4 --repeat 1 --data",
+        )
+        .arg(&dir),
+    );
+    let csv = Csv::read(dir.join("bench_estimator.csv"));
+    assert_eq!(
+        csv.column_str("path"),
+        ["reduced", "reduced", "general", "general"]
+    );
+    assert_eq!(csv.column_f64("n"), [8.0, 16.0, 8.0, 16.0]);
+    let (solve, estimating, est) = (
+        csv.column_f64("solve_s"),
+        csv.column_f64("estimating_s"),
+        csv.column_f64("estimator_s"),
+    );
+    let percent = csv.column_f64("estimator_percent");
+    for i in 0..4 {
+        assert!(
+            est[i] > 0.0 && est[i] < estimating[i],
+            "{est:?} {estimating:?}"
+        );
+        assert!(
+            (percent[i] - 100.0 * est[i] / solve[i]).abs() < 1e-9,
+            "{percent:?}"
+        );
+    }
+}
+
 #[test]
 fn bench_mesh_solve_times_both_scenes_on_both_loops() {
     let dir = scratch("bench-mesh-solve");

@@ -362,17 +362,19 @@ const SCENE: Allowed<String> = Allowed {
 };
 
 row! {
-    /// One row of `bench_estimator.csv`: the solve of one level and the residual
-    /// estimator on its last step.
+    /// One row of `bench_estimator.csv`: one level solved plainly and with the
+    /// residual estimator at every step.
     pub struct EstimatorRow {
+        path: String => "path" if LOOP,
         n: u64 => "n" if AT_LEAST_ONE,
         steps: u64 => "steps" if AT_LEAST_ONE,
         triangles: u64 => "triangles" if AT_LEAST_ONE,
         dofs: u64 => "dofs" if AT_LEAST_ONE,
         solve_s: f64 => "solve_s" if SECONDS,
+        estimating_s: f64 => "estimating_s" if SECONDS,
         estimator_s: f64 => "estimator_s" if SECONDS,
-        one_step_percent: f64 => "one_step_percent" if POSITIVE,
-        every_step_percent: f64 => "every_step_percent" if POSITIVE,
+        estimator_percent: f64 => "estimator_percent" if POSITIVE,
+        overhead_percent: f64 => "overhead_percent",
     }
 }
 

@@ -187,6 +187,7 @@ fn table(levels: &[AdaptLevel]) -> Table {
         .f64("eta", col(&|l| l.eta))
         .u64("marked", int(&|l| l.marked))
         .f64("wall_s", col(&|l| l.wall_s))
+        .f64("estimator_s", col(&|l| l.estimator_s))
 }
 
 /// The command line's observer: a line per level, a bar while a level's steps run,
@@ -238,8 +239,9 @@ impl AdaptObserver for Lines<'_> {
     fn level_done(&mut self, s: &Solved) {
         let l = s.level;
         let line = format!(
-            "level {:>2}: {:>7} unknowns {:>7} triangles  estimate {:.3e}  marked {:>6}  {:.2} s",
-            l.level, l.dofs, l.triangles, l.estimate, l.marked, l.wall_s
+            "level {:>2}: {:>7} unknowns {:>7} triangles  estimate {:.3e}  marked {:>6}  {:.2} s \
+             ({:.2} s estimating)",
+            l.level, l.dofs, l.triangles, l.estimate, l.marked, l.wall_s, l.estimator_s
         );
         match &self.bar {
             Some(b) => b.suspend(|| evhi::diag!("{line}")),

@@ -71,8 +71,8 @@ pub struct BenchArgs {
     #[arg(long, default_value_t = 32, value_parser = clap::value_parser!(u64).range(1..))]
     pub mesh_solve_steps: u64,
     /// Only the estimator's cost: the `figure` scene at each of --estimator-levels
-    /// with --estimator-steps steps, solved, and the residual estimator on its last
-    /// step, both timed (data/bench_estimator.csv).
+    /// with --estimator-steps steps, solved plainly and with the residual estimator
+    /// at every step as `solve --adapt` does, in turn (data/bench_estimator.csv).
     #[arg(long)]
     pub estimator: bool,
     /// Levels n of the estimator's rows.
