@@ -194,7 +194,6 @@ impl Estimate {
     }
 }
 
-// ANCHOR: complementarity
 /// The complementarity term of the limit, per triangle: on each edge $e$ of
 /// $\Gamma_3$ between contact nodes $i, j$, the multiplier $\mu = -\sigma^2_\nu \ge 0$
 /// (the part of the contact pressure that the limit carries,
@@ -214,7 +213,6 @@ pub fn complementarity(
     Estimator::new(mesh).complementarity_into(g, contact, &mut out);
     out
 }
-// ANCHOR_END: complementarity
 
 /// Gauss–Legendre on $[0, 1]$, 3 points (exact to degree 5).
 const GAUSS3: [(f64, f64); 3] = [
@@ -283,7 +281,6 @@ pub fn estimate_scene(
         .clone()
 }
 
-// ANCHOR: estimate
 /// The indicators of the step with nodal (Cartesian) displacements `u` $= u^n$ and
 /// `u_prev` $= u^{n-1}$, time step `k`, and `sigma_h` the discrete contact stress
 /// $\sigma^1_\nu + \sigma^2_\nu$ at each contact node (in [`Mesh::contact`]'s order).
@@ -300,7 +297,6 @@ pub fn estimate(
         .estimate(pb, u, u_prev, k, sigma_h)
         .clone()
 }
-// ANCHOR_END: estimate
 
 /// A mesh prepared for the estimator: what a step's indicators need of the mesh alone
 /// (each triangle's gradients, size and quadrature points; the interior edges paired
@@ -533,6 +529,7 @@ impl<'m> Estimator<'m> {
         &self.out
     }
 
+    // ANCHOR: complementarity
     /// [`complementarity`] on the prepared mesh, written into `out`.
     fn complementarity_into(
         &self,
@@ -557,7 +554,9 @@ impl<'m> Estimator<'m> {
             out[t] += len / 6.0 * (2.0 * ma * da + 2.0 * mb * db + ma * db + mb * da);
         }
     }
+    // ANCHOR_END: complementarity
 
+    // ANCHOR: estimate
     /// Forms the step's estimate in `self.out`.
     fn run(
         &mut self,
@@ -694,6 +693,7 @@ impl<'m> Estimator<'m> {
         self.stress = stress;
         self.out = out;
     }
+    // ANCHOR_END: estimate
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {

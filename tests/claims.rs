@@ -17,6 +17,8 @@ mod adaptive;
 mod beyond;
 #[path = "claims/errata.rs"]
 mod errata;
+#[path = "claims/estimator.rs"]
+mod estimator;
 #[path = "claims/exact.rs"]
 mod exact;
 #[path = "claims/hertz.rs"]

@@ -84,13 +84,13 @@ fn efficiency_table() {
             let r = run_estimated(sol, &scn, n, n).unwrap();
             let row = r.max_row();
             line += &format!(
-                "  n={n}: step {} eta {:.3e} |e|_E {:.3e} ({:.1}) |sigma err| {:.3e} ({:.3})",
+                "  n={n}: step {} eta {:.3e} eta_k {:.3e} |sigma err| {:.3e} ({:.3}, with eta_k {:.3})",
                 row.step,
                 row.eta,
-                row.err_e,
-                row.eta / row.err_e,
+                row.eta_time,
                 row.err_sigma,
-                stress_index(&r)
+                stress_index(&r),
+                (row.eta + row.eta_time) / row.err_sigma
             );
         }
         println!("{line}");

@@ -75,6 +75,21 @@ const EXACT_CONVERGENCE: &[Heading] = &[
     ("max_certificate", "largest certificate"),
 ];
 
+/// `exact_estimator_summary.csv`'s headings.
+const EXACT_ESTIMATOR_SUMMARY: &[Heading] = &[
+    ("letter", "solution"),
+    ("field", "field"),
+    ("levels", "levels"),
+    ("efficiency_min", "η alone: smallest"),
+    ("efficiency_max", "largest"),
+    ("efficiency_spread", "spread"),
+    ("efficiency_goal", "goal"),
+    ("with_time_min", "with the time indicator: smallest"),
+    ("with_time_max", "largest"),
+    ("with_time_spread", "spread"),
+    ("with_time_goal", "goal"),
+];
+
 /// `exact_cea.csv`'s headings: the five terms of (4.16)'s right side and its left side.
 const EXACT_CEA: &[Heading] = &[
     EXACT_KEYS[0],
@@ -428,6 +443,9 @@ pub const EXPERIMENTS: [Experiment; 16] = [
             table("exact_grid.csv", 3, 7)
                 .hiding(&["solution"])
                 .headed(EXACT_GRID),
+            table("exact_estimator_summary.csv", 1, 12)
+                .hiding(&["solution"])
+                .headed(EXACT_ESTIMATOR_SUMMARY),
         ],
     },
     Experiment {

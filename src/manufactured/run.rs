@@ -73,6 +73,14 @@ pub struct StepRow {
     /// $\sigma^n_h = \mathcal C\varepsilon((u^n_h - u^{n-1}_h)/k) + \mathcal G\varepsilon(u^n_h)$: the
     /// norm the residual's terms measure; 0 unless the run was asked for it.
     pub err_sigma: f64,
+    /// The time indicator $\eta_{k,n} = \tfrac12\|\mathcal C\varepsilon(\delta u^n_h - \delta u^{n-1}_h)\|_{L^2(\Omega)}$,
+    /// $\delta u^n_h = (u^n_h - u^{n-1}_h)/k$ (with $\delta u^0_h = 0$): backward Euler's
+    /// leading error in the viscous stress, $\tfrac k2\mathcal C\varepsilon(\ddot u)$, read from
+    /// two successive discrete rates; 0 without viscosity or unless asked for.
+    pub eta_time: f64,
+    /// $\|\sigma^n_h\|_{L^2(\Omega)}$, the discrete stress the estimate is relative to (as
+    /// in [`crate::adapt`]); 0 unless asked for.
+    pub sigma_h: f64,
 }
 
 /// A run against the exact solution.
@@ -342,8 +350,11 @@ fn run_rules_options(
         })
         .collect();
     let mut au = vec![vec![0.0; disc.dofs.count]; rules.len()];
-    // u_{n-1} at the nodes per rule, for the estimator's stress.
+    // u_{n-1} and u_{n-2} at the nodes per rule, for the estimator's stress and its
+    // time indicator.
     let mut prev_h = vec![vec![[0.0; 2]; mesh.nodes.len()]; rules.len()];
+    let mut prev2_h = prev_h.clone();
+    let mut prepared = crate::estimator::Estimator::new(&mesh);
     let h_min = 1.0 / n as f64;
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
@@ -428,7 +439,7 @@ fn run_rules_options(
             }
             let nodal_h = disc.dofs.expand(&u[0]);
             let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
-            let (eta, err_sigma) = if estimated {
+            let (eta, err_sigma, eta_time, sigma_h_norm) = if estimated {
                 let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
                 let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
                 let surface = |x: [f64; 2], nrm: [f64; 2]| {
@@ -454,15 +465,32 @@ fn run_rules_options(
                     line: Some(&line),
                     part: None,
                 };
-                let eta = crate::estimator::estimate(&mesh, &pb, &nodal_h, &prev_h[i], k, &sigma_h)
-                    .total();
+                let est = prepared.estimate(&pb, &nodal_h, &prev_h[i], k, &sigma_h);
+                let (eta, stress) = (est.total(), est.stress_sq.sqrt());
                 let now = p1_strains(&mesh, &bms, &nodal_h);
                 let before = p1_strains(&mesh, &bms, &prev_h[i]);
-                (eta, stress_error(&data, points, [&now, &before], k))
+                // ANCHOR: time_indicator
+                let eta_time = data.visc.as_ref().map_or(0.0, |visc| {
+                    let two = p1_strains(&mesh, &bms, &prev2_h[i]);
+                    // (eps^n - 2 eps^{n-1} + eps^{n-2}) / k = eps(du^n - du^{n-1}).
+                    let sq: f64 = (mesh.triangles.iter().enumerate())
+                        .map(|(t, tri)| {
+                            let (a, b, c) = (now[t], before[t], two[t]);
+                            let d = [0, 1, 2].map(|r| (a[r] - 2.0 * b[r] + c[r]) / k);
+                            let area =
+                                0.5 * crate::element::twice_area(tri.map(|v| mesh.nodes[v])).abs();
+                            area * contract(super::apply(visc, d))
+                        })
+                        .sum();
+                    0.5 * sq.sqrt()
+                });
+                // ANCHOR_END: time_indicator
+                let err_sigma = stress_error(&data, points, [&now, &before], k);
+                (eta, err_sigma, eta_time, stress)
             } else {
-                (0.0, 0.0)
+                (0.0, 0.0, 0.0, 0.0)
             };
-            prev_h[i] = nodal_h;
+            prev2_h[i] = std::mem::replace(&mut prev_h[i], nodal_h);
             let mut row = StepRow {
                 err_e,
                 err_v_sq,
@@ -475,6 +503,8 @@ fn run_rules_options(
             row.regimes = count_regimes(&states, scn);
             row.eta = eta;
             row.err_sigma = err_sigma;
+            row.eta_time = eta_time;
+            row.sigma_h = sigma_h_norm;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }

@@ -254,6 +254,15 @@ impl Solution {
         }
     }
 
+    /// Whether the field lies in the P1 space of the coarsest mesh, so in every $V^h$ of
+    /// the family ((e), (f), (g), (i)): its error is the time scheme's and the contact
+    /// rule's alone.
+    pub fn in_p1(self) -> bool {
+        matches!(
+            self,
+            Solution::P1 | Solution::P1Limit | Solution::Landing | Solution::Hold
+        )
+    }
     /// Solved as the static problem $Bu + \iota^*\xi = f$ (one solve, no viscosity).
     pub fn is_static(self) -> bool {
         self == Solution::Steady

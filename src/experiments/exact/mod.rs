@@ -11,8 +11,10 @@
 //! of (4.24): its left side in $\|\cdot\|_V$ over $h^2 + k^2$. For (b) and (d) on
 //! $h = k$: each term of the right side of (4.16) with its order; for (b) the same
 //! runs with the compliance integral computed exactly (the variational crime); the
-//! regime counts per step; the quadrature's own error.
+//! regime counts per step; the quadrature's own error; the residual estimator's
+//! efficiency on every solution.
 
+mod estimator;
 mod figure;
 mod hold;
 
@@ -153,6 +155,7 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     write_quadrature(ctx, &scn)?;
     write_quadrature_effect(ctx, &scn)?;
     let hold = hold::write_hold(ctx, &scn)?;
+    estimator::write_estimator(ctx, &scn)?;
     let grid = write_grid(ctx, &grid)?;
     figure::draw_all(ctx, &conv, &cea, &regimes, &hold)?;
     figure::draw_grid(ctx, &grid)

@@ -1,0 +1,87 @@
+//! The residual estimator ([`evhi::estimator`]) against the truth: every exact solution
+//! on the family $h = k = 1/n$, with each step's estimate $\eta_n$, the time
+//! indicator $\eta_{k,n}$ and the stress error
+//! $\|\sigma(t_n) - \sigma^n_h\|_{L^2(\Omega)}$, the norm the residual's terms measure.
+//!
+//! The efficiency index is the adaptive loop's: the estimated relative error
+//! $\max_n\eta_n / \max_n\|\sigma^n_h\|$ over the true one,
+//! $\max_n\|u(t_n) - u_n\|_E / \max_n\|u(t_n)\|_E$; beside it the same with the time
+//! indicator added, and the index against the stress error at one step. The summary says
+//! per solution whether each index met the goal set before measuring: between 1 and 5 on
+//! every level, and varying by at most a factor 2 over the levels.
+
+use super::{Cols, params};
+use crate::experiments::{Ctx, ExpError};
+use evhi::manufactured::SOLUTIONS;
+use evhi::manufactured::run::{ExactRun, StepRow, run_estimated};
+use evhi::scenario::Scenario;
+
+/// The levels $n = N$.
+fn levels(quick: bool) -> &'static [usize] {
+    if quick { &[8, 16] } else { &[8, 16, 32, 64] }
+}
+
+/// The goal: an index in $[1, 5]$ on every level, its largest over its smallest at most 2.
+pub const GOAL: ([f64; 2], f64) = ([1.0, 5.0], 2.0);
+
+/// Runs every solution on the levels and writes `exact_estimator.csv` and its summary.
+pub fn write_estimator(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
+    let levels = levels(ctx.quick);
+    ctx.add_units(SOLUTIONS.len() * levels.len());
+    let (mut t, mut s) = (Cols::default(), Cols::default());
+    for sol in SOLUTIONS {
+        let (mut space, mut both) = (vec![], vec![]);
+        for &n in levels {
+            let r: ExactRun = run_estimated(sol, scn, n, n)?;
+            ctx.log(&format!("exact estimator {} n = N = {n}", sol.name()));
+            let top = |f: &dyn Fn(&StepRow) -> f64| r.rows.iter().map(f).fold(0.0, f64::max);
+            let sigma = top(&|w| w.sigma_h);
+            let (estimate, time) = (top(&|w| w.eta) / sigma, top(&|w| w.eta_time) / sigma);
+            let rel_err = r.rel_max();
+            space.push(estimate / rel_err);
+            both.push((estimate + time) / rel_err);
+            let row = r.max_row();
+            t.s("letter", sol.letter());
+            t.s("solution", sol.name());
+            t.u("n", n);
+            t.u("steps", r.steps);
+            t.f("rel_err", rel_err);
+            t.f("rel_err_sigma", top(&|w| w.err_sigma) / sigma);
+            t.f("estimate", estimate);
+            t.f("estimate_time", time);
+            t.f("efficiency", estimate / rel_err);
+            t.f("efficiency_with_time", (estimate + time) / rel_err);
+            t.f("stress_index", row.eta / row.err_sigma);
+        }
+        s.s("letter", sol.letter());
+        s.s("solution", sol.name());
+        s.s("field", if sol.in_p1() { "P1 in space" } else { "smooth" });
+        s.u("levels", space.len());
+        for (name, v) in [("efficiency", &space), ("with_time", &both)] {
+            let (lo, hi) = (
+                v.iter().copied().fold(f64::INFINITY, f64::min),
+                v.iter().copied().fold(0.0, f64::max),
+            );
+            let ([a, b], spread) = GOAL;
+            s.f(&format!("{name}_min"), lo);
+            s.f(&format!("{name}_max"), hi);
+            s.f(&format!("{name}_spread"), hi / lo);
+            let met = lo >= a && hi <= b && hi / lo <= spread;
+            s.s(&format!("{name}_goal"), if met { "met" } else { "missed" });
+        }
+    }
+    let what = format!(
+        "{}; every solution on h = k = 1/n, n = N = {levels:?}, the scheme's nodal contact rule (certified); at every step the residual estimate eta_n (evhi::estimator with the solution's own f0, f2, f3 and the exact stress's jump across the edges where the solution is only piecewise smooth), the time indicator eta_k,n = |C eps(du_n - du_(n-1))| / 2 with du_n = (u_n - u_(n-1)) / k (du_0 = 0), the discrete stress sigma_h^n = C eps(du_n) + G eps(u_n) and the stress error |sigma(t_n) - sigma_h^n|, all in L2(Omega); rel_err = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (the energy norm's relative error over time); rel_err_sigma = max_n |sigma(t_n) - sigma_h^n| / max_n |sigma_h^n|; estimate = max_n eta_n / max_n |sigma_h^n| (the estimated relative error of evhi::adapt); estimate_time = max_n eta_k,n / max_n |sigma_h^n|; efficiency = estimate / rel_err (as in adaptive_convergence.csv); efficiency_with_time = (estimate + estimate_time) / rel_err; stress_index = eta_n / |sigma(t_n) - sigma_h^n| at the step of the largest energy error",
+        params()
+    );
+    ctx.write("exact_estimator.csv", &t.table(), &what)?;
+    ctx.write(
+        "exact_estimator_summary.csv",
+        &s.table(),
+        &format!(
+            "exact_estimator.csv per solution: field = smooth, or P1 in space (the coarsest mesh's P1 space holds it, so its error is the time scheme's and the contact rule's alone); efficiency (the residual estimate alone) and with_time (with the time indicator added): the smallest and largest index over the levels, spread = their ratio, goal = met when the index lies in [{}, {}] on every level and spread <= {}",
+            GOAL.0[0], GOAL.0[1], GOAL.1
+        ),
+    )?;
+    Ok(())
+}
