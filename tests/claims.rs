@@ -15,6 +15,8 @@ mod common;
 mod adaptive;
 #[path = "claims/beyond.rs"]
 mod beyond;
+#[path = "claims/body.rs"]
+mod body;
 #[path = "claims/errata.rs"]
 mod errata;
 #[path = "claims/estimator.rs"]
