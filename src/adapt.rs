@@ -228,6 +228,9 @@ pub struct Adaptation {
     pub forest: Forest,
     /// The last level's triangles.
     pub leaves: Leaves,
+    /// The last level's scene: the input scene on a rectangle; on a mesh scene, the
+    /// scene on its file's mesh bisected to the last level ([`level_scene`]).
+    pub scenario: Scenario,
     /// The last level's solution (its mesh is `solution.run.mesh`).
     pub solution: Solution,
     /// The last level's $\bar\eta^2_T$ per triangle, in the mesh's order.
@@ -258,20 +261,15 @@ pub fn dorfler(eta_sq: &[f64], theta: f64) -> Vec<usize> {
 }
 // ANCHOR_END: dorfler
 
-/// The forest of an adaptive run on a rectangle scene: the structured mesh of the
+/// The forest of an adaptive run: on a rectangle scene, the structured mesh of the
 /// first of 4, 8, 16, … (then any multiple of 4) segments whose nodes hold every end
-/// of the scene's supports, tractions and $\Gamma_3$. A mesh scene and a pattern other
-/// than the paper's diagonal are refused by name.
+/// of the scene's supports, tractions and $\Gamma_3$, with that count; on a mesh scene,
+/// its file's triangulation ([`Forest::from_triangles`]), with 0 (no grid). A
+/// rectangle with a pattern other than the paper's diagonal is refused by name.
 pub fn initial_forest(scn: &Scenario) -> Result<(Forest, Leaves, usize), InputError> {
     if let Some(body) = scn.body() {
-        return Err(InputError::field(
-            "geometry.mesh",
-            &body.file,
-            "a rectangle scene for an adaptive run, for now: the estimator does not read a \
-             mesh scene's boundary parts yet, and a refined mesh would need the file's \
-             groups carried over to it (the file's triangulation itself bisects: \
-             evhi::bisection::Forest::from_triangles)",
-        ));
+        let (forest, root) = Forest::from_triangles(body.mesh.nodes.clone(), &body.mesh.triangles)?;
+        return Ok((forest, root, 0));
     }
     if scn.pattern != crate::mesh::Pattern::Diagonal {
         return Err(InputError::field(
@@ -328,14 +326,32 @@ pub fn adapt(
 ) -> Result<Adaptation, RunError> {
     settings.check()?;
     let (forest, root, n0) = initial_forest(scn)?;
-    adapt_from(
-        forest,
-        root,
-        scn,
-        &run.clone().with_n(n0),
-        settings,
-        observer,
-    )
+    let run = if n0 > 0 {
+        run.clone().with_n(n0)
+    } else {
+        run.clone()
+    };
+    adapt_from(forest, root, scn, &run, settings, observer)
+}
+
+/// A level of the forest as a scene and its mesh: on a rectangle, `scn` itself on the
+/// forest's mesh of `leaves`, labelled `n`; on a mesh scene, `scn` on its file's
+/// triangulation bisected to `leaves`, each part carried to the pieces of its edges
+/// ([`Forest::leaf_msh`]). Either way the mesh's triangles are the leaves in order.
+pub fn level_scene(
+    forest: &Forest,
+    leaves: &Leaves,
+    scn: &Scenario,
+    n: usize,
+) -> Result<(Scenario, Arc<Mesh>), InputError> {
+    match scn.body() {
+        None => Ok((scn.clone(), Arc::new(forest.mesh(leaves, n)))),
+        Some(body) => {
+            let fine = scn.with_body_mesh(forest.leaf_msh(leaves, &body.mesh))?;
+            let mesh = Mesh::from_body(fine.body().expect("a mesh scene"));
+            Ok((fine, Arc::new(mesh)))
+        }
+    }
 }
 
 /// [`adapt`] from the mesh `root` of `forest` (a study builds its other families in the
@@ -358,7 +374,7 @@ pub fn adapt_from(
         let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
         run.n << (shallowest / 2).min(20)
     };
-    let mut mesh = Arc::new(forest.mesh(&leaves, label(&forest, &leaves)));
+    let (mut scene, mut mesh) = level_scene(&forest, &leaves, scn, label(&forest, &leaves))?;
     let mut dofs = Dofs::new(&mesh, true).count;
     if dofs > settings.max_dofs {
         return Err(InputError::field(
@@ -371,7 +387,7 @@ pub fn adapt_from(
     loop {
         let clock = Instant::now();
         let level = levels.len();
-        let sim = Simulation::on_mesh(scn.clone(), run.clone().with_n(mesh.n), mesh.clone())?;
+        let sim = Simulation::on_mesh(scene.clone(), run.clone().with_n(mesh.n), mesh.clone())?;
         observer.level_started(level, &mesh, sim.steps());
         let est = solve_estimating(&sim, settings.aggregate, observer)?;
         let total: f64 = est.eta_sq.iter().sum();
@@ -433,12 +449,13 @@ pub fn adapt_from(
         let stop = match next {
             None => Some(Stop::Tolerance),
             Some(next) => {
-                let next_mesh = Arc::new(forest.mesh(&next, label(&forest, &next)));
+                let (next_scene, next_mesh) =
+                    level_scene(&forest, &next, scn, label(&forest, &next))?;
                 let next_dofs = Dofs::new(&next_mesh, true).count;
                 if next_dofs > settings.max_dofs {
                     Some(Stop::DofBudget)
                 } else {
-                    (leaves, mesh, dofs) = (next, next_mesh, next_dofs);
+                    (leaves, scene, mesh, dofs) = (next, next_scene, next_mesh, next_dofs);
                     None
                 }
             }
@@ -449,6 +466,7 @@ pub fn adapt_from(
                 stop,
                 forest,
                 leaves,
+                scenario: scene,
                 solution: est.solution,
                 eta_sq: est.eta_sq,
             });

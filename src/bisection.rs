@@ -147,6 +147,12 @@ impl Forest {
     /// The nodes and triangles (counter-clockwise) of `leaves`, the nodes renumbered
     /// in the forest's order: the mesh of a forest grown from any triangulation.
     pub fn leaf_triangles(&self, leaves: &Leaves) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+        let (_, nodes, tris) = self.numbered(leaves);
+        (nodes, tris)
+    }
+
+    /// [`Forest::leaf_triangles`] with each node's new number (`usize::MAX` off the mesh).
+    fn numbered(&self, leaves: &Leaves) -> (Vec<usize>, Vec<[f64; 2]>, Vec<[usize; 3]>) {
         let mut local = vec![usize::MAX; self.nodes.len()];
         for &t in &leaves.0 {
             for v in self.tris[t] {
@@ -165,8 +171,37 @@ impl Forest {
             .iter()
             .map(|&t| self.tris[t].map(|v| local[v]))
             .collect();
-        (nodes, tris)
+        (local, nodes, tris)
     }
+
+    // ANCHOR: leaf_msh
+    /// The mesh of `leaves` as a file mesh ([`Forest::leaf_triangles`]) with the named
+    /// groups of `roots`, the triangulation the forest grew from
+    /// ([`Forest::from_triangles`], its nodes numbered as the forest's first): a group's
+    /// edge whose midpoint is a node of the mesh is carried as its two halves, each in
+    /// turn the same way, so every boundary part keeps its role, oriented as it was.
+    pub fn leaf_msh(&self, leaves: &Leaves, roots: &crate::msh::MshMesh) -> crate::msh::MshMesh {
+        let (local, nodes, triangles) = self.numbered(leaves);
+        let mut groups = roots.groups.clone();
+        for g in &mut groups {
+            let mut edges = Vec::with_capacity(g.edges.len());
+            let mut todo: Vec<[usize; 2]> = g.edges.iter().rev().copied().collect();
+            while let Some([a, b]) = todo.pop() {
+                match self.midpoints.get(&key(a, b)) {
+                    Some(&m) if local[m] != usize::MAX => todo.extend([[m, b], [a, m]]),
+                    _ => edges.push([local[a], local[b]]),
+                }
+            }
+            g.edges = edges;
+        }
+        crate::msh::MshMesh {
+            file: roots.file.clone(),
+            nodes,
+            triangles,
+            groups,
+        }
+    }
+    // ANCHOR_END: leaf_msh
 
     /// The vertices of triangle `t`.
     pub fn triangle(&self, t: usize) -> [[f64; 2]; 3] {

@@ -168,6 +168,27 @@ impl std::fmt::Debug for Body {
 }
 
 impl Body {
+    /// The same roles on another triangulation of the body (a refinement of its
+    /// file's mesh, whose groups name the same parts): every part checked again, as
+    /// when the scene was read; the bytes a run directory keeps are the new mesh's, as
+    /// MSH 4.1.
+    pub fn with_mesh(&self, mesh: MshMesh) -> Result<Body, InputError> {
+        let supports: Vec<(String, crate::support::Hold)> = (self.supports.iter())
+            .map(|s| (s.part.clone(), s.hold))
+            .collect();
+        let bytes = crate::msh::write(&mesh).into_bytes();
+        Body::new(
+            &self.file,
+            mesh,
+            &supports,
+            &self.contact,
+            self.tractions.clone(),
+            self.foundation,
+            self.displacement.clone(),
+            bytes,
+        )
+    }
+
     /// The body of `mesh` with its supports (part name to kind, read by
     /// [`crate::support::file`]), its contact part, its tractions, its prescribed
     /// displacement, and the file's `bytes`; refused as the module says.

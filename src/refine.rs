@@ -108,21 +108,7 @@ impl Scenario {
             ));
         };
         let r = refine(&body.mesh);
-        let supports: Vec<(String, crate::support::Hold)> = (body.supports.iter())
-            .map(|s| (s.part.clone(), s.hold))
-            .collect();
-        let fine = crate::body::Body::new(
-            &body.file,
-            r.mesh.clone(),
-            &supports,
-            &body.contact,
-            body.tractions.clone(),
-            body.foundation,
-            body.displacement.clone(),
-            crate::msh::write(&r.mesh).into_bytes(),
-        )?;
-        let mut scn = self.clone();
-        scn.body = Some(fine);
+        let scn = self.with_body_mesh(r.mesh.clone())?;
         Ok((scn, r))
     }
 }

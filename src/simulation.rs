@@ -467,7 +467,9 @@ impl Simulation {
             scenario.refuse_mesh_scene("--mesh graded")?;
         }
         let own_mesh = given.is_none() && !graded;
-        let (mesh, mesh_s) = match (given, scenario.body_mesh()) {
+        // (The file's mesh is built only where none is given.)
+        let file_mesh = given.is_none().then(|| scenario.body_mesh()).flatten();
+        let (mesh, mesh_s) = match (given, file_mesh) {
             (Some(mesh), _) => (mesh, 0.0),
             (None, Some(mesh)) => {
                 // The file's mesh: the run's n is its count of contact segments.

@@ -255,6 +255,43 @@ fn a_forest_from_any_triangulation_refines_conformingly() {
                 "round {round}: edge {a}-{b} in {c} triangle(s)"
             );
         }
+        // The file's named parts carried to the pieces of their edges: each group's
+        // edges lie on the boundary, run as a triangle runs them (the body on the
+        // left), and add up to the file's length of the group; the scene accepts the
+        // mesh with every part in its role, and Gamma_3 gains the new contact nodes.
+        let file = &scn.body().expect("a mesh scene").mesh;
+        let fine = forest.leaf_msh(&next, file);
+        assert_eq!((&fine.nodes, &fine.triangles), (&nodes, &tris));
+        let runs: std::collections::HashSet<(usize, usize)> = tris
+            .iter()
+            .flat_map(|t| (0..3).map(move |e| (t[e], t[(e + 1) % 3])))
+            .collect();
+        let length = |m: &evhi::msh::MshMesh, g: &evhi::msh::EdgeGroup| -> f64 {
+            (g.edges.iter())
+                .map(|&[a, b]| (m.nodes[a][0] - m.nodes[b][0]).hypot(m.nodes[a][1] - m.nodes[b][1]))
+                .sum()
+        };
+        for (g, g0) in fine.groups.iter().zip(&file.groups) {
+            assert_eq!(g.name, g0.name);
+            for &[a, b] in &g.edges {
+                assert!(
+                    runs.contains(&(a, b)),
+                    "round {round}: {} edge {a}-{b}",
+                    g.name
+                );
+            }
+            let (l, l0) = (length(&fine, g), length(file, g0));
+            assert!(
+                (l - l0).abs() <= 1e-12 * l0,
+                "round {round}: {} {l} against {l0}",
+                g.name
+            );
+        }
+        let on = scn
+            .with_body_mesh(fine)
+            .expect("the parts keep their roles");
+        let gamma3 = |s: &evhi::scenario::Scenario| s.body().expect("a body").gamma3.len();
+        assert!(gamma3(&on) > gamma3(&scn) + round, "round {round}");
         // The coarser mesh's affine fields are reproduced on the finer one.
         let (cn, _) = forest.leaf_triangles(&leaves);
         let f = |p: [f64; 2]| [0.5 * p[0] - p[1], p[1] + 0.25];

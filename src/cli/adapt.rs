@@ -69,10 +69,20 @@ pub fn run(
     let settings = adapt_settings(args, tol);
     settings.check().map_err(flags)?;
     let (forest, root, n0) = evhi::adapt::initial_forest(&scn)?;
-    let run_settings = super::solve_args::settings(args).with_n(n0);
+    let mut run_settings = super::solve_args::settings(args);
+    let from = match scn.body() {
+        Some(body) => format!(
+            "its file's mesh of {} triangles (bisected, the parts carried)",
+            body.mesh.triangles.len()
+        ),
+        None => {
+            run_settings = run_settings.with_n(n0);
+            format!("the grid of {n0} segments")
+        }
+    };
     let out = RunDir::open(&args.out)?;
     evhi::diag!(
-        "adapting `{}` from the grid of {n0} segments: tol {tol}, theta {}, at most {} unknowns, \
+        "adapting `{}` from {from}: tol {tol}, theta {}, at most {} unknowns, \
          indicators gathered by their {} over the steps",
         scn.name(),
         settings.theta,
@@ -92,7 +102,8 @@ pub fn run(
     let adaptation = std::thread::scope(|s| {
         // H(s)'s constants on a uniform grid of the scene at level 64 or the first
         // multiple of n0 above, on the second core while the levels run.
-        let level = n0 * 64usize.div_ceil(n0);
+        // (A mesh scene's constant is its file mesh's, whatever the level.)
+        let level = if n0 > 0 { n0 * 64usize.div_ceil(n0) } else { 0 };
         let scn = &scn;
         let h_s = s.spawn(move || evhi::show::Smallness::of(scn, level));
         let a = evhi::adapt::adapt_from(forest, root, scn, &run_settings, &settings, &mut cli);
@@ -124,9 +135,14 @@ pub fn run(
         settings.max_dofs
     );
     let solution = adaptation.solution;
+    // The last level's scene: a mesh scene's body is then its bisected mesh, which the
+    // run directory records (mesh.msh, nodes.csv).
+    let scn = adaptation.scenario;
     let mesh = solution.run.mesh.clone();
-    let sim = Simulation::on_mesh(scn.clone(), run_settings, mesh)?;
-    let (lines, h_s) = evhi::diagnostics::after(&scn, sim.solver(), &solution, n0, h_s);
+    // A mesh scene's n is its mesh's (as a plain run's); the rectangle's the grid's.
+    let n = if n0 > 0 { n0 } else { mesh.n };
+    let sim = Simulation::on_mesh(scn.clone(), run_settings.with_n(n), mesh)?;
+    let (lines, h_s) = evhi::diagnostics::after(&scn, sim.solver(), &solution, n, h_s);
     lines.iter().for_each(|l| evhi::diag!("{l}"));
     let mut prov = Provenance::of(&sim, &solution, evhi::output::run::command_line());
     prov.mesh = format!(

@@ -249,6 +249,23 @@ impl Scenario {
         self.body.as_ref()
     }
 
+    /// A mesh scene on another triangulation of its body (a refinement of its file's
+    /// mesh), the parts keeping their roles ([`Body::with_mesh`]); refused on the
+    /// rectangle.
+    pub fn with_body_mesh(&self, mesh: crate::msh::MshMesh) -> Result<Scenario, InputError> {
+        let Some(body) = self.body() else {
+            return Err(InputError::field(
+                "geometry.mesh",
+                "none",
+                "a mesh scene for a refinement of its file's mesh (the rectangle is refined \
+                 by its level n)",
+            ));
+        };
+        let mut scn = self.clone();
+        scn.body = Some(body.with_mesh(mesh)?);
+        Ok(scn)
+    }
+
     /// Refuses a level $n$ (the rectangle's segments on the bottom) on a mesh scene,
     /// whose mesh is its file's: the refusal names the field `n`, the file and its
     /// count of contact segments. A rectangle scene takes any level here (the mesh
