@@ -204,6 +204,26 @@ fn refine_to_contain_refines_both() {
     assert_eq!(forest.refine_to_contain(&a, &a), a);
 }
 
+/// The shipped scenes (data/scenarios and its examples), sorted: those read from a mesh
+/// file, or the others.
+fn shipped_scenes(mesh: bool) -> Vec<std::path::PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenarios");
+    let mut scenes: Vec<_> = [root.clone(), root.join("examples")]
+        .iter()
+        .flat_map(|d| std::fs::read_dir(d).unwrap())
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| {
+            let from_file = read(p)
+                .lines()
+                .any(|l| l.trim_start().starts_with("mesh ="));
+            from_file == mesh
+        })
+        .collect();
+    scenes.sort();
+    scenes
+}
+
 /// `solve --adapt` on every shipped rectangle scene (data/scenarios and its examples)
 /// with a small budget: a line per
 /// level, the stop rule named, adapt.csv with its levels, and the last level's run
@@ -211,20 +231,8 @@ fn refine_to_contain_refines_both() {
 #[test]
 fn solve_adapt_runs_every_shipped_scene() {
     let dir = scratch("adapt-scenes");
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenarios");
-    // The scenes and the examples; those read from a mesh file run in the next test.
-    let mut scenes: Vec<_> = [root.clone(), root.join("examples")]
-        .iter()
-        .flat_map(|d| std::fs::read_dir(d).unwrap())
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .filter(|p| {
-            !read(p)
-                .lines()
-                .any(|l| l.trim_start().starts_with("mesh ="))
-        })
-        .collect();
-    scenes.sort();
+    // Those read from a mesh file run in the next test.
+    let scenes = shipped_scenes(false);
     assert!(scenes.len() >= 8, "{scenes:?}");
     for scn in &scenes {
         let name = scn.file_stem().unwrap().to_string_lossy().to_string();
@@ -270,19 +278,7 @@ fn solve_adapt_runs_every_shipped_scene() {
 #[test]
 fn solve_adapt_runs_every_shipped_mesh_scene() {
     let dir = scratch("adapt-mesh-scenes");
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/scenarios");
-    let mut scenes: Vec<_> = [root.clone(), root.join("examples")]
-        .iter()
-        .flat_map(|d| std::fs::read_dir(d).unwrap())
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .filter(|p| {
-            read(p)
-                .lines()
-                .any(|l| l.trim_start().starts_with("mesh ="))
-        })
-        .collect();
-    scenes.sort();
+    let scenes = shipped_scenes(true);
     assert!(scenes.len() >= 3, "{scenes:?}");
     for scn in &scenes {
         let name = scn.file_stem().unwrap().to_string_lossy().to_string();
