@@ -227,6 +227,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         }
     }
     // The uniform and graded levels, each scene on its own (as the adaptive runs are).
+    // The indicators of the uniform level of 32 segments (or the finest below) are drawn.
+    let shown_n = plan.uniform.iter().copied().filter(|&n| n <= 32).max();
+    let mut shown: Vec<super::indicators::Shown> = vec![];
     for (family, l, leaves) in &meshes {
         let clock = std::time::Instant::now();
         let mesh = Arc::new(forest.mesh(leaves, 4));
@@ -236,6 +239,11 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
             let sim = Simulation::on_mesh(scn.clone(), settings.clone(), mesh.clone())?;
             let est = solve_estimating(&sim, adapt.aggregate, &mut Keep)?;
             let total: f64 = est.eta_sq.iter().sum();
+            if *family == FAMILIES[0] && Some(plan.uniform[*l]) == shown_n {
+                let tris = mesh.triangles.iter().map(|t| t.map(|v| mesh.nodes[v]));
+                let eta = est.eta_sq.iter().map(|e| e.sqrt()).collect();
+                shown.push((scn.name().to_string(), tris.collect(), eta));
+            }
             solved.push(Lev {
                 family,
                 scene: i,
@@ -418,6 +426,9 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
                 .join("; ")
         ),
     )?;
+    if let Some(n) = shown_n {
+        super::indicators::write(ctx, n, plan.steps, &shown)?;
+    }
     draw(&ctx.figures, &path, &mesh_path)
 }
 

@@ -15,6 +15,7 @@ pub mod forensics;
 pub mod graded;
 pub mod hertz;
 pub mod hypotheses;
+pub mod indicators;
 pub mod loads;
 pub mod paths;
 pub mod registry;

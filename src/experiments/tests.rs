@@ -334,7 +334,7 @@ fn adaptive_meshes() {
     snapshot_outputs_dropping(
         "adaptive",
         &["adaptive_convergence.csv"],
-        &["adaptive_meshes"],
+        &["adaptive_meshes", "adaptive_indicators"],
         0.0,
         &["wall_s"],
     );

@@ -171,6 +171,43 @@ fn adaptive_estimator_cost() {
     assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["25", "42"]);
 }
 
+/// The indicators on the uniform mesh: the four largest within 0.05 of the clamp ends
+/// and top corners, and none farther than 1/4 from them above 21 % (figure) or 14 %
+/// (literal) of the largest.
+#[test]
+fn adaptive_indicators_at_the_corners() {
+    let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
+    for (scn, far_percent) in [("figure", "21"), ("literal", "14")] {
+        let mut tris: Vec<(f64, f64)> = rows("adaptive_indicators.csv")
+            .iter()
+            .filter(|r| r["scenario"] == scn)
+            .map(|r| {
+                let v: Vec<f64> = ["x0", "y0", "x1", "y1", "x2", "y2"]
+                    .iter()
+                    .map(|k| super::num(r, k))
+                    .collect();
+                let c = [(v[0] + v[2] + v[4]) / 3.0, (v[1] + v[3] + v[5]) / 3.0];
+                let d = (points.iter())
+                    .map(|p| (c[0] - p[0]).hypot(c[1] - p[1]))
+                    .fold(f64::INFINITY, f64::min);
+                (super::num(r, "eta"), d)
+            })
+            .collect();
+        tris.sort_by(|a, b| b.0.total_cmp(&a.0));
+        assert!(
+            tris[..4].iter().all(|t| t.1 < 0.05),
+            "{scn}: {:?}",
+            &tris[..4]
+        );
+        let far = tris
+            .iter()
+            .filter(|t| t.1 > 0.25)
+            .map(|t| t.0)
+            .fold(0.0, f64::max);
+        assert_eq!(fix(100.0 * far / tris[0].0, 0), far_percent, "{scn}");
+    }
+}
+
 /// In the drawn meshes, each of the four points (clamp ends and top corners) has
 /// triangles at least 32 times smaller in area than any triangle farther than 1/4
 /// from all of them.
