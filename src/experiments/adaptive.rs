@@ -571,12 +571,52 @@ fn draw(
             (l.to_string(), tris)
         })
         .collect();
-    Ok(both(
+    both(
         dir,
         "adaptive_meshes",
         (1500, 1500),
         &Fig { meshes, series },
-    )?)
+    )?;
+    // The same errors against what they cost: a uniform or graded level's own solve
+    // (with its indicators), an adaptive level's solve and every level's before it.
+    let wall = col_f64(&df, "wall_s")?;
+    let mut work = vec![];
+    for (li, l) in LOADS.iter().enumerate() {
+        for (fi, f) in FAMILIES.iter().enumerate() {
+            let climbs = fi >= 2;
+            let mut spent = 0.0;
+            let pts = (0..scn.len())
+                .filter(|&i| scn[i] == *l && fam[i] == *f)
+                .map(|i| {
+                    spent = if climbs { spent + wall[i] } else { wall[i] };
+                    (spent, 100.0 * err[i])
+                })
+                .collect();
+            work.push((format!("{l}, {f}"), pts, colours[fi], li == 0));
+        }
+    }
+    Ok(both(dir, "adaptive_work", (1500, 1000), &Work(work))?)
+}
+
+/// The work–precision chart of the study's families.
+struct Work(Vec<Series>);
+
+impl Figure for Work {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        families(
+            root,
+            &self.0,
+            "error at T against the wall time that reached it",
+            (
+                "wall time, s (adaptive: its levels summed)",
+                (-4..=2).map(|e| 10f64.powi(e)).collect(),
+            ),
+            false,
+        )
+    }
 }
 
 impl Figure for Fig {
@@ -611,86 +651,105 @@ impl Figure for Fig {
                 }))
                 .map_err(e2s)?;
         }
-        let pts: Vec<(f64, f64)> = self.series.iter().flat_map(|s| s.1.clone()).collect();
-        let ((xmin, xmax), (ymin, ymax)) = evhi::output::plot::extent(&pts);
-        let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 1.5, ymax * 1.5));
-        let mut chart = LogLogChart {
-            caption: ("(c) error at T against the graded reference", 28),
-            label_areas: (76, 104),
-            margin: 28,
-            desc: ("unknowns N", "relative energy error at T, %"),
-            format: (
-                Some(&evhi::output::plot::plain),
-                Some(&evhi::output::plot::plain),
-            ),
-            fonts: (26, Some(26)),
-        }
-        .build(
+        families(
             &bottom,
-            (xr.0..xr.1)
-                .log_scale()
-                .with_key_points(keys_within(xr, (1..=7).map(|e| 10f64.powi(e)))),
-            (yr.0..yr.1).log_scale().with_key_points(keys_within(
-                yr,
-                [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0],
-            )),
-        )?;
-        for (label, s, c, solid) in &self.series {
-            let c = *c;
-            let style = c.stroke_width(if *solid { 3 } else { 2 });
-            if *solid {
-                chart
-                    .draw_series(LineSeries::new(s.clone(), style))
-                    .map_err(e2s)?
-                    .label(label.clone())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 30, y)], c.stroke_width(3))
-                    });
-            } else {
-                chart
-                    .draw_series(DashedLineSeries::new(s.clone(), 10, 6, style))
-                    .map_err(e2s)?
-                    .label(label.clone())
-                    .legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (10, 0)], c.stroke_width(2))
-                            + PathElement::new(vec![(16, 0), (26, 0)], c.stroke_width(2))
-                    });
-            }
+            &self.series,
+            "(c) error at T against the graded reference",
+            ("unknowns N", (1..=7).map(|e| 10f64.powi(e)).collect()),
+            true,
+        )
+    }
+}
+
+/// A log-log chart of every family's error at T (percent) against `x` (its
+/// description and key points), each scene's families solid or dashed, with the
+/// slope of order 1 in h through the first graded point if `guide`.
+fn families<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    series: &[Series],
+    caption: &str,
+    (x_desc, x_keys): (&str, Vec<f64>),
+    guide: bool,
+) -> Result<(), String> {
+    let pts: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.clone()).collect();
+    let ((xmin, xmax), (ymin, ymax)) = evhi::output::plot::extent(&pts);
+    let (xr, yr) = ((xmin / 1.5, xmax * 1.5), (ymin / 1.5, ymax * 1.5));
+    let mut chart = LogLogChart {
+        caption: (caption, 28),
+        label_areas: (76, 104),
+        margin: 28,
+        desc: (x_desc, "relative energy error at T, %"),
+        format: (
+            Some(&evhi::output::plot::plain),
+            Some(&evhi::output::plot::plain),
+        ),
+        fonts: (26, Some(26)),
+    }
+    .build(
+        area,
+        (xr.0..xr.1)
+            .log_scale()
+            .with_key_points(keys_within(xr, x_keys)),
+        (yr.0..yr.1).log_scale().with_key_points(keys_within(
+            yr,
+            [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0],
+        )),
+    )?;
+    for (label, s, c, solid) in series {
+        let c = *c;
+        let style = c.stroke_width(if *solid { 3 } else { 2 });
+        if *solid {
             chart
-                .draw_series(s.iter().map(|&p| {
-                    Circle::new(
-                        p,
-                        6,
-                        if *solid {
-                            c.filled()
-                        } else {
-                            c.stroke_width(2)
-                        },
-                    )
-                }))
-                .map_err(e2s)?;
-        }
-        // The slope of order 1 in h, N^(-1/2), through the first graded point.
-        if let Some(&(x0, y0)) = self.series.get(1).and_then(|s| s.1.first()) {
-            let guide = vec![(x0, y0), (xr.1 / 1.5, y0 * (xr.1 / 1.5 / x0).powf(-0.5))];
-            chart
-                .draw_series(DashedLineSeries::new(
-                    guide,
-                    6,
-                    6,
-                    evhi::output::plot::GREY_DARK.stroke_width(2),
-                ))
+                .draw_series(LineSeries::new(s.clone(), style))
                 .map_err(e2s)?
-                .label("N^(-1/2): order 1 in h")
-                .legend(|(x, y)| {
-                    let grey = evhi::output::plot::GREY_DARK.stroke_width(2);
+                .label(label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 30, y)], c.stroke_width(3))
+                });
+        } else {
+            chart
+                .draw_series(DashedLineSeries::new(s.clone(), 10, 6, style))
+                .map_err(e2s)?
+                .label(label.clone())
+                .legend(move |(x, y)| {
                     EmptyElement::at((x, y))
-                        + PathElement::new(vec![(0, 0), (6, 0)], grey)
-                        + PathElement::new(vec![(12, 0), (18, 0)], grey)
-                        + PathElement::new(vec![(24, 0), (30, 0)], grey)
+                        + PathElement::new(vec![(0, 0), (10, 0)], c.stroke_width(2))
+                        + PathElement::new(vec![(16, 0), (26, 0)], c.stroke_width(2))
                 });
         }
-        evhi::output::plot::legend(&mut chart, SeriesLabelPosition::LowerLeft, 24, 0.9)
+        chart
+            .draw_series(s.iter().map(|&p| {
+                Circle::new(
+                    p,
+                    6,
+                    if *solid {
+                        c.filled()
+                    } else {
+                        c.stroke_width(2)
+                    },
+                )
+            }))
+            .map_err(e2s)?;
     }
+    // The slope of order 1 in h, N^(-1/2), through the first graded point.
+    if let Some(&(x0, y0)) = series.get(1).and_then(|s| s.1.first()).filter(|_| guide) {
+        let guide = vec![(x0, y0), (xr.1 / 1.5, y0 * (xr.1 / 1.5 / x0).powf(-0.5))];
+        chart
+            .draw_series(DashedLineSeries::new(
+                guide,
+                6,
+                6,
+                evhi::output::plot::GREY_DARK.stroke_width(2),
+            ))
+            .map_err(e2s)?
+            .label("N^(-1/2): order 1 in h")
+            .legend(|(x, y)| {
+                let grey = evhi::output::plot::GREY_DARK.stroke_width(2);
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (6, 0)], grey)
+                    + PathElement::new(vec![(12, 0), (18, 0)], grey)
+                    + PathElement::new(vec![(24, 0), (30, 0)], grey)
+            });
+    }
+    evhi::output::plot::legend(&mut chart, SeriesLabelPosition::LowerLeft, 24, 0.9)
 }

@@ -334,7 +334,7 @@ fn adaptive_meshes() {
     snapshot_outputs_dropping(
         "adaptive",
         &["adaptive_convergence.csv"],
-        &["adaptive_meshes", "adaptive_indicators"],
+        &["adaptive_meshes", "adaptive_indicators", "adaptive_work"],
         0.0,
         &["wall_s"],
     );

@@ -171,6 +171,38 @@ fn adaptive_estimator_cost() {
     assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["25", "42"]);
 }
 
+/// The wall time to the finest uniform level's error: the adaptive family's levels
+/// summed up to the first below it, the uniform level's own, and the first graded level
+/// below it.
+#[test]
+fn adaptive_work_against_uniform() {
+    let stated = [
+        ("figure", "9.3", "0.08", "0.14", "0.03"),
+        ("literal", "7.3", "0.05", "0.10", "0.03"),
+    ];
+    for (scn, err, adaptive, uniform, graded) in stated {
+        let of = |fam: &str, col: &str| column(CONV, &[("scenario", scn), ("family", fam)], col);
+        let (ue, uw) = (of("uniform", "err_T"), of("uniform", "wall_s"));
+        let target = *ue.last().unwrap();
+        let (ae, aw) = (of("adaptive", "err_T"), of("adaptive", "wall_s"));
+        let reach = ae.iter().position(|&x| x <= target).expect("reached");
+        let spent: f64 = aw[..=reach].iter().sum();
+        let (ge, gw) = (of("graded", "err_T"), of("graded", "wall_s"));
+        let g = ge.iter().position(|&x| x <= target).expect("reached");
+        assert_eq!(
+            [
+                fix(100.0 * target, 1),
+                fix(spent, 2),
+                fix(*uw.last().unwrap(), 2),
+                fix(gw[g], 2)
+            ],
+            [err, adaptive, uniform, graded],
+            "{scn}"
+        );
+        assert!(gw[g] < spent && spent < *uw.last().unwrap(), "{scn}");
+    }
+}
+
 /// The indicators on the uniform mesh: the four largest within 0.05 of the clamp ends
 /// and top corners, and none farther than 1/4 from them above 21 % (figure) or 14 %
 /// (literal) of the largest.
