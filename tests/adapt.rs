@@ -334,6 +334,27 @@ fn solve_adapt_runs_every_shipped_mesh_scene() {
     }
 }
 
+/// `--timings` with `--adapt` prints the levels' summed wall time with the
+/// estimator's share, and the last level's phases.
+#[test]
+fn solve_adapt_timings_report_the_estimator() {
+    let dir = scratch("adapt-timings");
+    let err = ok(&evhi_with(
+        "solve --scenario figure --adapt 0.001 --max-dofs 300 --steps 4 --timings --out",
+    )
+    .arg(dir.join("run"))
+    .output()
+    .unwrap());
+    assert_contains(
+        &err,
+        &[
+            "levels (s):",
+            "of which estimator",
+            "last level, timings (s):",
+        ],
+    );
+}
+
 /// A tolerance met is said as such.
 #[test]
 fn solve_adapt_says_the_tolerance_stopped_it() {

@@ -17,8 +17,9 @@ use std::time::Instant;
 
 /// The options that mean nothing with `--adapt`, refused by name.
 fn refuse_others(args: &SolveArgs) -> Result<(), InputError> {
-    let why = "not with --adapt (the adaptive run makes its own meshes from the coarsest \
-               grid that resolves the scene and writes the estimator's eta itself)";
+    let why = "not with --adapt (the adaptive run makes its own meshes, from the coarsest \
+               grid that resolves the scene or from the file's mesh, and writes the \
+               estimator's eta itself)";
     let given = [
         ("--n", args.n.map(|n| n.to_string())),
         (
@@ -153,6 +154,7 @@ pub fn run(
         adaptation.levels.len()
     );
     let run = &solution.run;
+    let t_out = Instant::now();
     evhi::output::run::write(
         &out,
         &scn,
@@ -178,6 +180,18 @@ pub fn run(
     super::outputs::write_eta(&out, &scn, run, &eta, None)?;
     evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
+    if args.timings {
+        // The levels' wall and the estimator's share of it, then the last level's
+        // phases as a plain run prints them.
+        let (walls, est): (f64, f64) = (adaptation.levels.iter())
+            .fold((0.0, 0.0), |(w, e), l| (w + l.wall_s, e + l.estimator_s));
+        evhi::diag_text!(
+            "levels (s): {} levels {walls:.4}, of which estimator {est:.4} ({:.1} %)\nlast level, {}",
+            adaptation.levels.len(),
+            100.0 * est / walls,
+            evhi::output::run::timings(&sim, run, t_out.elapsed(), wall.elapsed(), None)
+        );
+    }
     evhi::diag!(
         "solved: {} levels, last {} unknowns with {} steps, largest certificate {:.1e}, {:.2} s wall; run directory {}",
         adaptation.levels.len(),

@@ -86,7 +86,8 @@ pub struct SolveArgs {
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
     pub vtk_every: Option<u64>,
     /// Print the wall time of each phase (assembly, factorisation, condensation, steps,
-    /// and the estimator on the last step with --estimate).
+    /// and the estimator on the last step with --estimate; with --adapt, the levels'
+    /// summed wall time and the estimator's share of it, then the last level's phases).
     #[arg(long)]
     pub timings: bool,
     /// Also estimate the error of the last step by the residual estimator (element,
