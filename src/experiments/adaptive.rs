@@ -72,7 +72,7 @@ fn plan(quick: bool) -> Plan {
 
 /// Refines `from` until every longest edge is within level `n`'s bound, graded
 /// towards `points` (uniform if none).
-fn level(
+pub(super) fn level(
     forest: &mut Forest,
     geo: &Geometry,
     from: &Leaves,
@@ -92,20 +92,20 @@ fn level(
 }
 
 /// One solved level of a family for one scene.
-struct Lev {
-    family: &'static str,
-    scene: usize,
-    level: usize,
-    leaves: Leaves,
-    dofs: usize,
+pub(super) struct Lev {
+    pub(super) family: &'static str,
+    pub(super) scene: usize,
+    pub(super) level: usize,
+    pub(super) leaves: Leaves,
+    pub(super) dofs: usize,
     /// Fields at $t_0, \dots, t_N$ (free dofs).
-    fields: Vec<Vec<f64>>,
-    estimate: f64,
-    wall_s: f64,
+    pub(super) fields: Vec<Vec<f64>>,
+    pub(super) estimate: f64,
+    pub(super) wall_s: f64,
 }
 
 /// Keeps every step's field.
-struct Keep;
+pub(super) struct Keep;
 impl AdaptObserver for Keep {
     fn keep_fields(&self) -> bool {
         true
@@ -113,10 +113,10 @@ impl AdaptObserver for Keep {
 }
 
 /// Keeps every adaptive level.
-struct Collect {
-    family: &'static str,
-    scene: usize,
-    levels: Vec<Lev>,
+pub(super) struct Collect {
+    pub(super) family: &'static str,
+    pub(super) scene: usize,
+    pub(super) levels: Vec<Lev>,
 }
 impl AdaptObserver for Collect {
     fn keep_fields(&self) -> bool {
@@ -137,7 +137,7 @@ impl AdaptObserver for Collect {
 }
 
 /// The reference's fields at every step.
-struct Fields(Vec<Vec<f64>>, usize);
+pub(super) struct Fields(pub(super) Vec<Vec<f64>>, pub(super) usize);
 impl Observer for Fields {
     fn wants_field(&self, _: usize) -> bool {
         true
@@ -429,6 +429,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     if let Some(n) = shown_n {
         super::indicators::write(ctx, n, plan.steps, &shown)?;
     }
+    super::adaptive_user::run(ctx, plan.steps, plan.max_dofs / 4)?;
     draw(&ctx.figures, &path, &mesh_path)
 }
 

@@ -7,6 +7,7 @@
 //! snapshot; the full mode is what `evhi reproduce` runs.
 
 pub mod adaptive;
+pub mod adaptive_user;
 pub mod convergence;
 pub mod exact;
 pub mod example;
