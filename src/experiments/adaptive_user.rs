@@ -1,13 +1,14 @@
-//! The adaptive loop on scenes nobody graded: user scenes whose singular points no
-//! preset knows (the cantilever clamped along its left side, with a law that jumps
-//! down; the five-branch law's scene), each from the coarsest grid that resolves it.
+//! The adaptive loop on scenes nobody graded: the cantilever, clamped along its left
+//! side, whose singular points no preset names (and whose law jumps down), and the
+//! five-branch scene, the paper's body with a law whose upward jump falls where the
+//! solution puts it; each from the coarsest grid that resolves it.
 //! Per scene, the uniform family (every triangle bisected to the next level's size)
 //! and the adaptive family (Dörfler marking on the estimator's maximum over time), to
 //! the same budget of unknowns, against a reference that nobody graded either: the
 //! adaptive loop continued to [`REFERENCE_FACTOR`] times the budget, refined to hold
 //! both families' last meshes, so that every mesh embeds in it exactly.
 
-use super::adaptive::{Collect, Fields, Keep, Lev, level};
+use super::adaptive::{Collect, FAMILIES, Fields, Keep, Lev, level};
 use super::{Ctx, ExpError};
 use evhi::adapt::{AdaptSettings, adapt_from, initial_forest, solve_estimating};
 use evhi::mesh::Dofs;
@@ -30,9 +31,6 @@ const SCENES: [(&str, &str); 2] = [
 
 /// The reference's budget over the families'.
 pub const REFERENCE_FACTOR: usize = 16;
-
-/// The families of this study.
-const FAMILIES: [&str; 2] = ["uniform", "adaptive"];
 
 /// Runs both scenes (`steps` steps, a budget of `budget` unknowns) and writes
 /// `adaptive_user.csv`.
@@ -60,7 +58,7 @@ pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
             let est = solve_estimating(&sim, evhi::adapt::Aggregate::Max, &mut Keep)?;
             let total: f64 = est.eta_sq.iter().sum();
             levs.push(Lev {
-                family: FAMILIES[0],
+                family: FAMILIES[0], // uniform
                 scene: i,
                 level: levs.len(),
                 leaves: leaves.clone(),
@@ -79,7 +77,7 @@ pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
         // The adaptive family, in the same forest.
         let adapt = AdaptSettings::default().with_tol(1e-6);
         let mut collect = Collect {
-            family: FAMILIES[1],
+            family: FAMILIES[2], // adaptive
             scene: i,
             levels: vec![],
         };
