@@ -22,7 +22,7 @@ use super::{Ctx, ExpError};
 use evhi::adapt::{AdaptObserver, AdaptSettings, Aggregate, Solved, solve_estimating};
 use evhi::bisection::{Forest, Leaves, centroid};
 use evhi::geometry::{Geometry, PAPER_SINGULAR};
-use evhi::mesh::Dofs;
+use evhi::mesh::{Dofs, Mesh};
 use evhi::output::csv::{Table, col_f64, col_str, read_csv};
 use evhi::output::plot::{Figure, LogLogChart, both, e2s, keys_within, okabe_ito as oi};
 use evhi::scenario::Scenario;
@@ -312,24 +312,19 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         })
         .collect();
     // Each level's errors at every step, the levels shared between two threads.
-    let error_of = |lev: &Lev| -> (f64, f64) {
-        let mesh = forest.mesh(&lev.leaves, 4);
-        let dofs = Dofs::new(&mesh, true);
-        let interp = forest.interpolation(&lev.leaves, &ref_mesh);
-        let (mut at_t, mut max) = (f64::NAN, 0.0f64);
-        for j in 1..=plan.steps {
-            let u = interp.apply(&dofs.expand(&lev.fields[j]));
-            let diff: Vec<[f64; 2]> = ref_fields[lev.scene][j]
-                .iter()
-                .zip(&u)
-                .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
-                .collect();
-            let e =
-                (norm_geo.norms(&ref_mesh, &g, &diff).energy_sq / ref_norms[lev.scene][j]).sqrt();
-            max = max.max(e);
-            at_t = e;
-        }
-        (at_t, max)
+    let reference = Reference {
+        mesh: &ref_mesh,
+        norm_geo: &norm_geo,
+        g: &g,
+    };
+    let error_of = |lev: &Lev| {
+        reference.error(
+            &forest,
+            lev,
+            4,
+            &ref_fields[lev.scene],
+            &ref_norms[lev.scene],
+        )
     };
     let errors: Vec<(f64, f64)> = std::thread::scope(|s| {
         let second = s.spawn(|| {
@@ -431,6 +426,43 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     }
     super::adaptive_user::run(ctx, plan.steps, plan.max_dofs / 4)?;
     draw(&ctx.figures, &path, &mesh_path)
+}
+
+/// A reference mesh of a bisection forest, with what a level's error against it needs.
+pub(super) struct Reference<'a> {
+    pub(super) mesh: &'a Mesh,
+    pub(super) norm_geo: &'a evhi::norms::NormGeometry,
+    pub(super) g: &'a evhi::material::Isotropic,
+}
+
+impl Reference<'_> {
+    /// The relative energy error $\|u_{ref} - u\|_E / \|u_{ref}\|_E$ of `lev` (a mesh of
+    /// `forest`, labelled `n`) at $T$ and its largest over the steps, each step's field
+    /// carried to the reference exactly: `ref_fields` the reference's nodal fields at
+    /// every step (step 0 first), `ref_norms` their $\|\cdot\|_E^2$.
+    pub(super) fn error(
+        &self,
+        forest: &Forest,
+        lev: &Lev,
+        n: usize,
+        ref_fields: &[Vec<[f64; 2]>],
+        ref_norms: &[f64],
+    ) -> (f64, f64) {
+        let mesh = forest.mesh(&lev.leaves, n);
+        let dofs = Dofs::new(&mesh, true);
+        let interp = forest.interpolation(&lev.leaves, self.mesh);
+        let (mut at_t, mut max) = (f64::NAN, 0.0f64);
+        for j in 1..lev.fields.len() {
+            let u = interp.apply(&dofs.expand(&lev.fields[j]));
+            let diff: Vec<[f64; 2]> = (ref_fields[j].iter().zip(&u))
+                .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
+                .collect();
+            let e = (self.norm_geo.norms(self.mesh, self.g, &diff).energy_sq / ref_norms[j]).sqrt();
+            max = max.max(e);
+            at_t = e;
+        }
+        (at_t, max)
+    }
 }
 
 /// The levels the summary's order is fitted over.

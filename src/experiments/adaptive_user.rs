@@ -8,7 +8,7 @@
 //! adaptive loop continued to [`REFERENCE_FACTOR`] times the budget, refined to hold
 //! both families' last meshes, so that every mesh embeds in it exactly.
 
-use super::adaptive::{Collect, FAMILIES, Fields, Keep, Lev, level};
+use super::adaptive::{Collect, FAMILIES, Fields, Keep, Lev, Reference, level};
 use super::{Ctx, ExpError};
 use evhi::adapt::{AdaptSettings, adapt_from, initial_forest, solve_estimating};
 use evhi::mesh::Dofs;
@@ -126,20 +126,13 @@ pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
         let ref_norms: Vec<f64> = (ref_fields.iter())
             .map(|u| norm_geo.norms(&ref_mesh, &g, u).energy_sq)
             .collect();
+        let reference = Reference {
+            mesh: &ref_mesh,
+            norm_geo: &norm_geo,
+            g: &g,
+        };
         for lev in &levs {
-            let mesh = forest.mesh(&lev.leaves, n0);
-            let dofs = Dofs::new(&mesh, true);
-            let interp = forest.interpolation(&lev.leaves, &ref_mesh);
-            let (mut at_t, mut max) = (f64::NAN, 0.0f64);
-            for j in 1..=steps {
-                let u = interp.apply(&dofs.expand(&lev.fields[j]));
-                let diff: Vec<[f64; 2]> = (ref_fields[j].iter().zip(&u))
-                    .map(|(a, b)| [a[0] - b[0], a[1] - b[1]])
-                    .collect();
-                let e = (norm_geo.norms(&ref_mesh, &g, &diff).energy_sq / ref_norms[j]).sqrt();
-                max = max.max(e);
-                at_t = e;
-            }
+            let (at_t, max) = reference.error(&forest, lev, n0, &ref_fields, &ref_norms);
             cols.0.push(scn.name().to_string());
             cols.1.push(lev.family.to_string());
             cols.2.push(lev.level as u64);
