@@ -347,7 +347,7 @@ pub fn level_scene(
     match scn.body() {
         None => Ok((scn.clone(), Arc::new(forest.mesh(leaves, n)))),
         Some(body) => {
-            let fine = scn.with_body_mesh(forest.leaf_msh(leaves, &body.mesh))?;
+            let fine = scn.on_refined_mesh(forest.leaf_msh(leaves, &body.mesh))?;
             let mesh = Mesh::from_body(fine.body().expect("a mesh scene"));
             Ok((fine, Arc::new(mesh)))
         }

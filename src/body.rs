@@ -171,8 +171,9 @@ impl Body {
     /// The same roles on another triangulation of the body (a refinement of its
     /// file's mesh, whose groups name the same parts): every part checked again, as
     /// when the scene was read; the bytes a run directory keeps are the new mesh's, as
-    /// MSH 4.1.
-    pub fn with_mesh(&self, mesh: MshMesh) -> Result<Body, InputError> {
+    /// MSH 4.1. The triangulation itself is trusted (a refinement made in the crate);
+    /// [`crate::scenario::Scenario::with_body_mesh`] checks one from outside first.
+    pub(crate) fn with_mesh(&self, mesh: MshMesh) -> Result<Body, InputError> {
         let supports: Vec<(String, crate::support::Hold)> = (self.supports.iter())
             .map(|s| (s.part.clone(), s.hold))
             .collect();

@@ -108,7 +108,7 @@ impl Scenario {
             ));
         };
         let r = refine(&body.mesh);
-        let scn = self.with_body_mesh(r.mesh.clone())?;
+        let scn = self.on_refined_mesh(r.mesh.clone())?;
         Ok((scn, r))
     }
 }

@@ -317,3 +317,24 @@ fn a_forest_from_any_triangulation_refines_conformingly() {
     let c = [0, 1].map(|k| smallest.iter().map(|&v| nodes[v][k]).sum::<f64>() / 3.0);
     assert!((c[0] - target[0]).hypot(c[1] - target[1]) < 0.1, "{c:?}");
 }
+
+/// A triangulation given from outside is checked as the file reader checks one: a
+/// folded mesh (a triangle repeated) and a body in two pieces are refused by name.
+#[test]
+fn a_mesh_given_to_a_scene_is_checked_as_a_file() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenarios/examples/holed_block.toml");
+    let (scn, _) = evhi::scenario::Scenario::read(path.to_str().unwrap()).unwrap();
+    let file = scn.body().expect("a mesh scene").mesh.as_ref().clone();
+    assert!(scn.with_body_mesh(file.clone()).is_ok());
+    let mut folded = file.clone();
+    folded.triangles.push(folded.triangles[0]);
+    let e = scn.with_body_mesh(folded).unwrap_err().to_string();
+    assert!(e.contains("tangled"), "{e}");
+    let mut apart = file.clone();
+    let n = apart.nodes.len();
+    apart.nodes.extend([[5.0, 5.0], [6.0, 5.0], [5.0, 6.0]]);
+    apart.triangles.push([n, n + 1, n + 2]);
+    let e = scn.with_body_mesh(apart).unwrap_err().to_string();
+    assert!(e.contains("pieces"), "{e}");
+}

@@ -250,9 +250,22 @@ impl Scenario {
     }
 
     /// A mesh scene on another triangulation of its body (a refinement of its file's
-    /// mesh), the parts keeping their roles ([`Body::with_mesh`]); refused on the
-    /// rectangle.
+    /// mesh), the parts keeping their roles; refused on the rectangle. The mesh is
+    /// checked as the file reader checks one ([`crate::msh::parse`] of it written as
+    /// MSH 4.1: no zero-area or tangled triangle, one piece, the groups on the
+    /// boundary), then every part as when the scene was read.
     pub fn with_body_mesh(&self, mesh: crate::msh::MshMesh) -> Result<Scenario, InputError> {
+        let checked = crate::msh::parse(crate::msh::write(&mesh).as_bytes(), &mesh.file)?;
+        self.on_refined_mesh(checked)
+    }
+
+    /// [`Scenario::with_body_mesh`] for a triangulation the crate made by refining the
+    /// body's own (uniform refinement, bisection), which keeps the reader's invariants:
+    /// only the parts are checked again.
+    pub(crate) fn on_refined_mesh(
+        &self,
+        mesh: crate::msh::MshMesh,
+    ) -> Result<Scenario, InputError> {
         let Some(body) = self.body() else {
             return Err(InputError::field(
                 "geometry.mesh",
