@@ -2,6 +2,7 @@
 //! from tests/claims.rs.
 
 use super::{after, column, fix, max, min, rows};
+use std::collections::HashMap;
 
 const CONV: &str = "adaptive_convergence.csv";
 const SUMMARY: &str = "adaptive_summary.csv";
@@ -14,6 +15,18 @@ fn header(file: &str) -> String {
         .filter(|l| l.starts_with('#'))
         .collect::<Vec<_>>()
         .join("\n")
+}
+
+/// The triangles a scene's rows of `file` hold, each as (x0, y0, x1, y1, x2, y2) with
+/// its row.
+fn triangles(file: &str, scn: &str) -> Vec<(Vec<f64>, HashMap<String, String>)> {
+    (rows(file).into_iter())
+        .filter(|r| r["scenario"] == scn)
+        .map(|r| {
+            let v = ["x0", "y0", "x1", "y1", "x2", "y2"].map(|k| super::num(&r, k));
+            (v.to_vec(), r)
+        })
+        .collect()
 }
 
 /// (dofs, err_T) of a scene's family, level by level.
@@ -221,18 +234,13 @@ fn adaptive_indicators_at_the_corners() {
     let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
     for (scn, far_percent) in [("figure", "21"), ("literal", "14")] {
         // (eta, distance to the nearest point, that point)
-        let mut tris: Vec<(f64, f64, usize)> = rows("adaptive_indicators.csv")
-            .iter()
-            .filter(|r| r["scenario"] == scn)
-            .map(|r| {
-                let v: Vec<f64> = ["x0", "y0", "x1", "y1", "x2", "y2"]
-                    .iter()
-                    .map(|k| super::num(r, k))
-                    .collect();
+        let mut tris: Vec<(f64, f64, usize)> = triangles("adaptive_indicators.csv", scn)
+            .into_iter()
+            .map(|(v, r)| {
                 let c = [(v[0] + v[2] + v[4]) / 3.0, (v[1] + v[3] + v[5]) / 3.0];
                 let d = |k: usize| (c[0] - points[k][0]).hypot(c[1] - points[k][1]);
                 let near = (0..4).min_by(|&a, &b| d(a).total_cmp(&d(b))).unwrap();
-                (super::num(r, "eta"), d(near), near)
+                (super::num(&r, "eta"), d(near), near)
             })
             .collect();
         tris.sort_by(|a, b| b.0.total_cmp(&a.0));
@@ -315,14 +323,9 @@ fn adaptive_user_efficiency() {
 fn adaptive_meshes_find_the_corners() {
     let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
     for scn in ["figure", "literal"] {
-        let tris: Vec<([f64; 2], f64)> = rows(MESHES)
-            .iter()
-            .filter(|r| r["scenario"] == scn)
-            .map(|r| {
-                let v: Vec<f64> = ["x0", "y0", "x1", "y1", "x2", "y2"]
-                    .iter()
-                    .map(|k| super::num(r, k))
-                    .collect();
+        let tris: Vec<([f64; 2], f64)> = triangles(MESHES, scn)
+            .into_iter()
+            .map(|(v, _)| {
                 let area =
                     0.5 * ((v[2] - v[0]) * (v[5] - v[1]) - (v[4] - v[0]) * (v[3] - v[1])).abs();
                 (
