@@ -76,5 +76,6 @@ pub mod step;
 pub mod study;
 pub mod support;
 pub mod term;
+pub mod time_adapt;
 pub mod time_grid;
 pub mod timing;

@@ -237,6 +237,23 @@ impl<'d> Reduced<'d> {
         self.energy(load, &d)
     }
 
+    /// $\|u_n - \hat u_n\|_E$ with the linear predictor $\hat u_n = u_{n-1} +
+    /// r\,(u_{n-1} - u_{n-2})$ ([`crate::time_adapt`]), of the states $u_n$, $u_{n-1}$,
+    /// $u_{n-2}$, without a solve.
+    pub fn predictor_gap(&self, load: &Load, (u, u1, u2): (&State, &State, &State), r: f64) -> f64 {
+        let c = |a: f64, b: f64, c: f64| a - (1.0 + r) * b + r * c;
+        let d = State {
+            y: c(u.y, u1.y, u2.y),
+            w: (u.w.iter().zip(&u1.w).zip(&u2.w))
+                .map(|((a, b), e)| c(*a, *b, *e))
+                .collect(),
+            r: (u.r.iter().zip(&u1.r).zip(&u2.r))
+                .map(|((a, b), e)| c(*a, *b, *e))
+                .collect(),
+        };
+        self.energy(load, &d)
+    }
+
     fn at(&self, k: f64, cmin: f64) -> Result<AtK, RunError> {
         let ck = self.c + k;
         let s = Mat::from_fn(self.s_b.nrows(), self.s_b.ncols(), |i, j| {
@@ -504,11 +521,15 @@ impl<'d> Reduced<'d> {
             last_contact = contact;
         }
         timings.steps += clock.elapsed().as_secs_f64() - rescale_s;
-        let k_min = grid.k(1);
+        let k_min = grid.k_min();
+        let k_top = (1..=steps).map(|s| grid.k(s)).fold(k_min, f64::max);
         Ok(March {
             records,
             hessian_min,
-            s_eigen: ((self.c + k_min) * self.lambda_min, at.lambda_max),
+            s_eigen: (
+                (self.c + k_min) * self.lambda_min,
+                (self.c + k_top) * self.lambda_max,
+            ),
         })
     }
 }

@@ -145,6 +145,92 @@ impl TimeGrid {
         TimeGrid::layer(scn.t_end, steps, halvings, fastest_relaxation(scn))
     }
 
+    /// The grid of steps of $2^{e_i}$ units of $(T/N)/2^J$ (`exponents` $= e_1, e_2,
+    /// \dots$), each starting at a multiple of its own length, together $N 2^J$ units.
+    /// The shortest step is made one unit ($J$ lowered by its exponent), so the grid
+    /// of steps all $T/N$ is the uniform one.
+    pub fn from_exponents(
+        t_end: f64,
+        n: usize,
+        halvings: u32,
+        exponents: &[u32],
+    ) -> Result<TimeGrid, InputError> {
+        let bad = |what: String| InputError::field("time grid", format!("{exponents:?}"), what);
+        if halvings > MAX_HALVINGS {
+            return Err(bad(format!(
+                "at most {MAX_HALVINGS} halvings, not {halvings}"
+            )));
+        }
+        let total = (n as u64)
+            .checked_mul(1u64 << halvings)
+            .filter(|&t| t < 1 << 52)
+            .ok_or_else(|| bad(format!("N 2^J below 2^52 (N = {n}, J = {halvings})")))?;
+        let shift = exponents.iter().copied().min().unwrap_or(0).min(halvings);
+        let (mut at, mut ends, mut exps) = (0u64, vec![], vec![]);
+        for (i, &e) in exponents.iter().enumerate() {
+            if e > halvings || at % (1u64 << e) != 0 {
+                return Err(bad(format!(
+                    "steps of at most T/N, each starting at a multiple of its length \
+                     (step {} does not)",
+                    i + 1
+                )));
+            }
+            at += 1u64 << e;
+            ends.push(at >> shift);
+            exps.push(e - shift);
+        }
+        if at != total {
+            return Err(bad(format!(
+                "steps that add up to T ({at} of {total} units)"
+            )));
+        }
+        let halvings = halvings - shift;
+        if halvings == 0 {
+            return Ok(TimeGrid::uniform(t_end, n));
+        }
+        Ok(TimeGrid {
+            t_end,
+            n,
+            halvings,
+            exponents: exps,
+            ends,
+        })
+    }
+
+    /// Each step's exponent $e$: its length is $2^e$ units of $(T/N)/2^J$.
+    pub fn exponents(&self) -> Vec<u32> {
+        if self.halvings == 0 {
+            vec![0; self.n]
+        } else {
+            self.exponents.clone()
+        }
+    }
+
+    /// The grid with each step of `marked` (indices from 0) cut into two halves.
+    pub fn bisect(&self, marked: &[usize]) -> Result<TimeGrid, InputError> {
+        let mut exps = self.exponents();
+        let mut halvings = self.halvings;
+        if marked.iter().any(|&i| exps.get(i) == Some(&0)) {
+            halvings += 1;
+            exps.iter_mut().for_each(|e| *e += 1);
+        }
+        let mut cut = vec![false; exps.len()];
+        for &i in marked {
+            if let Some(c) = cut.get_mut(i) {
+                *c = true;
+            }
+        }
+        let mut out = Vec::with_capacity(exps.len() + marked.len());
+        for (e, c) in exps.into_iter().zip(cut) {
+            if c {
+                out.extend([e - 1, e - 1]);
+            } else {
+                out.push(e);
+            }
+        }
+        TimeGrid::from_exponents(self.t_end, self.n, halvings, &out)
+    }
+
     /// The number of steps $M$.
     pub fn len(&self) -> usize {
         if self.halvings == 0 {
@@ -183,10 +269,10 @@ impl TimeGrid {
         self.t_end / (self.n as u64 * (1u64 << self.halvings)) as f64
     }
 
-    /// $t_n$ of step `step` in $1..=M$ (on the uniform grid $n\,(T/N)$, as every
+    /// $t_n$ of step `step` in $0..=M$ (on the uniform grid $n\,(T/N)$, as every
     /// uniform run has computed it).
     pub fn t(&self, step: usize) -> f64 {
-        if self.halvings == 0 {
+        if self.halvings == 0 || step == 0 {
             step as f64 * self.k_max()
         } else {
             self.ends[step - 1] as f64 * self.unit()
@@ -203,13 +289,22 @@ impl TimeGrid {
         }
     }
 
-    /// The index of step `step`'s length among the grid's distinct lengths, shortest
-    /// first (0 on the uniform grid): the steps' lengths never shrink.
+    /// The index of step `step`'s length among the powers of two from the shortest
+    /// step up (0 on the uniform grid; a layer grid's lengths never shrink).
     pub fn size_index(&self, step: usize) -> usize {
         if self.halvings == 0 {
             0
         } else {
-            (self.exponents[step - 1] - self.exponents[0]) as usize
+            self.exponents[step - 1] as usize
+        }
+    }
+
+    /// The shortest step: $(T/N)/2^J$ (every grid has a step of one unit).
+    pub fn k_min(&self) -> f64 {
+        if self.halvings == 0 {
+            self.k_max()
+        } else {
+            self.unit()
         }
     }
 

@@ -176,6 +176,7 @@ fn time_study() {
             "time_study.csv",
             "time_controls.csv",
             "time_layer.csv",
+            "time_adaptive.csv",
             "adaptive_time.csv",
         ],
         &["time_study_max", "time_study_T", "time_controls"],

@@ -39,17 +39,57 @@ pub struct LayerRow {
     pub err_t: f64,
 }
 
-/// Measures the layer grids of longest step $T/N$ (`n`) and each $J$ in `halvings`
-/// for the scenes `scns` (name, history label, scene) on `plan`'s mesh and reference.
+/// One level of the adaptive choice of the time grid ([`crate::time_adapt`]) for one
+/// scene, measured as the layer grids are.
+#[derive(Debug, Clone)]
+pub struct AdaptiveRow {
+    /// The scene (as in the time study's rows).
+    pub scenario: String,
+    /// The scene's load history label (as in the time study's rows).
+    pub history: String,
+    /// The level, from 0 (the uniform grid of $N_0$ steps).
+    pub level: usize,
+    /// The grid's steps.
+    pub steps: usize,
+    /// $J$: the shortest step is $(T/N_0)/2^J$.
+    pub halvings: u32,
+    /// The shortest step.
+    pub k_min: f64,
+    /// The estimate $\sum_n\eta_n / \max_n\|u_n\|_E$.
+    pub estimate: f64,
+    /// Largest error over the grid's times relative to the reference's largest norm
+    /// there.
+    pub err_max: f64,
+    /// The relative error at $T$.
+    pub err_t: f64,
+}
+
+/// What a time study of grids returns: the layer grids' rows and the adaptive levels.
+pub struct Grids {
+    /// The layer grids' rows, per scene by $J$.
+    pub layer: Vec<LayerRow>,
+    /// The adaptive levels' rows, per scene by level.
+    pub adaptive: Vec<AdaptiveRow>,
+}
+
+/// Measures the layer grids of longest step $T/N$ (`n`) and each $J$ in `halvings`,
+/// and the levels of the adaptive choice of the grid with settings `adapt` (its $J$
+/// capped where $N_0 2^J$ still divides the reference's steps), for the scenes `scns`
+/// (name, history label, scene) on `plan`'s mesh and reference.
 pub fn study(
     plan: &Plan,
     ctx: &Ctx,
     scns: &[(String, String, Scenario)],
     n: usize,
     halvings: &[u32],
-) -> Result<Vec<LayerRow>, ExpError> {
+    adapt: &crate::time_adapt::Settings,
+) -> Result<Grids, ExpError> {
+    let mut out = Grids {
+        layer: vec![],
+        adaptive: vec![],
+    };
     let Some(first) = scns.first() else {
-        return Ok(vec![]);
+        return Ok(out);
     };
     if let Some(&j) = halvings
         .iter()
@@ -62,6 +102,21 @@ pub fn study(
                 "a J with N 2^J dividing the reference's {} steps (N = {n})",
                 plan.n_ref
             ),
+        )
+        .into());
+    }
+    let adapt = crate::time_adapt::Settings {
+        max_halvings: (0..=adapt.max_halvings)
+            .rev()
+            .find(|&j| plan.n_ref.is_multiple_of(adapt.n0 << j))
+            .unwrap_or(0),
+        ..*adapt
+    };
+    if !plan.n_ref.is_multiple_of(adapt.n0) {
+        return Err(crate::error::InputError::field(
+            "n0",
+            adapt.n0,
+            format!("a number of steps dividing the reference's {}", plan.n_ref),
         )
         .into());
     }
@@ -78,7 +133,6 @@ pub fn study(
     let mut timings = crate::scheme::Timings::default();
     let op = sim.reduced_operator(&disc, &mut timings)?;
     let tol = crate::scheme::CERTIFICATE_TOL;
-    let mut rows = vec![];
     ctx.add_units(scns.len());
     for (name, label, scn) in scns {
         let load = op.load_of(scn);
@@ -94,15 +148,29 @@ pub fn study(
             &mut timings,
             &mut |s| refs.push((s.state.clone(), op.energy(&load, s.state))),
         )?;
-        for &j in halvings {
-            let grid = TimeGrid::of(scn, n, j)?;
-            let stride = plan.n_ref / (n << j);
+        // ANCHOR: measure_grid
+        // One grid's errors against the reference at its own times, and each step's
+        // distance from the linear predictor (crate::time_adapt).
+        let mut measure = |grid: &TimeGrid| -> Result<Measured, ExpError> {
+            let stride = plan.n_ref / (grid.n() << grid.halvings());
             let last = grid.len();
-            let (mut e_max, mut r_max, mut e_t) = (0.0f64, 0.0f64, f64::NAN);
+            let zero = crate::reduced::State {
+                y: 0.0,
+                w: vec![0.0; load.q.len()],
+                r: vec![0.0; load.q.len()],
+            };
+            let (mut u1, mut u2) = (zero.clone(), zero);
+            let mut m = Measured {
+                err_max: 0.0,
+                ref_max: 0.0,
+                err_t: f64::NAN,
+                gaps: Vec::with_capacity(last),
+                norm_max: 0.0,
+            };
             op.march_on(
                 scn,
                 &load,
-                &grid,
+                grid,
                 plan.solver.build().as_mut(),
                 tol,
                 &|_| false,
@@ -111,27 +179,69 @@ pub fn study(
                     let at = grid.units(s.step) as usize * stride - 1;
                     let (st_ref, r) = &refs[at];
                     let e = op.energy_diff(&load, st_ref, s.state);
-                    e_max = e_max.max(e);
-                    r_max = r_max.max(*r);
+                    m.err_max = m.err_max.max(e);
+                    m.ref_max = m.ref_max.max(*r);
                     if s.step == last {
-                        e_t = e / r;
+                        m.err_t = e / r;
                     }
+                    let (ratio, _) = crate::time_adapt::predictor(grid, s.step);
+                    m.gaps
+                        .push(op.predictor_gap(&load, (s.state, &u1, &u2), ratio));
+                    m.norm_max = m.norm_max.max(s.record.energy_norm);
+                    u2 = std::mem::replace(&mut u1, s.state.clone());
                 },
             )?;
-            rows.push(LayerRow {
+            Ok(m)
+        };
+        // ANCHOR_END: measure_grid
+        for &j in halvings {
+            let grid = TimeGrid::of(scn, n, j)?;
+            let m = measure(&grid)?;
+            out.layer.push(LayerRow {
                 scenario: name.clone(),
                 history: label.clone(),
                 n,
                 halvings: j,
-                steps: last,
+                steps: grid.len(),
                 k_first: grid.k(1),
-                err_max: e_max / r_max,
-                err_t: e_t,
+                err_max: m.err_max / m.ref_max,
+                err_t: m.err_t,
+            });
+        }
+        let (levels, _) = crate::time_adapt::adapt_time(scn.t_end, &adapt, |grid| {
+            let m = measure(grid)?;
+            Ok::<_, ExpError>(crate::time_adapt::Solved {
+                gaps: m.gaps.clone(),
+                norm_max: m.norm_max,
+                out: m,
+            })
+        })?;
+        for (level, l) in levels.into_iter().enumerate() {
+            out.adaptive.push(AdaptiveRow {
+                scenario: name.clone(),
+                history: label.clone(),
+                level,
+                steps: l.grid.len(),
+                halvings: l.grid.halvings(),
+                k_min: l.grid.k_min(),
+                estimate: l.estimate,
+                err_max: l.out.err_max / l.out.ref_max,
+                err_t: l.out.err_t,
             });
         }
         ctx.log(&format!("time layer: {name} {label}"));
     }
-    Ok(rows)
+    Ok(out)
+}
+
+/// One grid's measure: the largest error and reference norm over its times, the
+/// relative error at $T$, each step's predictor distance and the largest norm.
+struct Measured {
+    err_max: f64,
+    ref_max: f64,
+    err_t: f64,
+    gaps: Vec<f64>,
+    norm_max: f64,
 }
 
 /// The steps a family of runs needs to reach `target` (relative): the family's
@@ -160,46 +270,53 @@ pub fn steps_to(family: &[(usize, f64)], target: f64) -> Option<(f64, &'static s
 pub const TARGETS: [f64; 2] = [0.01, 0.001];
 
 /// Per scene and history, per measure (largest over time, at $T$) and target: the
-/// steps the uniform levels `uniform` and the layer grids `layer` need, and their
-/// ratio.
-pub fn savings(uniform: &[Row], layer: &[LayerRow]) -> Table {
-    let mut keys: Vec<(String, String)> = layer
-        .iter()
+/// steps the uniform levels `uniform`, the layer grids and the adaptive levels of
+/// `grids` need, and each ratio to the uniform count.
+pub fn savings(uniform: &[Row], grids: &Grids) -> Table {
+    let mut keys: Vec<(String, String)> = (grids.layer.iter())
         .map(|r| (r.scenario.clone(), r.history.clone()))
         .collect();
     keys.dedup();
     let mut cols: (Vec<String>, Vec<String>, Vec<String>, Vec<f64>) = Default::default();
-    let mut need: [(Vec<f64>, Vec<String>); 2] = Default::default();
-    let mut ratio = vec![];
+    let mut need: [(Vec<f64>, Vec<String>); 3] = Default::default();
+    let mut ratio: [Vec<f64>; 2] = Default::default();
     for (scn, hist) in &keys {
-        let uni: Vec<&Row> = (uniform.iter())
-            .filter(|r| &r.scenario == scn && &r.history == hist)
-            .collect();
-        let lay: Vec<&LayerRow> = (layer.iter())
-            .filter(|r| &r.scenario == scn && &r.history == hist)
-            .collect();
+        let of = |a: &str, b: &str| a == scn && b == hist;
         for measure in ["max", "T"] {
-            let pick_u = |r: &&Row| if measure == "max" { r.err_max } else { r.err_t };
-            let pick_l = |r: &&LayerRow| if measure == "max" { r.err_max } else { r.err_t };
-            let fu: Vec<(usize, f64)> = uni.iter().map(|r| (r.steps, pick_u(r))).collect();
-            let fl: Vec<(usize, f64)> = lay.iter().map(|r| (r.steps, pick_l(r))).collect();
+            let pick = |max: f64, t: f64| if measure == "max" { max } else { t };
+            let families: [Vec<(usize, f64)>; 3] = [
+                (uniform.iter())
+                    .filter(|r| of(&r.scenario, &r.history))
+                    .map(|r| (r.steps, pick(r.err_max, r.err_t)))
+                    .collect(),
+                (grids.layer.iter())
+                    .filter(|r| of(&r.scenario, &r.history))
+                    .map(|r| (r.steps, pick(r.err_max, r.err_t)))
+                    .collect(),
+                (grids.adaptive.iter())
+                    .filter(|r| of(&r.scenario, &r.history))
+                    .map(|r| (r.steps, pick(r.err_max, r.err_t)))
+                    .collect(),
+            ];
             for target in TARGETS {
                 cols.0.push(scn.clone());
                 cols.1.push(hist.clone());
                 cols.2.push(measure.into());
                 cols.3.push(100.0 * target);
-                let mut counts = [f64::NAN; 2];
-                for (k, fam) in [&fu, &fl].into_iter().enumerate() {
+                let mut counts = [f64::NAN; 3];
+                for (k, fam) in families.iter().enumerate() {
                     let (s, how) = steps_to(fam, target).unwrap_or((f64::NAN, "not reached"));
                     need[k].0.push(s);
                     need[k].1.push(how.into());
                     counts[k] = s;
                 }
-                ratio.push(counts[1] / counts[0]);
+                ratio[0].push(counts[1] / counts[0]);
+                ratio[1].push(counts[2] / counts[0]);
             }
         }
     }
-    let [(u, uh), (l, lh)] = need;
+    let [(u, uh), (l, lh), (a, ah)] = need;
+    let [rl, ra] = ratio;
     Table::new()
         .str("scenario", cols.0)
         .str("history", cols.1)
@@ -209,7 +326,36 @@ pub fn savings(uniform: &[Row], layer: &[LayerRow]) -> Table {
         .str("uniform_how", uh)
         .f64("layer_steps", l)
         .str("layer_how", lh)
-        .f64("layer_over_uniform", ratio)
+        .f64("layer_over_uniform", rl)
+        .f64("adaptive_steps", a)
+        .str("adaptive_how", ah)
+        .f64("adaptive_over_uniform", ra)
+}
+
+/// The adaptive levels' table.
+pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
+    Table::new()
+        .str(
+            "scenario",
+            rows.iter().map(|r| r.scenario.clone()).collect(),
+        )
+        .str("history", rows.iter().map(|r| r.history.clone()).collect())
+        .u64("level", rows.iter().map(|r| r.level as u64).collect())
+        .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
+        .u64("halvings", rows.iter().map(|r| r.halvings as u64).collect())
+        .f64("k_min", rows.iter().map(|r| r.k_min).collect())
+        .f64(
+            "estimate_percent",
+            rows.iter().map(|r| 100.0 * r.estimate).collect(),
+        )
+        .f64(
+            "rel_err_max_percent",
+            rows.iter().map(|r| 100.0 * r.err_max).collect(),
+        )
+        .f64(
+            "rel_err_T_percent",
+            rows.iter().map(|r| 100.0 * r.err_t).collect(),
+        )
 }
 
 /// The layer grids' table.

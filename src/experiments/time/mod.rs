@@ -96,28 +96,39 @@ fn layer_halvings(plan: &Plan) -> Vec<u32> {
 
 // ANCHOR: layer
 /// The time grid into the initial layer against the uniform levels `uniform` of the
-/// same study: `time_layer.csv` (each grid's errors) and `adaptive_time.csv` (the
-/// steps each family needs for 1 % and 0.1 %, largest over time and at T).
+/// same study, and the adaptive choice of the grid: `time_layer.csv` (each grid's
+/// errors), `time_adaptive.csv` (each adaptive level's errors and estimate) and
+/// `adaptive_time.csv` (the steps each family needs for 1 % and 0.1 %, largest over
+/// time and at T).
 fn layer(plan: &Plan, ctx: &Ctx, uniform: &[Row]) -> Result<(), ExpError> {
     use evhi::study::time_layer;
     let halvings = layer_halvings(plan);
-    let rows = time_layer::study(plan, ctx, &scenes()?, LAYER_N, &halvings)?;
+    let adapt = evhi::time_adapt::Settings::default();
+    let grids = time_layer::study(plan, ctx, &scenes()?, LAYER_N, &halvings, &adapt)?;
     let common = format!(
         "fixed mesh n = 1/h = {}, reference N_ref = {} uniform steps on the same mesh,          solver {}, errors measured as in time_study.csv over each grid's own times",
         plan.n, plan.n_ref, plan.solver.name
     );
     ctx.write(
         "time_layer.csv",
-        &time_layer::table(&rows),
+        &time_layer::table(&grids.layer),
         &format!(
             "{common}; time grids into the initial layer (evhi::time_grid): longest step              T/N with N = n_longest, first step k_first = (T/N)/2^J for J = halvings, each              step growing as k (1 + k/(2 tau)) rounded down to T/N over a power of two;              steps = the grid's count"
         ),
     )?;
     ctx.write(
-        "adaptive_time.csv",
-        &time_layer::savings(uniform, &rows),
+        "time_adaptive.csv",
+        &time_layer::adaptive_table(&grids.adaptive),
         &format!(
-            "{common}; per scene, history, measure (max: largest error over time; T: at t =              T) and target: the steps the uniform levels of time_study.csv (N = {:?}) and              the layer grids of time_layer.csv need, where the log-log line through the              first run at or below the target and the one before crosses it              (`interpolated`), the first run's count where it already is (`at most`), NaN              where none reaches it; layer_over_uniform their ratio. The adaptive choice              of k is not built",
+            "{common}; the adaptive choice of the time grid (evhi::time_adapt): from N0 =              {} uniform steps, each level's steps marked by Doerfler's criterion (theta = {})              on the predictor indicators eta_n and halved, until more than {} steps or a              shortest step below the reference's; estimate = sum eta_n / max ||u_n||_E",
+            adapt.n0, adapt.theta, adapt.max_steps
+        ),
+    )?;
+    ctx.write(
+        "adaptive_time.csv",
+        &time_layer::savings(uniform, &grids),
+        &format!(
+            "{common}; per scene, history, measure (max: largest error over time; T: at t =              T) and target: the steps the uniform levels of time_study.csv (N = {:?}) and              the layer grids of time_layer.csv need, where the log-log line through the              first run at or below the target and the one before crosses it              (`interpolated`), the first run's count where it already is (`at most`), NaN              where none reaches it; the same for the adaptive levels of              time_adaptive.csv; layer_over_uniform and adaptive_over_uniform the ratios              to the uniform count",
             plan.levels
         ),
     )?;

@@ -1,0 +1,296 @@
+//! Time steps chosen by the solution: backward Euler's local error estimated from a
+//! second-order predictor, and a time grid refined where it is large.
+//!
+//! **The indicator.** Backward Euler's local error at step $n$ is about
+//! $\tfrac12 k_n^2\,\ddot u(t_n)$. The divided difference of the two last velocities,
+//! $\ddot u \approx 2\,(\delta u_n/k_n - \delta u_{n-1}/k_{n-1})/(k_n + k_{n-1})$ with
+//! $\delta u_n = u_n - u_{n-1}$, turns it into
+//! $$\eta_n = \frac{k_n}{k_n + k_{n-1}}\,\big\|u_n - \hat u_n\big\|_E, \qquad
+//! \hat u_n = u_{n-1} + \frac{k_n}{k_{n-1}}\,\delta u_{n-1},$$
+//! the distance of the step's result from the linear extrapolation of the two states
+//! before it, a second-order predictor. The first step has no two states before it,
+//! and the velocity before $t = 0$ says nothing: a load applied in full at $t = 0$
+//! makes $\dot u$ jump there, yet the solution is smooth on $(0, T]$ and the first
+//! step's local error is $\tfrac12 k_1^2\ddot u$ like any other's. So it takes the
+//! second step's divided difference, which spans $t_0, t_1, t_2$:
+//! $\eta_1 = (k_1/k_2)^2\,\eta_2$. (Taking the body at rest before $t = 0$ instead,
+//! $\eta_1 = \tfrac12\|u_1\|_E$, is of order $k_1$, not $k_1^2$: under that load it
+//! overstated the first step by $\tau/k_1$ and spent the whole halving budget there.)
+//!
+//! **The estimate.** Each local error is carried to later times by the scheme, which
+//! damps it (every mode relaxes) but never amplifies it. So the error at any $t_n$ is
+//! at most about the sum of the local errors made before it, and
+//! $$\mathcal E = \sum_n \eta_n \Big/ \max_n \|u_n\|_E$$
+//! estimates the relative error over time from above. It does not see the damping:
+//! where the error of a layer has long decayed, at $T$, it still counts it.
+//!
+//! **The refinement.** Dörfler's bulk criterion on the $\eta_n$ (summed, not squared:
+//! the estimate adds them) marks the fewest largest steps that carry the fraction
+//! $\theta$ of $\sum_n\eta_n$, and each marked step is cut into two halves. A halved
+//! step's local error falls by 4 and it becomes two steps, so its share of the sum
+//! halves. Every step is a power of two of the finest unit $(T/N)/2^J$ and starts at
+//! a multiple of its length ([`TimeGrid::from_exponents`]): the grid's times lie on
+//! a uniform reference of $N 2^J$ steps, and the distinct lengths are at most
+//! $J + 1$ (the general loop factorises once per distinct length, the reduced loop
+//! only rescales).
+
+use crate::adapt::dorfler;
+use crate::error::InputError;
+use crate::time_grid::TimeGrid;
+
+/// The predictor of step `step` (from 1): its ratio $k_n/k_{n-1}$ and the local
+/// error's weight $k_n/(k_n + k_{n-1})$, with $k_0 = k_1$.
+// ANCHOR: predictor
+pub fn predictor(grid: &TimeGrid, step: usize) -> (f64, f64) {
+    let k = grid.k(step);
+    let k_prev = if step > 1 { grid.k(step - 1) } else { k };
+    (k / k_prev, k / (k + k_prev))
+}
+// ANCHOR_END: predictor
+
+/// Each step's $\eta_n$ from its distance `gaps[n-1]` $= \|u_n - \hat u_n\|_E$ from the
+/// predictor; the first step's from the second's (see the module).
+// ANCHOR: indicators
+pub fn indicators(grid: &TimeGrid, gaps: &[f64]) -> Vec<f64> {
+    let mut eta: Vec<f64> = (gaps.iter().enumerate())
+        .map(|(i, g)| predictor(grid, i + 1).1 * g)
+        .collect();
+    if eta.len() > 1 {
+        eta[0] = (grid.k(1) / grid.k(2)).powi(2) * eta[1];
+    }
+    eta
+}
+// ANCHOR_END: indicators
+
+/// The settings of an adaptive choice of the time grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// $N_0$: the first grid has $N_0$ steps of $T/N_0$, the longest any step gets.
+    pub n0: usize,
+    /// Dörfler's fraction $\theta$ in $(0, 1]$.
+    pub theta: f64,
+    /// Stop when the estimate [`Level::estimate`] is at most this.
+    pub tol: f64,
+    /// Stop before a grid of more steps than this.
+    pub max_steps: usize,
+    /// Stop before a grid whose shortest step is $(T/N_0)/2^J$ with $J$ above this.
+    pub max_halvings: u32,
+}
+
+impl Default for Settings {
+    /// $N_0 = 4$, $\theta = 0.5$, no tolerance, 4096 steps, $J \le 13$.
+    fn default() -> Self {
+        Settings {
+            n0: 4,
+            theta: 0.5,
+            tol: 0.0,
+            max_steps: 4096,
+            max_halvings: 13,
+        }
+    }
+}
+
+impl Settings {
+    /// Refuses settings that cannot run, by field.
+    pub fn check(&self) -> Result<(), InputError> {
+        if self.n0 == 0 {
+            return Err(InputError::field("n0", self.n0, "at least 1 step"));
+        }
+        if !(self.theta > 0.0 && self.theta <= 1.0) {
+            return Err(InputError::field(
+                "theta",
+                self.theta,
+                "a fraction in (0, 1]",
+            ));
+        }
+        if self.tol.is_nan() || self.tol < 0.0 {
+            return Err(InputError::field(
+                "tol",
+                self.tol,
+                "a relative error, 0 or more",
+            ));
+        }
+        if self.max_steps < self.n0 {
+            return Err(InputError::field(
+                "max_steps",
+                self.max_steps,
+                format!("at least the first grid's {} steps", self.n0),
+            ));
+        }
+        if self.max_halvings > crate::time_grid::MAX_HALVINGS {
+            return Err(InputError::field(
+                "max_halvings",
+                self.max_halvings,
+                format!("from 0 to {}", crate::time_grid::MAX_HALVINGS),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One grid of an adaptive run and what its solve showed.
+#[derive(Debug, Clone)]
+pub struct Level<T> {
+    /// The grid.
+    pub grid: TimeGrid,
+    /// Each step's $\eta_n$.
+    pub eta: Vec<f64>,
+    /// $\sum_n\eta_n / \max_n\|u_n\|_E$.
+    pub estimate: f64,
+    /// What the solve returned besides.
+    /// Anything else the solve returns.
+    pub out: T,
+}
+
+/// Why an adaptive run stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stop {
+    /// The estimate reached the tolerance.
+    Tolerance,
+    /// The next grid would have had more steps than allowed.
+    Steps,
+    /// The next grid would have needed a shorter step than allowed.
+    Halvings,
+}
+
+/// What one solve on a grid reports: each step's $\|u_n - \hat u_n\|_E$ (see
+/// [`predictor`]), the largest $\|u_n\|_E$, and anything else.
+pub struct Solved<T> {
+    /// Per step, $\|u_n - \hat u_n\|_E$.
+    pub gaps: Vec<f64>,
+    /// $\max_n \|u_n\|_E$.
+    pub norm_max: f64,
+    /// Anything else the solve returns.
+    pub out: T,
+}
+
+/// Solves on $N_0$ uniform steps, estimates, refines the marked steps and solves
+/// again from $t = 0$, until the estimate is within `s.tol` or the next grid would
+/// leave the step or halving budget. `solve` runs one grid.
+// ANCHOR: adapt_time
+pub fn adapt_time<T, E: From<InputError>>(
+    t_end: f64,
+    s: &Settings,
+    mut solve: impl FnMut(&TimeGrid) -> Result<Solved<T>, E>,
+) -> Result<(Vec<Level<T>>, Stop), E> {
+    s.check()?;
+    let mut grid = TimeGrid::uniform(t_end, s.n0);
+    let mut levels = vec![];
+    loop {
+        let solved = solve(&grid)?;
+        let eta = indicators(&grid, &solved.gaps);
+        let estimate = eta.iter().sum::<f64>() / solved.norm_max;
+        if !estimate.is_finite() {
+            return Err(InputError::field(
+                "time indicator",
+                estimate,
+                "a finite sum of the steps' local errors over a positive largest norm \
+                 (the solve returned a NaN or a zero norm)",
+            )
+            .into());
+        }
+        let marked = dorfler(&eta, s.theta);
+        let next = grid.bisect(&marked)?;
+        levels.push(Level {
+            grid,
+            eta,
+            estimate,
+            out: solved.out,
+        });
+        let stop = if estimate <= s.tol || marked.is_empty() {
+            Some(Stop::Tolerance)
+        } else if next.len() > s.max_steps {
+            Some(Stop::Steps)
+        } else if next.halvings() > s.max_halvings {
+            Some(Stop::Halvings)
+        } else {
+            None
+        };
+        if let Some(stop) = stop {
+            return Ok((levels, stop));
+        }
+        grid = next;
+    }
+}
+// ANCHOR_END: adapt_time
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_predictor_weighs_half_on_equal_steps() {
+        let g = TimeGrid::uniform(1.0, 8);
+        assert_eq!(predictor(&g, 1), (1.0, 0.5));
+        assert_eq!(predictor(&g, 5), (1.0, 0.5));
+        let g = g.bisect(&[2]).unwrap();
+        // steps: 1/8, 1/8, 1/16, 1/16, 1/8 ...
+        assert_eq!(predictor(&g, 3), (0.5, 1.0 / 3.0));
+        assert_eq!(predictor(&g, 5), (2.0, 2.0 / 3.0));
+    }
+
+    #[test]
+    fn a_linear_motion_has_no_local_error_and_stops_at_once() {
+        // u(t) = t is integrated exactly: every gap is 0 past the first step.
+        let s = Settings {
+            tol: 1e-12,
+            ..Settings::default()
+        };
+        let (levels, stop) = adapt_time(1.0, &s, |g| {
+            let gaps = (1..=g.len()).map(|_| 0.0).collect();
+            Ok::<_, InputError>(Solved {
+                gaps,
+                norm_max: 1.0,
+                out: (),
+            })
+        })
+        .unwrap();
+        assert_eq!((levels.len(), stop), (1, Stop::Tolerance));
+    }
+
+    #[test]
+    fn the_first_step_takes_the_second_steps_curvature() {
+        let g = TimeGrid::uniform(1.0, 4).bisect(&[0]).unwrap();
+        // steps 1/8, 1/8, 1/4, 1/4, 1/4: eta_2 = gap_2 / 2, eta_1 = eta_2, eta_3 = 2 gap_3 / 3.
+        let eta = indicators(&g, &[7.0, 2.0, 3.0, 0.0, 0.0]);
+        assert_eq!(eta[..3], [1.0, 1.0, 2.0]);
+        let g = TimeGrid::uniform(1.0, 4).bisect(&[1]).unwrap();
+        // steps 1/4, 1/8, ...: eta_2 = gap_2 / 3, eta_1 = 4 eta_2.
+        let eta = indicators(&g, &[7.0, 3.0, 0.0, 0.0, 0.0]);
+        assert!((eta[0] - 4.0).abs() < 1e-15 && (eta[1] - 1.0).abs() < 1e-15);
+        assert_eq!(indicators(&TimeGrid::uniform(1.0, 1), &[2.0]), [1.0]);
+    }
+
+    #[test]
+    fn a_layer_is_refined_at_its_start_until_the_budget() {
+        // u = 1 - exp(-t/tau): gaps from the exact solution on the grid.
+        let tau = 0.07;
+        let u = |t: f64| 1.0 - (-t / tau).exp();
+        let s = Settings {
+            max_steps: 200,
+            ..Settings::default()
+        };
+        let (levels, stop) = adapt_time(1.0, &s, |g| {
+            let mut gaps = vec![];
+            for n in 1..=g.len() {
+                let (r, _) = predictor(g, n);
+                let (u1, u0) = (u(g.t(n - 1)), if n > 1 { u(g.t(n - 2)) } else { 0.0 });
+                let pred = if n > 1 { u1 + r * (u1 - u0) } else { 0.0 };
+                gaps.push((u(g.t(n)) - pred).abs());
+            }
+            Ok::<_, InputError>(Solved {
+                gaps,
+                norm_max: 1.0,
+                out: (),
+            })
+        })
+        .unwrap();
+        assert_eq!(stop, Stop::Steps);
+        let last = &levels.last().unwrap().grid;
+        // Short steps first, long steps late.
+        assert!(last.k(1) < last.k(last.len()) / 8.0, "{last:?}");
+        let first = levels[0].estimate;
+        assert!(levels.last().unwrap().estimate < first / 4.0);
+        assert!(Settings { theta: 0.0, ..s }.check().is_err());
+    }
+}
