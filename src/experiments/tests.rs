@@ -179,7 +179,12 @@ fn time_study() {
             "time_adaptive.csv",
             "adaptive_time.csv",
         ],
-        &["time_study_max", "time_study_T", "time_controls"],
+        &[
+            "time_study_max",
+            "time_study_T",
+            "time_controls",
+            "time_grids",
+        ],
     );
 }
 

@@ -200,7 +200,7 @@ impl Figure for TimeFig {
 const MODEL_BAND: RGBColor = GREY_LIGHT;
 
 /// A load history's label (`a_constant`, `b_ramp1`, ...) in words.
-fn in_words(label: &str) -> String {
+pub(super) fn in_words(label: &str) -> String {
     match label.split_once('_').map_or(label, |(_, rest)| rest) {
         "constant" => "constant load".into(),
         other => match other.strip_prefix("ramp") {

@@ -14,8 +14,10 @@ use evhi::scenario::Scenario;
 use plotters::prelude::*;
 
 mod figure;
+mod grids;
 mod table;
-use figure::{draw, draw_controls};
+use figure::{draw, draw_controls, in_words};
+use grids::draw_grids;
 use table::write_markdown;
 
 pub use evhi::study::time_error::{Plan, Row, plan, scalar_model, sig3, study_of, write_rows};
@@ -43,6 +45,7 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     write_markdown(ctx, &path, &plan)?;
     draw(ctx, &path)?;
     layer(&plan, ctx, &rows)?;
+    draw_grids(ctx)?;
     // One batch per material: a batch shares its step matrix.
     let all = controls()?;
     let mut rows = vec![];
