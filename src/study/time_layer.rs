@@ -280,6 +280,9 @@ pub fn savings(uniform: &[Row], grids: &Grids) -> Table {
     let mut cols: (Vec<String>, Vec<String>, Vec<String>, Vec<f64>) = Default::default();
     let mut need: [(Vec<f64>, Vec<String>); 3] = Default::default();
     let mut ratio: [Vec<f64>; 2] = Default::default();
+    // The adaptive levels' steps summed through the first at or below the target:
+    // each level solves from t = 0.
+    let mut summed = vec![];
     for (scn, hist) in &keys {
         let of = |a: &str, b: &str| a == scn && b == hist;
         for measure in ["max", "T"] {
@@ -312,6 +315,11 @@ pub fn savings(uniform: &[Row], grids: &Grids) -> Table {
                 }
                 ratio[0].push(counts[1] / counts[0]);
                 ratio[1].push(counts[2] / counts[0]);
+                let fam = &families[2];
+                summed.push(match fam.iter().position(|p| p.1 <= target) {
+                    Some(i) => fam[..=i].iter().map(|p| p.0 as f64).sum(),
+                    None => f64::NAN,
+                });
             }
         }
     }
@@ -330,6 +338,7 @@ pub fn savings(uniform: &[Row], grids: &Grids) -> Table {
         .f64("adaptive_steps", a)
         .str("adaptive_how", ah)
         .f64("adaptive_over_uniform", ra)
+        .f64("adaptive_levels_steps", summed)
 }
 
 /// The adaptive levels' table.

@@ -131,7 +131,7 @@ fn layer(plan: &Plan, ctx: &Ctx, uniform: &[Row]) -> Result<(), ExpError> {
         "adaptive_time.csv",
         &time_layer::savings(uniform, &grids),
         &format!(
-            "{common}; per scene, history, measure (max: largest error over time; T: at t =              T) and target: the steps the uniform levels of time_study.csv (N = {:?}) and              the layer grids of time_layer.csv need, where the log-log line through the              first run at or below the target and the one before crosses it              (`interpolated`), the first run's count where it already is (`at most`), NaN              where none reaches it; the same for the adaptive levels of              time_adaptive.csv; layer_over_uniform and adaptive_over_uniform the ratios              to the uniform count",
+            "{common}; per scene, history, measure (max: largest error over time; T: at t =              T) and target: the steps the uniform levels of time_study.csv (N = {:?}) and              the layer grids of time_layer.csv need, where the log-log line through the              first run at or below the target and the one before crosses it              (`interpolated`), the first run's count where it already is (`at most`), NaN              where none reaches it; the same for the adaptive levels of              time_adaptive.csv; layer_over_uniform and adaptive_over_uniform the ratios              to the uniform count; adaptive_levels_steps the adaptive levels' steps summed              through the first at or below the target (each level solves from t = 0)",
             plan.levels
         ),
     )?;
