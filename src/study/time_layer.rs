@@ -1,4 +1,5 @@
-//! What the time grid into the initial layer ([`crate::time_grid`]) saves: for each
+//! What the time grid into the initial layer ([`crate::time_grid`]) and the time grid
+//! chosen by the solution ([`crate::time_adapt`]) save: for each
 //! scene of a time study, the error of the layer grids with longest step $T/N$ and
 //! first step $(T/N)/2^J$, $J = 1, 2, \dots$, measured as [`super::time_error`]
 //! measures the uniform levels (the largest error over the grid's times against a

@@ -865,3 +865,152 @@ fn time_layer_ramps_cost_more() {
     assert_eq!(fix(min(&ratios), 1), "1.3");
     assert_eq!(fix(max(&ratios), 1), "1.8");
 }
+
+// ---- A time grid chosen by the solution ----
+
+const ADAPTIVE: &str = "time_adaptive.csv";
+
+#[test]
+fn time_adaptive_one_percent() {
+    let mut ratios = vec![];
+    for (scn, steps) in [("figure", "61"), ("literal", "54")] {
+        let r = saved(scn, "a_constant", "max", "1");
+        assert_eq!(r["adaptive_how"], "interpolated");
+        assert_eq!(fix(num(&r, "adaptive_steps"), 0), steps, "{scn}");
+        // As few as the layer grid: within one step of it.
+        assert!(
+            (num(&r, "adaptive_steps") - num(&r, "layer_steps")).abs() < 1.0,
+            "{scn}"
+        );
+        ratios.push(num(&r, "adaptive_over_uniform"));
+    }
+    assert_eq!(fixes(&ratios, 2), ["0.18", "0.21"]);
+    // The bar: at most a quarter of the uniform steps.
+    assert!(ratios.iter().all(|&q| q <= 0.25), "{ratios:?}");
+}
+
+#[test]
+fn time_adaptive_tenth_percent() {
+    for (scn, adaptive, layer) in [("figure", "541", "462"), ("literal", "494", "424")] {
+        let r = saved(scn, "a_constant", "max", "0.1");
+        assert_eq!(fix(num(&r, "adaptive_steps"), 0), adaptive, "{scn}");
+        assert_eq!(fix(num(&r, "layer_steps"), 0), layer, "{scn}");
+        assert_eq!(r["uniform_how"], "not reached");
+    }
+}
+
+#[test]
+fn time_adaptive_ramps() {
+    let mut at = [vec![], vec![]];
+    let mut layer_more = 0;
+    for scn in ["figure", "literal"] {
+        for h in ["b_ramp1", "c_ramp0.25"] {
+            for (i, target) in ["1", "0.1"].into_iter().enumerate() {
+                let r = saved(scn, h, "max", target);
+                at[i].push(num(&r, "adaptive_over_uniform"));
+                if i == 0 && num(&r, "layer_over_uniform") > 1.0 {
+                    layer_more += 1;
+                }
+            }
+        }
+    }
+    // Where the layer grid costs more than uniform steps (all four at 1 %), the
+    // adaptive grid costs less.
+    assert_eq!(layer_more, 4);
+    assert_eq!(
+        (fix(min(&at[0]), 2), fix(max(&at[0]), 2)),
+        ("0.41".into(), "0.78".into())
+    );
+    assert_eq!(
+        (fix(min(&at[1]), 2), fix(max(&at[1]), 2)),
+        ("0.22".into(), "0.47".into())
+    );
+    // Not the quarter at 1 %; the uniform grid reaches 1 % with 14 to 72 steps there.
+    assert!(at[0].iter().all(|&q| q > 0.25));
+    let mut uniform = vec![];
+    for scn in ["figure", "literal"] {
+        for h in ["b_ramp1", "c_ramp0.25"] {
+            uniform.push(num(&saved(scn, h, "max", "1"), "uniform_steps"));
+        }
+    }
+    assert_eq!(
+        (fix(min(&uniform), 0), fix(max(&uniform), 0)),
+        ("14".into(), "72".into())
+    );
+}
+
+#[test]
+fn time_adaptive_at_t() {
+    let mut ratios = vec![];
+    for scn in ["figure", "literal"] {
+        for h in HISTORIES {
+            let r = saved(scn, h, "T", "1");
+            assert_eq!(
+                (r["uniform_how"].as_str(), num(&r, "uniform_steps")),
+                ("at most", 4.0)
+            );
+            assert_eq!(
+                (r["adaptive_how"].as_str(), num(&r, "adaptive_steps")),
+                ("at most", 4.0)
+            );
+            ratios.push(num(&saved(scn, h, "T", "0.1"), "adaptive_over_uniform"));
+        }
+    }
+    assert!(ratios.iter().all(|&q| q >= 1.0), "{ratios:?}");
+    assert_eq!(fix(max(&ratios), 2), "1.35");
+}
+
+#[test]
+fn time_adaptive_search_cost() {
+    for (scn, summed, uniform) in [("figure", 188.0, "347"), ("literal", 216.0, "257")] {
+        let r = saved(scn, "a_constant", "max", "1");
+        assert_eq!(num(&r, "adaptive_levels_steps"), summed, "{scn}");
+        assert_eq!(fix(num(&r, "uniform_steps"), 0), uniform, "{scn}");
+        assert!(summed < num(&r, "uniform_steps"));
+    }
+    let mut more = 0;
+    let mut cases = 0;
+    for scn in ["figure", "literal"] {
+        for h in ["b_ramp1", "c_ramp0.25"] {
+            for target in ["1", "0.1"] {
+                let r = saved(scn, h, "max", target);
+                cases += 1;
+                if num(&r, "adaptive_levels_steps") > num(&r, "uniform_steps") {
+                    more += 1;
+                }
+            }
+        }
+    }
+    assert_eq!((more, cases), (7, 8));
+    // The sum counts every level through the first at or below the target.
+    let levels = rows(ADAPTIVE);
+    let fig: Vec<&Row> = (levels.iter())
+        .filter(|r| r["scenario"] == "figure" && r["history"] == "a_constant")
+        .collect();
+    let first = fig
+        .iter()
+        .position(|r| num(r, "rel_err_max_percent") <= 1.0)
+        .unwrap();
+    let sum: f64 = fig[..=first].iter().map(|r| num(r, "steps")).sum();
+    assert_eq!(sum, 188.0);
+}
+
+#[test]
+fn time_adaptive_estimate_above() {
+    let levels = rows(ADAPTIVE);
+    let ratios: Vec<f64> = (levels.iter())
+        .map(|r| num(r, "estimate_percent") / num(r, "rel_err_max_percent"))
+        .collect();
+    assert!(levels.len() > 60, "{}", levels.len());
+    assert!(min(&ratios) > 2.5 && min(&ratios) < 3.5, "{}", min(&ratios));
+    assert_eq!(fix(max(&ratios), 0), "19");
+    // Every scene's levels are there, each a run of its own.
+    for scn in ["figure", "literal"] {
+        for h in HISTORIES {
+            let n = (levels.iter())
+                .filter(|r| r["scenario"] == scn && r["history"] == h)
+                .count();
+            assert!(n >= 10, "{scn} {h}: {n}");
+        }
+    }
+}
