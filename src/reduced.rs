@@ -571,7 +571,7 @@ pub(crate) fn run(
     // The load's solve is the one solve of the run before the steps: its time is
     // the floor's unit (`one_solve_s`).
     let load = crate::timing::timed(&mut timings.one_solve, || op.load(disc.f.clone()));
-    let grid = crate::time_grid::TimeGrid::of(scn, opt.steps, opt.time_layer)?;
+    let grid = opt.time_grid(scn)?;
     let last = grid.len();
     let quarter = (last / 4).max(1);
     let want = |n: usize| n.is_multiple_of(quarter) || n == last || want_field(n);

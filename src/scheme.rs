@@ -517,6 +517,9 @@ pub struct Settings {
     /// The halvings $J$ of the first step of a grid into the initial layer
     /// ([`crate::time_grid::TimeGrid::layer`]); 0: $N$ uniform steps.
     pub time_layer: u32,
+    /// A time grid given whole (one chosen by [`crate::time_adapt`]): it replaces
+    /// `steps` and `time_layer`.
+    pub grid: Option<crate::time_grid::TimeGrid>,
 }
 
 /// Which fill-reducing ordering the factorisation uses.
@@ -556,6 +559,15 @@ impl Settings {
             parallel: true,
             mesh: None,
             time_layer: 0,
+            grid: None,
+        }
+    }
+
+    /// The run's time grid: the one given, or that of `steps` and `time_layer`.
+    pub fn time_grid(&self, scn: &Scenario) -> Result<crate::time_grid::TimeGrid, InputError> {
+        match &self.grid {
+            Some(g) => Ok(g.clone()),
+            None => crate::time_grid::TimeGrid::of(scn, self.steps, self.time_layer),
         }
     }
 }
@@ -585,7 +597,7 @@ pub(crate) fn run_batch_states(
     };
     let mut timings = Timings::default();
     let (disc, loads) = timed(&mut timings.assembly, || discretise(scns, opt))?;
-    let grid = crate::time_grid::TimeGrid::of(scn, opt.steps, opt.time_layer)?;
+    let grid = opt.time_grid(scn)?;
     let cmin = (scns.iter().map(|s| s.law.curvature_min())).fold(f64::INFINITY, f64::min);
     let mut op = StepOperator::new(
         &disc,

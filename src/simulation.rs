@@ -226,6 +226,7 @@ pub trait Observer {
 impl Observer for () {}
 
 /// A scene ready to solve: its settings checked, its mesh built.
+#[derive(Clone)]
 pub struct Simulation {
     scenario: Scenario,
     settings: RunSettings,
@@ -529,6 +530,40 @@ impl Simulation {
     /// The run's time grid.
     pub fn grid(&self) -> &crate::time_grid::TimeGrid {
         &self.grid
+    }
+
+    /// This simulation on the time grid `grid` (say the one
+    /// [`crate::time_adapt::choose`] found) instead of its own. Refused by name where
+    /// the grid does not end at the scene's $T$, has more than 1000000 steps, or the
+    /// settings also ask for a grid into the layer.
+    pub fn on_time_grid(&self, grid: crate::time_grid::TimeGrid) -> Result<Simulation, InputError> {
+        let t_end = self.scenario.t_end;
+        let end = grid.t(grid.len());
+        if grid.is_empty() || (end - t_end).abs() > 1e-12 * t_end.abs().max(1.0) {
+            return Err(InputError::field(
+                "time grid",
+                format!("a grid ending at t = {end}"),
+                format!("a grid of at least one step ending at the scene's T = {t_end}"),
+            ));
+        }
+        if grid.len() > 1_000_000 {
+            return Err(InputError::field(
+                "time grid",
+                format!("{} steps", grid.len()),
+                "at most 1000000 steps",
+            ));
+        }
+        if self.settings.time_layer != 0 {
+            return Err(InputError::field(
+                "time_layer",
+                self.settings.time_layer,
+                "0 with a time grid of its own (the grid replaces the layer's)",
+            ));
+        }
+        let mut sim = self.clone();
+        sim.opt.grid = Some(grid.clone());
+        sim.grid = grid;
+        Ok(sim)
     }
 
     /// The step solver's registry entry.

@@ -169,12 +169,14 @@ pub struct Solved<T> {
 
 /// Solves on $N_0$ uniform steps, estimates, refines the marked steps and solves
 /// again from $t = 0$, until the estimate is within `s.tol` or the next grid would
-/// leave the step or halving budget. `solve` runs one grid.
+/// leave the step or halving budget. `solve` runs one grid; `on_level` sees each
+/// level as it is done.
 // ANCHOR: adapt_time
 pub fn adapt_time<T, E: From<InputError>>(
     t_end: f64,
     s: &Settings,
     mut solve: impl FnMut(&TimeGrid) -> Result<Solved<T>, E>,
+    mut on_level: impl FnMut(&Level<T>),
 ) -> Result<(Vec<Level<T>>, Stop), E> {
     s.check()?;
     let mut grid = TimeGrid::uniform(t_end, s.n0);
@@ -194,12 +196,14 @@ pub fn adapt_time<T, E: From<InputError>>(
         }
         let marked = dorfler(&eta, s.theta);
         let next = grid.bisect(&marked)?;
-        levels.push(Level {
+        let level = Level {
             grid,
             eta,
             estimate,
             out: solved.out,
-        });
+        };
+        on_level(&level);
+        levels.push(level);
         let stop = if estimate <= s.tol || marked.is_empty() {
             Some(Stop::Tolerance)
         } else if next.len() > s.max_steps {
@@ -216,6 +220,156 @@ pub fn adapt_time<T, E: From<InputError>>(
     }
 }
 // ANCHOR_END: adapt_time
+
+/// What [`choose`] found: every level, why it stopped, and the seconds the search
+/// took (every level's solve, the indicators with them).
+#[derive(Debug, Clone)]
+pub struct Chosen {
+    /// The levels, the last one's grid the chosen one.
+    pub levels: Vec<Level<()>>,
+    /// Why the search stopped.
+    pub stop: Stop,
+    /// The search's wall seconds.
+    pub search_s: f64,
+}
+
+impl Chosen {
+    /// The last level's grid.
+    pub fn grid(&self) -> &TimeGrid {
+        &self.levels.last().expect("a search has a level").grid
+    }
+}
+
+impl Stop {
+    /// Why the search stopped, in words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Stop::Tolerance => "the estimate is within the tolerance",
+            Stop::Steps => "the next grid would have more steps than allowed",
+            Stop::Halvings => "the next grid would need a shorter step than allowed",
+        }
+    }
+}
+
+/// Chooses the time grid of `sim`'s scene ([`adapt_time`] from $N_0$ uniform steps):
+/// each level is a run of `sim` on its grid with its solver, and each step's
+/// predictor distance is measured in the energy norm, from the reduced loop's states
+/// where `sim` runs it (no field formed), else from the general loop's fields. The
+/// caller solves on [`Chosen::grid`] ([`crate::simulation::Simulation::on_time_grid`]).
+pub fn choose(
+    sim: &crate::simulation::Simulation,
+    s: &Settings,
+    on_level: &mut dyn FnMut(&Level<()>),
+) -> Result<Chosen, crate::scheme::RunError> {
+    let clock = std::time::Instant::now();
+    let scn = sim.scenario();
+    let disc = sim.discretisation();
+    let tol = sim.settings().certificate_tol;
+    let (levels, stop) = if sim.reduced() {
+        let mut timings = crate::scheme::Timings::default();
+        let op = sim.reduced_operator(&disc, &mut timings)?;
+        let load = op.load_of(scn);
+        adapt_time(
+            scn.t_end,
+            s,
+            |grid| {
+                let zero = crate::reduced::State {
+                    y: 0.0,
+                    w: vec![0.0; load.q.len()],
+                    r: vec![0.0; load.q.len()],
+                };
+                let (mut u1, mut u2) = (zero.clone(), zero);
+                let (mut gaps, mut norm_max) = (Vec::with_capacity(grid.len()), 0.0f64);
+                op.march_on(
+                    scn,
+                    &load,
+                    grid,
+                    sim.solver().build().as_mut(),
+                    tol,
+                    &|_| false,
+                    &mut timings,
+                    &mut |st| {
+                        let (ratio, _) = predictor(grid, st.step);
+                        gaps.push(op.predictor_gap(&load, (st.state, &u1, &u2), ratio));
+                        norm_max = norm_max.max(st.record.energy_norm);
+                        u2 = std::mem::replace(&mut u1, st.state.clone());
+                    },
+                )?;
+                Ok::<_, crate::scheme::RunError>(Solved {
+                    gaps,
+                    norm_max,
+                    out: (),
+                })
+            },
+            &mut *on_level,
+        )?
+    } else {
+        adapt_time(
+            scn.t_end,
+            s,
+            |grid| {
+                let level = sim.on_time_grid(grid.clone())?;
+                let mut obs = Gaps {
+                    b: &disc.b,
+                    grid,
+                    last: [vec![], vec![]],
+                    gaps: Vec::with_capacity(grid.len()),
+                    norm_max: 0.0,
+                };
+                level.solve(&mut obs)?;
+                Ok::<_, crate::scheme::RunError>(Solved {
+                    gaps: obs.gaps,
+                    norm_max: obs.norm_max,
+                    out: (),
+                })
+            },
+            &mut *on_level,
+        )?
+    };
+    Ok(Chosen {
+        levels,
+        stop,
+        search_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// The general loop's observer of [`choose`]: each step's predictor distance from
+/// the fields, and the largest norm.
+struct Gaps<'a> {
+    b: &'a crate::assembly::SpMat,
+    grid: &'a TimeGrid,
+    /// $u_{n-1}$ and $u_{n-2}$ (empty before the first and second steps: zero).
+    last: [Vec<f64>; 2],
+    gaps: Vec<f64>,
+    norm_max: f64,
+}
+
+impl crate::simulation::Observer for Gaps<'_> {
+    fn step(
+        &mut self,
+        n: usize,
+        _t: f64,
+        u: Option<&[f64]>,
+        _c: &[crate::certificate::ContactState],
+    ) {
+        let Some(u) = u else { return };
+        let (ratio, _) = predictor(self.grid, n);
+        let at = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
+        let d: Vec<f64> = (u.iter().enumerate())
+            .map(|(i, x)| x - (1.0 + ratio) * at(&self.last[0], i) + ratio * at(&self.last[1], i))
+            .collect();
+        self.gaps.push(crate::norms::energy_norm(self.b, &d));
+        self.norm_max = self.norm_max.max(crate::norms::energy_norm(self.b, u));
+        self.last.swap(0, 1);
+        self.last[0] = u.to_vec();
+    }
+
+    fn restart(&mut self) {
+        self.last = [vec![], vec![]];
+        self.gaps.clear();
+        self.norm_max = 0.0;
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -239,14 +393,19 @@ mod tests {
             tol: 1e-12,
             ..Settings::default()
         };
-        let (levels, stop) = adapt_time(1.0, &s, |g| {
-            let gaps = (1..=g.len()).map(|_| 0.0).collect();
-            Ok::<_, InputError>(Solved {
-                gaps,
-                norm_max: 1.0,
-                out: (),
-            })
-        })
+        let (levels, stop) = adapt_time(
+            1.0,
+            &s,
+            |g| {
+                let gaps = (1..=g.len()).map(|_| 0.0).collect();
+                Ok::<_, InputError>(Solved {
+                    gaps,
+                    norm_max: 1.0,
+                    out: (),
+                })
+            },
+            |_| {},
+        )
         .unwrap();
         assert_eq!((levels.len(), stop), (1, Stop::Tolerance));
     }
@@ -273,20 +432,25 @@ mod tests {
             max_steps: 200,
             ..Settings::default()
         };
-        let (levels, stop) = adapt_time(1.0, &s, |g| {
-            let mut gaps = vec![];
-            for n in 1..=g.len() {
-                let (r, _) = predictor(g, n);
-                let (u1, u0) = (u(g.t(n - 1)), if n > 1 { u(g.t(n - 2)) } else { 0.0 });
-                let pred = if n > 1 { u1 + r * (u1 - u0) } else { 0.0 };
-                gaps.push((u(g.t(n)) - pred).abs());
-            }
-            Ok::<_, InputError>(Solved {
-                gaps,
-                norm_max: 1.0,
-                out: (),
-            })
-        })
+        let (levels, stop) = adapt_time(
+            1.0,
+            &s,
+            |g| {
+                let mut gaps = vec![];
+                for n in 1..=g.len() {
+                    let (r, _) = predictor(g, n);
+                    let (u1, u0) = (u(g.t(n - 1)), if n > 1 { u(g.t(n - 2)) } else { 0.0 });
+                    let pred = if n > 1 { u1 + r * (u1 - u0) } else { 0.0 };
+                    gaps.push((u(g.t(n)) - pred).abs());
+                }
+                Ok::<_, InputError>(Solved {
+                    gaps,
+                    norm_max: 1.0,
+                    out: (),
+                })
+            },
+            |_| {},
+        )
         .unwrap();
         assert_eq!(stop, Stop::Steps);
         let last = &levels.last().unwrap().grid;

@@ -6,6 +6,7 @@
 //! the experiments.
 
 pub mod adapt;
+pub mod adapt_time;
 pub mod bench;
 pub mod outputs;
 pub mod show;

@@ -34,6 +34,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         return super::adapt::run(&args, scn, &toml, tol, wall);
     }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
+    let (sim, chosen) = match args.adapt_time {
+        Some(tol) => {
+            let (sim, chosen) = super::adapt_time::choose(&args, sim, tol)?;
+            (sim, Some(chosen))
+        }
+        None => (sim, None),
+    };
     let (scn, entry) = (sim.scenario(), sim.solver());
     diagnostics::before(scn, entry)
         .iter()
@@ -103,8 +110,18 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             disp: &disp,
         }),
     )?;
+    if let Some(chosen) = &chosen {
+        super::adapt_time::write(&out, &prov, scn, run, chosen)?;
+    }
     out.publish()?;
     if args.timings {
+        if let Some(chosen) = &chosen {
+            evhi::diag_text!(
+                "time grid search: {} levels, {:.3} s (before the run below)\n",
+                chosen.levels.len(),
+                chosen.search_s
+            );
+        }
         let (output, total) = (t_out.elapsed(), wall.elapsed());
         evhi::diag_text!(
             "{}",

@@ -140,6 +140,28 @@ pub struct SolveArgs {
     /// --vtk-every.
     #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
     pub adapt: Option<f64>,
+    /// Choose the time grid from the solution (the library's `time_adapt` module): solve
+    /// on N0 uniform steps (--steps; 4 unless given), estimate each step's local error
+    /// from the distance between u_n and the line through u_(n-1) and u_(n-2), halve the
+    /// fewest steps that carry 80 % of the summed estimates (Dörfler, theta = 0.8), and
+    /// solve again from t = 0, until the estimated relative error over time (the
+    /// estimates summed over the largest energy norm, an estimate from above: the book's
+    /// time chapter measures it) is below TOL (in [1e-6, 1]) or the next grid would have
+    /// more than --max-steps steps or a step shorter than (T/N0)/2^20. Each level is
+    /// printed on one line, and a line says which rule stopped the search. The run on
+    /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).
+    /// Not with --adapt or --time-layer.
+    #[arg(
+        long,
+        value_name = "TOL",
+        allow_hyphen_values = true,
+        conflicts_with_all = ["adapt", "time_layer"]
+    )]
+    pub adapt_time: Option<f64>,
+    /// The step budget of `--adapt-time`: a grid with more steps is not solved, and the
+    /// run takes the last one within it (default 4096).
+    #[arg(long, requires = "adapt_time", value_name = "STEPS")]
+    pub max_steps: Option<usize>,
     /// Dörfler's bulk parameter of `--adapt`: the marked triangles carry at least this
     /// share of the squared estimate, the fewest that do (in (0, 1]; default 0.5).
     #[arg(long, requires = "adapt", allow_hyphen_values = true)]
@@ -210,6 +232,8 @@ pub fn settings(args: &SolveArgs) -> RunSettings {
         .with_time_layer(args.time_layer);
     if let Some(steps) = args.steps {
         settings = settings.with_steps(steps);
+    } else if args.adapt_time.is_some() {
+        settings = settings.with_steps(evhi::time_adapt::Settings::default().n0);
     }
     if let Some(mu) = args.grading {
         settings = settings.with_grading(mu);

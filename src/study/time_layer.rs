@@ -209,14 +209,19 @@ pub fn study(
                 err_t: m.err_t,
             });
         }
-        let (levels, _) = crate::time_adapt::adapt_time(scn.t_end, &adapt, |grid| {
-            let m = measure(grid)?;
-            Ok::<_, ExpError>(crate::time_adapt::Solved {
-                gaps: m.gaps.clone(),
-                norm_max: m.norm_max,
-                out: m,
-            })
-        })?;
+        let (levels, _) = crate::time_adapt::adapt_time(
+            scn.t_end,
+            &adapt,
+            |grid| {
+                let m = measure(grid)?;
+                Ok::<_, ExpError>(crate::time_adapt::Solved {
+                    gaps: m.gaps.clone(),
+                    norm_max: m.norm_max,
+                    out: m,
+                })
+            },
+            |_| {},
+        )?;
         for (level, l) in levels.into_iter().enumerate() {
             out.adaptive.push(AdaptiveRow {
                 scenario: name.clone(),

@@ -1,0 +1,134 @@
+//! The time grid chosen from the solution: the library's search on both loops, a
+//! simulation on a grid of its own, and `evhi solve --adapt-time`.
+
+mod common;
+
+use common::*;
+use evhi::prelude::*;
+use evhi::time_adapt::{Settings, Stop, choose};
+use evhi::time_grid::TimeGrid;
+
+fn search(reduced: bool) -> evhi::time_adapt::Chosen {
+    let sim = Simulation::new(Scenario::load("figure").unwrap(), on_loop(8, 4, reduced)).unwrap();
+    let s = Settings {
+        tol: 0.05,
+        ..Settings::default()
+    };
+    let mut seen = 0;
+    let chosen = choose(&sim, &s, &mut |_| seen += 1).unwrap();
+    assert_eq!(seen, chosen.levels.len());
+    chosen
+}
+
+/// The reduced loop measures the predictor on its states, the general loop on its
+/// fields: the same grids, the same estimates to rounding.
+#[test]
+fn both_loops_choose_the_same_grid() {
+    let (r, g) = (search(true), search(false));
+    assert_eq!(r.stop, Stop::Tolerance);
+    assert_eq!(r.levels.len(), g.levels.len());
+    assert!(r.levels.len() > 3, "{}", r.levels.len());
+    for (a, b) in r.levels.iter().zip(&g.levels) {
+        assert_eq!(a.grid, b.grid);
+        assert!(
+            (a.estimate - b.estimate).abs() <= 1e-8 * a.estimate,
+            "{} {}",
+            a.estimate,
+            b.estimate
+        );
+    }
+    let last = r.levels.last().unwrap();
+    assert!(last.estimate <= 0.05);
+    // The estimate falls from level to level, and the layer at t = 0 gets the short steps.
+    assert!(r.levels[0].estimate > 10.0 * last.estimate);
+    assert_eq!(last.grid.k(1), last.grid.k_min());
+    assert!(last.grid.k(last.grid.len()) > 8.0 * last.grid.k_min());
+}
+
+/// A simulation runs on the grid it is given, and refuses one that does not end at T.
+#[test]
+fn a_simulation_runs_on_a_grid_of_its_own() {
+    let sim = Simulation::new(Scenario::load("figure").unwrap(), on_loop(8, 4, true)).unwrap();
+    let grid = TimeGrid::uniform(1.0, 4).bisect(&[0, 2]).unwrap();
+    let on = sim.on_time_grid(grid.clone()).unwrap();
+    assert_eq!(on.steps(), 6);
+    let sol = on.solve(&mut ()).unwrap();
+    assert_eq!(sol.run.steps, 6);
+    assert!(sol.max_certificate() <= 1e-10);
+    let short = TimeGrid::uniform(0.5, 4);
+    let e = sim.on_time_grid(short).unwrap_err().to_string();
+    assert!(e.contains("time grid") && e.contains("T = 1"), "{e}");
+    let layered = Simulation::new(
+        Scenario::load("figure").unwrap(),
+        on_loop(8, 4, true).with_time_layer(2),
+    )
+    .unwrap();
+    let e = layered.on_time_grid(grid).unwrap_err().to_string();
+    assert!(e.contains("time_layer"), "{e}");
+}
+
+/// The command line prints a line per level, says why it stopped, runs the chosen
+/// grid and writes its levels.
+#[test]
+fn solve_adapt_time_writes_its_levels() {
+    let dir = scratch("adapt-time");
+    let run = dir.join("run");
+    let o = evhi_with("solve --scenario literal --n 8 --adapt-time 0.05 --timings --out")
+        .arg(&run)
+        .output()
+        .unwrap();
+    let err = ok(&o);
+    assert_contains(
+        &err,
+        &[
+            "time level: 4 steps, shortest T/4",
+            "stopped: the estimate is within the tolerance",
+            "time grid search: ",
+        ],
+    );
+    let text = read(run.join("time_adapt.csv"));
+    let rows: Vec<Vec<String>> = (text.lines())
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(fields)
+        .collect();
+    let last = rows.last().unwrap();
+    let steps: usize = last[1].parse().unwrap();
+    let estimate: f64 = last[4].parse().unwrap();
+    assert!(estimate <= 0.05, "{estimate}");
+    assert_eq!(steps, steps_of(&run));
+    assert_eq!(rows.len(), err.matches("time level: ").count());
+}
+
+fn steps_of(run: &std::path::Path) -> usize {
+    steps(run).len()
+}
+
+/// A tolerance out of range, a budget below the first grid and a layer beside it are
+/// refused by their flags.
+#[test]
+fn solve_adapt_time_refuses_bad_input() {
+    let dir = scratch("adapt-time-bad");
+    let run = dir.join("run");
+    for (words, needles) in [
+        (
+            "solve --scenario figure --adapt-time 2 --out",
+            &["--adapt-time", "[1e-6, 1]"][..],
+        ),
+        (
+            "solve --scenario figure --adapt-time 0.1 --steps 8 --max-steps 4 --out",
+            &["--max-steps", "8 steps"][..],
+        ),
+        (
+            "solve --scenario figure --adapt-time 0.1 --time-layer 3 --out",
+            &["--time-layer"][..],
+        ),
+        (
+            "solve --scenario figure --max-steps 40 --out",
+            &["--adapt-time"][..],
+        ),
+    ] {
+        let o = evhi_with(words).arg(&run).output().unwrap();
+        refused(&o, needles);
+    }
+}
