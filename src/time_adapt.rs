@@ -1,5 +1,5 @@
 //! Time steps chosen by the solution: backward Euler's local error estimated from a
-//! second-order predictor, and a time grid refined where it is large.
+//! linear predictor, and a time grid refined where it is large.
 //!
 //! **The indicator.** Backward Euler's local error at step $n$ is about
 //! $\tfrac12 k_n^2\,\ddot u(t_n)$. The divided difference of the two last velocities,
@@ -8,7 +8,7 @@
 //! $$\eta_n = \frac{k_n}{k_n + k_{n-1}}\,\big\|u_n - \hat u_n\big\|_E, \qquad
 //! \hat u_n = u_{n-1} + \frac{k_n}{k_{n-1}}\,\delta u_{n-1},$$
 //! the distance of the step's result from the linear extrapolation of the two states
-//! before it, a second-order predictor. The first step has no two states before it,
+//! before it (a predictor exact for motions linear in time). The first step has no two states before it,
 //! and the velocity before $t = 0$ says nothing: a load applied in full at $t = 0$
 //! makes $\dot u$ jump there, yet the solution is smooth on $(0, T]$ and the first
 //! step's local error is $\tfrac12 k_1^2\ddot u$ like any other's. So it takes the
@@ -17,12 +17,14 @@
 //! $\eta_1 = \tfrac12\|u_1\|_E$, is of order $k_1$, not $k_1^2$: under that load it
 //! overstated the first step by $\tau/k_1$ and spent the whole halving budget there.)
 //!
-//! **The estimate.** Each local error is carried to later times by the scheme, which
-//! damps it (every mode relaxes) but never amplifies it. So the error at any $t_n$ is
-//! at most about the sum of the local errors made before it, and
+//! **The estimate.** On the linear viscoelastic part the scheme carries each local
+//! error to later times without amplifying it (every mode relaxes), so the error at
+//! $t_n$ is about at most the sum of the local errors made before it, and
 //! $$\mathcal E = \sum_n \eta_n \Big/ \max_n \|u_n\|_E$$
-//! estimates the relative error over time from above. It does not see the damping:
-//! where the error of a layer has long decayed, at $T$, it still counts it.
+//! estimates the relative error over time from above. It is no bound: $\eta_n$ is
+//! asymptotic in $k_n/\tau$, and the nonmonotone law may amplify an error by a bounded
+//! factor. It does not see the damping: where the error of a layer has long decayed,
+//! at $T$, it still counts it.
 //!
 //! **The refinement.** Dörfler's bulk criterion on the $\eta_n$ (summed, not squared:
 //! the estimate adds them) marks the fewest largest steps that carry the fraction
@@ -31,8 +33,8 @@
 //! halves. Every step is a power of two of the finest unit $(T/N)/2^J$ and starts at
 //! a multiple of its length ([`TimeGrid::from_exponents`]): the grid's times lie on
 //! a uniform reference of $N 2^J$ steps, and the distinct lengths are at most
-//! $J + 1$ (the general loop factorises once per distinct length, the reduced loop
-//! only rescales).
+//! $J + 1$ (the reduced loop only rescales at a change of length; the general loop
+//! factorises again at each change, which on an adaptive grid may come often).
 
 use crate::adapt::dorfler;
 use crate::error::InputError;

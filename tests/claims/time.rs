@@ -927,6 +927,16 @@ fn time_adaptive_ramps() {
     );
     // Not the quarter at 1 %; the uniform grid reaches 1 % with 14 to 72 steps there.
     assert!(at[0].iter().all(|&q| q > 0.25));
+    // At 0.1 % only literal under the ramp to 1 gets below a quarter, the layer grid too.
+    let below: Vec<(String, String)> = ["figure", "literal"]
+        .iter()
+        .flat_map(|scn| ["b_ramp1", "c_ramp0.25"].map(|h| (scn.to_string(), h.to_string())))
+        .filter(|(scn, h)| num(&saved(scn, h, "max", "0.1"), "adaptive_over_uniform") < 0.25)
+        .collect();
+    assert_eq!(below, [("literal".to_string(), "b_ramp1".to_string())]);
+    let r = saved("literal", "b_ramp1", "max", "0.1");
+    assert_eq!(fix(num(&r, "adaptive_over_uniform"), 2), "0.22");
+    assert!(num(&r, "layer_over_uniform") < 0.25);
     let mut uniform = vec![];
     for scn in ["figure", "literal"] {
         for h in ["b_ramp1", "c_ramp0.25"] {
@@ -958,6 +968,14 @@ fn time_adaptive_at_t() {
     }
     assert!(ratios.iter().all(|&q| q >= 1.0), "{ratios:?}");
     assert_eq!(fix(max(&ratios), 2), "1.35");
+    // Two steps more at most, on grids of 4 to 8.
+    for scn in ["figure", "literal"] {
+        for h in HISTORIES {
+            let r = saved(scn, h, "T", "0.1");
+            let (a, u) = (num(&r, "adaptive_steps"), num(&r, "uniform_steps"));
+            assert!(a - u <= 2.1 && (4.0..=8.0).contains(&a) && (4.0..=8.0).contains(&u));
+        }
+    }
 }
 
 #[test]
@@ -982,6 +1000,9 @@ fn time_adaptive_search_cost() {
         }
     }
     assert_eq!((more, cases), (7, 8));
+    let r = saved("literal", "b_ramp1", "max", "0.1");
+    assert_eq!(num(&r, "adaptive_levels_steps"), 133.0);
+    assert_eq!(fix(num(&r, "uniform_steps"), 0), "190");
     // The sum counts every level through the first at or below the target.
     let levels = rows(ADAPTIVE);
     let fig: Vec<&Row> = (levels.iter())
@@ -1004,6 +1025,24 @@ fn time_adaptive_estimate_above() {
     assert!(levels.len() > 60, "{}", levels.len());
     assert!(min(&ratios) > 2.5 && min(&ratios) < 3.5, "{}", min(&ratios));
     assert_eq!(fix(max(&ratios), 0), "19");
+    // Smallest under the constant load (about 3 to 7), up to 19 under the ramps.
+    let of = |constant: bool| -> Vec<f64> {
+        (levels.iter())
+            .filter(|r| (r["history"] == "a_constant") == constant)
+            .map(|r| num(r, "estimate_percent") / num(r, "rel_err_max_percent"))
+            .collect()
+    };
+    assert_eq!(
+        (fix(min(&of(true)), 0), fix(max(&of(true)), 0)),
+        ("3".into(), "7".into())
+    );
+    assert_eq!(fix(max(&of(false)), 0), "19");
+    // The first level's k / tau: T/4 against 0.07.
+    let k_over_tau = num(&rows(STUDY)[0], "k_over_tau");
+    assert_eq!(
+        (num(&rows(STUDY)[0], "steps"), fix(k_over_tau, 1)),
+        (4.0, "3.6".into())
+    );
     // Every scene's levels are there, each a run of its own.
     for scn in ["figure", "literal"] {
         for h in HISTORIES {

@@ -16,9 +16,10 @@ use files::{rust_files, src};
 /// happens to be spelled alike, listed here with what it means.
 #[test]
 fn experiment_names_are_spelled_in_the_registry_only() {
-    let other_meaning: [(&str, &str); 11] = [
+    let other_meaning: [(&str, &str); 12] = [
         ("src/experiments/adaptive.rs", "graded"), // a mesh family's label
         ("src/experiments/adaptive.rs", "adaptive"), // a mesh family's label
+        ("src/experiments/time/grids.rs", "adaptive"), // a time grid family's label
         ("src/cli/solve_args.rs", "graded"),       // the mesh kind of --mesh
         ("src/study/mod.rs", "time"),              // the study `evhi study time`
         ("src/study/mod.rs", "stability"),         // the study `evhi study stability`
