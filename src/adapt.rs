@@ -71,6 +71,9 @@ pub struct AdaptSettings {
     pub max_dofs: usize,
     /// How the steps' indicators are gathered.
     pub aggregate: Aggregate,
+    /// The time grid of every level (say one [`crate::time_adapt::choose`] found);
+    /// `None`: the run settings' own.
+    pub time_grid: Option<crate::time_grid::TimeGrid>,
 }
 
 impl Default for AdaptSettings {
@@ -80,6 +83,7 @@ impl Default for AdaptSettings {
             theta: 0.5,
             max_dofs: 20_000,
             aggregate: Aggregate::Max,
+            time_grid: None,
         }
     }
 }
@@ -103,6 +107,11 @@ impl AdaptSettings {
     /// The aggregation over time ([`AdaptSettings::aggregate`]).
     pub fn with_aggregate(mut self, aggregate: Aggregate) -> Self {
         self.aggregate = aggregate;
+        self
+    }
+    /// The time grid of every level ([`AdaptSettings::time_grid`]).
+    pub fn with_time_grid(mut self, grid: crate::time_grid::TimeGrid) -> Self {
+        self.time_grid = Some(grid);
         self
     }
 
@@ -388,6 +397,10 @@ pub fn adapt_from(
         let clock = Instant::now();
         let level = levels.len();
         let sim = Simulation::on_mesh(scene.clone(), run.clone().with_n(mesh.n), mesh.clone())?;
+        let sim = match &settings.time_grid {
+            Some(grid) => sim.on_time_grid(grid.clone())?,
+            None => sim,
+        };
         observer.level_started(level, &mesh, sim.steps());
         let est = solve_estimating(&sim, settings.aggregate, observer)?;
         let total: f64 = est.eta_sq.iter().sum();
@@ -508,7 +521,7 @@ pub fn solve_estimating(
         estimator,
         seconds: clock.elapsed().as_secs_f64(),
         dofs: Dofs::new(&mesh, true),
-        k: scn.t_end / steps as f64,
+        grid: sim.grid().clone(),
         steps,
         aggregate,
         keep,
@@ -540,7 +553,8 @@ struct Gather<'a> {
     /// The seconds spent forming the indicators (with the mesh's preparation).
     seconds: f64,
     dofs: Dofs,
-    k: f64,
+    /// The run's time grid: each step's $k_n$ (uniform, a layer's, or a chosen one).
+    grid: crate::time_grid::TimeGrid,
     steps: usize,
     aggregate: Aggregate,
     keep: bool,
@@ -567,7 +581,8 @@ impl Observer for Gather<'_> {
         let clock = std::time::Instant::now();
         let mut un = std::mem::take(&mut self.spare);
         self.dofs.expand_into(u, &mut un);
-        let est = (self.estimator).estimate_scene(self.scn, &un, &self.prev, self.k, t, contact);
+        let k = self.grid.k(n);
+        let est = (self.estimator).estimate_scene(self.scn, &un, &self.prev, k, t, contact);
         let sigma_sq = est.stress_sq;
         match self.aggregate {
             Aggregate::Max => {
@@ -577,7 +592,12 @@ impl Observer for Gather<'_> {
                 self.norm_sq = self.norm_sq.max(sigma_sq);
             }
             Aggregate::Sum => {
-                let w = 1.0 / self.steps as f64;
+                // k_n / T: 1/N on the uniform grid (as written there, bit for bit).
+                let w = if self.grid.is_uniform() {
+                    1.0 / self.steps as f64
+                } else {
+                    k / self.scn.t_end
+                };
                 (self.eta_sq.iter_mut())
                     .zip(&est.eta_sq)
                     .for_each(|(a, &e)| *a += w * e);

@@ -132,3 +132,78 @@ fn solve_adapt_time_refuses_bad_input() {
         refused(&o, needles);
     }
 }
+
+/// The space loop's estimator takes each step's own $k_n$ on a grid of unequal steps
+/// (before, it took $T/M$ for every step): recomputed step by step from the fields it
+/// saw, bit for bit; with $T/M$ the indicators differ.
+#[test]
+fn the_space_loop_estimates_each_step_with_its_own_k() {
+    use evhi::adapt::{AdaptObserver, Aggregate, solve_estimating};
+    use evhi::certificate::ContactState;
+    struct Keep(Vec<(usize, f64, Vec<f64>, Vec<ContactState>)>);
+    impl AdaptObserver for Keep {
+        fn step(&mut self, n: usize, t: f64, u: &[f64], c: &[ContactState]) {
+            self.0.push((n, t, u.to_vec(), c.to_vec()));
+        }
+        fn restart(&mut self) {
+            self.0.clear();
+        }
+    }
+    let scn = Scenario::load("figure").unwrap();
+    let grid = TimeGrid::uniform(1.0, 4).bisect(&[0, 1]).unwrap();
+    let sim = Simulation::new(scn.clone(), on_loop(8, 4, true))
+        .unwrap()
+        .on_time_grid(grid.clone())
+        .unwrap();
+    let mut keep = Keep(vec![]);
+    let est = solve_estimating(&sim, Aggregate::Max, &mut keep).unwrap();
+    assert_eq!(keep.0.len(), 6);
+    let mesh = sim.mesh();
+    let dofs = evhi::mesh::Dofs::new(mesh, true);
+    let again = |k_of: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        let mut prev = vec![[0.0; 2]; mesh.nodes.len()];
+        let mut eta_sq = vec![0.0f64; mesh.triangles.len()];
+        for (n, t, u, c) in &keep.0 {
+            let mut un = vec![];
+            dofs.expand_into(u, &mut un);
+            let e = evhi::estimator::estimate_scene(&scn, mesh, &un, &prev, k_of(*n), *t, c);
+            eta_sq
+                .iter_mut()
+                .zip(&e.eta_sq)
+                .for_each(|(a, &b)| *a = a.max(b));
+            prev = un;
+        }
+        eta_sq
+    };
+    assert_eq!(again(&|n| grid.k(n)), est.eta_sq);
+    assert_ne!(again(&|_| 1.0 / 6.0), est.eta_sq);
+}
+
+/// `--adapt` with `--adapt-time`: the grid is chosen once, and every level runs on it.
+#[test]
+fn solve_adapt_with_adapt_time_runs_every_level_on_the_chosen_grid() {
+    let dir = scratch("adapt-space-time");
+    let run = dir.join("run");
+    let o = evhi_with("solve --scenario figure --adapt 0.3 --max-dofs 1500 --adapt-time 0.2 --out")
+        .arg(&run)
+        .output()
+        .unwrap();
+    let err = ok(&o);
+    assert_contains(&err, &["time grid chosen: ", "adapting `figure`"]);
+    let last_row = |file: &str| -> Vec<String> {
+        let text = read(run.join(file));
+        fields(text.lines().rfind(|l| !l.starts_with('#')).unwrap())
+    };
+    let chosen: usize = last_row("time_adapt.csv")[1].parse().unwrap();
+    let text = read(run.join("adapt.csv"));
+    let levels: Vec<Vec<String>> = (text.lines())
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(fields)
+        .collect();
+    assert!(levels.len() >= 2, "{}", levels.len());
+    for l in &levels {
+        assert_eq!(l[3].parse::<usize>().unwrap(), chosen);
+    }
+    assert_eq!(steps_of(&run), chosen);
+}

@@ -82,6 +82,18 @@ pub fn run(
         }
     };
     let out = RunDir::open(&args.out)?;
+    // With --adapt-time, the time grid is chosen once, on the first level's mesh, and
+    // every level runs on it.
+    let (settings, chosen) = match args.adapt_time {
+        Some(tol_time) => {
+            let (scene, mesh) = evhi::adapt::level_scene(&forest, &root, &scn, n0)?;
+            let sim = Simulation::on_mesh(scene, run_settings.clone().with_n(mesh.n), mesh)
+                .map_err(super::solve_args::settings_flag)?;
+            let (_, chosen) = super::adapt_time::choose(args, sim, tol_time)?;
+            (settings.with_time_grid(chosen.grid().clone()), Some(chosen))
+        }
+        None => (settings, None),
+    };
     evhi::diag!(
         "adapting `{}` from {from}: tol {tol}, theta {}, at most {} unknowns, \
          indicators gathered by their {} over the steps",
@@ -143,6 +155,10 @@ pub fn run(
     // A mesh scene's n is its mesh's (as a plain run's); the rectangle's the grid's.
     let n = if n0 > 0 { n0 } else { mesh.n };
     let sim = Simulation::on_mesh(scn.clone(), run_settings.with_n(n), mesh)?;
+    let sim = match &settings.time_grid {
+        Some(grid) => sim.on_time_grid(grid.clone())?,
+        None => sim,
+    };
     let (lines, h_s) = evhi::diagnostics::after(&scn, sim.solver(), &solution, n, h_s);
     lines.iter().for_each(|l| evhi::diag!("{l}"));
     let mut prov = Provenance::of(&sim, &solution, evhi::output::run::command_line());
@@ -176,6 +192,9 @@ pub fn run(
         adaptation.stop.describe()
     ));
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
+    if let Some(chosen) = &chosen {
+        super::adapt_time::write(&out, &prov, &scn, run, chosen)?;
+    }
     let eta: Vec<f64> = adaptation.eta_sq.iter().map(|e| e.sqrt()).collect();
     super::outputs::write_eta(&out, &scn, run, &eta, None)?;
     evhi::output::runplot::draw(&out.path(""))?;

@@ -150,12 +150,13 @@ pub struct SolveArgs {
     /// more than --max-steps steps or a step shorter than (T/N0)/2^20. Each level is
     /// printed on one line, and a line says which rule stopped the search. The run on
     /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).
-    /// Not with --adapt or --time-layer.
+    /// With --adapt the grid is chosen once, on the adaptive loop's first mesh, and
+    /// every level of the mesh's adaptation runs on it. Not with --time-layer.
     #[arg(
         long,
         value_name = "TOL",
         allow_hyphen_values = true,
-        conflicts_with_all = ["adapt", "time_layer"]
+        conflicts_with = "time_layer"
     )]
     pub adapt_time: Option<f64>,
     /// The step budget of `--adapt-time`: a grid with more steps is not solved, and the
