@@ -149,6 +149,7 @@ impl<'d> Reduced<'d> {
             )
             .into());
         };
+        timings.factorisations += 1;
         let (chol, _) = timed(&mut timings.factorisation, || {
             crate::scheme::factorise(disc, &disc.b, ordering, parallel)
         })?;

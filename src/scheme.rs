@@ -152,6 +152,9 @@ pub struct Timings {
     /// One solve with the factor (forward + backward), median of three, measured
     /// after the factorisation: the floor of a step's cost.
     pub one_solve: f64,
+    /// How many step matrices were factorised (the general loop: one per change of
+    /// the step length not kept from before; the reduced loop: one, of $B$).
+    pub factorisations: usize,
 }
 
 impl Timings {
@@ -618,13 +621,40 @@ pub(crate) fn run_batch_states(
     let mut contact = vec![vec![]; nb];
     let clock = Instant::now();
     // A grid into the layer changes k a few times, each time to a longer step: the
-    // operator of the new k is factorised then (its time is the factorisation's).
+    // operator of the new k is factorised then (its time is the factorisation's). A
+    // grid chosen by the solution may come back to a length it left: the operator of a
+    // length used again later is kept (at most KEPT_OPERATORS of them; past that, the
+    // one whose last use comes latest is dropped), so that each length is factorised
+    // about once.
+    let last_use = last_uses(&grid);
+    let mut kept: Vec<StepOperator> = vec![];
     let mut refactor_s = 0.0;
+    let mut extremes = ((op.lambda_min, op.lambda_max), op.hessian_min);
     for step in 1..=grid.len() {
         let (t, k) = (grid.t(step), grid.k(step));
         if k != op.k {
             let clock = Instant::now();
-            op = StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?;
+            let next = match kept.iter().position(|o| o.k == k) {
+                Some(i) => kept.swap_remove(i),
+                None => {
+                    StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?
+                }
+            };
+            let old = std::mem::replace(&mut op, next);
+            if used_after(&last_use, old.k, step) {
+                kept.push(old);
+                if kept.len() > KEPT_OPERATORS {
+                    let (i, _) = (kept.iter().enumerate())
+                        .max_by_key(|(_, o)| last_use_of(&last_use, o.k))
+                        .expect("kept operators");
+                    kept.swap_remove(i);
+                }
+            }
+            let ((lo, hi), h) = extremes;
+            extremes = (
+                (lo.min(op.lambda_min), hi.max(op.lambda_max)),
+                h.min(op.hessian_min),
+            );
             refactor_s += clock.elapsed().as_secs_f64();
         }
         let t0 = Instant::now();
@@ -710,10 +740,37 @@ pub(crate) fn run_batch_states(
                 records,
                 contact,
                 timings.clone(),
-                ((op.lambda_min, op.lambda_max), op.hessian_min),
+                extremes,
             )
         })
         .collect())
+}
+
+/// The most step operators of other lengths the general loop keeps for later.
+pub const KEPT_OPERATORS: usize = 3;
+
+/// Each distinct step length of `grid` (its bits) with the last step that takes it.
+fn last_uses(grid: &crate::time_grid::TimeGrid) -> Vec<(u64, usize)> {
+    let mut out: Vec<(u64, usize)> = vec![];
+    for step in 1..=grid.len() {
+        let bits = grid.k(step).to_bits();
+        match out.iter_mut().find(|(b, _)| *b == bits) {
+            Some(e) => e.1 = step,
+            None => out.push((bits, step)),
+        }
+    }
+    out
+}
+
+fn last_use_of(last: &[(u64, usize)], k: f64) -> usize {
+    (last.iter())
+        .find(|(b, _)| *b == k.to_bits())
+        .map_or(0, |e| e.1)
+}
+
+/// Whether a step after `step` takes the length `k`.
+fn used_after(last: &[(u64, usize)], k: f64, step: usize) -> bool {
+    last_use_of(last, k) > step
 }
 
 /// The error of a converged step whose full certificate `certificate` failed `tol`,
@@ -959,6 +1016,7 @@ impl<'d> StepOperator<'d> {
         timings: &mut Timings,
     ) -> Result<StepOperator<'d>, RunError> {
         let cdofs = disc.contact_dofs.clone();
+        timings.factorisations += 1;
         let (pair, kmat, chol, threads) = timed(&mut timings.factorisation, || {
             // A and B share their pattern (one mesh, one dof map), which makes K = A + kB
             // and the products A u, B u single passes over it.

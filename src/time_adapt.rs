@@ -34,7 +34,8 @@
 //! a multiple of its length ([`TimeGrid::from_exponents`]): the grid's times lie on
 //! a uniform reference of $N 2^J$ steps, and the distinct lengths are at most
 //! $J + 1$ (the reduced loop only rescales at a change of length; the general loop
-//! factorises again at each change, which on an adaptive grid may come often).
+//! keeps the operators of lengths it will need again, so it factorises each length
+//! about once).
 
 use crate::adapt::dorfler;
 use crate::error::InputError;

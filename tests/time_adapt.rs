@@ -207,3 +207,26 @@ fn solve_adapt_with_adapt_time_runs_every_level_on_the_chosen_grid() {
     }
     assert_eq!(steps_of(&run), chosen);
 }
+
+/// On a grid that comes back to lengths it left, the general loop keeps the operators
+/// it will need again: one factorisation per distinct length, and the same run as the
+/// reduced loop's to rounding.
+#[test]
+fn the_general_loop_factorises_each_length_once() {
+    // 1/8 1/8 1/4 1/8 1/8 1/4: the lengths alternate four times.
+    let grid = TimeGrid::from_exponents(1.0, 4, 1, &[0, 0, 1, 0, 0, 1]).unwrap();
+    let run = |reduced: bool| {
+        Simulation::new(Scenario::load("figure").unwrap(), on_loop(8, 4, reduced))
+            .unwrap()
+            .on_time_grid(grid.clone())
+            .unwrap()
+            .solve(&mut ())
+            .unwrap()
+    };
+    let (g, r) = (run(false), run(true));
+    assert_eq!(g.run.timings.factorisations, 2);
+    assert_eq!(r.run.timings.factorisations, 1);
+    let (eg, er) = (g.energy_norm_t(), r.energy_norm_t());
+    assert!((eg - er).abs() <= 1e-9 * er, "{eg} {er}");
+    assert_eq!(g.run.steps, 6);
+}
