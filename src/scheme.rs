@@ -152,8 +152,9 @@ pub struct Timings {
     /// One solve with the factor (forward + backward), median of three, measured
     /// after the factorisation: the floor of a step's cost.
     pub one_solve: f64,
-    /// How many step matrices were factorised (the general loop: one per change of
-    /// the step length not kept from before; the reduced loop: one, of $B$).
+    /// How many step matrices were factorised (the general loop: the first step's,
+    /// then one at each change to a step length whose operator was not kept; the
+    /// reduced loop: one, of $B$).
     pub factorisations: usize,
 }
 
@@ -634,21 +635,29 @@ pub(crate) fn run_batch_states(
         let (t, k) = (grid.t(step), grid.k(step));
         if k != op.k {
             let clock = Instant::now();
-            let next = match kept.iter().position(|o| o.k == k) {
-                Some(i) => kept.swap_remove(i),
+            // The current operator is kept if a later step takes its length and its
+            // factor is small enough; room is made before a new one is built, so that
+            // at most KEPT_OPERATORS + 2 factors ever live at once.
+            let keep_old = used_after(&last_use, op.k, step) && op.chol.nnz_l() <= KEEP_MAX_NNZ;
+            let reuse = kept
+                .iter()
+                .position(|o| o.k == k)
+                .map(|i| kept.swap_remove(i));
+            while kept.len() + usize::from(keep_old) > KEPT_OPERATORS {
+                let (i, _) = (kept.iter().enumerate())
+                    .max_by_key(|(_, o)| last_use_of(&last_use, o.k))
+                    .expect("kept operators");
+                kept.swap_remove(i);
+            }
+            let next = match reuse {
+                Some(o) => o,
                 None => {
                     StepOperator::new(&disc, k, opt.ordering, opt.parallel, cmin, &mut timings)?
                 }
             };
             let old = std::mem::replace(&mut op, next);
-            if used_after(&last_use, old.k, step) {
+            if keep_old {
                 kept.push(old);
-                if kept.len() > KEPT_OPERATORS {
-                    let (i, _) = (kept.iter().enumerate())
-                        .max_by_key(|(_, o)| last_use_of(&last_use, o.k))
-                        .expect("kept operators");
-                    kept.swap_remove(i);
-                }
             }
             let ((lo, hi), h) = extremes;
             extremes = (
@@ -748,6 +757,11 @@ pub(crate) fn run_batch_states(
 
 /// The most step operators of other lengths the general loop keeps for later.
 pub const KEPT_OPERATORS: usize = 3;
+
+/// The largest factor the general loop keeps for later, in entries of $L$ (16 M,
+/// 128 MB of values): a larger one is factorised again when its length comes back,
+/// as before the operators were kept.
+pub const KEEP_MAX_NNZ: usize = 16_000_000;
 
 /// Each distinct step length of `grid` (its bits) with the last step that takes it.
 fn last_uses(grid: &crate::time_grid::TimeGrid) -> Vec<(u64, usize)> {

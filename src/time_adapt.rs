@@ -197,8 +197,6 @@ pub fn adapt_time<T, E: From<InputError>>(
             )
             .into());
         }
-        let marked = dorfler(&eta, s.theta);
-        let next = grid.bisect(&marked)?;
         let level = Level {
             grid,
             eta,
@@ -206,20 +204,29 @@ pub fn adapt_time<T, E: From<InputError>>(
             out: solved.out,
         };
         on_level(&level);
-        levels.push(level);
-        let stop = if estimate <= s.tol || marked.is_empty() {
-            Some(Stop::Tolerance)
-        } else if next.len() > s.max_steps {
-            Some(Stop::Steps)
-        } else if next.halvings() > s.max_halvings {
-            Some(Stop::Halvings)
+        // A zero sum marks nothing: then the estimate is 0, within any tolerance.
+        let marked = dorfler(&level.eta, s.theta);
+        let grid_now = &level.grid;
+        let exps = grid_now.exponents();
+        let next = if estimate <= s.tol || marked.is_empty() {
+            Err(Stop::Tolerance)
+        } else if marked.iter().any(|&i| exps[i] == 0) && grid_now.halvings() >= s.max_halvings {
+            // Halving a step of one unit needs J + 1: past the budget (checked before
+            // the grid is formed, so that J never passes its bound).
+            Err(Stop::Halvings)
         } else {
-            None
+            let next = grid_now.bisect(&marked)?;
+            if next.len() > s.max_steps {
+                Err(Stop::Steps)
+            } else {
+                Ok(next)
+            }
         };
-        if let Some(stop) = stop {
-            return Ok((levels, stop));
+        levels.push(level);
+        match next {
+            Ok(next) => grid = next,
+            Err(stop) => return Ok((levels, stop)),
         }
-        grid = next;
     }
 }
 // ANCHOR_END: adapt_time
@@ -257,8 +264,10 @@ impl Stop {
 /// Chooses the time grid of `sim`'s scene ([`adapt_time`] from $N_0$ uniform steps):
 /// each level is a run of `sim` on its grid with its solver, and each step's
 /// predictor distance is measured in the energy norm, from the reduced loop's states
-/// where `sim` runs it (no field formed), else from the general loop's fields. The
-/// caller solves on [`Chosen::grid`] ([`crate::simulation::Simulation::on_time_grid`]).
+/// where `sim` runs it (no field formed), else from the general loop's fields. Each
+/// level runs `sim`'s solver as it is (no fallback: a stalled step stops the search
+/// with its error). The search only chooses: the caller solves on [`Chosen::grid`]
+/// ([`crate::simulation::Simulation::on_time_grid`]).
 pub fn choose(
     sim: &crate::simulation::Simulation,
     s: &Settings,
@@ -319,7 +328,8 @@ pub fn choose(
                     gaps: Vec::with_capacity(grid.len()),
                     norm_max: 0.0,
                 };
-                level.solve(&mut obs)?;
+                // Run as it is, as on the reduced loop: a stalled step stops the search.
+                level.solve_with(sim.solver().build().as_mut(), &mut obs)?;
                 Ok::<_, crate::scheme::RunError>(Solved {
                     gaps: obs.gaps,
                     norm_max: obs.norm_max,

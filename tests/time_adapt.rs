@@ -73,10 +73,11 @@ fn a_simulation_runs_on_a_grid_of_its_own() {
 fn solve_adapt_time_writes_its_levels() {
     let dir = scratch("adapt-time");
     let run = dir.join("run");
-    let o = evhi_with("solve --scenario literal --n 8 --adapt-time 0.05 --timings --out")
-        .arg(&run)
-        .output()
-        .unwrap();
+    let o =
+        evhi_with("solve --scenario literal --n 8 --adapt-time 0.05 --timings --estimate --out")
+            .arg(&run)
+            .output()
+            .unwrap();
     let err = ok(&o);
     assert_contains(
         &err,
@@ -177,6 +178,26 @@ fn the_space_loop_estimates_each_step_with_its_own_k() {
     };
     assert_eq!(again(&|n| grid.k(n)), est.eta_sq);
     assert_ne!(again(&|_| 1.0 / 6.0), est.eta_sq);
+    // The time mean weighs each step by k_n / T, in step order, bit for bit.
+    let mut keep = Keep(vec![]);
+    let mean = solve_estimating(&sim, Aggregate::Sum, &mut keep).unwrap();
+    let mut prev = vec![[0.0; 2]; mesh.nodes.len()];
+    let mut eta_sq = vec![0.0f64; mesh.triangles.len()];
+    let mut weights = 0.0;
+    for (n, t, u, c) in &keep.0 {
+        let mut un = vec![];
+        dofs.expand_into(u, &mut un);
+        let k = grid.k(*n);
+        let e = evhi::estimator::estimate_scene(&scn, mesh, &un, &prev, k, *t, c);
+        eta_sq
+            .iter_mut()
+            .zip(&e.eta_sq)
+            .for_each(|(a, &b)| *a += k / 1.0 * b);
+        weights += k;
+        prev = un;
+    }
+    assert_eq!(eta_sq, mean.eta_sq);
+    assert!((weights - 1.0).abs() < 1e-15);
 }
 
 /// `--adapt` with `--adapt-time`: the grid is chosen once, and every level runs on it.
@@ -184,12 +205,22 @@ fn the_space_loop_estimates_each_step_with_its_own_k() {
 fn solve_adapt_with_adapt_time_runs_every_level_on_the_chosen_grid() {
     let dir = scratch("adapt-space-time");
     let run = dir.join("run");
-    let o = evhi_with("solve --scenario figure --adapt 0.3 --max-dofs 1500 --adapt-time 0.2 --out")
-        .arg(&run)
-        .output()
-        .unwrap();
+    let o = evhi_with(
+        "solve --scenario figure --adapt 0.3 --max-dofs 1500 --adapt-time 0.2 --timings --out",
+    )
+    .arg(&run)
+    .output()
+    .unwrap();
     let err = ok(&o);
-    assert_contains(&err, &["time grid chosen: ", "adapting `figure`"]);
+    assert_contains(
+        &err,
+        &[
+            "time grid chosen: ",
+            "adapting `figure`",
+            "time grid search: ",
+        ],
+    );
+    assert!(read(run.join("time_adapt.csv")).contains("the adaptive loop's first mesh"));
     let last_row = |file: &str| -> Vec<String> {
         let text = read(run.join(file));
         fields(text.lines().rfind(|l| !l.starts_with('#')).unwrap())
@@ -225,6 +256,11 @@ fn the_general_loop_factorises_each_length_once() {
     };
     let (g, r) = (run(false), run(true));
     assert_eq!(g.run.timings.factorisations, 2);
+    // Three lengths, each taken twice: 1/16 1/16 1/8 1/4 1/16 1/16 1/8 1/4.
+    let three = TimeGrid::from_exponents(1.0, 4, 2, &[0, 0, 1, 2, 0, 0, 1, 2]).unwrap();
+    let sim = Simulation::new(Scenario::load("figure").unwrap(), on_loop(8, 4, false)).unwrap();
+    let sol = sim.on_time_grid(three).unwrap().solve(&mut ()).unwrap();
+    assert_eq!(sol.run.timings.factorisations, 3);
     assert_eq!(r.run.timings.factorisations, 1);
     let (eg, er) = (g.energy_norm_t(), r.energy_norm_t());
     assert!((eg - er).abs() <= 1e-9 * er, "{eg} {er}");

@@ -193,13 +193,24 @@ pub fn run(
     ));
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     if let Some(chosen) = &chosen {
-        super::adapt_time::write(&out, &prov, &scn, run, chosen)?;
+        let on = format!(
+            "the adaptive loop's first mesh ({} unknowns), not this last level's",
+            adaptation.levels[0].dofs
+        );
+        super::adapt_time::write(&out, &prov, &scn, run, chosen, &on)?;
     }
     let eta: Vec<f64> = adaptation.eta_sq.iter().map(|e| e.sqrt()).collect();
     super::outputs::write_eta(&out, &scn, run, &eta, None)?;
     evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
+        if let Some(chosen) = &chosen {
+            evhi::diag_text!(
+                "time grid search: {} levels, {:.3} s (before the levels below)\n",
+                chosen.levels.len(),
+                chosen.search_s
+            );
+        }
         // The levels' wall and the estimator's share of it, then the last level's
         // phases as a plain run prints them.
         let (walls, est): (f64, f64) = (adaptation.levels.iter())

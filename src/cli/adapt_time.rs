@@ -68,13 +68,15 @@ pub fn write(
     scn: &Scenario,
     run: &evhi::scheme::Run,
     chosen: &Chosen,
+    searched_on: &str,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let l = &chosen.levels;
     let mut header = evhi::output::run::header(prov, scn, run.n, run.steps);
     header.push(format!(
-        "one row a level of the time grid's search (evhi::time_adapt); estimate = the \
-         local errors eta_n summed over the largest energy norm, an estimate from above of \
-         the relative error over time; the last level's grid is the run's; stopped: {}",
+        "one row a level of the time grid's search (evhi::time_adapt), every level solved \
+         on {searched_on}; estimate = the local errors eta_n summed over the largest energy \
+         norm, an estimate from above of the relative error over time; the last level's \
+         grid is the run's; stopped: {}",
         chosen.stop.describe()
     ));
     let table = Table::new()

@@ -34,6 +34,8 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         return super::adapt::run(&args, scn, &toml, tol, wall);
     }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
+    // The output directory is checked and locked before any work.
+    let out = RunDir::open(&args.out)?;
     let (sim, chosen) = match args.adapt_time {
         Some(tol) => {
             let (sim, chosen) = super::adapt_time::choose(&args, sim, tol)?;
@@ -46,8 +48,6 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .for_each(|l| evhi::diag!("{l}"));
     let (mesh, steps) = (sim.mesh().clone(), sim.steps());
-    // The output directory is checked and locked before any work.
-    let out = RunDir::open(&args.out)?;
     if let Some(every) = args.vtk_every {
         check_vtk_volume(&args.out, mesh.nodes.len(), steps, every)?;
     }
@@ -90,7 +90,13 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         &h_s,
     )?;
     let t_est = if args.estimate {
-        Some(write_estimate(&out, scn, run, &last)?)
+        Some(write_estimate(
+            &out,
+            scn,
+            run,
+            &last,
+            sim.grid().k(sim.steps()),
+        )?)
     } else {
         None
     };
@@ -111,7 +117,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
         }),
     )?;
     if let Some(chosen) = &chosen {
-        super::adapt_time::write(&out, &prov, scn, run, chosen)?;
+        super::adapt_time::write(&out, &prov, scn, run, chosen, "the run's mesh")?;
     }
     out.publish()?;
     if args.timings {
@@ -160,6 +166,7 @@ fn write_estimate(
     scn: &Scenario,
     run: &evhi::scheme::Run,
     last: &[(usize, Vec<f64>)],
+    k: f64,
 ) -> Result<f64, Box<dyn std::error::Error>> {
     use evhi::estimator::estimate_scene;
     let mesh = &run.mesh;
@@ -170,10 +177,10 @@ fn write_estimate(
         None if run.steps == 1 => vec![[0.0; 2]; mesh.nodes.len()],
         None => return Err("the run did not keep the field before the last step".into()),
     };
-    // The last step's time and length (the grid into the layer ends with steps of T/N).
+    // The last step's time; `k` is its length on the run's grid.
     let t = run.records.last().map_or(scn.t_end(), |r| r.t);
     let clock = Instant::now();
-    let est = estimate_scene(scn, mesh, &u, &u_prev, run.k, t, &run.contact);
+    let est = estimate_scene(scn, mesh, &u, &u_prev, k, t, &run.contact);
     let seconds = clock.elapsed().as_secs_f64();
     super::outputs::write_eta(out, scn, run, &est.eta(), Some(&est.complementarity))?;
     Ok(seconds)

@@ -22,8 +22,9 @@ pub struct SolveArgs {
     /// refused on a mesh scene ([geometry] mesh = "body.msh"), whose mesh is its file's.
     #[arg(long, allow_hyphen_values = true)]
     pub n: Option<usize>,
-    /// Time steps N, k = T/N (the paper uses N = n). Default 64; a scenario with
-    /// problem = "steady" is one solve at t = T (1 step, the only value accepted).
+    /// Time steps N, k = T/N (the paper uses N = n). Default 64 (4 with --adapt-time,
+    /// where N is the first grid's count); a scenario with problem = "steady" is one
+    /// solve at t = T (1 step, the only value accepted).
     #[arg(long, allow_hyphen_values = true)]
     pub steps: Option<usize>,
     /// A time grid into the initial layer instead of N uniform steps: the first step is
@@ -87,7 +88,8 @@ pub struct SolveArgs {
     pub vtk_every: Option<u64>,
     /// Print the wall time of each phase (assembly, factorisation, condensation, steps,
     /// and the estimator on the last step with --estimate; with --adapt, the levels'
-    /// summed wall time and the estimator's share of it, then the last level's phases).
+    /// summed wall time and the estimator's share of it, then the last level's phases;
+    /// with --adapt-time, first the time grid's search on a line of its own).
     #[arg(long)]
     pub timings: bool,
     /// Also estimate the error of the last step by the residual estimator (element,
@@ -146,7 +148,7 @@ pub struct SolveArgs {
     /// fewest steps that carry 80 % of the summed estimates (Dörfler, theta = 0.8), and
     /// solve again from t = 0, until the estimated relative error over time (the
     /// estimates summed over the largest energy norm, an estimate from above: the book's
-    /// time chapter measures it) is below TOL (in [1e-6, 1]) or the next grid would have
+    /// time chapter measures it) is at most TOL (in [1e-6, 1]) or the next grid would have
     /// more than --max-steps steps or a step shorter than (T/N0)/2^20. Each level is
     /// printed on one line, and a line says which rule stopped the search. The run on
     /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).
