@@ -170,6 +170,78 @@ fn the_holed_block_adapts_towards_its_clamp_ends() {
     assert!(tris[0].0 * 10.0 < far, "{} against {far}", tris[0].0);
 }
 
+/// The contact-zone scene: its contact zone ends inside Gamma_3, but under normal
+/// compliance the pressure rises from zero continuously there, and the loop does not
+/// refine it; it refines the stretch held at the limit g (where the multiplier lives)
+/// and, most of all, the paper's clamp ends and top corners.
+#[test]
+fn the_contact_zone_end_is_left_coarse_and_the_limit_stretch_refined() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenarios/examples/contact_zone.toml");
+    let (scn, _) = Scenario::read(path.to_str().unwrap()).unwrap();
+    let run = RunSettings::default().with_steps(32);
+    let settings = AdaptSettings::default().with_tol(0.01).with_max_dofs(3000);
+    let a = adapt(&scn, &run, &settings, &mut ()).unwrap();
+    let mesh = &a.solution.run.mesh;
+    let state = |v: usize| {
+        let i = mesh
+            .contact
+            .iter()
+            .position(|&c| c == v)
+            .expect("a contact node");
+        &a.solution.run.contact[i]
+    };
+    let xs: Vec<f64> = mesh.gamma3.iter().map(|&v| mesh.nodes[v][0]).collect();
+    // Where the contact zone ends (u_nu turns negative) and the limit stretch's ends.
+    let lifted = (mesh.gamma3.iter())
+        .position(|&v| state(v).u_nu <= 0.0)
+        .unwrap();
+    assert!(lifted > 0 && xs[lifted] < 1.9, "{}", xs[lifted]);
+    let x_end = 0.5 * (xs[lifted - 1] + xs[lifted]);
+    let held: Vec<f64> = (mesh.gamma3.iter())
+        .filter(|&&v| state(v).at_limit)
+        .map(|&v| mesh.nodes[v][0])
+        .collect();
+    let (lo, hi) = (held[0], *held.last().unwrap());
+    assert!(lo > 0.1 && hi < x_end - 0.3, "{lo} {hi} {x_end}");
+    let segs: Vec<(f64, f64)> = xs
+        .windows(2)
+        .map(|w| (0.5 * (w[0] + w[1]), w[1] - w[0]))
+        .collect();
+    let finest = segs.iter().map(|s| s.1).fold(f64::INFINITY, f64::min);
+    // The finest bottom segments lie on the limit stretch.
+    for &(x, l) in &segs {
+        if l <= finest * 1.0001 {
+            assert!(
+                (lo - 0.1..=hi + 0.1).contains(&x),
+                "a finest segment at {x}"
+            );
+        }
+    }
+    // Around the contact zone's end the bottom is at least 4 times coarser.
+    for &(x, l) in segs.iter().filter(|s| (s.0 - x_end).abs() < 0.15) {
+        assert!(l >= 4.0 * finest, "{l} at {x} against {finest}");
+    }
+    // The smallest triangles are at the paper's points.
+    let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
+    let mut tris: Vec<(f64, f64)> = (mesh.triangles.iter())
+        .map(|t| {
+            let p = t.map(|v| mesh.nodes[v]);
+            let c = [0, 1].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0);
+            let d = (points.iter())
+                .map(|q| (c[0] - q[0]).hypot(c[1] - q[1]))
+                .fold(f64::INFINITY, f64::min);
+            (0.5 * evhi::element::twice_area(p).abs(), d)
+        })
+        .collect();
+    tris.sort_by(|a, b| a.0.total_cmp(&b.0));
+    assert!(
+        tris[..10].iter().all(|&(_, d)| d < 0.05),
+        "{:?}",
+        &tris[..10]
+    );
+}
+
 /// The common refinement of two meshes of one forest refines both: every triangle of
 /// each embeds exactly (the interpolation of a P1 field is exact), and it is no finer
 /// than the two need where they agree.

@@ -277,6 +277,8 @@ fn adaptive_user_orders() {
         ("five_branch", "adaptive", 0, "1.07", "5.2", 5702.0),
         ("cantilever", "uniform", 5, "1.05", "6.5", 2176.0),
         ("cantilever", "adaptive", 0, "1.14", "3.3", 4900.0),
+        ("contact_zone", "uniform", 5, "0.66", "12.6", 4222.0),
+        ("contact_zone", "adaptive", 0, "1.05", "5.4", 5716.0),
     ];
     for (scn, fam, levels, order, err, dofs) in stated {
         let d = column(USER, &[("scenario", scn), ("family", fam)], "dofs");
@@ -304,9 +306,34 @@ fn adaptive_user_orders() {
     }
     // The reference 15 to 18 times the adaptive family's last level.
     let text = std::fs::read_to_string(super::root().join("data").join(USER)).unwrap();
-    for (scn, last) in [("cantilever", 4900.0), ("five_branch", 5702.0)] {
+    for (scn, last) in [
+        ("cantilever", 4900.0),
+        ("five_branch", 5702.0),
+        ("contact_zone", 5716.0),
+    ] {
         let r = super::after(&text, &format!("{scn}: "));
         assert!((15.0..18.0).contains(&(r / last)), "{scn}: {r}");
+    }
+}
+
+/// Where the loop refines `contact_zone`: the test that runs it and checks each
+/// statement is `the_contact_zone_end_is_left_coarse_and_the_limit_stretch_refined` in
+/// tests/adapt.rs; here, that the scene is the one the chapter describes.
+#[test]
+fn adaptive_contact_zone_where() {
+    let text =
+        std::fs::read_to_string(super::root().join("data/scenarios/examples/contact_zone.toml"))
+            .unwrap();
+    assert!(text.contains("f = [0.0, -300.0]") && text.contains("f = [0.0, 150.0]"));
+    let test = std::fs::read_to_string(super::root().join("tests/adapt.rs")).unwrap();
+    for needle in [
+        "with_max_dofs(3000)",
+        "with_steps(32)",
+        "l >= 4.0 * finest",
+        "(s.0 - x_end).abs() < 0.15",
+        "d < 0.05",
+    ] {
+        assert!(test.contains(needle), "{needle}");
     }
 }
 
