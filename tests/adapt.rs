@@ -182,7 +182,9 @@ fn the_contact_zone_end_is_left_coarse_and_the_limit_stretch_refined() {
     let run = RunSettings::default().with_steps(32);
     let settings = AdaptSettings::default().with_tol(0.01).with_max_dofs(3000);
     let a = adapt(&scn, &run, &settings, &mut ()).unwrap();
+    assert_eq!(a.stop, Stop::DofBudget);
     let mesh = &a.solution.run.mesh;
+    // The contact states at t = T.
     let state = |v: usize| {
         let i = mesh
             .contact
@@ -240,6 +242,18 @@ fn the_contact_zone_end_is_left_coarse_and_the_limit_stretch_refined() {
         "{:?}",
         &tris[..10]
     );
+    // Where the top's traction changes, (1, 1), the loop refines too: a triangle there
+    // at least 16 times smaller than the median.
+    let median = tris[tris.len() / 2].0;
+    let at_change = (mesh.triangles.iter())
+        .filter(|t| {
+            let p = t.map(|v| mesh.nodes[v]);
+            let c = [0, 1].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0);
+            (c[0] - 1.0).hypot(c[1] - 1.0) < 0.05
+        })
+        .map(|t| 0.5 * evhi::element::twice_area(t.map(|v| mesh.nodes[v])).abs())
+        .fold(f64::INFINITY, f64::min);
+    assert!(16.0 * at_change <= median, "{at_change} against {median}");
 }
 
 /// The common refinement of two meshes of one forest refines both: every triangle of
