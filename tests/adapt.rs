@@ -147,18 +147,7 @@ fn the_holed_block_adapts_towards_its_clamp_ends() {
         .output()
         .unwrap());
     let last = evhi::msh::parse(&std::fs::read(out.join("mesh.msh")).unwrap(), "mesh.msh").unwrap();
-    let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
-    let mut tris: Vec<(f64, f64)> = (last.triangles.iter())
-        .map(|t| {
-            let p = t.map(|v| last.nodes[v]);
-            let c = [0, 1].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0);
-            let d = (points.iter())
-                .map(|q| (c[0] - q[0]).hypot(c[1] - q[1]))
-                .fold(f64::INFINITY, f64::min);
-            (0.5 * evhi::element::twice_area(p), d)
-        })
-        .collect();
-    tris.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let tris = by_area(&last.nodes, &last.triangles);
     assert!(
         tris[..10].iter().all(|&(_, d)| d < 0.05),
         "{:?}",
@@ -225,18 +214,7 @@ fn the_contact_zone_end_is_left_coarse_and_the_limit_stretch_refined() {
         assert!(l >= 4.0 * finest, "{l} at {x} against {finest}");
     }
     // The smallest triangles are at the paper's points.
-    let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
-    let mut tris: Vec<(f64, f64)> = (mesh.triangles.iter())
-        .map(|t| {
-            let p = t.map(|v| mesh.nodes[v]);
-            let c = [0, 1].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0);
-            let d = (points.iter())
-                .map(|q| (c[0] - q[0]).hypot(c[1] - q[1]))
-                .fold(f64::INFINITY, f64::min);
-            (0.5 * evhi::element::twice_area(p).abs(), d)
-        })
-        .collect();
-    tris.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let tris = by_area(&mesh.nodes, &mesh.triangles);
     assert!(
         tris[..10].iter().all(|&(_, d)| d < 0.05),
         "{:?}",
@@ -254,6 +232,24 @@ fn the_contact_zone_end_is_left_coarse_and_the_limit_stretch_refined() {
         .map(|t| 0.5 * evhi::element::twice_area(t.map(|v| mesh.nodes[v])).abs())
         .fold(f64::INFINITY, f64::min);
     assert!(16.0 * at_change <= median, "{at_change} against {median}");
+}
+
+/// Each triangle's area and its centroid's distance to the nearest of the paper's
+/// four points (the clamp ends and the top corners), smallest area first.
+fn by_area(nodes: &[[f64; 2]], triangles: &[[usize; 3]]) -> Vec<(f64, f64)> {
+    let points = [[0.0, 0.5], [2.0, 0.5], [0.0, 1.0], [2.0, 1.0]];
+    let mut tris: Vec<(f64, f64)> = (triangles.iter())
+        .map(|t| {
+            let p = t.map(|v| nodes[v]);
+            let c = [0, 1].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0);
+            let d = (points.iter())
+                .map(|q| (c[0] - q[0]).hypot(c[1] - q[1]))
+                .fold(f64::INFINITY, f64::min);
+            (0.5 * evhi::element::twice_area(p).abs(), d)
+        })
+        .collect();
+    tris.sort_by(|a, b| a.0.total_cmp(&b.0));
+    tris
 }
 
 /// The common refinement of two meshes of one forest refines both: every triangle of

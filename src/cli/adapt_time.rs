@@ -2,7 +2,7 @@
 //! ([`evhi::time_adapt`]), a line per level, then the run on the chosen grid, with
 //! `time_adapt.csv` beside its outputs.
 
-use super::solve::SolveArgs;
+use super::solve_args::SolveArgs;
 use evhi::error::InputError;
 use evhi::output::csv::Table;
 use evhi::output::run::Provenance;

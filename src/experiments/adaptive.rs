@@ -42,15 +42,15 @@ const DRAWN_DOFS: usize = 3000;
 /// The grading exponent of the graded family.
 const MU: f64 = 0.4;
 
-struct Plan {
-    steps: usize,
+pub(super) struct Plan {
+    pub(super) steps: usize,
     uniform: Vec<usize>,
     graded: Vec<usize>,
     n_ref: usize,
-    max_dofs: usize,
+    pub(super) max_dofs: usize,
 }
 
-fn plan(quick: bool) -> Plan {
+pub(super) fn plan(quick: bool) -> Plan {
     if quick {
         Plan {
             steps: 8,
@@ -424,7 +424,6 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
     if let Some(n) = shown_n {
         super::indicators::write(ctx, n, plan.steps, &shown)?;
     }
-    super::adaptive_user::run(ctx, plan.steps, plan.max_dofs / 4)?;
     draw(&ctx.figures, &path, &mesh_path)
 }
 

@@ -35,6 +35,14 @@ const SCENES: [(&str, &str); 3] = [
     ),
 ];
 
+/// The experiment that adapts meshes: the paper's scenes ([`super::adaptive::run`]),
+/// then the user scenes, with a quarter of its budget and its steps.
+pub fn run_all(ctx: &Ctx) -> Result<(), ExpError> {
+    super::adaptive::run(ctx)?;
+    let plan = super::adaptive::plan(ctx.quick);
+    run(ctx, plan.steps, plan.max_dofs / 4)
+}
+
 /// The reference's budget over the families'.
 pub const REFERENCE_FACTOR: usize = 16;
 

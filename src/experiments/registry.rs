@@ -350,7 +350,7 @@ pub const EXPERIMENTS: [Experiment; 16] = [
         about: "meshes that adapt themselves (Dörfler marking on the residual estimator) against uniform and graded ones",
         paper: false,
         cost: 48.0,
-        run: super::adaptive::run,
+        run: super::adaptive_user::run_all,
         tables: &[table("adaptive_summary.csv", 2, 10).headed(&[
             ("dofs", "unknowns (last)"),
             ("err_T_percent", "error at T, %"),
