@@ -1053,3 +1053,22 @@ fn time_adaptive_estimate_above() {
         }
     }
 }
+
+/// Under the ramp to t = 1, from N = 16 on, both scenes' uniform levels make their
+/// largest error between t = 0.05 and 0.08 (about tau = 0.07).
+#[test]
+fn time_ramp_error_near_tau() {
+    for scn in ["figure", "literal"] {
+        let t = study(scn, "b_ramp1", "t_of_err_max");
+        let n = study(scn, "b_ramp1", "steps");
+        let late: Vec<f64> = (t.iter().zip(&n))
+            .filter(|(_, n)| **n >= 16.0)
+            .map(|(t, _)| *t)
+            .collect();
+        assert!(late.len() >= 5, "{scn}");
+        assert!(
+            late.iter().all(|&t| (0.05..=0.08).contains(&t)),
+            "{scn}: {late:?}"
+        );
+    }
+}
