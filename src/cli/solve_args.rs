@@ -145,7 +145,7 @@ pub struct SolveArgs {
     /// Choose the time grid from the solution (the library's `time_adapt` module): solve
     /// on N0 uniform steps (--steps; 4 unless given), estimate each step's local error
     /// from the distance between u_n and the line through u_(n-1) and u_(n-2), halve the
-    /// fewest steps that carry 80 % of the summed estimates (Dörfler, theta = 0.8), and
+    /// fewest steps that carry at least 80 % of the summed estimates (Dörfler, theta = 0.8), and
     /// solve again from t = 0, until the estimated relative error over time (the
     /// estimates summed over the largest energy norm, an estimate from above: the book's
     /// time chapter measures it) is at most TOL (in [1e-6, 1]) or the next grid would have
