@@ -39,6 +39,7 @@
 
 use crate::adapt::dorfler;
 use crate::error::InputError;
+use crate::reduced::{Load, Reduced, State, Stepped};
 use crate::time_grid::TimeGrid;
 
 /// The predictor of step `step` (from 1): its ratio $k_n/k_{n-1}$ and the local
@@ -285,33 +286,16 @@ pub fn choose(
             scn.t_end,
             s,
             |grid| {
-                let zero = crate::reduced::State {
-                    y: 0.0,
-                    w: vec![0.0; load.q.len()],
-                    r: vec![0.0; load.q.len()],
-                };
-                let (mut u1, mut u2) = (zero.clone(), zero);
-                let (mut gaps, mut norm_max) = (Vec::with_capacity(grid.len()), 0.0f64);
-                op.march_on(
+                let solver = &mut *sim.solver().build();
+                march_reduced(
+                    &op,
                     scn,
                     &load,
                     grid,
-                    sim.solver().build().as_mut(),
-                    tol,
-                    &|_| false,
+                    (solver, tol),
                     &mut timings,
-                    &mut |st| {
-                        let (ratio, _) = predictor(grid, st.step);
-                        gaps.push(op.predictor_gap(&load, (st.state, &u1, &u2), ratio));
-                        norm_max = norm_max.max(st.record.energy_norm);
-                        u2 = std::mem::replace(&mut u1, st.state.clone());
-                    },
-                )?;
-                Ok::<_, crate::scheme::RunError>(Solved {
-                    gaps,
-                    norm_max,
-                    out: (),
-                })
+                    &mut |_| {},
+                )
             },
             &mut *on_level,
         )?
@@ -343,6 +327,49 @@ pub fn choose(
         levels,
         stop,
         search_s: clock.elapsed().as_secs_f64(),
+    })
+}
+
+/// Marches `grid` on the reduced loop ([`Reduced::march_on`] with `solver` and the
+/// certificate tolerance beside it) and measures each step's distance from the
+/// predictor on the states, with no field formed, and the largest norm; `observe`
+/// sees every step too. The search of [`choose`] and the time study both march so.
+pub fn march_reduced(
+    op: &Reduced<'_>,
+    scn: &crate::scenario::Scenario,
+    load: &Load,
+    grid: &TimeGrid,
+    (solver, tol): (&mut dyn crate::step::StepSolver, f64),
+    timings: &mut crate::scheme::Timings,
+    observe: &mut dyn FnMut(&Stepped<'_>),
+) -> Result<Solved<()>, crate::scheme::RunError> {
+    let zero = State {
+        y: 0.0,
+        w: vec![0.0; load.q.len()],
+        r: vec![0.0; load.q.len()],
+    };
+    let (mut u1, mut u2) = (zero.clone(), zero);
+    let (mut gaps, mut norm_max) = (Vec::with_capacity(grid.len()), 0.0f64);
+    op.march_on(
+        scn,
+        load,
+        grid,
+        solver,
+        tol,
+        &|_| false,
+        timings,
+        &mut |st| {
+            let (ratio, _) = predictor(grid, st.step);
+            gaps.push(op.predictor_gap(load, (st.state, &u1, &u2), ratio));
+            norm_max = norm_max.max(st.record.energy_norm);
+            observe(&st);
+            u2 = std::mem::replace(&mut u1, st.state.clone());
+        },
+    )?;
+    Ok(Solved {
+        gaps,
+        norm_max,
+        out: (),
     })
 }
 

@@ -87,18 +87,23 @@ fn solve_adapt_time_writes_its_levels() {
             "time grid search: ",
         ],
     );
-    let text = read(run.join("time_adapt.csv"));
-    let rows: Vec<Vec<String>> = (text.lines())
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .map(fields)
-        .collect();
+    let rows = table_rows(&run.join("time_adapt.csv"));
     let last = rows.last().unwrap();
     let steps: usize = last[1].parse().unwrap();
     let estimate: f64 = last[4].parse().unwrap();
     assert!(estimate <= 0.05, "{estimate}");
     assert_eq!(steps, steps_of(&run));
     assert_eq!(rows.len(), err.matches("time level: ").count());
+}
+
+/// A run's table: its rows past the `#` lines and the header, split into fields.
+fn table_rows(path: &std::path::Path) -> Vec<Vec<String>> {
+    let text = read(path);
+    (text.lines())
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .map(fields)
+        .collect()
 }
 
 fn steps_of(run: &std::path::Path) -> usize {
@@ -221,17 +226,9 @@ fn solve_adapt_with_adapt_time_runs_every_level_on_the_chosen_grid() {
         ],
     );
     assert!(read(run.join("time_adapt.csv")).contains("the adaptive loop's first mesh"));
-    let last_row = |file: &str| -> Vec<String> {
-        let text = read(run.join(file));
-        fields(text.lines().rfind(|l| !l.starts_with('#')).unwrap())
-    };
-    let chosen: usize = last_row("time_adapt.csv")[1].parse().unwrap();
-    let text = read(run.join("adapt.csv"));
-    let levels: Vec<Vec<String>> = (text.lines())
-        .filter(|l| !l.starts_with('#'))
-        .skip(1)
-        .map(fields)
-        .collect();
+    let searched = table_rows(&run.join("time_adapt.csv"));
+    let chosen: usize = searched.last().unwrap()[1].parse().unwrap();
+    let levels = table_rows(&run.join("adapt.csv"));
     assert!(levels.len() >= 2, "{}", levels.len());
     for l in &levels {
         assert_eq!(l[3].parse::<usize>().unwrap(), chosen);

@@ -205,11 +205,7 @@ pub fn run(
     out.publish()?;
     if args.timings {
         if let Some(chosen) = &chosen {
-            evhi::diag_text!(
-                "time grid search: {} levels, {:.3} s (before the levels below)\n",
-                chosen.levels.len(),
-                chosen.search_s
-            );
+            super::adapt_time::print_search(chosen, "the levels below");
         }
         // The levels' wall and the estimator's share of it, then the last level's
         // phases as a plain run prints them.

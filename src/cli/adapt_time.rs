@@ -61,6 +61,16 @@ pub fn choose(
     Ok((sim.on_time_grid(grid)?, chosen))
 }
 
+/// The search's line of `--timings`, printed before `before` (what the lines after it
+/// time).
+pub fn print_search(chosen: &Chosen, before: &str) {
+    evhi::diag_text!(
+        "time grid search: {} levels, {:.3} s (before {before})\n",
+        chosen.levels.len(),
+        chosen.search_s
+    );
+}
+
 /// Writes `time_adapt.csv` into the run directory: one row a level.
 pub fn write(
     out: &RunDir,

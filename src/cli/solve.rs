@@ -122,11 +122,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     out.publish()?;
     if args.timings {
         if let Some(chosen) = &chosen {
-            evhi::diag_text!(
-                "time grid search: {} levels, {:.3} s (before the run below)\n",
-                chosen.levels.len(),
-                chosen.search_s
-            );
+            super::adapt_time::print_search(chosen, "the run below");
         }
         let (output, total) = (t_out.elapsed(), wall.elapsed());
         evhi::diag_text!(

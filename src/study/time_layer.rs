@@ -155,44 +155,33 @@ pub fn study(
         let mut measure = |grid: &TimeGrid| -> Result<Measured, ExpError> {
             let stride = plan.n_ref / (grid.n() << grid.halvings());
             let last = grid.len();
-            let zero = crate::reduced::State {
-                y: 0.0,
-                w: vec![0.0; load.q.len()],
-                r: vec![0.0; load.q.len()],
-            };
-            let (mut u1, mut u2) = (zero.clone(), zero);
-            let mut m = Measured {
-                err_max: 0.0,
-                ref_max: 0.0,
-                err_t: f64::NAN,
-                gaps: Vec::with_capacity(last),
-                norm_max: 0.0,
-            };
-            op.march_on(
+            let (mut err_max, mut ref_max, mut err_t) = (0.0f64, 0.0f64, f64::NAN);
+            let solver = &mut *plan.solver.build();
+            let solved = crate::time_adapt::march_reduced(
+                &op,
                 scn,
                 &load,
                 grid,
-                plan.solver.build().as_mut(),
-                tol,
-                &|_| false,
+                (solver, tol),
                 &mut timings,
                 &mut |s| {
                     let at = grid.units(s.step) as usize * stride - 1;
                     let (st_ref, r) = &refs[at];
                     let e = op.energy_diff(&load, st_ref, s.state);
-                    m.err_max = m.err_max.max(e);
-                    m.ref_max = m.ref_max.max(*r);
+                    err_max = err_max.max(e);
+                    ref_max = ref_max.max(*r);
                     if s.step == last {
-                        m.err_t = e / r;
+                        err_t = e / r;
                     }
-                    let (ratio, _) = crate::time_adapt::predictor(grid, s.step);
-                    m.gaps
-                        .push(op.predictor_gap(&load, (s.state, &u1, &u2), ratio));
-                    m.norm_max = m.norm_max.max(s.record.energy_norm);
-                    u2 = std::mem::replace(&mut u1, s.state.clone());
                 },
             )?;
-            Ok(m)
+            Ok(Measured {
+                err_max,
+                ref_max,
+                err_t,
+                gaps: solved.gaps,
+                norm_max: solved.norm_max,
+            })
         };
         // ANCHOR_END: measure_grid
         for &j in halvings {
