@@ -567,10 +567,14 @@ impl Settings {
         }
     }
 
-    /// The run's time grid: the one given, or that of `steps` and `time_layer`.
+    /// The run's time grid: the one given (refused where it does not end at `scn`'s
+    /// $T$), or that of `steps` and `time_layer`.
     pub fn time_grid(&self, scn: &Scenario) -> Result<crate::time_grid::TimeGrid, InputError> {
         match &self.grid {
-            Some(g) => Ok(g.clone()),
+            Some(g) => {
+                g.check_ends_at(scn.t_end)?;
+                Ok(g.clone())
+            }
             None => crate::time_grid::TimeGrid::of(scn, self.steps, self.time_layer),
         }
     }

@@ -537,15 +537,7 @@ impl Simulation {
     /// the grid does not end at the scene's $T$, has more than 1000000 steps, or the
     /// settings also ask for a grid into the layer.
     pub fn on_time_grid(&self, grid: crate::time_grid::TimeGrid) -> Result<Simulation, InputError> {
-        let t_end = self.scenario.t_end;
-        let end = grid.t(grid.len());
-        if grid.is_empty() || (end - t_end).abs() > 1e-12 * t_end.abs().max(1.0) {
-            return Err(InputError::field(
-                "time grid",
-                format!("a grid ending at t = {end}"),
-                format!("a grid of at least one step ending at the scene's T = {t_end}"),
-            ));
-        }
+        grid.check_ends_at(self.scenario.t_end)?;
         if grid.len() > 1_000_000 {
             return Err(InputError::field(
                 "time grid",

@@ -197,6 +197,24 @@ impl TimeGrid {
         })
     }
 
+    /// Refuses, by name, a grid with no step or one that does not end at `t_end` (a
+    /// scene's $T$), to rounding.
+    pub fn check_ends_at(&self, t_end: f64) -> Result<(), InputError> {
+        let end = if self.is_empty() {
+            0.0
+        } else {
+            self.t(self.len())
+        };
+        if self.is_empty() || (end - t_end).abs() > 1e-12 * t_end.abs().max(1.0) {
+            return Err(InputError::field(
+                "time grid",
+                format!("a grid ending at t = {end}"),
+                format!("a grid of at least one step ending at the scene's T = {t_end}"),
+            ));
+        }
+        Ok(())
+    }
+
     /// Each step's exponent $e$: its length is $2^e$ units of $(T/N)/2^J$.
     pub fn exponents(&self) -> Vec<u32> {
         if self.halvings == 0 {
@@ -357,6 +375,14 @@ mod tests {
         assert!(m > n && m < n * 64 / 4, "{m}");
         let distinct: std::collections::BTreeSet<u64> = (1..=m).map(|s| g.k(s).to_bits()).collect();
         assert_eq!(distinct.len(), j as usize + 1);
+    }
+
+    #[test]
+    fn a_grid_must_end_at_the_scenes_t() {
+        let g = TimeGrid::uniform(1.0, 4).bisect(&[0, 3]).unwrap();
+        assert!(g.check_ends_at(1.0).is_ok());
+        let e = g.check_ends_at(2.0).unwrap_err().to_string();
+        assert!(e.contains("time grid") && e.contains("T = 2"), "{e}");
     }
 
     #[test]
