@@ -47,6 +47,25 @@ impl Isotropic {
     }
 }
 
+/// The slowest rate $\lambda$ at which a Kelvin–Voigt body with viscosity `visc`
+/// ($\mathcal C$) and elasticity `elast` ($\mathcal G$) forgets a disturbance: the largest
+/// $\lambda$ with $\mathcal G\tau : \tau \ge \lambda\,\mathcal C\tau : \tau$ for every strain $\tau$,
+/// the smaller of the two tensors' ratios on the deviatoric ($b_{\mathcal G}/b_{\mathcal C}$)
+/// and the spherical strains ($(2a_{\mathcal G} + b_{\mathcal G})/(2a_{\mathcal C} + b_{\mathcal C})$);
+/// $1/\tau$ when $\mathcal C = \tau\,\mathcal G$.
+///
+/// Without contact, a backward-Euler step of length $k$ maps an error $e$ to
+/// $(\mathcal C + k\mathcal G)^{-1}\mathcal C e$ (as operators on the displacements), whose
+/// norm in $\|\cdot\|_E$ is $1/(1 + k\lambda_1)$, $\lambda_1 \ge \lambda$ the smallest eigenvalue
+/// of $\mathcal G$ against $\mathcal C$: each step shrinks an error by at least $1/(1 + k\lambda)$.
+/// `None` unless both tensors are positive definite (no viscosity: nothing relaxes).
+pub fn slowest_rate(visc: &Isotropic, elast: &Isotropic) -> Option<f64> {
+    let ratio = |g: f64, c: f64| (c > 0.0 && g > 0.0).then(|| g / c);
+    let dev = ratio(elast.b, visc.b)?;
+    let sph = ratio(2.0 * elast.a + elast.b, 2.0 * visc.a + visc.b)?;
+    Some(dev.min(sph))
+}
+
 /// The `[material]` table: the elasticity by Young's modulus and Poisson's ratio (`E`,
 /// `kappa`) or by Lamé's constants (`lambda`, `mu`), of a plane-strain (default) or
 /// plane-stress body, and the viscosity (`alpha`, `beta`).

@@ -24,7 +24,9 @@
 //! estimates the relative error over time from above. It is no bound: $\eta_n$ is
 //! asymptotic in $k_n/\tau$, and the nonmonotone law may amplify an error by a bounded
 //! factor. It does not see the damping: where the error of a layer has long decayed,
-//! at $T$, it still counts it.
+//! at $T$, it still counts it. [`transported`] damps each local error at the body's
+//! slowest rate as it is carried forward; the exact solutions' study measures it (the
+//! book's chapter on the estimator), the search here does not use it yet.
 //!
 //! **The refinement.** Dörfler's bulk criterion on the $\eta_n$ (summed, not squared:
 //! the estimate adds them) marks the fewest largest steps that carry the fraction
@@ -65,6 +67,24 @@ pub fn indicators(grid: &TimeGrid, gaps: &[f64]) -> Vec<f64> {
     eta
 }
 // ANCHOR_END: indicators
+
+/// The local errors `eta[n-1]` $= \eta_n$ carried forward to later times and damped
+/// there at the slowest rate `rate` $= \lambda$ ([`crate::material::slowest_rate`]),
+/// $E_n = E_{n-1}/(1 + k_n\lambda) + \eta_n$, $E_0 = 0$: the largest $E_n$. Without contact
+/// it bounds the error over time up to the local errors' own accuracy (each step
+/// shrinks what came before by at least $1/(1 + k_n\lambda)$); the contact terms are not
+/// in it: a monotone law only damps more, the nonmonotone branch may damp less.
+// ANCHOR: transported
+pub fn transported(grid: &TimeGrid, eta: &[f64], rate: f64) -> f64 {
+    let mut carried = 0.0f64;
+    let mut top = 0.0f64;
+    for (i, e) in eta.iter().enumerate() {
+        carried = carried / (1.0 + grid.k(i + 1) * rate) + e;
+        top = top.max(carried);
+    }
+    top
+}
+// ANCHOR_END: transported
 
 /// The settings of an adaptive choice of the time grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -414,6 +434,31 @@ impl crate::simulation::Observer for Gaps<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn transported_errors_decay_at_the_slowest_rate() {
+        // One local error of 1 at the first of four steps of 1/4 at rate 4: it halves
+        // at each later step; a second error of 1 at step 3 adds to a quarter.
+        let g = TimeGrid::uniform(1.0, 4);
+        assert_eq!(transported(&g, &[1.0, 0.0, 0.0, 0.0], 4.0), 1.0);
+        assert_eq!(transported(&g, &[1.0, 0.0, 1.0, 0.0], 4.0), 1.25);
+        // No damping: the plain sum; the rate never lets the estimate pass it.
+        let eta = [0.3, 0.1, 0.4, 0.2];
+        assert!((transported(&g, &eta, 0.0) - 1.0).abs() < 1e-15);
+        assert!(transported(&g, &eta, 4.0) < 1.0);
+        // The body's slowest rate: 1/tau when C = tau G, else the smaller ratio.
+        let elast = crate::material::Isotropic { a: 2.0, b: 3.0 };
+        let visc = crate::material::Isotropic { a: 0.2, b: 0.3 };
+        assert_eq!(crate::material::slowest_rate(&visc, &elast), Some(10.0));
+        let stiff_shear = crate::material::Isotropic { a: 0.2, b: 0.1 };
+        // deviatoric 3/0.1 = 30, spherical (4 + 3)/(0.4 + 0.1) = 14
+        assert_eq!(
+            crate::material::slowest_rate(&stiff_shear, &elast),
+            Some(14.0)
+        );
+        let none = crate::material::Isotropic { a: 0.0, b: 0.0 };
+        assert_eq!(crate::material::slowest_rate(&none, &elast), None);
+    }
 
     #[test]
     fn the_predictor_weighs_half_on_equal_steps() {

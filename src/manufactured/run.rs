@@ -81,6 +81,15 @@ pub struct StepRow {
     /// $\|\sigma^n_h\|_{L^2(\Omega)}$, the discrete stress the estimate is relative to (as
     /// in [`crate::adapt`]); 0 unless asked for.
     pub sigma_h: f64,
+    /// The step's predictor distance $\tfrac12\|u^n_h - 2u^{n-1}_h + u^{n-2}_h\|_E$
+    /// ($u^{-1}_h = u^0_h = 0$): backward Euler's local error in the displacement,
+    /// $\tfrac{k^2}2\|\ddot u\|_E$ where $u$ is smooth, $\tfrac k2\|[\dot u]\|_E$ at a jump of the
+    /// rate, as [`crate::time_adapt`] forms it on uniform steps; 0 without viscosity or unless
+    /// asked for.
+    pub eta_step: f64,
+    /// $\|u^n_h\|_E$, the discrete field the summed predictor distances are relative to;
+    /// 0 unless asked for.
+    pub u_h_e: f64,
 }
 
 /// A run against the exact solution.
@@ -439,7 +448,7 @@ fn run_rules_options(
             }
             let nodal_h = disc.dofs.expand(&u[0]);
             let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
-            let (eta, err_sigma, eta_time, sigma_h_norm) = if estimated {
+            let (eta, err_sigma, eta_time, sigma_h_norm, eta_step, u_h_e) = if estimated {
                 let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
                 let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
                 let surface = |x: [f64; 2], nrm: [f64; 2]| {
@@ -485,10 +494,25 @@ fn run_rules_options(
                     0.5 * sq.sqrt()
                 });
                 // ANCHOR_END: time_indicator
+                let two = p1_strains(&mesh, &bms, &prev2_h[i]);
+                let energy = |f: &dyn Fn(usize) -> [f64; 3]| {
+                    let sq: f64 = (mesh.triangles.iter().enumerate())
+                        .map(|(t, tri)| {
+                            let area =
+                                0.5 * crate::element::twice_area(tri.map(|v| mesh.nodes[v])).abs();
+                            area * energy_density(&data.elast, f(t))
+                        })
+                        .sum();
+                    sq.sqrt()
+                };
+                let eta_step = data.visc.as_ref().map_or(0.0, |_| {
+                    0.5 * energy(&|t| [0, 1, 2].map(|r| now[t][r] - 2.0 * before[t][r] + two[t][r]))
+                });
+                let u_h_e = energy(&|t| now[t]);
                 let err_sigma = stress_error(&data, points, [&now, &before], k);
-                (eta, err_sigma, eta_time, stress)
+                (eta, err_sigma, eta_time, stress, eta_step, u_h_e)
             } else {
-                (0.0, 0.0, 0.0, 0.0)
+                (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
             };
             prev2_h[i] = std::mem::replace(&mut prev_h[i], nodal_h);
             let mut row = StepRow {
@@ -505,6 +529,8 @@ fn run_rules_options(
             row.err_sigma = err_sigma;
             row.eta_time = eta_time;
             row.sigma_h = sigma_h_norm;
+            row.eta_step = eta_step;
+            row.u_h_e = u_h_e;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }
