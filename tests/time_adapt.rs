@@ -92,6 +92,11 @@ fn solve_adapt_time_writes_its_levels() {
     let steps: usize = last[1].parse().unwrap();
     let estimate: f64 = last[4].parse().unwrap();
     assert!(estimate <= 0.05, "{estimate}");
+    // The damped estimate never passes the plain sum beside it.
+    for row in &rows {
+        let (damped, sum): (f64, f64) = (row[4].parse().unwrap(), row[5].parse().unwrap());
+        assert!(damped <= sum && damped > 0.0, "{row:?}");
+    }
     assert_eq!(steps, steps_of(&run));
     assert_eq!(rows.len(), err.matches("time level: ").count());
 }

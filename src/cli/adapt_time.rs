@@ -84,8 +84,10 @@ pub fn write(
     let mut header = evhi::output::run::header(prov, scn, run.n, run.steps);
     header.push(format!(
         "one row a level of the time grid's search (evhi::time_adapt), every level solved \
-         on {searched_on}; estimate = the local errors eta_n summed over the largest energy \
-         norm, an estimate from above of the relative error over time; the last level's \
+         on {searched_on}; estimate = the local errors eta_n carried forward and damped at the \
+         body's slowest relaxation rate, over the largest energy norm (evhi::time_adapt::transported), \
+         an estimate from above of the relative error over time; sum = the same without the \
+         damping; the last level's \
          grid is the run's; stopped: {}",
         chosen.stop.describe()
     ));
@@ -94,7 +96,8 @@ pub fn write(
         .u64("steps", l.iter().map(|l| l.grid.len() as u64).collect())
         .f64("k_min", l.iter().map(|l| l.grid.k_min()).collect())
         .f64("k_max", l.iter().map(|l| longest(&l.grid)).collect())
-        .f64("estimate", l.iter().map(|l| l.estimate).collect());
+        .f64("estimate", l.iter().map(|l| l.estimate).collect())
+        .f64("sum", l.iter().map(|l| l.sum).collect());
     out.write_table("time_adapt.csv", &table, &header)?;
     Ok(())
 }

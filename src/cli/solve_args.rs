@@ -147,8 +147,9 @@ pub struct SolveArgs {
     /// from the distance between u_n and the line through u_(n-1) and u_(n-2), halve the
     /// fewest steps that carry at least 80 % of the summed estimates (Dörfler, theta = 0.8), and
     /// solve again from t = 0, until the estimated relative error over time (the
-    /// estimates summed over the largest energy norm, an estimate from above: the book's
-    /// time chapter measures it) is at most TOL (in [1e-6, 1]) or the next grid would have
+    /// estimates carried forward, each damped at the body's slowest relaxation rate by
+    /// the steps after it, over the largest energy norm; an estimate from above: the
+    /// book's time chapter measures it) is at most TOL (in [1e-6, 1]) or the next grid would have
     /// more than --max-steps steps or a step shorter than (T/N0)/2^20. Each level is
     /// printed on one line, and a line says which rule stopped the search. The run on
     /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).

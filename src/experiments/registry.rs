@@ -88,7 +88,7 @@ const EXACT_ESTIMATOR_SUMMARY: &[Heading] = &[
     ("with_time_max", "largest"),
     ("with_time_spread", "spread"),
     ("with_time_goal", "goal"),
-    ("transported_min", "space and time: smallest"),
+    ("transported_min", "transported: smallest"),
     ("transported_max", "largest"),
     ("transported_spread", "spread"),
     ("transported_goal", "goal"),

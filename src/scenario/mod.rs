@@ -726,6 +726,15 @@ impl Scenario {
         (!self.problem.viscous() || self.supports_with_stiffness().is_empty()).then_some(tau)
     }
 
+    /// The slowest rate at which the body forgets a disturbance
+    /// ([`crate::material::slowest_rate`]), or `None` without viscosity.
+    pub fn slowest_rate(&self) -> Option<f64> {
+        if !self.problem.viscous() {
+            return None;
+        }
+        crate::material::slowest_rate(&self.viscosity(), &self.elasticity())
+    }
+
     /// The relaxation time $\tau$ when $\mathcal C = \tau\,\mathcal G$ (both Lamé-like
     /// coefficients in the same ratio), else `None`. The ratio is taken on the second
     /// coefficients, positive for both tensors, and the first ones compared by cross

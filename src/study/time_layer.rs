@@ -56,8 +56,11 @@ pub struct AdaptiveRow {
     pub halvings: u32,
     /// The shortest step.
     pub k_min: f64,
-    /// The estimate $\sum_n\eta_n / \max_n\|u_n\|_E$.
+    /// The estimate: the local errors carried forward and damped
+    /// ([`crate::time_adapt::transported`]) over $\max_n\|u_n\|_E$.
     pub estimate: f64,
+    /// The plain sum $\sum_n\eta_n / \max_n\|u_n\|_E$.
+    pub sum: f64,
     /// Largest error over the grid's times relative to the reference's largest norm
     /// there.
     pub err_max: f64,
@@ -201,6 +204,7 @@ pub fn study(
         let (levels, _) = crate::time_adapt::adapt_time(
             scn.t_end,
             &adapt,
+            scn.slowest_rate().unwrap_or(0.0),
             |grid| {
                 let m = measure(grid)?;
                 Ok::<_, ExpError>(crate::time_adapt::Solved {
@@ -220,6 +224,7 @@ pub fn study(
                 halvings: l.grid.halvings(),
                 k_min: l.grid.k_min(),
                 estimate: l.estimate,
+                sum: l.sum,
                 err_max: l.out.err_max / l.out.ref_max,
                 err_t: l.out.err_t,
             });
@@ -352,6 +357,7 @@ pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
             "estimate_percent",
             rows.iter().map(|r| 100.0 * r.estimate).collect(),
         )
+        .f64("sum_percent", rows.iter().map(|r| 100.0 * r.sum).collect())
         .f64(
             "rel_err_max_percent",
             rows.iter().map(|r| 100.0 * r.err_max).collect(),
