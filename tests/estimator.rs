@@ -14,7 +14,7 @@
 mod common;
 
 use common::{Csv, evhi_with, read, scratch, stderr, succeed};
-use evhi::manufactured::run::{ExactRun, run_estimated};
+use evhi::manufactured::run::{ExactRun, run_estimated, run_estimated_on};
 use evhi::manufactured::{SOLUTIONS, Solution};
 use evhi::scenario::Scenario;
 
@@ -405,4 +405,32 @@ fn the_paper_mesh_gives_the_built_in_estimate_to_1e_12() {
     }
     // The top's traction is read: every kind of term is there.
     assert!(built.parts.iter().all(|p| *p > 0.0), "{:?}", built.parts);
+}
+
+/// A run on a given mesh (as the adaptive loop on the exact solutions makes them) is the
+/// run on the structured level when the mesh is that level's, and its per-triangle
+/// maxima over the steps bound each step's indicators.
+#[test]
+fn a_given_mesh_runs_as_its_level() {
+    let scn = Scenario::load("literal").unwrap();
+    for sol in [Solution::Regimes, Solution::P1Limit] {
+        let level = run_estimated(sol, &scn, 8, 8).unwrap();
+        let mesh = std::sync::Arc::new(scn.mesh(8).unwrap());
+        let given = run_estimated_on(sol, &scn, mesh, 8).unwrap();
+        assert_eq!((given.n, given.steps), (8, 8));
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1e-300);
+        assert!(close(given.rel_max(), level.rel_max()), "{}", sol.letter());
+        for (g, l) in given.rows.iter().zip(&level.rows) {
+            assert!(
+                close(g.eta, l.eta) && close(g.sigma_h, l.sigma_h),
+                "{}",
+                sol.letter()
+            );
+        }
+        // Each step's total is at most the sum of the per-triangle maxima.
+        let bound: f64 = given.eta_sq_max.iter().sum::<f64>().sqrt();
+        assert!(given.rows.iter().all(|r| r.eta <= bound * (1.0 + 1e-12)));
+        assert!(given.rows.iter().any(|r| r.eta > 0.5 * bound), "{bound}");
+        assert_eq!(given.eta_sq_max.len(), 2 * 8 * 4);
+    }
 }

@@ -109,6 +109,10 @@ pub struct ExactRun {
     pub rows: Vec<StepRow>,
     /// Wall time of the whole run (all rules run in lockstep), s.
     pub wall_s: f64,
+    /// Each triangle's $\max_n\eta^2_{T,n}$, the indicators' largest value over the
+    /// steps (the adaptive loop's aggregate, [`crate::adapt::Aggregate::Max`]); empty
+    /// unless the run was asked for the estimate.
+    pub eta_sq_max: Vec<f64>,
 }
 
 impl ExactRun {
@@ -295,8 +299,30 @@ pub fn run_estimated(
     n: usize,
     steps: usize,
 ) -> Result<ExactRun, RunError> {
-    let (mut runs, _) = run_rules_options(sol, scn, n, steps, &[Rule::Nodal], 0, true)?;
+    let (mut runs, _) =
+        run_rules_options(sol, scn, Grid::Level(n), steps, &[Rule::Nodal], 0, true)?;
     Ok(runs.remove(0))
+}
+
+/// [`run_estimated`] on a given mesh of the paper's rectangle (such as a level of an
+/// adaptive forest, [`crate::bisection::Forest::mesh`]), labelled by its `n`.
+pub fn run_estimated_on(
+    sol: Solution,
+    scn: &Scenario,
+    mesh: std::sync::Arc<crate::mesh::Mesh>,
+    steps: usize,
+) -> Result<ExactRun, RunError> {
+    let (mut runs, _) =
+        run_rules_options(sol, scn, Grid::Mesh(mesh), steps, &[Rule::Nodal], 0, true)?;
+    Ok(runs.remove(0))
+}
+
+/// Where a run's mesh comes from.
+enum Grid {
+    /// The structured mesh of level $n$.
+    Level(usize),
+    /// A given mesh.
+    Mesh(std::sync::Arc<crate::mesh::Mesh>),
 }
 
 fn run_rules_refined(
@@ -307,13 +333,13 @@ fn run_rules_refined(
     rules: &[Rule],
     refine: usize,
 ) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
-    run_rules_options(sol, scn, n, steps, rules, refine, false)
+    run_rules_options(sol, scn, Grid::Level(n), steps, rules, refine, false)
 }
 
 fn run_rules_options(
     sol: Solution,
     scn: &Scenario,
-    n: usize,
+    grid: Grid,
     steps: usize,
     rules: &[Rule],
     refine: usize,
@@ -321,7 +347,12 @@ fn run_rules_options(
 ) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
     let clock = Instant::now();
     let steps = if sol.is_static() { 1 } else { steps };
-    let mut disc = Discretisation::new(scn, n)?;
+    let given = matches!(grid, Grid::Mesh(_));
+    let mut disc = match grid {
+        Grid::Level(n) => Discretisation::new(scn, n)?,
+        Grid::Mesh(mesh) => Discretisation::on(scn, mesh),
+    };
+    let n = disc.mesh.n;
     if sol.is_static() {
         let zero = vec![0.0; disc.a.val().len()];
         disc.a = SpMat::new(disc.a.symbolic().to_owned().expect("allocation"), zero);
@@ -364,7 +395,20 @@ fn run_rules_options(
     let mut prev_h = vec![vec![[0.0; 2]; mesh.nodes.len()]; rules.len()];
     let mut prev2_h = prev_h.clone();
     let mut prepared = crate::estimator::Estimator::new(&mesh);
-    let h_min = 1.0 / n as f64;
+    // The offset that reads the exact stress on either side of an edge is a tiny
+    // fraction of h: 1/n on a structured level, the shortest edge on a given mesh.
+    let h_min = if !given {
+        1.0 / n as f64
+    } else {
+        (mesh.triangles.iter())
+            .flat_map(|tri| (0..3).map(move |i| (tri[i], tri[(i + 1) % 3])))
+            .map(|(a, b)| {
+                let (p, q) = (mesh.nodes[a], mesh.nodes[b]);
+                (p[0] - q[0]).hypot(p[1] - q[1])
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut eta_sq_max = vec![0.0f64; if estimated { mesh.triangles.len() } else { 0 }];
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
     let mut diffs = vec![];
@@ -476,6 +520,9 @@ fn run_rules_options(
                 };
                 let est = prepared.estimate(&pb, &nodal_h, &prev_h[i], k, &sigma_h);
                 let (eta, stress) = (est.total(), est.stress_sq.sqrt());
+                (eta_sq_max.iter_mut())
+                    .zip(&est.eta_sq)
+                    .for_each(|(a, &e)| *a = a.max(e));
                 let now = p1_strains(&mesh, &bms, &nodal_h);
                 let before = p1_strains(&mesh, &bms, &prev_h[i]);
                 // ANCHOR: time_indicator
@@ -555,6 +602,7 @@ fn run_rules_options(
             k,
             rows,
             wall_s,
+            eta_sq_max: eta_sq_max.clone(),
         })
         .collect();
     Ok((runs, diffs))

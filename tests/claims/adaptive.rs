@@ -379,3 +379,107 @@ fn adaptive_meshes_find_the_corners() {
         }
     }
 }
+
+const EXACT: &str = "exact_adaptive.csv";
+const SMOOTH: [&str; 5] = ["(a)", "(b)", "(c)", "(d)", "(h)"];
+
+/// `col` of a family of `exact_adaptive.csv` for one solution.
+fn exact(letter: &str, fam: &str, col: &str) -> Vec<f64> {
+    column(EXACT, &[("letter", letter), ("family", fam)], col)
+}
+
+/// The order in (unknowns)^(-1/2) of the largest error over time, fitted by least
+/// squares over the last `k` levels of a family.
+fn exact_order(letter: &str, fam: &str, k: usize) -> f64 {
+    let (d, e) = (exact(letter, fam, "dofs"), exact(letter, fam, "err_max"));
+    let pts: Vec<(f64, f64)> = (d.len() - k..d.len())
+        .map(|i| (d[i].ln(), e[i].ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let (mx, my) = (
+        pts.iter().map(|p| p.0).sum::<f64>() / n,
+        pts.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    -2.0 * pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+        / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>()
+}
+
+#[test]
+fn adaptive_exact_error() {
+    let mut ratios = vec![];
+    let mut last_dofs = vec![];
+    for l in SMOOTH {
+        let (ud, ue) = (exact(l, "uniform", "dofs"), exact(l, "uniform", "err_max"));
+        let (ad, ae) = (
+            exact(l, "adaptive", "dofs"),
+            exact(l, "adaptive", "err_max"),
+        );
+        assert_eq!(*ud.last().unwrap(), 4222.0);
+        assert!(ad.last().unwrap() < ud.last().unwrap() && ad.windows(2).all(|w| w[1] > w[0]));
+        last_dofs.push(*ad.last().unwrap());
+        ratios.push(ae.last().unwrap() / ue.last().unwrap());
+    }
+    assert_eq!([min(&last_dofs), max(&last_dofs)], [3224.0, 3596.0]);
+    assert_eq!(
+        [fix(min(&ratios), 2), fix(max(&ratios), 2)],
+        ["0.72", "0.91"]
+    );
+    // Least on (a), most on (b) and (h).
+    assert_eq!(ratios[0], max(&ratios));
+    let mut sorted = ratios.clone();
+    sorted.sort_by(f64::total_cmp);
+    assert!(sorted[..2].contains(&ratios[1]) && sorted[..2].contains(&ratios[4]));
+}
+
+#[test]
+fn adaptive_exact_orders() {
+    let a: Vec<f64> = SMOOTH
+        .iter()
+        .map(|l| exact_order(l, "adaptive", 5))
+        .collect();
+    let u: Vec<f64> = SMOOTH
+        .iter()
+        .map(|l| exact_order(l, "uniform", 3))
+        .collect();
+    assert_eq!([fix(min(&a), 2), fix(max(&a), 2)], ["0.97", "1.07"]);
+    assert_eq!([fix(min(&u), 2), fix(max(&u), 2)], ["0.95", "1.02"]);
+}
+
+#[test]
+fn adaptive_exact_efficiency() {
+    let all = |fam: &str| -> Vec<f64> {
+        SMOOTH
+            .iter()
+            .flat_map(|l| exact(l, fam, "efficiency"))
+            .collect()
+    };
+    let a = all("adaptive");
+    assert_eq!([fix(min(&a), 2), fix(max(&a), 2)], ["4.38", "5.85"]);
+    assert_eq!((a.iter().filter(|&&x| x > 5.0).count(), a.len()), (48, 86));
+    assert!(
+        exact("(a)", "adaptive", "efficiency")
+            .iter()
+            .all(|&x| x > 5.0)
+    );
+    assert_eq!(fix(100.0 * (max(&a) / 5.0 - 1.0), 0), "17");
+    // Uniform: above 5 only on the first mesh, n = 4, which both families share.
+    for l in SMOOTH {
+        let u = exact(l, "uniform", "efficiency");
+        assert!(u[0] > 5.0 && u[1..].iter().all(|&x| x <= 5.0), "{l}: {u:?}");
+        assert_eq!(exact(l, "uniform", "n")[0], 4.0);
+        assert_eq!(
+            exact(l, "adaptive", "dofs")[0],
+            exact(l, "uniform", "dofs")[0]
+        );
+    }
+    let past: Vec<f64> = SMOOTH
+        .iter()
+        .flat_map(|l| exact(l, "uniform", "efficiency")[1..].to_vec())
+        .collect();
+    assert_eq!([fix(min(&past), 2), fix(max(&past), 2)], ["4.34", "5.00"]);
+    let spread = (SMOOTH.iter())
+        .flat_map(|l| ["uniform", "adaptive"].map(|f| exact(l, f, "efficiency")))
+        .map(|v| max(&v) / min(&v))
+        .fold(0.0, f64::max);
+    assert_eq!(fix(spread, 2), "1.35");
+}

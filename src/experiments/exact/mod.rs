@@ -14,6 +14,7 @@
 //! regime counts per step; the quadrature's own error; the residual estimator's
 //! efficiency on every solution.
 
+mod adaptive;
 mod estimator;
 mod figure;
 mod hold;
@@ -156,6 +157,7 @@ pub fn run_study(ctx: &Ctx) -> Result<(), ExpError> {
     write_quadrature_effect(ctx, &scn)?;
     let hold = hold::write_hold(ctx, &scn)?;
     estimator::write_estimator(ctx, &scn)?;
+    adaptive::write_adaptive(ctx, &scn)?;
     let grid = write_grid(ctx, &grid)?;
     figure::draw_all(ctx, &conv, &cea, &regimes, &hold)?;
     figure::draw_grid(ctx, &grid)

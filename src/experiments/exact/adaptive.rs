@@ -1,0 +1,102 @@
+//! The adaptive loop against the truth: on each exact solution that is smooth in
+//! space, the uniform family and the family that Dörfler marking on the residual
+//! estimator builds ([`evhi::adapt::dorfler`], newest-vertex bisection from the same
+//! $n = 4$ mesh), on one time grid, with the true error of every level beside the
+//! estimate. The fields of $V^h$ are left out: their space error is nil, so a mesh can
+//! not reduce it.
+
+use super::Cols;
+use crate::experiments::{Ctx, ExpError};
+use evhi::adapt::{dorfler, initial_forest};
+use evhi::manufactured::Solution;
+use evhi::manufactured::run::{ExactRun, run_estimated, run_estimated_on};
+use evhi::mesh::Dofs;
+use evhi::scenario::Scenario;
+use std::sync::Arc;
+
+/// Dörfler's fraction, the adaptive loop's default.
+const THETA: f64 = 0.5;
+
+/// The plan: the time steps of every level, and the uniform levels $n$ (the last one's
+/// unknowns are the adaptive family's budget).
+fn plan(quick: bool) -> (usize, &'static [usize]) {
+    if quick {
+        (16, &[4, 8, 16])
+    } else {
+        (64, &[4, 8, 16, 32, 64])
+    }
+}
+
+/// The estimated relative error of a run, as [`evhi::adapt`] forms it: the square root
+/// of the indicators' per-triangle maximum over the steps, summed, over the largest
+/// $\|\sigma^n_h\|^2$.
+fn estimate(r: &ExactRun) -> f64 {
+    let sigma = r.rows.iter().map(|w| w.sigma_h).fold(0.0, f64::max);
+    r.eta_sq_max.iter().sum::<f64>().sqrt() / sigma
+}
+
+/// Runs both families on every solution smooth in space and writes `exact_adaptive.csv`.
+pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
+    let (steps, levels) = plan(ctx.quick);
+    let sols: Vec<Solution> = (evhi::manufactured::SOLUTIONS.into_iter())
+        .filter(|s| !s.in_p1())
+        .collect();
+    ctx.add_units(2 * sols.len());
+    let budget = Dofs::new(&scn.mesh(*levels.last().expect("a level"))?, true).count;
+    let mut t = Cols::default();
+    let row =
+        |t: &mut Cols, (sol, family, level): (Solution, &str, usize), dofs: usize, r: &ExactRun| {
+            let est = estimate(r);
+            t.s("letter", sol.letter());
+            t.s("solution", sol.name());
+            t.s("family", family);
+            t.u("level", level);
+            t.u("n", r.n);
+            t.u("dofs", dofs);
+            t.u("triangles", r.eta_sq_max.len());
+            t.u("steps", r.steps);
+            t.f("err_T", r.rel_final());
+            t.f("err_max", r.rel_max());
+            t.f("estimator", est);
+            t.f("efficiency", est / r.rel_max());
+        };
+    for &sol in &sols {
+        for (level, &n) in levels.iter().enumerate() {
+            let r = run_estimated(sol, scn, n, steps)?;
+            let dofs = Dofs::new(&scn.mesh(n)?, true).count;
+            row(&mut t, (sol, "uniform", level), dofs, &r);
+        }
+        ctx.log(&format!("exact adaptive {}: uniform", sol.name()));
+        let (mut forest, mut leaves, n0) = initial_forest(scn)?;
+        let mut level = 0;
+        loop {
+            // Labelled as the adaptive loop labels it: the uniform level whose cells
+            // bound every triangle, two bisections halving a cell.
+            let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
+            let mesh = Arc::new(forest.mesh(&leaves, n0 << (shallowest / 2).min(20)));
+            let dofs = Dofs::new(&mesh, true).count;
+            let r = run_estimated_on(sol, scn, mesh, steps)?;
+            row(&mut t, (sol, "adaptive", level), dofs, &r);
+            let marked = dorfler(&r.eta_sq_max, THETA);
+            let mut mark = vec![false; forest.triangle_count()];
+            for &i in &marked {
+                mark[leaves.0[i]] = true;
+            }
+            let next = forest.refine(&leaves, |_, t| mark.get(t) == Some(&true));
+            let next_dofs = Dofs::new(&forest.mesh(&next, n0), true).count; // labels do not count
+            if marked.is_empty() || next_dofs > budget {
+                break;
+            }
+            leaves = next;
+            level += 1;
+        }
+        ctx.log(&format!("exact adaptive {}: adaptive", sol.name()));
+    }
+    let table = t.table();
+    let what = format!(
+        "{}; the solutions smooth in space (the fields of V^h, whose space error is nil, left out), each on N = {steps} steps; uniform: the structured meshes n = {levels:?}; adaptive: from the n = 4 mesh, each level's estimator (evhi::estimator with the solution's own data, as in exact_estimator.csv) folded into each triangle's maximum over the steps, Dörfler's bulk criterion with theta = {THETA} on those, newest-vertex bisection of the marked triangles and solved again from t = 0, until the next mesh would pass the last uniform mesh's {budget} unknowns; n = the level label (the uniform level whose cells bound every triangle); err_T = ||u(T) - u_N||_E / ||u(T)||_E, err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (fractions); estimator = sqrt(sum_T max_n eta_T,n^2) / max_n ||sigma_h^n||, the adaptive loop's estimated relative error; efficiency = estimator / err_max",
+        super::params()
+    );
+    ctx.write("exact_adaptive.csv", &table, &what)?;
+    Ok(())
+}
