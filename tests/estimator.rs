@@ -434,3 +434,19 @@ fn a_given_mesh_runs_as_its_level() {
         assert_eq!(given.eta_sq_max.len(), 2 * 8 * 4);
     }
 }
+
+/// A mesh of another rectangle, or no steps, is refused by name, not run.
+#[test]
+fn a_given_mesh_off_the_rectangle_is_refused() {
+    let scn = Scenario::load("literal").unwrap();
+    let mut mesh = scn.mesh(4).unwrap();
+    mesh.nodes.iter_mut().for_each(|p| p[0] *= 0.5);
+    let e = run_estimated_on(Solution::Regimes, &scn, std::sync::Arc::new(mesh), 4)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("mesh") && e.contains("rectangle"), "{e}");
+    let e = run_estimated(Solution::Regimes, &scn, 4, 0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("steps"), "{e}");
+}

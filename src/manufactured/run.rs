@@ -22,6 +22,7 @@
 use super::{Data, Solution, Strains, contract, energy_density, strains};
 use crate::assembly::SpMat;
 use crate::certificate::ContactState;
+use crate::error::InputError;
 use crate::mesh::Dofs;
 use crate::scenario::Scenario;
 use crate::scheme::{
@@ -317,6 +318,42 @@ pub fn run_estimated_on(
     Ok(runs.remove(0))
 }
 
+/// Refuses a mesh that does not cover the scene's rectangle $[0, W] \times [0, H]$ (the
+/// manufactured solutions are defined there) or has no contact node.
+fn check_on_rectangle(mesh: &crate::mesh::Mesh, scn: &Scenario) -> Result<(), InputError> {
+    let geo = scn.geometry();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in &mesh.nodes {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let tol = 1e-12 * geo.width.max(geo.height);
+    let fits = (lo[0].abs() <= tol && lo[1].abs() <= tol)
+        && (hi[0] - geo.width).abs() <= tol
+        && (hi[1] - geo.height).abs() <= tol;
+    if !fits || mesh.triangles.is_empty() {
+        return Err(InputError::field(
+            "mesh",
+            format!("nodes in [{}, {}] x [{}, {}]", lo[0], hi[0], lo[1], hi[1]),
+            format!(
+                "a mesh of the scene's rectangle [0, {}] x [0, {}], where the manufactured \
+                 solutions are defined",
+                geo.width, geo.height
+            ),
+        ));
+    }
+    if mesh.contact.is_empty() {
+        return Err(InputError::field(
+            "mesh",
+            "no contact node",
+            "a mesh with nodes on the contact boundary Gamma_3",
+        ));
+    }
+    Ok(())
+}
+
 /// Where a run's mesh comes from.
 enum Grid {
     /// The structured mesh of level $n$.
@@ -347,6 +384,12 @@ fn run_rules_options(
 ) -> Result<(Vec<ExactRun>, Vec<f64>), RunError> {
     let clock = Instant::now();
     let steps = if sol.is_static() { 1 } else { steps };
+    if steps == 0 || steps > 1_000_000 {
+        return Err(InputError::field("steps", steps, "an integer in 1..=1000000").into());
+    }
+    if let Grid::Mesh(mesh) = &grid {
+        check_on_rectangle(mesh, scn)?;
+    }
     let given = matches!(grid, Grid::Mesh(_));
     let mut disc = match grid {
         Grid::Level(n) => Discretisation::new(scn, n)?,
