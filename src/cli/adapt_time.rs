@@ -86,7 +86,7 @@ pub fn write(
         "one row a level of the time grid's search (evhi::time_adapt), every level solved \
          on {searched_on}; estimate = the local errors eta_n carried forward and damped at the \
          body's slowest relaxation rate, over the largest energy norm (evhi::time_adapt::transported), \
-         an estimate from above of the relative error over time; sum = the same without the \
+         an estimate (not a bound) of the relative error over time; sum = the same without the \
          damping; the last level's \
          grid is the run's; stopped: {}",
         chosen.stop.describe()

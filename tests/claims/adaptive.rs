@@ -443,6 +443,43 @@ fn adaptive_exact_orders() {
         .collect();
     assert_eq!([fix(min(&a), 2), fix(max(&a), 2)], ["0.97", "1.07"]);
     assert_eq!([fix(min(&u), 2), fix(max(&u), 2)], ["0.95", "1.02"]);
+    // The spans of the two fits in unknowns.
+    let span = |fam: &str, k: usize| -> Vec<f64> {
+        (SMOOTH.iter())
+            .map(|l| {
+                let d = exact(l, fam, "dofs");
+                d[d.len() - 1] / d[d.len() - k]
+            })
+            .collect()
+    };
+    let (sa, su) = (span("adaptive", 5), span("uniform", 3));
+    assert_eq!([fix(min(&sa), 1), fix(max(&sa), 1)], ["3.3", "3.6"]);
+    assert_eq!([fix(min(&su), 0), fix(max(&su), 0)], ["15", "15"]);
+}
+
+#[test]
+fn adaptive_exact_cost() {
+    let (mut summed, mut ahead) = (vec![], vec![]);
+    for l in SMOOTH {
+        let (ad, ae) = (
+            exact(l, "adaptive", "dofs"),
+            exact(l, "adaptive", "err_max"),
+        );
+        let (ud, ue) = (exact(l, "uniform", "dofs"), exact(l, "uniform", "err_max"));
+        summed.push(ad.iter().sum::<f64>() / ud[ud.len() - 1]);
+        // The adaptive error at each uniform mesh's unknowns past the first, log-log
+        // between the adaptive levels around it.
+        for (d, e) in ud.iter().zip(&ue).skip(1) {
+            let i = (0..ad.len() - 1).find(|&i| ad[i] <= *d && *d <= ad[i + 1]);
+            let Some(i) = i else { continue };
+            let t = (d.ln() - ad[i].ln()) / (ad[i + 1].ln() - ad[i].ln());
+            let at = (ae[i].ln() + t * (ae[i + 1].ln() - ae[i].ln())).exp();
+            ahead.push(at / e);
+        }
+    }
+    assert_eq!([fix(min(&summed), 1), fix(max(&summed), 1)], ["2.7", "3.2"]);
+    assert_eq!([fix(min(&ahead), 2), fix(max(&ahead), 2)], ["0.67", "0.86"]);
+    assert!(ahead.len() >= 3 * SMOOTH.len(), "{}", ahead.len());
 }
 
 #[test]
@@ -453,15 +490,37 @@ fn adaptive_exact_efficiency() {
             .flat_map(|l| exact(l, fam, "efficiency"))
             .collect()
     };
-    let a = all("adaptive");
-    assert_eq!([fix(min(&a), 2), fix(max(&a), 2)], ["4.38", "5.85"]);
-    assert_eq!((a.iter().filter(|&&x| x > 5.0).count(), a.len()), (48, 86));
+    // The refined meshes: the adaptive levels past the shared first one.
+    let refined: Vec<f64> = (SMOOTH.iter())
+        .flat_map(|l| exact(l, "adaptive", "efficiency")[1..].to_vec())
+        .collect();
+    assert_eq!(
+        [fix(min(&refined), 2), fix(max(&refined), 2)],
+        ["4.38", "5.73"]
+    );
+    assert_eq!(
+        (refined.iter().filter(|&&x| x > 5.0).count(), refined.len()),
+        (43, 81)
+    );
     assert!(
-        exact("(a)", "adaptive", "efficiency")
+        exact("(a)", "adaptive", "efficiency")[1..]
             .iter()
             .all(|&x| x > 5.0)
     );
-    assert_eq!(fix(100.0 * (max(&a) / 5.0 - 1.0), 0), "17");
+    assert_eq!(fix(100.0 * (max(&refined) / 5.0 - 1.0), 0), "15");
+    // On the first mesh, n = 4, 5.4 to 5.85 on every solution.
+    let first: Vec<f64> = SMOOTH
+        .iter()
+        .map(|l| exact(l, "uniform", "efficiency")[0])
+        .collect();
+    assert_eq!([fix(min(&first), 1), fix(max(&first), 2)], ["5.4", "5.85"]);
+    // Above the error on every level of the table.
+    assert!(
+        all("adaptive")
+            .iter()
+            .chain(&all("uniform"))
+            .all(|&x| x > 1.0)
+    );
     // Uniform: above 5 only on the first mesh, n = 4, which both families share.
     for l in SMOOTH {
         let u = exact(l, "uniform", "efficiency");

@@ -1063,21 +1063,38 @@ fn time_adaptive_estimate_above() {
 #[test]
 fn time_adaptive_sum_above() {
     let levels = rows(ADAPTIVE);
-    let of = |ramps: bool| -> Vec<f64> {
+    let of = |runs: &[(&str, &str)]| -> Vec<f64> {
         (levels.iter())
-            .filter(|r| (r["history"] != "a_constant") == ramps)
+            .filter(|r| runs.contains(&(r["scenario"].as_str(), r["history"].as_str())))
             .map(|r| num(r, "sum_percent") / num(r, "rel_err_max_percent"))
             .collect()
     };
-    let all = [of(false), of(true)].concat();
+    let most = of(&[
+        ("figure", "b_ramp1"),
+        ("figure", "c_ramp0.25"),
+        ("literal", "c_ramp0.25"),
+    ]);
+    let ramp1 = of(&[("literal", "b_ramp1")]);
+    let constant = of(&[("figure", "a_constant"), ("literal", "a_constant")]);
+    let all = [most.clone(), ramp1.clone(), constant.clone()].concat();
+    assert_eq!(all.len(), levels.len());
     assert_eq!(
         (fix(min(&all), 1), fix(max(&all), 0)),
         ("2.9".into(), "19".into())
     );
-    assert!(
-        max(&of(true)) > 2.0 * max(&of(false)),
-        "largest under the ramps"
+    assert_eq!(
+        (fix(min(&most), 1), fix(max(&most), 0)),
+        ("7.0".into(), "19".into())
     );
+    assert_eq!(
+        (fix(min(&ramp1), 1), fix(max(&ramp1), 1)),
+        ("2.9".into(), "6.4".into())
+    );
+    assert_eq!(
+        (fix(min(&constant), 1), fix(max(&constant), 1)),
+        ("2.9".into(), "6.9".into())
+    );
+    assert!(max(&constant) < min(&most));
 }
 
 /// Under the ramp to t = 1, from N = 16 on, both scenes' uniform levels make their
