@@ -542,3 +542,28 @@ fn adaptive_exact_efficiency() {
         .fold(0.0, f64::max);
     assert_eq!(fix(spread, 2), "1.35");
 }
+
+#[test]
+fn adaptive_exact_gathering() {
+    let (mut ratio, mut step_index) = (vec![], vec![]);
+    for l in SMOOTH {
+        for fam in ["uniform", "adaptive"] {
+            let (e, s) = (exact(l, fam, "estimator"), exact(l, fam, "estimator_step"));
+            ratio.extend(e.iter().zip(&s).map(|(e, s)| e / s));
+        }
+        let (s, err) = (
+            exact(l, "adaptive", "estimator_step"),
+            exact(l, "adaptive", "err_max"),
+        );
+        step_index.extend(s.iter().zip(&err).skip(1).map(|(s, e)| s / e));
+    }
+    assert!(min(&ratio) >= 1.0 - 1e-12, "{}", min(&ratio));
+    assert_eq!(fix(100.0 * (max(&ratio) - 1.0), 1), "2.6");
+    assert_eq!(
+        (
+            step_index.iter().filter(|&&x| x > 5.0).count(),
+            step_index.len()
+        ),
+        (39, 81)
+    );
+}

@@ -59,6 +59,9 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
             t.f("err_max", r.rel_max());
             t.f("estimator", est);
             t.f("efficiency", est / r.rel_max());
+            let sigma = r.rows.iter().map(|w| w.sigma_h).fold(0.0, f64::max);
+            let step = r.rows.iter().map(|w| w.eta).fold(0.0, f64::max) / sigma;
+            t.f("estimator_step", step);
         };
     for &sol in &sols {
         for (level, &n) in levels.iter().enumerate() {
@@ -94,7 +97,7 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
     }
     let table = t.table();
     let what = format!(
-        "{}; the solutions smooth in space (the fields of V^h, whose space error is nil, left out), each on N = {steps} steps; uniform: the structured meshes n = {levels:?}; adaptive: from the n = 4 mesh, each level's estimator (evhi::estimator with the solution's own data, as in exact_estimator.csv) folded into each triangle's maximum over the steps, Dörfler's bulk criterion with theta = {THETA} on those, newest-vertex bisection of the marked triangles and solved again from t = 0, until the next mesh would pass the last uniform mesh's {budget} unknowns; n = the level label (the uniform level whose cells bound every triangle); err_T = ||u(T) - u_N||_E / ||u(T)||_E, err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (fractions); estimator = sqrt(sum_T max_n eta_T,n^2) / max_n ||sigma_h^n||, the adaptive loop's estimated relative error; efficiency = estimator / err_max",
+        "{}; the solutions smooth in space (the fields of V^h, whose space error is nil, left out), each on N = {steps} steps; uniform: the structured meshes n = {levels:?}; adaptive: from the n = 4 mesh, each level's estimator (evhi::estimator with the solution's own data, as in exact_estimator.csv) folded into each triangle's maximum over the steps, Dörfler's bulk criterion with theta = {THETA} on those, newest-vertex bisection of the marked triangles and solved again from t = 0, until the next mesh would pass the last uniform mesh's {budget} unknowns; n = the level label (the uniform level whose cells bound every triangle); err_T = ||u(T) - u_N||_E / ||u(T)||_E, err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (fractions); estimator = sqrt(sum_T max_n eta_T,n^2) / max_n ||sigma_h^n||, the adaptive loop's estimated relative error; efficiency = estimator / err_max; estimator_step = max_n eta_n / max_n ||sigma_h^n||, the largest sum over a step (exact_estimator.csv's estimate), at most estimator",
         super::params()
     );
     ctx.write("exact_adaptive.csv", &table, &what)?;
