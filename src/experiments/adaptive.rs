@@ -104,6 +104,20 @@ pub(super) struct Lev {
     pub(super) wall_s: f64,
 }
 
+/// A row of `adaptive_convergence.csv`: a level of a family on a scene, its errors
+/// against the scene's reference and its wall time.
+pub(super) struct Row {
+    pub(super) scenario: String,
+    pub(super) family: &'static str,
+    pub(super) level: usize,
+    pub(super) dofs: usize,
+    pub(super) steps: usize,
+    pub(super) err_t: f64,
+    pub(super) err_max: f64,
+    pub(super) estimate: f64,
+    pub(super) wall_s: f64,
+}
+
 /// Keeps every step's field.
 pub(super) struct Keep;
 impl AdaptObserver for Keep {
@@ -158,7 +172,10 @@ impl Observer for Fields {
     }
 }
 
-pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
+/// Runs the paper's scenes and writes the tables and figures, the user scenes' rows
+/// (`user`, described by `user_what`) appended to `adaptive_convergence.csv` and its
+/// summary.
+pub(super) fn run(ctx: &Ctx, user: Vec<Row>, user_what: &str) -> Result<(), ExpError> {
     let plan = plan(ctx.quick);
     let scns = LOADS
         .iter()
@@ -353,31 +370,43 @@ pub fn run(ctx: &Ctx) -> Result<(), ExpError> {
         .collect();
     let family_index = |f: &str| FAMILIES.iter().position(|x| *x == f).unwrap_or(0);
     rows.sort_by_key(|(l, ..)| (l.scene, family_index(l.family), l.level));
-    let walls = recorded_walls(ctx, &rows, plan.steps);
+    let mut rows: Vec<Row> = (rows.into_iter())
+        .map(|(l, err_t, err_max)| Row {
+            scenario: scns[l.scene].name().to_string(),
+            family: l.family,
+            level: l.level,
+            dofs: l.dofs,
+            steps: plan.steps,
+            err_t,
+            err_max,
+            estimate: l.estimate,
+            wall_s: l.wall_s,
+        })
+        .collect();
+    rows.extend(user);
+    let walls = recorded_walls(ctx, &rows);
     let t = Table::new()
         .str(
             "scenario",
-            rows.iter()
-                .map(|r| scns[r.0.scene].name().to_string())
-                .collect(),
+            rows.iter().map(|r| r.scenario.clone()).collect(),
         )
         .str(
             "family",
-            rows.iter().map(|r| r.0.family.to_string()).collect(),
+            rows.iter().map(|r| r.family.to_string()).collect(),
         )
-        .u64("level", rows.iter().map(|r| r.0.level as u64).collect())
-        .u64("dofs", rows.iter().map(|r| r.0.dofs as u64).collect())
-        .u64("steps", rows.iter().map(|_| plan.steps as u64).collect())
-        .f64("err_T", rows.iter().map(|r| r.1).collect())
-        .f64("err_max", rows.iter().map(|r| r.2).collect())
-        .f64("estimator", rows.iter().map(|r| r.0.estimate).collect())
+        .u64("level", rows.iter().map(|r| r.level as u64).collect())
+        .u64("dofs", rows.iter().map(|r| r.dofs as u64).collect())
+        .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
+        .f64("err_T", rows.iter().map(|r| r.err_t).collect())
+        .f64("err_max", rows.iter().map(|r| r.err_max).collect())
+        .f64("estimator", rows.iter().map(|r| r.estimate).collect())
         .f64(
             "efficiency",
-            rows.iter().map(|r| r.0.estimate / r.2).collect(),
+            rows.iter().map(|r| r.estimate / r.err_max).collect(),
         )
         .f64("wall_s", walls.clone());
     let params = format!(
-        "every mesh from newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n (n = {:?}); graded: <= D min(1, max(r, D^(1/mu))^(1-mu)), D = 2 sqrt2 / n, mu = {MU}, r = distance to the nearest clamp end or top corner (n = {:?}); adaptive: evhi::adapt with theta = {}, indicators at their {} over the steps, from n = 4 until the next mesh would pass {} dofs (told nothing of the corners); adaptive (time mean): the same with each indicator's mean over the steps; N = {} steps on every level and the reference; reference: graded level {} ({graded_ref_dofs} dofs) refined to hold each adaptive family's last mesh ({} dofs); err_T, err_max = relative energy error ||u_ref - u||_E / ||u_ref||_E at T and its maximum over t_j = j T / N (fractions); estimator = the estimated relative error of evhi::adapt (sum of the indicators' per-triangle maximum over the steps, over the maximum of ||sigma||^2, square root); efficiency = estimator / err_max; wall_s = the level's solve with its indicators (adaptive: with the marking), one scene, as measured by the run that last moved another column (a rerun that reproduces every other column bit for bit keeps the recorded times, so that reproduce leaves this table as it was)",
+        "every mesh from newest-vertex bisection of the n = 4 mesh; uniform: longest edge <= 2 sqrt2 / n (n = {:?}); graded: <= D min(1, max(r, D^(1/mu))^(1-mu)), D = 2 sqrt2 / n, mu = {MU}, r = distance to the nearest clamp end or top corner (n = {:?}); adaptive: evhi::adapt with theta = {}, indicators at their {} over the steps, from n = 4 until the next mesh would pass {} dofs (told nothing of the corners); adaptive (time mean): the same with each indicator's mean over the steps; N = {} steps on every level and the reference; reference: graded level {} ({graded_ref_dofs} dofs) refined to hold each adaptive family's last mesh ({} dofs); err_T, err_max = relative energy error ||u_ref - u||_E / ||u_ref||_E at T and its maximum over t_j = j T / N (fractions); estimator = the estimated relative error of evhi::adapt (sum of the indicators' per-triangle maximum over the steps, over the maximum of ||sigma||^2, square root); efficiency = estimator / err_max; wall_s = the level's solve with its indicators (adaptive: with the marking), one scene, as measured by the run that last moved another column (a rerun that reproduces every other column bit for bit keeps the recorded times, so that reproduce leaves this table as it was); then {user_what}",
         plan.uniform,
         plan.graded,
         adapt.theta,
@@ -468,19 +497,26 @@ impl Reference<'_> {
 const FIT: usize = 5;
 
 /// `adaptive_summary.csv`: one row a scene and family.
-fn summary(rows: &[(&Lev, f64, f64)], walls: &[f64]) -> Table {
+fn summary(rows: &[Row], walls: &[f64]) -> Table {
     let (mut scn, mut fam, mut levels, mut dofs) = (vec![], vec![], vec![], vec![]);
     let (mut err_t, mut err_max, mut order, mut eff_lo, mut eff_hi, mut wall) =
         (vec![], vec![], vec![], vec![], vec![], vec![]);
-    for (scene, load) in LOADS.iter().enumerate() {
+    // The scenes in the order of their rows.
+    let mut scenes: Vec<&str> = vec![];
+    for r in rows {
+        if !scenes.contains(&r.scenario.as_str()) {
+            scenes.push(&r.scenario);
+        }
+    }
+    for scene in scenes {
         for family in FAMILIES {
             let idx: Vec<usize> = (0..rows.len())
-                .filter(|&i| rows[i].0.scene == scene && rows[i].0.family == family)
+                .filter(|&i| rows[i].scenario == scene && rows[i].family == family)
                 .collect();
             let Some(&last) = idx.last() else { continue };
             let fit = &idx[idx.len().saturating_sub(FIT)..];
             let pts: Vec<(f64, f64)> = (fit.iter())
-                .map(|&i| ((rows[i].0.dofs as f64).ln(), rows[i].1.ln()))
+                .map(|&i| ((rows[i].dofs as f64).ln(), rows[i].err_t.ln()))
                 .collect();
             let n = pts.len() as f64;
             let (mx, my) = (
@@ -491,14 +527,14 @@ fn summary(rows: &[(&Lev, f64, f64)], walls: &[f64]) -> Table {
                 / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
             let eff: Vec<f64> = idx
                 .iter()
-                .map(|&i| rows[i].0.estimate / rows[i].2)
+                .map(|&i| rows[i].estimate / rows[i].err_max)
                 .collect();
-            scn.push(load.to_string());
+            scn.push(scene.to_string());
             fam.push(family.to_string());
             levels.push(idx.len() as u64);
-            dofs.push(rows[last].0.dofs as u64);
-            err_t.push(100.0 * rows[last].1);
-            err_max.push(100.0 * rows[last].2);
+            dofs.push(rows[last].dofs as u64);
+            err_t.push(100.0 * rows[last].err_t);
+            err_max.push(100.0 * rows[last].err_max);
             order.push(-2.0 * slope);
             eff_lo.push(eff.iter().copied().fold(f64::INFINITY, f64::min));
             eff_hi.push(eff.iter().copied().fold(0.0, f64::max));
@@ -521,8 +557,8 @@ fn summary(rows: &[(&Lev, f64, f64)], walls: &[f64]) -> Table {
 /// The wall times of `rows`: those of the table already at the output path if it
 /// holds the same rows with the same numbers in every other column (a rerun that
 /// reproduced them), else the ones just measured.
-fn recorded_walls(ctx: &Ctx, rows: &[(&Lev, f64, f64)], steps: usize) -> Vec<f64> {
-    let measured: Vec<f64> = rows.iter().map(|r| r.0.wall_s).collect();
+fn recorded_walls(ctx: &Ctx, rows: &[Row]) -> Vec<f64> {
+    let measured: Vec<f64> = rows.iter().map(|r| r.wall_s).collect();
     let Ok(df) = read_csv(&ctx.data.join("adaptive_convergence.csv")) else {
         return measured;
     };
@@ -546,14 +582,14 @@ fn recorded_walls(ctx: &Ctx, rows: &[(&Lev, f64, f64)], steps: usize) -> Vec<f64
     };
     let same = old[0].len() == rows.len()
         && rows.iter().enumerate().all(|(i, r)| {
-            fam[i] == r.0.family
-                && scn[i] == LOADS[r.0.scene]
-                && old[0][i] == r.0.level as f64
-                && old[1][i] == r.0.dofs as f64
-                && old[2][i] == steps as f64
-                && old[3][i] == r.1
-                && old[4][i] == r.2
-                && old[5][i] == r.0.estimate
+            fam[i] == r.family
+                && scn[i] == r.scenario
+                && old[0][i] == r.level as f64
+                && old[1][i] == r.dofs as f64
+                && old[2][i] == r.steps as f64
+                && old[3][i] == r.err_t
+                && old[4][i] == r.err_max
+                && old[5][i] == r.estimate
         });
     if same { old[6].clone() } else { measured }
 }

@@ -10,11 +10,10 @@
 //! adaptive loop continued to [`REFERENCE_FACTOR`] times the budget, refined to hold
 //! both families' last meshes, so that every mesh embeds in it exactly.
 
-use super::adaptive::{Collect, FAMILIES, Fields, Keep, Lev, Reference, level};
+use super::adaptive::{Collect, FAMILIES, Fields, Keep, Lev, Reference, Row, level};
 use super::{Ctx, ExpError};
 use evhi::adapt::{AdaptSettings, adapt_from, initial_forest, solve_estimating};
 use evhi::mesh::Dofs;
-use evhi::output::csv::Table;
 use evhi::scenario::Scenario;
 use evhi::simulation::{Observer, RunSettings, Simulation};
 use std::sync::Arc;
@@ -35,23 +34,22 @@ const SCENES: [(&str, &str); 3] = [
     ),
 ];
 
-/// The experiment that adapts meshes: the paper's scenes ([`super::adaptive::run`]),
-/// then the user scenes, with a quarter of its budget and its steps.
+/// The experiment that adapts meshes: the user scenes, with a quarter of the paper
+/// scenes' budget and their steps, then the paper's scenes ([`super::adaptive::run`]),
+/// which write every row.
 pub fn run_all(ctx: &Ctx) -> Result<(), ExpError> {
-    super::adaptive::run(ctx)?;
     let plan = super::adaptive::plan(ctx.quick);
-    run(ctx, plan.steps, plan.max_dofs / 4)
+    let (user, what) = rows(ctx, plan.steps, plan.max_dofs / 4)?;
+    super::adaptive::run(ctx, user, &what)
 }
 
 /// The reference's budget over the families'.
 pub const REFERENCE_FACTOR: usize = 16;
 
-/// Runs the scenes (`steps` steps, a budget of `budget` unknowns) and writes
-/// `adaptive_user.csv`.
-pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
-    let mut t = Table::new();
-    let mut cols: (Vec<String>, Vec<String>, Vec<u64>, Vec<u64>) = Default::default();
-    let mut vals: [Vec<f64>; 4] = Default::default();
+/// Runs the scenes (`steps` steps, a budget of `budget` unknowns): their rows of
+/// `adaptive_convergence.csv`, and what the table's header says of them.
+pub(super) fn rows(ctx: &Ctx, steps: usize, budget: usize) -> Result<(Vec<Row>, String), ExpError> {
+    let mut out = vec![];
     let mut refs = vec![];
     ctx.add_units(SCENES.len());
     for (i, (toml, path)) in SCENES.iter().enumerate() {
@@ -68,6 +66,7 @@ pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
             if dofs > budget {
                 break;
             }
+            let clock = std::time::Instant::now();
             let sim = Simulation::on_mesh(scn.clone(), settings.clone(), mesh.clone())?;
             let est = solve_estimating(&sim, evhi::adapt::Aggregate::Max, &mut Keep)?;
             let total: f64 = est.eta_sq.iter().sum();
@@ -79,7 +78,7 @@ pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
                 dofs,
                 fields: est.fields,
                 estimate: (total / est.norm_sq).sqrt(),
-                wall_s: 0.0,
+                wall_s: clock.elapsed().as_secs_f64(),
             });
             n *= 2;
             leaves = level(&mut forest, &geo, &leaves, n, &[]);
@@ -147,36 +146,23 @@ pub fn run(ctx: &Ctx, steps: usize, budget: usize) -> Result<(), ExpError> {
         };
         for lev in &levs {
             let (at_t, max) = reference.error(&forest, lev, n0, &ref_fields, &ref_norms);
-            cols.0.push(scn.name().to_string());
-            cols.1.push(lev.family.to_string());
-            cols.2.push(lev.level as u64);
-            cols.3.push(lev.dofs as u64);
-            vals[0].push(at_t);
-            vals[1].push(max);
-            vals[2].push(lev.estimate);
-            vals[3].push(lev.estimate / max);
+            out.push(Row {
+                scenario: scn.name().to_string(),
+                family: lev.family,
+                level: lev.level,
+                dofs: lev.dofs,
+                steps,
+                err_t: at_t,
+                err_max: max,
+                estimate: lev.estimate,
+                wall_s: lev.wall_s,
+            });
         }
     }
-    let [err_t, err_max, estimator, efficiency] = vals;
-    let steps_col = vec![steps as u64; cols.0.len()];
-    t = t
-        .str("scenario", cols.0)
-        .str("family", cols.1)
-        .u64("level", cols.2)
-        .u64("dofs", cols.3)
-        .u64("steps", steps_col)
-        .f64("err_T", err_t)
-        .f64("err_max", err_max)
-        .f64("estimator", estimator)
-        .f64("efficiency", efficiency);
-    ctx.write(
-        "adaptive_user.csv",
-        &t,
-        &format!(
-            "user scenes (data/scenarios/examples/cantilever.toml, five_branch.toml, contact_zone.toml), each from the coarsest grid that resolves it; uniform: every longest edge within level n's bound, n doubling from that grid's; adaptive: evhi::adapt, theta 0.5, indicators at their maximum over the steps (told nothing of the singular points); both until the next mesh would pass {budget} dofs; N = {steps} steps; reference: the adaptive loop continued to {} dofs, refined to hold both families' last meshes ({}); err_T, err_max, estimator and efficiency as in adaptive_convergence.csv",
-            REFERENCE_FACTOR * budget,
-            refs.join("; ")
-        ),
-    )?;
-    Ok(())
+    let what = format!(
+        "the user scenes (data/scenarios/examples/cantilever.toml, five_branch.toml, contact_zone.toml), each from the coarsest grid that resolves it; uniform: every longest edge within level n's bound, n doubling from that grid's; adaptive: evhi::adapt, theta 0.5, indicators at their maximum over the steps (told nothing of the singular points); both until the next mesh would pass {budget} dofs; N = {steps} steps; reference: the adaptive loop continued to {} dofs, refined to hold both families' last meshes ({}); the other columns as above",
+        REFERENCE_FACTOR * budget,
+        refs.join("; ")
+    );
+    Ok((out, what))
 }
