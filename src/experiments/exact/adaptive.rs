@@ -6,6 +6,7 @@
 //! not reduce it.
 
 use super::Cols;
+use crate::experiments::adaptive::FAMILIES;
 use crate::experiments::{Ctx, ExpError};
 use evhi::adapt::{dorfler, initial_forest};
 use evhi::manufactured::Solution;
@@ -67,7 +68,7 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         for (level, &n) in levels.iter().enumerate() {
             let r = run_estimated(sol, scn, n, steps)?;
             let dofs = Dofs::new(&scn.mesh(n)?, true).count;
-            row(&mut t, (sol, "uniform", level), dofs, &r);
+            row(&mut t, (sol, FAMILIES[0], level), dofs, &r);
         }
         ctx.log(&format!("exact adaptive {}: uniform", sol.name()));
         let (mut forest, mut leaves, n0) = initial_forest(scn)?;
@@ -79,7 +80,7 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
             let mesh = Arc::new(forest.mesh(&leaves, n0 << (shallowest / 2).min(20)));
             let dofs = Dofs::new(&mesh, true).count;
             let r = run_estimated_on(sol, scn, mesh, steps)?;
-            row(&mut t, (sol, "adaptive", level), dofs, &r);
+            row(&mut t, (sol, FAMILIES[2], level), dofs, &r);
             let marked = dorfler(&r.eta_sq_max, THETA);
             let mut mark = vec![false; forest.triangle_count()];
             for &i in &marked {
