@@ -74,6 +74,10 @@ pub struct AdaptSettings {
     /// The time grid of every level (say one [`crate::time_adapt::choose`] found);
     /// `None`: the run settings' own.
     pub time_grid: Option<crate::time_grid::TimeGrid>,
+    /// Choose each level's time grid from its own solution
+    /// ([`crate::time_adapt::choose`] on the level's mesh, before it is solved and
+    /// estimated); `None`: no search. Not beside [`AdaptSettings::time_grid`].
+    pub time_search: Option<crate::time_adapt::Settings>,
 }
 
 impl Default for AdaptSettings {
@@ -84,6 +88,7 @@ impl Default for AdaptSettings {
             max_dofs: 20_000,
             aggregate: Aggregate::Max,
             time_grid: None,
+            time_search: None,
         }
     }
 }
@@ -114,6 +119,11 @@ impl AdaptSettings {
         self.time_grid = Some(grid);
         self
     }
+    /// Each level's time grid chosen on its mesh ([`AdaptSettings::time_search`]).
+    pub fn with_time_search(mut self, search: crate::time_adapt::Settings) -> Self {
+        self.time_search = Some(search);
+        self
+    }
 
     /// Refuses a value out of range, naming the field.
     pub fn check(&self) -> Result<(), InputError> {
@@ -138,6 +148,17 @@ impl AdaptSettings {
                 self.max_dofs,
                 "a budget of at least the initial mesh's unknowns",
             ));
+        }
+        if let Some(search) = &self.time_search {
+            if self.time_grid.is_some() {
+                return Err(InputError::field(
+                    "time_search",
+                    "beside a time_grid",
+                    "one of the two: a given time grid for every level, or a grid chosen \
+                     on each level's mesh",
+                ));
+            }
+            search.check()?;
         }
         Ok(())
     }
@@ -186,6 +207,9 @@ pub struct AdaptLevel {
     /// Of `wall_s`, the seconds the indicators took (the estimator's phase:
     /// [`Estimated::estimator_s`]).
     pub estimator_s: f64,
+    /// Of `wall_s`, the seconds the time grid's search took
+    /// ([`AdaptSettings::time_search`]; 0 without one).
+    pub time_search_s: f64,
 }
 
 /// What the caller is told while an adaptive run goes; every method has a default.
@@ -244,6 +268,8 @@ pub struct Adaptation {
     pub solution: Solution,
     /// The last level's $\bar\eta^2_T$ per triangle, in the mesh's order.
     pub eta_sq: Vec<f64>,
+    /// The last level's search of its time grid ([`AdaptSettings::time_search`]).
+    pub time_search: Option<crate::time_adapt::Chosen>,
 }
 
 // ANCHOR: dorfler
@@ -401,6 +427,14 @@ pub fn adapt_from(
             Some(grid) => sim.on_time_grid(grid.clone())?,
             None => sim,
         };
+        // The level's own time grid, chosen on its mesh.
+        let (sim, searched) = match &settings.time_search {
+            Some(search) => {
+                let chosen = crate::time_adapt::choose(&sim, search, &mut |_| {})?;
+                (sim.on_time_grid(chosen.grid().clone())?, Some(chosen))
+            }
+            None => (sim, None),
+        };
         observer.level_started(level, &mesh, sim.steps());
         let est = solve_estimating(&sim, settings.aggregate, observer)?;
         let total: f64 = est.eta_sq.iter().sum();
@@ -441,6 +475,7 @@ pub fn adapt_from(
             marked: marked.len(),
             wall_s: 0.0,
             estimator_s: est.estimator_s,
+            time_search_s: searched.as_ref().map_or(0.0, |c| c.search_s),
         };
         // The mesh's triangles are the leaves in order ([`Forest::mesh`]).
         let mut mark = vec![false; forest.triangle_count()];
@@ -482,6 +517,7 @@ pub fn adapt_from(
                 scenario: scene,
                 solution: est.solution,
                 eta_sq: est.eta_sq,
+                time_search: searched,
             });
         }
     }

@@ -212,7 +212,7 @@ fn the_space_loop_estimates_each_step_with_its_own_k() {
 
 /// `--adapt` with `--adapt-time`: the grid is chosen once, and every level runs on it.
 #[test]
-fn solve_adapt_with_adapt_time_runs_every_level_on_the_chosen_grid() {
+fn solve_adapt_with_adapt_time_chooses_each_levels_grid() {
     let dir = scratch("adapt-space-time");
     let run = dir.join("run");
     let o = evhi_with(
@@ -222,23 +222,27 @@ fn solve_adapt_with_adapt_time_runs_every_level_on_the_chosen_grid() {
     .output()
     .unwrap();
     let err = ok(&o);
-    assert_contains(
-        &err,
-        &[
-            "time grid chosen: ",
-            "adapting `figure`",
-            "time grid search: ",
-        ],
-    );
-    assert!(read(run.join("time_adapt.csv")).contains("the adaptive loop's first mesh"));
+    assert_contains(&err, &["adapting `figure`", "time grid searches "]);
+    assert!(read(run.join("time_adapt.csv")).contains("this last level's mesh"));
     let searched = table_rows(&run.join("time_adapt.csv"));
     let chosen: usize = searched.last().unwrap()[1].parse().unwrap();
     let levels = table_rows(&run.join("adapt.csv"));
     assert!(levels.len() >= 2, "{}", levels.len());
+    // Each level's line names the steps its own search chose, and adapt.csv has them.
     for l in &levels {
-        assert_eq!(l[3].parse::<usize>().unwrap(), chosen);
+        let steps: usize = l[3].parse().unwrap();
+        let line = format!("time grid of {steps} steps chosen in ");
+        let level = format!("level {:>2}: ", l[0]);
+        assert!(
+            err.lines()
+                .any(|x| x.starts_with(&level) && x.contains(&line)),
+            "level {}: {steps} steps\n{err}",
+            l[0]
+        );
     }
+    // The run directory is the last level's, on its own grid.
     assert_eq!(steps_of(&run), chosen);
+    assert_eq!(levels.last().unwrap()[3].parse::<usize>().unwrap(), chosen);
 }
 
 /// On a grid that comes back to lengths it left, the general loop keeps the operators
@@ -267,4 +271,44 @@ fn the_general_loop_factorises_each_length_once() {
     let (eg, er) = (g.energy_norm_t(), r.energy_norm_t());
     assert!((eg - er).abs() <= 1e-9 * er, "{eg} {er}");
     assert_eq!(g.run.steps, 6);
+}
+
+/// The adaptive loop with a time search chooses each level's grid on that level's mesh:
+/// every level searched and timed, the last search returned, its grid the last level's;
+/// a given grid beside a search is refused by name.
+#[test]
+fn the_space_loop_chooses_each_levels_time_grid() {
+    use evhi::adapt::{AdaptSettings, adapt};
+    let scn = Scenario::load("figure").unwrap();
+    let search = Settings {
+        tol: 0.05,
+        ..Settings::default()
+    };
+    let s = AdaptSettings::default()
+        .with_tol(1e-6)
+        .with_max_dofs(200)
+        .with_time_search(search);
+    let a = adapt(&scn, &RunSettings::default().with_steps(4), &s, &mut ()).unwrap();
+    assert!(a.levels.len() >= 2, "{}", a.levels.len());
+    for l in &a.levels {
+        assert!(
+            l.time_search_s > 0.0 && l.time_search_s <= l.wall_s,
+            "{l:?}"
+        );
+    }
+    // Each level's grid is what a search on its mesh alone chooses: the last one here.
+    let chosen = a.time_search.expect("searched");
+    assert_eq!(chosen.grid().len(), a.levels.last().unwrap().steps);
+    let mesh = a.solution.run.mesh.clone();
+    let sim = Simulation::on_mesh(
+        a.scenario.clone(),
+        RunSettings::default().with_steps(4),
+        mesh,
+    )
+    .unwrap();
+    let alone = choose(&sim, &search, &mut |_| {}).unwrap();
+    assert_eq!(alone.grid(), chosen.grid());
+    let both = s.with_time_grid(TimeGrid::uniform(1.0, 4));
+    let e = both.check().unwrap_err().to_string();
+    assert!(e.contains("time_search"), "{e}");
 }

@@ -82,17 +82,14 @@ pub fn run(
         }
     };
     let out = RunDir::open(&args.out)?;
-    // With --adapt-time, the time grid is chosen once, on the first level's mesh, and
-    // every level runs on it.
-    let (settings, chosen) = match args.adapt_time {
+    // With --adapt-time, each level's time grid is chosen on its own mesh before it
+    // is solved (the first mesh is too coarse to judge the time error by).
+    let settings = match args.adapt_time {
         Some(tol_time) => {
-            let (scene, mesh) = evhi::adapt::level_scene(&forest, &root, &scn, n0)?;
-            let sim = Simulation::on_mesh(scene, run_settings.clone().with_n(mesh.n), mesh)
-                .map_err(super::solve_args::settings_flag)?;
-            let (_, chosen) = super::adapt_time::choose(args, sim, tol_time)?;
-            (settings.with_time_grid(chosen.grid().clone()), Some(chosen))
+            let n0_steps = (run_settings.steps).unwrap_or(evhi::time_adapt::Settings::default().n0);
+            settings.with_time_search(super::adapt_time::settings(args, n0_steps, tol_time)?)
         }
-        None => (settings, None),
+        None => settings,
     };
     evhi::diag!(
         "adapting `{}` from {from}: tol {tol}, theta {}, at most {} unknowns, \
@@ -155,9 +152,11 @@ pub fn run(
     // A mesh scene's n is its mesh's (as a plain run's); the rectangle's the grid's.
     let n = if n0 > 0 { n0 } else { mesh.n };
     let sim = Simulation::on_mesh(scn.clone(), run_settings.with_n(n), mesh)?;
-    let sim = match &settings.time_grid {
-        Some(grid) => sim.on_time_grid(grid.clone())?,
-        None => sim,
+    let chosen = adaptation.time_search.clone();
+    let sim = match (&settings.time_grid, &chosen) {
+        (Some(grid), _) => sim.on_time_grid(grid.clone())?,
+        (None, Some(c)) => sim.on_time_grid(c.grid().clone())?,
+        (None, None) => sim,
     };
     let (lines, h_s) = evhi::diagnostics::after(&scn, sim.solver(), &solution, n, h_s);
     lines.iter().for_each(|l| evhi::diag!("{l}"));
@@ -194,8 +193,8 @@ pub fn run(
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     if let Some(chosen) = &chosen {
         let on = format!(
-            "the adaptive loop's first mesh ({} unknowns), not this last level's",
-            adaptation.levels[0].dofs
+            "this last level's mesh ({} unknowns), as every level's grid was chosen on its own",
+            last.dofs
         );
         super::adapt_time::write(&out, &prov, &scn, run, chosen, &on)?;
     }
@@ -204,15 +203,22 @@ pub fn run(
     evhi::output::runplot::draw(&out.path(""))?;
     out.publish()?;
     if args.timings {
-        if let Some(chosen) = &chosen {
-            super::adapt_time::print_search(chosen, "the levels below");
-        }
-        // The levels' wall and the estimator's share of it, then the last level's
-        // phases as a plain run prints them.
-        let (walls, est): (f64, f64) = (adaptation.levels.iter())
-            .fold((0.0, 0.0), |(w, e), l| (w + l.wall_s, e + l.estimator_s));
+        // The levels' wall and the estimator's and the time searches' shares of it,
+        // then the last level's phases as a plain run prints them.
+        let (walls, est, search): (f64, f64, f64) = (adaptation.levels.iter())
+            .fold((0.0, 0.0, 0.0), |(w, e, t), l| {
+                (w + l.wall_s, e + l.estimator_s, t + l.time_search_s)
+            });
+        let searched = if chosen.is_some() {
+            format!(
+                ", time grid searches {search:.4} ({:.1} %)",
+                100.0 * search / walls
+            )
+        } else {
+            String::new()
+        };
         evhi::diag_text!(
-            "levels (s): {} levels {walls:.4}, of which estimator {est:.4} ({:.1} %)\nlast level, {}",
+            "levels (s): {} levels {walls:.4}, of which estimator {est:.4} ({:.1} %){searched}\nlast level, {}",
             adaptation.levels.len(),
             100.0 * est / walls,
             evhi::output::run::timings(&sim, run, t_out.elapsed(), wall.elapsed(), None)
@@ -294,11 +300,17 @@ impl AdaptObserver for Lines<'_> {
 
     fn level_done(&mut self, s: &Solved) {
         let l = s.level;
-        let line = format!(
+        let mut line = format!(
             "level {:>2}: {:>7} unknowns {:>7} triangles  estimate {:.3e}  marked {:>6}  {:.2} s \
              ({:.2} s estimating)",
             l.level, l.dofs, l.triangles, l.estimate, l.marked, l.wall_s, l.estimator_s
         );
+        if l.time_search_s > 0.0 {
+            line.push_str(&format!(
+                "; time grid of {} steps chosen in {:.2} s",
+                l.steps, l.time_search_s
+            ));
+        }
         match &self.bar {
             Some(b) => b.suspend(|| evhi::diag!("{line}")),
             None => evhi::diag!("{line}"),

@@ -14,13 +14,13 @@ use evhi::time_adapt::{Chosen, Level, Settings};
 /// The shortest step the command line allows: $(T/N_0)/2^{20}$.
 const MAX_HALVINGS: u32 = 20;
 
-/// Searches the grid of `sim`'s scene to the tolerance `tol` and returns the
-/// simulation on it.
-pub fn choose(
+/// The search's settings from the command line: `n0` steps first, the tolerance
+/// `tol`, `--max-steps`; refused by flag.
+pub fn settings(
     args: &SolveArgs,
-    sim: Simulation,
+    n0: usize,
     tol: f64,
-) -> Result<(Simulation, Chosen), Box<dyn std::error::Error>> {
+) -> Result<Settings, Box<dyn std::error::Error>> {
     if !(1e-6..=1.0).contains(&tol) {
         return Err(InputError::field(
             "--adapt-time",
@@ -30,7 +30,7 @@ pub fn choose(
         .into());
     }
     let s = Settings {
-        n0: sim.steps(),
+        n0,
         tol,
         max_steps: args.max_steps.unwrap_or(Settings::default().max_steps),
         max_halvings: MAX_HALVINGS,
@@ -40,6 +40,17 @@ pub fn choose(
         e.for_flag("max_steps", "--max-steps")
             .for_flag("n0", "--steps")
     })?;
+    Ok(s)
+}
+
+/// Searches the grid of `sim`'s scene to the tolerance `tol` and returns the
+/// simulation on it.
+pub fn choose(
+    args: &SolveArgs,
+    sim: Simulation,
+    tol: f64,
+) -> Result<(Simulation, Chosen), Box<dyn std::error::Error>> {
+    let s = settings(args, sim.steps(), tol)?;
     let t_end = sim.scenario().t_end();
     let chosen = evhi::time_adapt::choose(&sim, &s, &mut |l: &Level<()>| {
         evhi::diag!(

@@ -148,13 +148,15 @@ pub struct SolveArgs {
     /// fewest steps that carry at least 80 % of the summed estimates (Dörfler, theta = 0.8), and
     /// solve again from t = 0, until the estimated relative error over time (the
     /// estimates carried forward, each damped at the body's slowest relaxation rate by
-    /// the steps after it, over the largest energy norm; an estimate from above: the
+    /// the steps after it, over the largest energy norm; an estimate, not a bound: the
     /// book's time chapter measures it) is at most TOL (in [1e-6, 1]) or the next grid would have
     /// more than --max-steps steps or a step shorter than (T/N0)/2^20. Each level is
     /// printed on one line, and a line says which rule stopped the search. The run on
     /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).
-    /// With --adapt the grid is chosen once, on the adaptive loop's first mesh, and
-    /// every level of the mesh's adaptation runs on it. Not with --time-layer.
+    /// With --adapt each level's grid is chosen on that level's own mesh before it is
+    /// solved (a coarse mesh misjudges the time error), each level's line says how many
+    /// steps it got, and time_adapt.csv is the last level's search. Not with
+    /// --time-layer.
     #[arg(
         long,
         value_name = "TOL",
