@@ -272,29 +272,7 @@ pub struct Adaptation {
     pub time_search: Option<crate::time_adapt::Chosen>,
 }
 
-// ANCHOR: dorfler
-/// The smallest set of indices whose `eta_sq` sum to at least `theta` of the total
-/// (Dörfler's bulk criterion), largest first; none if the total is zero.
-pub fn dorfler(eta_sq: &[f64], theta: f64) -> Vec<usize> {
-    let total: f64 = eta_sq.iter().sum();
-    if total <= 0.0 || total.is_nan() {
-        return vec![];
-    }
-    let mut order: Vec<usize> = (0..eta_sq.len()).collect();
-    order.sort_by(|&a, &b| eta_sq[b].total_cmp(&eta_sq[a]).then(a.cmp(&b)));
-    let goal = theta * total;
-    let mut sum = 0.0;
-    let mut out = vec![];
-    for i in order {
-        if sum >= goal {
-            break;
-        }
-        sum += eta_sq[i];
-        out.push(i);
-    }
-    out
-}
-// ANCHOR_END: dorfler
+pub use crate::marking::dorfler;
 
 /// The forest of an adaptive run: on a rectangle scene, the structured mesh of the
 /// first of 4, 8, 16, … (then any multiple of 4) segments whose nodes hold every end
@@ -663,17 +641,6 @@ impl Observer for Gather<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn dorfler_takes_the_fewest_largest() {
-        // Total 10: half is 5, reached by 4 + 1 (the two largest are 4 and 3: 7 >= 5).
-        let eta = [1.0, 4.0, 0.5, 3.0, 1.5];
-        assert_eq!(dorfler(&eta, 0.5), vec![1, 3]);
-        // 0.4 of 10 is 4: the largest alone.
-        assert_eq!(dorfler(&eta, 0.4), vec![1]);
-        assert_eq!(dorfler(&eta, 1.0).len(), 5);
-        assert!(dorfler(&[0.0, 0.0], 0.5).is_empty());
-    }
 
     #[test]
     fn bad_settings_are_refused_by_name() {

@@ -57,6 +57,7 @@ pub mod history;
 pub mod law;
 pub mod linalg;
 pub mod manufactured;
+pub mod marking;
 pub mod material;
 pub mod memory;
 pub mod mesh;

@@ -39,8 +39,8 @@
 //! keeps the operators of lengths it will need again, so it factorises each length
 //! about once).
 
-use crate::adapt::dorfler;
 use crate::error::InputError;
+use crate::marking::dorfler;
 use crate::reduced::{Load, Reduced, State, Stepped};
 use crate::time_grid::TimeGrid;
 

@@ -210,7 +210,8 @@ fn the_space_loop_estimates_each_step_with_its_own_k() {
     assert!((weights - 1.0).abs() < 1e-15);
 }
 
-/// `--adapt` with `--adapt-time`: the grid is chosen once, and every level runs on it.
+/// `--adapt` with `--adapt-time`: each level's grid is chosen on its own mesh, and each
+/// level's line names its steps.
 #[test]
 fn solve_adapt_with_adapt_time_chooses_each_levels_grid() {
     let dir = scratch("adapt-space-time");
@@ -223,7 +224,7 @@ fn solve_adapt_with_adapt_time_chooses_each_levels_grid() {
     .unwrap();
     let err = ok(&o);
     assert_contains(&err, &["adapting `figure`", "time grid searches "]);
-    assert!(read(run.join("time_adapt.csv")).contains("this last level's mesh"));
+    assert!(read(run.join("time_adapt.csv")).contains("the last mesh level's mesh"));
     let searched = table_rows(&run.join("time_adapt.csv"));
     let chosen: usize = searched.last().unwrap()[1].parse().unwrap();
     let levels = table_rows(&run.join("adapt.csv"));

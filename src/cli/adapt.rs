@@ -193,7 +193,7 @@ pub fn run(
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     if let Some(chosen) = &chosen {
         let on = format!(
-            "this last level's mesh ({} unknowns), as every level's grid was chosen on its own",
+            "the last mesh level's mesh ({} unknowns): each mesh level chose its own time grid by such a search",
             last.dofs
         );
         super::adapt_time::write(&out, &prov, &scn, run, chosen, &on)?;

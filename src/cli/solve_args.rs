@@ -89,7 +89,8 @@ pub struct SolveArgs {
     /// Print the wall time of each phase (assembly, factorisation, condensation, steps,
     /// and the estimator on the last step with --estimate; with --adapt, the levels'
     /// summed wall time and the estimator's share of it, then the last level's phases;
-    /// with --adapt-time, first the time grid's search on a line of its own).
+    /// with --adapt-time, first the time grid's search on a line of its own, or with
+    /// --adapt, the searches' share of the levels' wall time).
     #[arg(long)]
     pub timings: bool,
     /// Also estimate the error of the last step by the residual estimator (element,

@@ -222,6 +222,18 @@ fn adaptive_work_against_uniform() {
             "{scn}"
         );
         assert!(gw[g] < spent && spent < *uw.last().unwrap(), "{scn}");
+        // From the uniform level of 4222 unknowns on adapting is cheaper; below it one
+        // uniform level is.
+        let ud = of("uniform", "dofs");
+        for (i, (&t, &w)) in ue.iter().zip(&uw).enumerate() {
+            let reach = ae.iter().position(|&x| x <= t).expect("reached");
+            let spent: f64 = aw[..=reach].iter().sum();
+            assert_eq!(
+                spent < w,
+                ud[i] >= 4222.0,
+                "{scn} uniform level {i}: {spent} {w}"
+            );
+        }
     }
 }
 
