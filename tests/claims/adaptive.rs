@@ -298,19 +298,9 @@ fn adaptive_user_orders() {
         if levels > 0 {
             assert_eq!(d.len(), levels, "{scn} {fam}");
         }
-        let k = d.len().min(5);
-        let pts: Vec<(f64, f64)> = (d.len() - k..d.len())
-            .map(|i| (d[i].ln(), e[i].ln()))
-            .collect();
-        let n = pts.len() as f64;
-        let (mx, my) = (
-            pts.iter().map(|p| p.0).sum::<f64>() / n,
-            pts.iter().map(|p| p.1).sum::<f64>() / n,
-        );
-        let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
-            / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+        let order = fitted_order(&d, &e, d.len().min(5));
         assert_eq!(
-            [fix(-2.0 * slope, 2), fix(100.0 * e[e.len() - 1], 1)],
+            [fix(order, 2), fix(100.0 * e[e.len() - 1], 1)],
             [order, err],
             "{scn} {fam}"
         );
@@ -404,10 +394,9 @@ fn exact(letter: &str, fam: &str, col: &str) -> Vec<f64> {
     column(EXACT, &[("letter", letter), ("family", fam)], col)
 }
 
-/// The order in (unknowns)^(-1/2) of the largest error over time, fitted by least
-/// squares over the last `k` levels of a family.
-fn exact_order(letter: &str, fam: &str, k: usize) -> f64 {
-    let (d, e) = (exact(letter, fam, "dofs"), exact(letter, fam, "err_max"));
+/// The order in (unknowns)^(-1/2) of errors `e` at unknowns `d`, fitted by least
+/// squares in log-log over the last `k` levels.
+fn fitted_order(d: &[f64], e: &[f64], k: usize) -> f64 {
     let pts: Vec<(f64, f64)> = (d.len() - k..d.len())
         .map(|i| (d[i].ln(), e[i].ln()))
         .collect();
@@ -418,6 +407,12 @@ fn exact_order(letter: &str, fam: &str, k: usize) -> f64 {
     );
     -2.0 * pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
         / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>()
+}
+
+/// [`fitted_order`] of the largest error over time of a family of `exact_adaptive.csv`.
+fn exact_order(letter: &str, fam: &str, k: usize) -> f64 {
+    let (d, e) = (exact(letter, fam, "dofs"), exact(letter, fam, "err_max"));
+    fitted_order(&d, &e, k)
 }
 
 #[test]
