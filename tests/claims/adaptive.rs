@@ -298,9 +298,9 @@ fn adaptive_user_orders() {
         if levels > 0 {
             assert_eq!(d.len(), levels, "{scn} {fam}");
         }
-        let order = fitted_order(&d, &e, d.len().min(5));
+        let fitted = fitted_order(&d, &e, d.len().min(5));
         assert_eq!(
-            [fix(order, 2), fix(100.0 * e[e.len() - 1], 1)],
+            [fix(fitted, 2), fix(100.0 * e[e.len() - 1], 1)],
             [order, err],
             "{scn} {fam}"
         );
