@@ -473,12 +473,14 @@ fn exact_solutions() {
             "exact_grid.csv",
             "exact_quadrature_effect.csv",
             "exact_hold.csv",
+            "exact_adaptive.csv",
         ],
         &[
             "exact_convergence",
             "exact_cea",
             "exact_regimes",
             "exact_grid",
+            "exact_adaptive",
         ],
         1e-11,
     );

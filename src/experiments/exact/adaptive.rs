@@ -101,6 +101,6 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         "{}; the solutions smooth in space (the fields of V^h, whose space error is nil, left out), each on N = {steps} steps; uniform: the structured meshes n = {levels:?}; adaptive: from the n = 4 mesh, each level's estimator (evhi::estimator with the solution's own data, as in exact_estimator.csv) folded into each triangle's maximum over the steps, Dörfler's bulk criterion with theta = {THETA} on those, newest-vertex bisection of the marked triangles and solved again from t = 0, until the next mesh would pass the last uniform mesh's {budget} unknowns; n = the level label (the uniform level whose cells bound every triangle); err_T = ||u(T) - u_N||_E / ||u(T)||_E, err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (fractions); estimator = sqrt(sum_T max_n eta_T,n^2) / max_n ||sigma_h^n||, the adaptive loop's estimated relative error; efficiency = estimator / err_max; estimator_step = max_n eta_n / max_n ||sigma_h^n||, the largest sum over a step (exact_estimator.csv's estimate), at most estimator",
         super::params()
     );
-    ctx.write("exact_adaptive.csv", &table, &what)?;
-    Ok(())
+    let path = ctx.write("exact_adaptive.csv", &table, &what)?;
+    super::figure::draw_adaptive(ctx, &path)
 }

@@ -104,7 +104,7 @@ impl LogLog {
             .flat_map(|s| s.1.iter().copied())
             .collect();
         let ((xmin, xmax), (ymin, ymax)) = extent(&pts);
-        let keys: Vec<f64> = (0..=10)
+        let keys: Vec<f64> = (0..=13)
             .map(|e| 2f64.powi(e))
             .filter(|x| *x >= xmin && *x <= xmax)
             .collect();
@@ -787,5 +787,66 @@ pub fn draw_grid(ctx: &Ctx, grid: &Path) -> Result<(), ExpError> {
         "exact_grid",
         (1000, 1300),
         &Grid { panels },
+    )?)
+}
+
+/// One log–log chart per solution, in rows of two.
+struct SmallMultiples(Vec<LogLog>);
+
+impl Figure for SmallMultiples {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), String> {
+        let cells = root.split_evenly((self.0.len().div_ceil(2), 2));
+        for (area, chart) in cells.iter().zip(&self.0) {
+            chart.draw_on(area, 0)?;
+        }
+        Ok(())
+    }
+}
+
+/// `exact_adaptive.png`: per solution, the largest error over time against the
+/// unknowns, the uniform and the adaptive family of `exact_adaptive.csv`.
+pub fn draw_adaptive(ctx: &Ctx, table: &Path) -> Result<(), ExpError> {
+    let df = read_csv(table)?;
+    let (sol, fam, dofs, err) = (
+        col_str(&df, "solution")?,
+        col_str(&df, "family")?,
+        col_f64(&df, "dofs")?,
+        col_f64(&df, "err_max")?,
+    );
+    let mut names: Vec<&str> = sol.iter().map(String::as_str).collect();
+    names.dedup();
+    let pick = |s: &str, f: &str| -> Vec<(f64, f64)> {
+        (0..sol.len())
+            .filter(|&i| sol[i] == s && fam[i] == f)
+            .map(|i| (dofs[i], 100.0 * err[i]))
+            .collect()
+    };
+    let families = crate::experiments::adaptive::FAMILIES;
+    let charts = names
+        .iter()
+        .map(|&s| LogLog {
+            title: label_of(s).to_string(),
+            x_desc: "unknowns".into(),
+            y_desc: "largest relative error over time (%)".into(),
+            series: vec![
+                (families[0].into(), pick(s, families[0]), oi::BLACK),
+                (families[2].into(), pick(s, families[2]), oi::VERMILLION),
+            ],
+            guides: vec![(0.5, "slope −1/2: order 1 in h".into())],
+            legend_at: SeriesLabelPosition::LowerLeft,
+            headroom: 1.5,
+            fonts: PANEL_FONTS,
+            markers: vec![0, 1],
+            nested: false,
+        })
+        .collect();
+    Ok(both(
+        &ctx.figures,
+        "exact_adaptive",
+        (1200, 1500),
+        &SmallMultiples(charts),
     )?)
 }
