@@ -457,6 +457,10 @@ fn run_rules_options(
     let mut diffs = vec![];
     // The strains of the interpolant of u(t_{n-1}) (u(0) = 0) per triangle.
     let bms = strain_matrices(&mesh);
+    // Each triangle's area, for the indicators' integrals of piecewise-constant strains.
+    let areas: Vec<f64> = (mesh.triangles.iter())
+        .map(|tri| 0.5 * crate::element::twice_area(tri.map(|v| mesh.nodes[v])).abs())
+        .collect();
     let mut interp_prev = p1_strains(&mesh, &bms, &vec![[0.0; 2]; mesh.nodes.len()]);
     // The previous step's points and strains at its t_n: its t_{n-1} strains here
     // when the cuts, and so the points, are the same.
@@ -569,29 +573,22 @@ fn run_rules_options(
                 let now = p1_strains(&mesh, &bms, &nodal_h);
                 let before = p1_strains(&mesh, &bms, &prev_h[i]);
                 // ANCHOR: time_indicator
+                let two = p1_strains(&mesh, &bms, &prev2_h[i]);
                 let eta_time = data.visc.as_ref().map_or(0.0, |visc| {
-                    let two = p1_strains(&mesh, &bms, &prev2_h[i]);
                     // (eps^n - 2 eps^{n-1} + eps^{n-2}) / k = eps(du^n - du^{n-1}).
-                    let sq: f64 = (mesh.triangles.iter().enumerate())
-                        .map(|(t, tri)| {
+                    let sq: f64 = (areas.iter().enumerate())
+                        .map(|(t, area)| {
                             let (a, b, c) = (now[t], before[t], two[t]);
                             let d = [0, 1, 2].map(|r| (a[r] - 2.0 * b[r] + c[r]) / k);
-                            let area =
-                                0.5 * crate::element::twice_area(tri.map(|v| mesh.nodes[v])).abs();
                             area * contract(super::apply(visc, d))
                         })
                         .sum();
                     0.5 * sq.sqrt()
                 });
                 // ANCHOR_END: time_indicator
-                let two = p1_strains(&mesh, &bms, &prev2_h[i]);
                 let energy = |f: &dyn Fn(usize) -> [f64; 3]| {
-                    let sq: f64 = (mesh.triangles.iter().enumerate())
-                        .map(|(t, tri)| {
-                            let area =
-                                0.5 * crate::element::twice_area(tri.map(|v| mesh.nodes[v])).abs();
-                            area * energy_density(&data.elast, f(t))
-                        })
+                    let sq: f64 = (areas.iter().enumerate())
+                        .map(|(t, area)| area * energy_density(&data.elast, f(t)))
                         .sum();
                     sq.sqrt()
                 };

@@ -51,10 +51,9 @@ pub fn write_estimator(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
     let levels = levels(ctx.quick);
     ctx.add_units(SOLUTIONS.len() * levels.len());
     let (mut t, mut s) = (Cols::default(), Cols::default());
-    let rate =
-        evhi::material::slowest_rate(&scn.viscosity(), &scn.elasticity()).ok_or_else(|| {
-            InputError::field("viscosity", "not positive definite", "a Kelvin–Voigt body")
-        })?;
+    let rate = scn.slowest_rate().ok_or_else(|| {
+        InputError::field("viscosity", "not positive definite", "a Kelvin–Voigt body")
+    })?;
     for sol in SOLUTIONS {
         let (mut space, mut both, mut carried) = (vec![], vec![], vec![]);
         for &n in levels {
