@@ -383,10 +383,7 @@ pub fn adapt_from(
     let mut levels = vec![];
     // A level's label n: the uniform level of the initial grid (`run.n` segments)
     // whose cells bound every triangle, two bisections halving a cell.
-    let label = |forest: &Forest, leaves: &Leaves| {
-        let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
-        run.n << (shallowest / 2).min(20)
-    };
+    let label = |forest: &Forest, leaves: &Leaves| level_label(forest, leaves, run.n);
     let (mut scene, mut mesh) = level_scene(&forest, &leaves, scn, label(&forest, &leaves))?;
     let mut dofs = Dofs::new(&mesh, true).count;
     if dofs > settings.max_dofs {
@@ -455,12 +452,7 @@ pub fn adapt_from(
             estimator_s: est.estimator_s,
             time_search_s: searched.as_ref().map_or(0.0, |c| c.search_s),
         };
-        // The mesh's triangles are the leaves in order ([`Forest::mesh`]).
-        let mut mark = vec![false; forest.triangle_count()];
-        for &i in &marked {
-            mark[leaves.0[i]] = true;
-        }
-        let next = (!done).then(|| forest.refine(&leaves, |_, t| mark.get(t) == Some(&true)));
+        let next = (!done).then(|| refine_marked(&mut forest, &leaves, &marked));
         row.wall_s = clock.elapsed().as_secs_f64();
         observer.level_done(&Solved {
             level: &row,
@@ -499,6 +491,24 @@ pub fn adapt_from(
             });
         }
     }
+}
+
+/// The label of a mesh of `forest` grown from a grid of `n0` segments: the uniform
+/// level whose cells bound every triangle of `leaves`, two bisections halving a cell.
+pub fn level_label(forest: &Forest, leaves: &Leaves, n0: usize) -> usize {
+    let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
+    n0 << (shallowest / 2).min(20)
+}
+
+/// `leaves` refined (conforming) until none of the triangles `marked` (indices into
+/// the mesh of `leaves`, whose triangles are the leaves in order, [`Forest::mesh`]) is
+/// left whole.
+pub fn refine_marked(forest: &mut Forest, leaves: &Leaves, marked: &[usize]) -> Leaves {
+    let mut mark = vec![false; forest.triangle_count()];
+    for &i in marked {
+        mark[leaves.0[i]] = true;
+    }
+    forest.refine(leaves, |_, t| mark.get(t) == Some(&true))
 }
 
 /// A run with its indicators gathered over time.

@@ -8,7 +8,7 @@
 use super::Cols;
 use crate::experiments::adaptive::FAMILIES;
 use crate::experiments::{Ctx, ExpError};
-use evhi::adapt::{dorfler, initial_forest};
+use evhi::adapt::{dorfler, initial_forest, level_label, refine_marked};
 use evhi::manufactured::Solution;
 use evhi::manufactured::run::{ExactRun, run_estimated, run_estimated_on};
 use evhi::mesh::Dofs;
@@ -74,19 +74,13 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
         let (mut forest, mut leaves, n0) = initial_forest(scn)?;
         let mut level = 0;
         loop {
-            // Labelled as the adaptive loop labels it: the uniform level whose cells
-            // bound every triangle, two bisections halving a cell.
-            let shallowest = leaves.0.iter().map(|&t| forest.depth(t)).min().unwrap_or(0);
-            let mesh = Arc::new(forest.mesh(&leaves, n0 << (shallowest / 2).min(20)));
+            // Labelled as the adaptive loop labels it.
+            let mesh = Arc::new(forest.mesh(&leaves, level_label(&forest, &leaves, n0)));
             let dofs = Dofs::new(&mesh, true).count;
             let r = run_estimated_on(sol, scn, mesh, steps)?;
             row(&mut t, (sol, FAMILIES[2], level), dofs, &r);
             let marked = dorfler(&r.eta_sq_max, THETA);
-            let mut mark = vec![false; forest.triangle_count()];
-            for &i in &marked {
-                mark[leaves.0[i]] = true;
-            }
-            let next = forest.refine(&leaves, |_, t| mark.get(t) == Some(&true));
+            let next = refine_marked(&mut forest, &leaves, &marked);
             let next_dofs = Dofs::new(&forest.mesh(&next, n0), true).count; // labels do not count
             if marked.is_empty() || next_dofs > budget {
                 break;
