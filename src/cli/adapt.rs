@@ -152,11 +152,12 @@ pub fn run(
     // A mesh scene's n is its mesh's (as a plain run's); the rectangle's the grid's.
     let n = if n0 > 0 { n0 } else { mesh.n };
     let sim = Simulation::on_mesh(scn.clone(), run_settings.with_n(n), mesh)?;
-    let chosen = adaptation.time_search.clone();
-    let sim = match (&settings.time_grid, &chosen) {
-        (Some(grid), _) => sim.on_time_grid(grid.clone())?,
-        (None, Some(c)) => sim.on_time_grid(c.grid().clone())?,
-        (None, None) => sim,
+    // The last level's grid, as its own search chose it (the command line gives no
+    // fixed grid for every level).
+    let chosen = adaptation.time_search;
+    let sim = match &chosen {
+        Some(c) => sim.on_time_grid(c.grid().clone())?,
+        None => sim,
     };
     let (lines, h_s) = evhi::diagnostics::after(&scn, sim.solver(), &solution, n, h_s);
     lines.iter().for_each(|l| evhi::diag!("{l}"));
