@@ -84,10 +84,10 @@ const EXACT_ESTIMATOR_SUMMARY: &[Heading] = &[
     ("efficiency_max", "largest"),
     ("efficiency_spread", "spread"),
     ("efficiency_goal", "goal"),
-    ("transported_min", "transported: smallest"),
-    ("transported_max", "largest"),
-    ("transported_spread", "spread"),
-    ("transported_goal", "goal"),
+    ("reconstructed_min", "reconstructed: smallest"),
+    ("reconstructed_max", "largest"),
+    ("reconstructed_spread", "spread"),
+    ("reconstructed_goal", "goal"),
 ];
 
 /// `exact_cea.csv`'s headings: the five terms of (4.16)'s right side and its left side.
@@ -450,6 +450,10 @@ pub const EXPERIMENTS: [Experiment; 16] = [
                     "with_time_max",
                     "with_time_spread",
                     "with_time_goal",
+                    "transported_min",
+                    "transported_max",
+                    "transported_spread",
+                    "transported_goal",
                 ])
                 .headed(EXACT_ESTIMATOR_SUMMARY),
         ],

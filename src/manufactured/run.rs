@@ -20,7 +20,7 @@
 //! $k = 1$: $Bu + \iota^*\xi = f$ on $U^h$.
 
 use super::{Data, Solution, Strains, contract, energy_density, strains};
-use crate::assembly::SpMat;
+use crate::assembly::{SpMat, matvec};
 use crate::certificate::ContactState;
 use crate::error::InputError;
 use crate::mesh::Dofs;
@@ -91,6 +91,14 @@ pub struct StepRow {
     /// $\|u^n_h\|_E$, the discrete field the summed predictor distances are relative to;
     /// 0 unless asked for.
     pub u_h_e: f64,
+    /// The step's reconstruction residual, damped to $t_n$:
+    /// $\theta_n = \int_{t_{n-1}}^{t_n} e^{-\lambda(t_n - s)}\,\|A_h^{-1}R(s)\|_E\,ds$, where
+    /// $\hat u$ is the piecewise-linear interpolant of the steps in time and
+    /// $R(s) = f(s) - A\dot{\hat u} - B\hat u(s) + \iota^*(p(\hat u_\nu(s)) + \mu_n)$ its residual
+    /// (the limit's multiplier held at the step's), $\lambda$ the material's slowest rate;
+    /// two Gauss points on each piece of the step between the data's kinks in time
+    /// ([`Solution::time_breaks`]). 0 without viscosity or unless asked for.
+    pub theta: f64,
 }
 
 /// A run against the exact solution.
@@ -462,6 +470,20 @@ fn run_rules_options(
         .map(|tri| 0.5 * crate::element::twice_area(tri.map(|v| mesh.nodes[v])).abs())
         .collect();
     let mut interp_prev = p1_strains(&mesh, &bms, &vec![[0.0; 2]; mesh.nodes.len()]);
+    // The reconstruction's residual: the material's slowest rate, the viscous matrix A
+    // factorised once (its inverse measures the residual), and per rule u_{n-1} and
+    // its contact variables (u_0 = 0).
+    let rate = (estimated && !sol.is_static())
+        .then(|| scn.slowest_rate())
+        .flatten();
+    let chol_a = match rate {
+        Some(_) => {
+            Some(crate::scheme::factorise(&disc, &disc.a, OrderingKind::NestedDissection, true)?.0)
+        }
+        None => None,
+    };
+    let mut prev_u = vec![vec![0.0; disc.dofs.count]; rules.len()];
+    let mut prev_s: Vec<Vec<f64>> = vec![op.gap.iter().map(|g| -g).collect(); rules.len()];
     // The previous step's points and strains at its t_n: its t_{n-1} strains here
     // when the cuts, and so the points, are the same.
     let mut last: Option<(Vec<f64>, Vec<Point>)> = None;
@@ -474,6 +496,21 @@ fn run_rules_options(
             step as f64 * k
         };
         let t_prev = t - k;
+        // f(s) at the time points of the reconstruction's residual.
+        let inner: Vec<(f64, f64, Vec<f64>)> = match chol_a {
+            Some(_) => time_points(sol, t_prev, t)
+                .into_iter()
+                .map(|(s, w)| {
+                    let pts = points_at(sol, &mesh, separable.as_ref(), refine, s);
+                    (
+                        s,
+                        w,
+                        load_from_points(&data, &mesh, &disc.dofs, &pts, (s, refine)),
+                    )
+                })
+                .collect(),
+            None => vec![],
+        };
         let (points, nodal) = match separable.as_mut() {
             Some(sep) => sep.at(sol, t, t_prev, step == 1),
             None => {
@@ -601,6 +638,36 @@ fn run_rules_options(
             } else {
                 (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
             };
+            // ANCHOR: reconstruction
+            let theta = match (&chol_a, rate) {
+                (Some(chol_a), Some(lambda)) => {
+                    let du: Vec<f64> = (u[0].iter().zip(&prev_u[i])).map(|(a, b)| a - b).collect();
+                    let bdu = matvec(&disc.b, &du);
+                    let s_now: Vec<f64> = states.iter().map(|st| st.u_nu).collect();
+                    let mut theta = 0.0;
+                    for (s, w, fs) in &inner {
+                        // u_n - u^(s) = (t_n - s)/k (u_n - u_{n-1}).
+                        let back = (t - s) / k;
+                        let mut res: Vec<f64> = (fs.iter().zip(&f).zip(&bdu))
+                            .map(|((fs, fn_), bdu)| fs - fn_ + back * bdu)
+                            .collect();
+                        for (j, &d) in op.cdofs.iter().enumerate() {
+                            let hat = s_now[j] - back * (s_now[j] - prev_s[i][j]);
+                            let xi = -states[j].sigma_nu1;
+                            res[d] += op.kw[j] / k * (scn.law.p(hat) - xi);
+                        }
+                        let z = chol_a.solve(&res);
+                        let bz = matvec(&disc.b, &z);
+                        theta +=
+                            w * (-lambda * (t - s)).exp() * crate::norms::energy_norm_with(&bz, &z);
+                    }
+                    prev_s[i] = s_now;
+                    theta
+                }
+                _ => 0.0,
+            };
+            // ANCHOR_END: reconstruction
+            prev_u[i].clone_from(&u[0]);
             prev2_h[i] = std::mem::replace(&mut prev_h[i], nodal_h);
             let mut row = StepRow {
                 err_e,
@@ -618,6 +685,7 @@ fn run_rules_options(
             row.sigma_h = sigma_h_norm;
             row.eta_step = eta_step;
             row.u_h_e = u_h_e;
+            row.theta = theta;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }
@@ -688,6 +756,57 @@ fn quadrature_points(
                     } else {
                         strains(sol, pt.x[0], pt.x[1], t_prev).eps
                     };
+                }
+            });
+        }
+    });
+    points
+}
+
+/// Two Gauss points and their weights on each piece of $[a, b]$ between the data's
+/// kinks in time ([`Solution::time_breaks`]).
+fn time_points(sol: Solution, a: f64, b: f64) -> Vec<(f64, f64)> {
+    let mut ends = vec![a];
+    ends.extend(sol.time_breaks().iter().filter(|&&c| c > a && c < b));
+    ends.push(b);
+    let off = 0.5 / 3f64.sqrt();
+    (ends.windows(2))
+        .flat_map(|w| {
+            let (mid, len) = (0.5 * (w[0] + w[1]), w[1] - w[0]);
+            [(mid - off * len, 0.5 * len), (mid + off * len, 0.5 * len)]
+        })
+        .collect()
+}
+
+/// The quadrature points of `mesh` with the exact strains at the time `s` in `now`
+/// (`prev` unset): a separable solution's points scaled, another's cut at its lines
+/// at `s` and evaluated on two threads.
+fn points_at(
+    sol: Solution,
+    mesh: &crate::mesh::Mesh,
+    separable: Option<&Separable>,
+    refine: usize,
+    s: f64,
+) -> Vec<Point> {
+    if let Some(sep) = separable {
+        let factor = sol.load_factor(s);
+        return (sep.points.iter().zip(&sep.grads))
+            .map(|(pt, g)| Point {
+                tri: pt.tri,
+                x: pt.x,
+                w: pt.w,
+                now: super::scaled_strains(g, factor),
+                prev: pt.prev,
+            })
+            .collect();
+    }
+    let mut points = point_set(mesh, &sol.cuts(s), refine);
+    let half = points.len().div_ceil(2).max(1);
+    std::thread::scope(|scope| {
+        for chunk in points.chunks_mut(half) {
+            scope.spawn(move || {
+                for pt in chunk.iter_mut() {
+                    pt.now = strains(sol, pt.x[0], pt.x[1], s);
                 }
             });
         }

@@ -427,6 +427,18 @@ impl Solution {
         Some(LAMBDA * mu_sum * c * (2.0 * h).powi(3) / 2.0 * (phi(1.0 - R_OFF) + phi(1.0 + R_OFF)))
     }
 
+    /// The times in $(0, T)$ at which the data $f(t)$ is smooth only piecewise: the
+    /// ends of the hold, where $\rho$, $\mu$, $R(t)$ and $\sigma(t)$ change their formula
+    /// (a jump of $\dot u$, so of $f$, at $T_1$ for (g); a kink or a jump of a higher
+    /// derivative for the others). None for (a), whose $\rho = S(t)$ is one piece on
+    /// $[0, 1]$, and for the static (c).
+    pub fn time_breaks(self) -> &'static [f64] {
+        match self {
+            Solution::Branch1 | Solution::Steady => &[],
+            _ => &[T1, T2],
+        }
+    }
+
     /// The vertical lines $x = c$ across which $u(\cdot, t)$ is smooth only
     /// piecewise (quadrature cuts there): the plateau's ends.
     pub fn cuts(self, t: f64) -> Vec<f64> {

@@ -210,6 +210,57 @@ fn estimator_tally() {
     assert_eq!(met("with_time").len(), 7);
     assert!(!met("with_time").contains(&"(a)".to_string()));
     assert_eq!(met("transported").len(), 6);
+    assert_eq!(met("reconstructed").len(), 9);
     assert_eq!(met("efficiency"), SMOOTH.map(String::from).to_vec());
     assert_eq!(summary.len(), 9);
+}
+
+#[test]
+fn estimator_reconstructed() {
+    let col = "efficiency_reconstructed";
+    let s = all(&SMOOTH, col);
+    assert_eq!([fix(min(&s), 2), fix(max(&s), 3)], ["4.33", "4.997"]);
+    let p = all(&["(e)", "(f)", "(i)"], col);
+    assert_eq!([fix(min(&p), 2), fix(max(&p), 2)], ["1.05", "1.26"]);
+    let g = column(TABLE, &[("letter", "(g)")], col);
+    let shown: Vec<String> = g.iter().map(|x| fix(*x, 2)).collect();
+    assert_eq!(shown, ["1.24", "1.47", "1.25", "1.34", "2.03"]);
+    assert_eq!(fix(spread(&g), 2), "1.64");
+    // Within the goal on every level of every solution.
+    let every = all(&[SMOOTH.as_slice(), P1.as_slice()].concat(), col);
+    assert!(min(&every) >= 1.0 && max(&every) <= 5.0, "{every:?}");
+    for v in per(&[SMOOTH.as_slice(), P1.as_slice()].concat(), col) {
+        assert!(spread(&v) <= 2.0, "{v:?}");
+    }
+}
+
+#[test]
+fn estimator_reconstructed_above() {
+    let alone = all(&P1, "efficiency_reconstructed_alone");
+    assert_eq!([fix(min(&alone), 2), fix(max(&alone), 2)], ["1.05", "2.02"]);
+    assert!(min(&alone) > 1.0);
+    // Below the transported estimate on (e), (f) and (i) at every level, nearer to it
+    // level by level.
+    for l in ["(e)", "(f)", "(i)"] {
+        let r = column(TABLE, &[("letter", l)], "estimate_reconstructed");
+        let t = column(TABLE, &[("letter", l)], "estimate_transported");
+        let q: Vec<f64> = r.iter().zip(&t).map(|(r, t)| r / t).collect();
+        assert!(q.iter().all(|&q| q < 1.0), "{l}: {q:?}");
+        assert!(q.windows(2).all(|w| w[1] > w[0]), "{l}: {q:?}");
+    }
+}
+
+#[test]
+fn estimator_reconstructed_sum() {
+    let col = "efficiency_reconstructed_sum";
+    let a = column(TABLE, &[("letter", "(a)")], col);
+    assert_eq!(a.iter().filter(|&&x| x > 5.0).count(), 3);
+    assert_eq!(fix(max(&a), 2), "5.06");
+    let letters = [&SMOOTH[1..], P1.as_slice()].concat();
+    for v in per(&letters, col) {
+        assert!(
+            min(&v) >= 1.0 && max(&v) <= 5.0 && spread(&v) <= 2.0,
+            "{v:?}"
+        );
+    }
 }
