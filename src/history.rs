@@ -55,6 +55,17 @@ impl History {
     }
     // ANCHOR_END: history
 
+    /// The times at which $\varphi$ has a kink: the ramp's end, the table's points
+    /// (none for a constant load). The reconstruction's quadrature in time
+    /// ([`crate::reconstruction::time_points`]) is cut there.
+    pub fn breaks(&self) -> Vec<f64> {
+        match self {
+            History::Constant => vec![],
+            History::Ramp { t_r } => vec![*t_r],
+            History::Table { points } => points.iter().map(|p| p.0).collect(),
+        }
+    }
+
     /// Whether $\varphi(0) = 0$: then $f(0) = 0$, which meets H(f)'s $f_0(0) \in V$,
     /// $f_2(0) = 0$ and H(0)'s compatibility at $u_0 = 0$ for any loads.
     pub fn starts_at_zero(&self) -> bool {

@@ -67,6 +67,7 @@ pub mod ordering;
 pub mod output;
 pub mod prelude;
 pub mod quadrature;
+pub mod reconstruction;
 pub mod reduced;
 pub mod refine;
 pub mod scenario;

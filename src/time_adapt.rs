@@ -188,6 +188,11 @@ pub struct Level<T> {
     pub estimate: f64,
     /// The plain sum $\sum_n\eta_n / \max_n\|u_n\|_E$ (the estimate without damping).
     pub sum: f64,
+    /// The reconstruction's bound ([`crate::reconstruction`]): the steps' $\theta_n$
+    /// propagated at the slowest rate ([`propagated`]) over $\max_n\|u_n\|_E$; a bound of
+    /// the relative error over time without contact, an estimate with it. `None` where
+    /// the solve formed no $\theta_n$.
+    pub bound: Option<f64>,
     /// What the solve returned besides.
     /// Anything else the solve returns.
     pub out: T,
@@ -209,6 +214,8 @@ pub enum Stop {
 pub struct Solved<T> {
     /// Per step, $\|u_n - \hat u_n\|_E$.
     pub gaps: Vec<f64>,
+    /// Per step, the reconstruction's $\theta_n$ ([`crate::reconstruction`]), or empty.
+    pub theta: Vec<f64>,
     /// $\max_n \|u_n\|_E$.
     pub norm_max: f64,
     /// Anything else the solve returns.
@@ -236,6 +243,8 @@ pub fn adapt_time<T, E: From<InputError>>(
         let eta = indicators(&grid, &solved.gaps);
         let sum = eta.iter().sum::<f64>() / solved.norm_max;
         let estimate = transported(&grid, &eta, rate) / solved.norm_max;
+        let bound = (solved.theta.len() == grid.len())
+            .then(|| propagated(&grid, &solved.theta, rate) / solved.norm_max);
         if !(estimate.is_finite() && sum.is_finite()) {
             return Err(InputError::field(
                 "time indicator",
@@ -250,6 +259,7 @@ pub fn adapt_time<T, E: From<InputError>>(
             eta,
             estimate,
             sum,
+            bound,
             out: solved.out,
         };
         on_level(&level);
@@ -350,23 +360,55 @@ pub fn choose(
             &mut *on_level,
         )?
     } else {
+        // The reconstruction needs A's factor (one per search) and the load; a body
+        // without viscosity has neither a rate nor a residual to measure.
+        let a_factor = match scn.slowest_rate() {
+            Some(_) => Some(
+                crate::scheme::factorise(
+                    &disc,
+                    &disc.a,
+                    crate::scheme::OrderingKind::NestedDissection,
+                    true,
+                )?
+                .0,
+            ),
+            None => None,
+        };
+        let f = scn.load_vector(&disc.mesh, &disc.dofs);
         adapt_time(
             scn.t_end,
             s,
             rate,
             |grid| {
                 let level = sim.on_time_grid(grid.clone())?;
+                let fields = a_factor.as_ref().map(|a| crate::reconstruction::OnFields {
+                    a,
+                    b: &disc.b,
+                    contact_dofs: &disc.contact_dofs,
+                    weights: &disc.weights,
+                    law: &scn.law,
+                });
                 let mut obs = Gaps {
                     b: &disc.b,
                     grid,
                     last: [vec![], vec![]],
                     gaps: Vec::with_capacity(grid.len()),
                     norm_max: 0.0,
+                    rebuilt: fields.map(|fields| Rebuilt {
+                        fields,
+                        f: &f,
+                        scn,
+                        rate,
+                        before: crate::reconstruction::Before::at_rest(&disc.gap),
+                        rest: crate::reconstruction::Before::at_rest(&disc.gap),
+                        theta: Vec::with_capacity(grid.len()),
+                    }),
                 };
                 // Run as it is, as on the reduced loop: a stalled step stops the search.
                 level.solve_with(sim.solver().build().as_mut(), &mut obs)?;
                 Ok::<_, crate::scheme::RunError>(Solved {
                     gaps: obs.gaps,
+                    theta: obs.rebuilt.map_or(vec![], |r| r.theta),
                     norm_max: obs.norm_max,
                     out: (),
                 })
@@ -401,6 +443,12 @@ pub fn march_reduced(
     };
     let (mut u1, mut u2) = (zero.clone(), zero);
     let (mut gaps, mut norm_max) = (Vec::with_capacity(grid.len()), 0.0f64);
+    // The reconstruction's residual: the contact variables of the step before (u_0 = 0)
+    // and the load's kinks in time; A = cB, so the slowest rate is 1/c.
+    let mut theta = Vec::with_capacity(grid.len());
+    let mut before = crate::reconstruction::Before::at_rest(&op.disc.gap);
+    let breaks = scn.history.breaks();
+    let phi = |t: f64| scn.history.phi(t);
     op.march_on(
         scn,
         load,
@@ -412,6 +460,19 @@ pub fn march_reduced(
         &mut |st| {
             let (ratio, _) = predictor(grid, st.step);
             gaps.push(op.predictor_gap(load, (st.state, &u1, &u2), ratio));
+            let k = grid.k(st.step);
+            let points = crate::reconstruction::time_points(&breaks, st.t - k, st.t);
+            theta.push(crate::reconstruction::on_states(
+                op,
+                load,
+                (&u1, st.state),
+                (&before, st.contact),
+                (st.t, k),
+                &scn.law,
+                &phi,
+                (1.0 / op.c, &points),
+            ));
+            before = crate::reconstruction::Before::of(st.contact);
             norm_max = norm_max.max(st.record.energy_norm);
             observe(&st);
             u2 = std::mem::replace(&mut u1, st.state.clone());
@@ -419,6 +480,7 @@ pub fn march_reduced(
     )?;
     Ok(Solved {
         gaps,
+        theta,
         norm_max,
         out: (),
     })
@@ -433,6 +495,21 @@ struct Gaps<'a> {
     last: [Vec<f64>; 2],
     gaps: Vec<f64>,
     norm_max: f64,
+    /// The reconstruction's residual, where the body has viscosity.
+    rebuilt: Option<Rebuilt<'a>>,
+}
+
+/// What [`Gaps`] needs for each step's $\theta_n$ ([`crate::reconstruction::OnFields`]).
+struct Rebuilt<'a> {
+    fields: crate::reconstruction::OnFields<'a>,
+    /// The load vector at $\varphi = 1$.
+    f: &'a [f64],
+    scn: &'a crate::scenario::Scenario,
+    rate: f64,
+    /// The contact nodes at the step before, and at $u_0 = 0$.
+    before: crate::reconstruction::Before,
+    rest: crate::reconstruction::Before,
+    theta: Vec<f64>,
 }
 
 impl crate::simulation::Observer for Gaps<'_> {
@@ -441,10 +518,39 @@ impl crate::simulation::Observer for Gaps<'_> {
         n: usize,
         _t: f64,
         u: Option<&[f64]>,
-        _c: &[crate::certificate::ContactState],
+        c: &[crate::certificate::ContactState],
     ) {
         let Some(u) = u else { return };
         let (ratio, _) = predictor(self.grid, n);
+        if let Some(r) = self.rebuilt.as_mut() {
+            let k = self.grid.k(n);
+            let t = self.grid.t(n);
+            let zero = vec![0.0; u.len()];
+            let u_prev = if self.last[0].is_empty() {
+                &zero
+            } else {
+                &self.last[0]
+            };
+            let phi_n = r.scn.history.phi(t);
+            let points: Vec<(f64, f64, Vec<f64>)> =
+                crate::reconstruction::time_points(&r.scn.history.breaks(), t - k, t)
+                    .into_iter()
+                    .map(|(s, w)| {
+                        let dphi = r.scn.history.phi(s) - phi_n;
+                        (s, w, r.f.iter().map(|f| dphi * f).collect())
+                    })
+                    .collect();
+            let step = crate::reconstruction::StepFields {
+                t,
+                k,
+                u_prev,
+                u,
+                before: &r.before,
+                contact: c,
+            };
+            r.theta.push(r.fields.theta(&step, r.rate, &points));
+            r.before = crate::reconstruction::Before::of(c);
+        }
         let at = |v: &Vec<f64>, i: usize| v.get(i).copied().unwrap_or(0.0);
         let d: Vec<f64> = (u.iter().enumerate())
             .map(|(i, x)| x - (1.0 + ratio) * at(&self.last[0], i) + ratio * at(&self.last[1], i))
@@ -459,6 +565,10 @@ impl crate::simulation::Observer for Gaps<'_> {
         self.last = [vec![], vec![]];
         self.gaps.clear();
         self.norm_max = 0.0;
+        if let Some(r) = self.rebuilt.as_mut() {
+            r.theta.clear();
+            r.before.clone_from(&r.rest);
+        }
     }
 }
 
@@ -550,6 +660,7 @@ mod tests {
                 let gaps = (1..=g.len()).map(|_| 0.0).collect();
                 Ok::<_, InputError>(Solved {
                     gaps,
+                    theta: vec![],
                     norm_max: 1.0,
                     out: (),
                 })
@@ -596,6 +707,7 @@ mod tests {
                 }
                 Ok::<_, InputError>(Solved {
                     gaps,
+                    theta: vec![],
                     norm_max: 1.0,
                     out: (),
                 })

@@ -37,6 +37,12 @@ fn both_loops_choose_the_same_grid() {
             b.estimate
         );
     }
+    // The reconstruction's bound: on states (A = cB, the contact block of B's factor
+    // for the law's part) and on fields (a factor of A) agree to rounding.
+    for (a, b) in r.levels.iter().zip(&g.levels) {
+        let (a, b) = (a.bound.unwrap(), b.bound.unwrap());
+        assert!((a - b).abs() <= 1e-8 * a, "{a} {b}");
+    }
     let last = r.levels.last().unwrap();
     assert!(last.estimate <= 0.05);
     // The estimate falls from level to level, and the layer at t = 0 gets the short steps.

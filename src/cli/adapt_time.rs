@@ -53,8 +53,11 @@ pub fn choose(
     let s = settings(args, sim.steps(), tol)?;
     let t_end = sim.scenario().t_end();
     let chosen = evhi::time_adapt::choose(&sim, &s, &mut |l: &Level<()>| {
+        let bound = l.bound.map_or(String::new(), |b| {
+            format!(", reconstruction's bound {:.3} %", 100.0 * b)
+        });
         evhi::diag!(
-            "time level: {} steps, shortest T/{}, estimate {:.3} % (tolerance {} %)",
+            "time level: {} steps, shortest T/{}, estimate {:.3} % (tolerance {} %){bound}",
             l.grid.len(),
             (t_end / l.grid.k_min()).round(),
             100.0 * l.estimate,
@@ -98,8 +101,10 @@ pub fn write(
          on {searched_on}; estimate = the local errors eta_n carried forward and damped at the \
          body's slowest relaxation rate, over the largest energy norm (evhi::time_adapt::transported), \
          an estimate (not a bound) of the relative error over time; sum = the same without the \
-         damping; the last level's \
-         grid is the run's; stopped: {}",
+         damping; bound = the reconstruction's residual propagated at the same rate over the \
+         largest energy norm (evhi::reconstruction, evhi::time_adapt::propagated), a bound of the \
+         relative error over time without contact, an estimate with it (empty without viscosity); \
+         the last level's grid is the run's; stopped: {}",
         chosen.stop.describe()
     ));
     let table = Table::new()
@@ -108,7 +113,13 @@ pub fn write(
         .f64("k_min", l.iter().map(|l| l.grid.k_min()).collect())
         .f64("k_max", l.iter().map(|l| longest(&l.grid)).collect())
         .f64("estimate", l.iter().map(|l| l.estimate).collect())
-        .f64("sum", l.iter().map(|l| l.sum).collect());
+        .f64("sum", l.iter().map(|l| l.sum).collect())
+        .str(
+            "bound",
+            l.iter()
+                .map(|l| l.bound.map_or(String::new(), |b| b.to_string()))
+                .collect(),
+        );
     out.write_table("time_adapt.csv", &table, &header)?;
     Ok(())
 }

@@ -20,7 +20,7 @@
 //! $k = 1$: $Bu + \iota^*\xi = f$ on $U^h$.
 
 use super::{Data, Solution, Strains, contract, energy_density, strains};
-use crate::assembly::{SpMat, matvec};
+use crate::assembly::SpMat;
 use crate::certificate::ContactState;
 use crate::error::InputError;
 use crate::mesh::Dofs;
@@ -483,7 +483,7 @@ fn run_rules_options(
         None => None,
     };
     let mut prev_u = vec![vec![0.0; disc.dofs.count]; rules.len()];
-    let mut prev_s: Vec<Vec<f64>> = vec![op.gap.iter().map(|g| -g).collect(); rules.len()];
+    let mut before = vec![crate::reconstruction::Before::at_rest(&op.gap); rules.len()];
     // The previous step's points and strains at its t_n: its t_{n-1} strains here
     // when the cuts, and so the points, are the same.
     let mut last: Option<(Vec<f64>, Vec<Point>)> = None;
@@ -498,7 +498,7 @@ fn run_rules_options(
         let t_prev = t - k;
         // f(s) at the time points of the reconstruction's residual.
         let inner: Vec<(f64, f64, Vec<f64>)> = match chol_a {
-            Some(_) => time_points(sol, t_prev, t)
+            Some(_) => crate::reconstruction::time_points(sol.time_breaks(), t_prev, t)
                 .into_iter()
                 .map(|(s, w)| {
                     let pts = points_at(sol, &mesh, separable.as_ref(), refine, s);
@@ -526,6 +526,10 @@ fn run_rules_options(
             }
         };
         let f = load_from_points(&data, &mesh, &disc.dofs, points, (t, refine));
+        // f(s) - f(t_n) at the reconstruction's time points.
+        let inner: Vec<(f64, f64, Vec<f64>)> = (inner.into_iter())
+            .map(|(s, w, fs)| (s, w, fs.iter().zip(&f).map(|(a, b)| a - b).collect()))
+            .collect();
         let interp = p1_strains(&mesh, &bms, &nodal);
         let exact = measure_exact(
             &data,
@@ -641,27 +645,23 @@ fn run_rules_options(
             // ANCHOR: reconstruction
             let theta = match (&chol_a, rate) {
                 (Some(chol_a), Some(lambda)) => {
-                    let du: Vec<f64> = (u[0].iter().zip(&prev_u[i])).map(|(a, b)| a - b).collect();
-                    let bdu = matvec(&disc.b, &du);
-                    let s_now: Vec<f64> = states.iter().map(|st| st.u_nu).collect();
-                    let mut theta = 0.0;
-                    for (s, w, fs) in &inner {
-                        // u_n - u^(s) = (t_n - s)/k (u_n - u_{n-1}).
-                        let back = (t - s) / k;
-                        let mut res: Vec<f64> = (fs.iter().zip(&f).zip(&bdu))
-                            .map(|((fs, fn_), bdu)| fs - fn_ + back * bdu)
-                            .collect();
-                        for (j, &d) in op.cdofs.iter().enumerate() {
-                            let hat = s_now[j] - back * (s_now[j] - prev_s[i][j]);
-                            let xi = -states[j].sigma_nu1;
-                            res[d] += op.kw[j] / k * (scn.law.p(hat) - xi);
-                        }
-                        let z = chol_a.solve(&res);
-                        let bz = matvec(&disc.b, &z);
-                        theta +=
-                            w * (-lambda * (t - s)).exp() * crate::norms::energy_norm_with(&bz, &z);
-                    }
-                    prev_s[i] = s_now;
+                    let fields = crate::reconstruction::OnFields {
+                        a: chol_a,
+                        b: &disc.b,
+                        contact_dofs: &op.cdofs,
+                        weights: &disc.weights,
+                        law: &scn.law,
+                    };
+                    let step = crate::reconstruction::StepFields {
+                        t,
+                        k,
+                        u_prev: &prev_u[i],
+                        u: &u[0],
+                        before: &before[i],
+                        contact: &states,
+                    };
+                    let theta = fields.theta(&step, lambda, &inner);
+                    before[i] = crate::reconstruction::Before::of(&states);
                     theta
                 }
                 _ => 0.0,
@@ -761,21 +761,6 @@ fn quadrature_points(
         }
     });
     points
-}
-
-/// Two Gauss points and their weights on each piece of $[a, b]$ between the data's
-/// kinks in time ([`Solution::time_breaks`]).
-fn time_points(sol: Solution, a: f64, b: f64) -> Vec<(f64, f64)> {
-    let mut ends = vec![a];
-    ends.extend(sol.time_breaks().iter().filter(|&&c| c > a && c < b));
-    ends.push(b);
-    let off = 0.5 / 3f64.sqrt();
-    (ends.windows(2))
-        .flat_map(|w| {
-            let (mid, len) = (0.5 * (w[0] + w[1]), w[1] - w[0]);
-            [(mid - off * len, 0.5 * len), (mid + off * len, 0.5 * len)]
-        })
-        .collect()
 }
 
 /// The quadrature points of `mesh` with the exact strains at the time `s` in `now`

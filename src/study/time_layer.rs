@@ -33,6 +33,8 @@ pub struct LayerRow {
     pub steps: usize,
     /// The first step.
     pub k_first: f64,
+    /// The reconstruction's bound ([`crate::time_adapt::Level::bound`]) on this grid.
+    pub bound: f64,
     /// Largest error over the grid's times relative to the reference's largest norm
     /// there.
     pub err_max: f64,
@@ -61,6 +63,8 @@ pub struct AdaptiveRow {
     pub estimate: f64,
     /// The plain sum $\sum_n\eta_n / \max_n\|u_n\|_E$.
     pub sum: f64,
+    /// The reconstruction's bound ([`crate::time_adapt::Level::bound`]).
+    pub bound: f64,
     /// Largest error over the grid's times relative to the reference's largest norm
     /// there.
     pub err_max: f64,
@@ -152,6 +156,7 @@ pub fn study(
             &mut timings,
             &mut |s| refs.push((s.state.clone(), op.energy(&load, s.state))),
         )?;
+        let rate = scn.slowest_rate().unwrap_or(0.0);
         // ANCHOR: measure_grid
         // One grid's errors against the reference at its own times, and each step's
         // distance from the linear predictor (crate::time_adapt).
@@ -178,11 +183,14 @@ pub fn study(
                     }
                 },
             )?;
+            let bound = crate::time_adapt::propagated(grid, &solved.theta, rate) / solved.norm_max;
             Ok(Measured {
                 err_max,
                 ref_max,
                 err_t,
                 gaps: solved.gaps,
+                theta: solved.theta,
+                bound,
                 norm_max: solved.norm_max,
             })
         };
@@ -197,6 +205,7 @@ pub fn study(
                 halvings: j,
                 steps: grid.len(),
                 k_first: grid.k(1),
+                bound: m.bound,
                 err_max: m.err_max / m.ref_max,
                 err_t: m.err_t,
             });
@@ -209,6 +218,7 @@ pub fn study(
                 let m = measure(grid)?;
                 Ok::<_, ExpError>(crate::time_adapt::Solved {
                     gaps: m.gaps.clone(),
+                    theta: m.theta.clone(),
                     norm_max: m.norm_max,
                     out: m,
                 })
@@ -225,6 +235,7 @@ pub fn study(
                 k_min: l.grid.k_min(),
                 estimate: l.estimate,
                 sum: l.sum,
+                bound: l.out.bound,
                 err_max: l.out.err_max / l.out.ref_max,
                 err_t: l.out.err_t,
             });
@@ -241,6 +252,8 @@ struct Measured {
     ref_max: f64,
     err_t: f64,
     gaps: Vec<f64>,
+    theta: Vec<f64>,
+    bound: f64,
     norm_max: f64,
 }
 
@@ -359,6 +372,10 @@ pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
         )
         .f64("sum_percent", rows.iter().map(|r| 100.0 * r.sum).collect())
         .f64(
+            "bound_percent",
+            rows.iter().map(|r| 100.0 * r.bound).collect(),
+        )
+        .f64(
             "rel_err_max_percent",
             rows.iter().map(|r| 100.0 * r.err_max).collect(),
         )
@@ -380,6 +397,10 @@ pub fn table(rows: &[LayerRow]) -> Table {
         .u64("halvings", rows.iter().map(|r| r.halvings as u64).collect())
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
         .f64("k_first", rows.iter().map(|r| r.k_first).collect())
+        .f64(
+            "bound_percent",
+            rows.iter().map(|r| 100.0 * r.bound).collect(),
+        )
         .f64(
             "rel_err_max_percent",
             rows.iter().map(|r| 100.0 * r.err_max).collect(),

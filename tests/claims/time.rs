@@ -1115,3 +1115,76 @@ fn time_ramp_error_near_tau() {
         );
     }
 }
+
+#[test]
+fn time_reconstruction_bound_adaptive() {
+    let levels = rows(ADAPTIVE);
+    let ratio =
+        |r: &HashMap<String, String>| num(r, "bound_percent") / num(r, "rel_err_max_percent");
+    let ratios: Vec<f64> = levels.iter().map(ratio).collect();
+    assert_eq!(levels.len(), 87);
+    assert!(
+        min(&ratios) > 1.0,
+        "never below the error: {}",
+        min(&ratios)
+    );
+    assert_eq!(
+        (fix(min(&ratios), 3), fix(max(&ratios), 2)),
+        ("1.006".into(), "5.26".into())
+    );
+    let later: Vec<f64> = (levels.iter())
+        .filter(|r| num(r, "level") >= 2.0)
+        .map(ratio)
+        .collect();
+    assert_eq!(fix(max(&later), 2), "2.42");
+    let literal: Vec<f64> = (levels.iter())
+        .filter(|r| r["scenario"] == "literal")
+        .map(ratio)
+        .collect();
+    assert_eq!(
+        (fix(min(&literal), 3), fix(max(&literal), 2)),
+        ("1.006".into(), "1.64".into())
+    );
+    let below = (levels.iter())
+        .filter(|r| num(r, "bound_percent") < num(r, "estimate_percent"))
+        .count();
+    assert_eq!(below, 79);
+}
+
+#[test]
+fn time_reconstruction_bound_layer() {
+    let grids = rows("time_layer.csv");
+    let ratio =
+        |r: &HashMap<String, String>| num(r, "bound_percent") / num(r, "rel_err_max_percent");
+    let ratios: Vec<f64> = grids.iter().map(ratio).collect();
+    assert_eq!(grids.len(), 66);
+    assert!(
+        min(&ratios) > 1.0,
+        "never below the error: {}",
+        min(&ratios)
+    );
+    assert_eq!(
+        (fix(min(&ratios), 3), fix(max(&ratios), 1)),
+        ("1.006".into(), "15.4".into())
+    );
+    // The largest excess: figure under the ramp to 1, at the most halvings, on grids
+    // whose longest step is T/16.
+    let top = (grids.iter())
+        .max_by(|a, b| ratio(a).total_cmp(&ratio(b)))
+        .unwrap();
+    assert_eq!(
+        (top["scenario"].as_str(), top["history"].as_str()),
+        ("figure", "b_ramp1")
+    );
+    let most = (grids.iter())
+        .map(|r| num(r, "halvings"))
+        .fold(0.0, f64::max);
+    assert_eq!(num(top, "halvings"), most);
+    assert!(grids.iter().all(|r| num(r, "n_longest") == 16.0));
+    // The first landing under that ramp.
+    let landing = study("figure", "b_ramp1", "t_first_limit");
+    assert!(
+        landing.iter().all(|t| fix(*t, 4) == "0.7529"),
+        "{landing:?}"
+    );
+}

@@ -1,0 +1,240 @@
+//! The residual of the reconstruction in time, and the bound of the time error it gives.
+//!
+//! Join the steps of backward Euler by straight lines: $\hat u$ is linear on each
+//! $[t_{n-1}, t_n]$ with $\hat u(t_n) = u_n$. Put into $A\dot u + Bu = f + \iota^*(\text{contact})$,
+//! it leaves, once step $n$'s own equation
+//! $A\,\delta u_n + Bu_n = f(t_n) + \iota^*(w(\xi_n + \mu_n))$ is taken off, the residual
+//! $$R(s) = f(s) - f(t_n) + \tfrac{t_n - s}{k}\,B(u_n - u_{n-1}) + \iota^*\ell(s),
+//! \qquad s \in (t_{n-1}, t_n),$$
+//! where $\xi_n$ is the law's part of the contact stress the step found, $\mu_n$ the
+//! limit's multiplier, $w$ the nodal weights of $\Gamma_3$ and $\ell$ the contact part
+//! ([`law_change`]: the law at $\hat u_\nu(s)$, the multiplier reconstructed). Without
+//! contact the error $e = u - \hat u$ solves $A\dot e + Be = R$ from $e(0) = 0$, and since
+//! $e^{-tA^{-1}B}$ shrinks $\|\cdot\|_E$ by $e^{-\lambda t}$ ($\lambda$ the slowest rate,
+//! [`crate::material::slowest_rate`]),
+//! $$\|e(t_n)\|_E \le F_n, \qquad F_n = e^{-k_n\lambda}F_{n-1} + \theta_n, \qquad
+//! \theta_n = \int_{t_{n-1}}^{t_n} e^{-\lambda(t_n - s)}\,\|A_h^{-1}R(s)\|_E\,ds$$
+//! ([`crate::time_adapt::propagated`]). The integral takes two Gauss points on each piece
+//! of the step between the data's kinks in time ([`time_points`]); $A_h^{-1}$ is one
+//! solve with a factor of $A$ on full fields ([`OnFields`]), and none on the reduced
+//! loop, where $A = cB$ and the residual is a state of its own ([`on_states`]). With
+//! contact it is an estimate: the law's softening branch and the limit are not in the
+//! argument.
+
+use crate::assembly::{SpMat, matvec};
+use crate::certificate::ContactState;
+use crate::law::Law;
+use crate::linalg::Cholesky;
+use crate::reduced::{Load, Reduced, State};
+
+/// Two Gauss points and their weights on each piece of $[a, b]$ between the kinks
+/// `breaks` (those outside $(a, b)$ are ignored).
+pub fn time_points(breaks: &[f64], a: f64, b: f64) -> Vec<(f64, f64)> {
+    let mut ends = vec![a];
+    ends.extend(breaks.iter().filter(|&&c| c > a && c < b));
+    ends.push(b);
+    let off = 0.5 / 3f64.sqrt();
+    (ends.windows(2))
+        .flat_map(|w| {
+            let (mid, len) = (0.5 * (w[0] + w[1]), w[1] - w[0]);
+            [(mid - off * len, 0.5 * len), (mid + off * len, 0.5 * len)]
+        })
+        .collect()
+}
+
+/// The contact nodes at the step before: their contact variables $s_{n-1}$ and the
+/// limit's multipliers $\mu_{n-1}$.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Before {
+    /// $s_{n-1}$ per contact node.
+    pub s: Vec<f64>,
+    /// $\mu_{n-1}$ per contact node.
+    pub mu: Vec<f64>,
+    /// Whether the node was on the limit.
+    pub on_limit: Vec<bool>,
+}
+
+impl Before {
+    /// At $u_0 = 0$: $s = -\text{gap}$, no multiplier.
+    pub fn at_rest(gap: &[f64]) -> Before {
+        Before {
+            s: gap.iter().map(|g| -g).collect(),
+            mu: vec![0.0; gap.len()],
+            on_limit: vec![false; gap.len()],
+        }
+    }
+
+    /// After a step whose contact states are `states`.
+    pub fn of(states: &[ContactState]) -> Before {
+        Before {
+            s: states.iter().map(|st| st.u_nu).collect(),
+            // sigma_nu2 = -mu.
+            mu: states.iter().map(|st| -st.sigma_nu2).collect(),
+            on_limit: states.iter().map(|st| st.at_limit).collect(),
+        }
+    }
+}
+
+/// The contact part of $R(s)$ at the nodes:
+/// $w_i\,\big((\hat p_i - \xi_{n,i}) - \beta\,(\mu_{n,i} - \mu_{n-1,i})\big)$ (the last term only
+/// on a node that was on the limit at $t_{n-1}$), with
+/// $\hat s_i = s_{n,i} - \beta\,(s_{n,i} - s_{n-1,i})$, $\beta = (t_n - s)/k$, and $\hat p_i$ the
+/// point of Clarke's $\partial p(\hat s_i)$ nearest to $\xi_{n,i}$ ($p(\hat s_i)$ where $p$ is
+/// continuous; nothing for a node that rests on a jump of $p$ with $\xi_n$ inside it).
+/// The law's force is taken at the reconstruction. The limit's multiplier is no
+/// function of $\hat s$: on a node that was on the limit at $t_{n-1}$ it is
+/// reconstructed as the displacements are, linear between $\mu_{n-1}$ and $\mu_n$; on a
+/// node that lands in the step it is held at $\mu_n$ over the whole step (the term
+/// drops), since a landing at nonzero speed makes the multiplier jump, and a node that
+/// has moved little in its landing step landed early in it. `before` holds step
+/// $n - 1$, `now` the states of step $n$. A
+/// node counts as on a breakpoint within the certificate's rounding tolerance
+/// ([`crate::certificate::ROUNDING`] times the largest $|s|$).
+// ANCHOR: law_change
+pub fn law_change(
+    law: &Law,
+    weights: &[f64],
+    before: &Before,
+    now: &[ContactState],
+    beta: f64,
+) -> Vec<f64> {
+    let scale = (now.iter().map(|st| st.u_nu.abs()))
+        .chain(before.s.iter().map(|s| s.abs()))
+        .fold(0.0, f64::max);
+    let delta = crate::certificate::ROUNDING * scale;
+    let prev = before.s.iter().zip(&before.mu).zip(&before.on_limit);
+    (now.iter().zip(prev).zip(weights))
+        .map(|((st, ((&s_prev, &mu_prev), &held_before)), w)| {
+            let hat = st.u_nu - beta * (st.u_nu - s_prev);
+            // sigma_nu1 = -xi, the law's part the step found; sigma_nu2 = -mu.
+            let (xi, mu) = (-st.sigma_nu1, -st.sigma_nu2);
+            let limit = if held_before {
+                beta * (mu - mu_prev)
+            } else {
+                0.0
+            };
+            w * (law.clarke_near(hat, delta).clamp(xi) - xi - limit)
+        })
+        .collect()
+}
+// ANCHOR_END: law_change
+
+/// What [`OnFields::theta`] needs of a mesh: a factor of $A$, the matrix $B$, the
+/// contact dofs with their weights, and the law.
+pub struct OnFields<'a> {
+    /// The Cholesky factor of $A$.
+    pub a: &'a Cholesky,
+    /// $B$.
+    pub b: &'a SpMat,
+    /// The contact normal dofs.
+    pub contact_dofs: &'a [usize],
+    /// The nodal weights $w_i$ of $\Gamma_3$.
+    pub weights: &'a [f64],
+    /// The normal compliance law.
+    pub law: &'a Law,
+}
+
+/// One step as [`OnFields::theta`] reads it.
+pub struct StepFields<'a> {
+    /// $t_n$.
+    pub t: f64,
+    /// $k_n$.
+    pub k: f64,
+    /// $u_{n-1}$ (free dofs).
+    pub u_prev: &'a [f64],
+    /// $u_n$.
+    pub u: &'a [f64],
+    /// The contact nodes at step $n - 1$.
+    pub before: &'a Before,
+    /// The contact states of step $n$.
+    pub contact: &'a [ContactState],
+}
+
+impl OnFields<'_> {
+    /// $\theta_n$ of `step` at the rate `rate`, from the time points `(s, weight,
+    /// f(s) - f(t_n))` of the step.
+    // ANCHOR: on_fields
+    pub fn theta(&self, step: &StepFields<'_>, rate: f64, points: &[(f64, f64, Vec<f64>)]) -> f64 {
+        let du: Vec<f64> = (step.u.iter().zip(step.u_prev))
+            .map(|(a, b)| a - b)
+            .collect();
+        let bdu = matvec(self.b, &du);
+        let mut theta = 0.0;
+        for (s, w, df) in points {
+            let beta = (step.t - s) / step.k;
+            let mut res: Vec<f64> = (df.iter().zip(&bdu)).map(|(f, b)| f + beta * b).collect();
+            let law = law_change(self.law, self.weights, step.before, step.contact, beta);
+            for (&d, l) in self.contact_dofs.iter().zip(law) {
+                res[d] += l;
+            }
+            let z = self.a.solve(&res);
+            let bz = matvec(self.b, &z);
+            theta += w * (-rate * (step.t - s)).exp() * crate::norms::energy_norm_with(&bz, &z);
+        }
+        theta
+    }
+    // ANCHOR_END: on_fields
+}
+
+/// $\theta_n$ on the reduced loop ([`crate::reduced`]), where $A = cB$, $f(t) = \varphi(t) f$
+/// and a field is $B^{-1}(Yf + E_C^\top W)$: then $cA_h^{-1}R(s) = B^{-1}R(s)$ is the state
+/// $Y = \varphi(s) - \varphi(t_n) + \beta\,\Delta Y$, $W = \beta\,\Delta W + \ell(s)$ with $\ell$ the law's
+/// part ([`law_change`]) and $r = -E_C B^{-1}(\cdot)$, of which $-E_CB^{-1}E_C^\top\ell = -S_B^{-1}\ell$
+/// takes two triangular solves with the contact block of $B$'s factor; its energy
+/// needs no solve ([`Reduced::energy`]). `phi` gives $\varphi$, `points` the step's
+/// time points ([`time_points`]).
+// ANCHOR: on_states
+#[allow(clippy::too_many_arguments)]
+pub fn on_states(
+    op: &Reduced<'_>,
+    load: &Load,
+    (prev, now): (&State, &State),
+    (before, contact): (&Before, &[ContactState]),
+    (t, k): (f64, f64),
+    law: &Law,
+    phi: &dyn Fn(f64) -> f64,
+    (rate, points): (f64, &[(f64, f64)]),
+) -> f64 {
+    let phi_n = phi(t);
+    let mut theta = 0.0;
+    for &(s, w) in points {
+        let beta = (t - s) / k;
+        let dphi = phi(s) - phi_n;
+        let ell = law_change(law, &op.disc.weights, before, contact, beta);
+        let mut sl = ell.clone();
+        op.chol.contact_forward(&mut sl);
+        op.chol.contact_backward(&mut sl);
+        let z = State {
+            y: dphi + beta * (now.y - prev.y),
+            w: (now.w.iter().zip(&prev.w).zip(&ell))
+                .map(|((a, b), l)| beta * (a - b) + l)
+                .collect(),
+            r: (now.r.iter().zip(&prev.r).zip(&load.q).zip(&sl))
+                .map(|(((a, b), q), sl)| beta * (a - b) + dphi * q - sl)
+                .collect(),
+        };
+        theta += w * (-rate * (t - s)).exp() * op.energy(load, &z) / op.c;
+    }
+    theta
+}
+// ANCHOR_END: on_states
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_points_cut_at_the_kinks_inside() {
+        let p = time_points(&[0.0, 0.25, 0.4, 1.0], 0.2, 0.3);
+        assert_eq!(p.len(), 4);
+        let total: f64 = p.iter().map(|q| q.1).sum();
+        assert!((total - 0.1).abs() < 1e-15);
+        assert!(p[..2].iter().all(|q| q.0 < 0.25) && p[2..].iter().all(|q| q.0 > 0.25));
+        // Two Gauss points integrate a cubic exactly on each piece.
+        let cubic = |s: f64| s * s * s - 2.0 * s;
+        let exact = |s: f64| s.powi(4) / 4.0 - s * s;
+        let quad: f64 = p.iter().map(|&(s, w)| w * cubic(s)).sum();
+        assert!((quad - (exact(0.3) - exact(0.2))).abs() < 1e-15);
+        assert_eq!(time_points(&[], 0.0, 1.0).len(), 2);
+    }
+}
