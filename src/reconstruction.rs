@@ -1,25 +1,26 @@
 //! The residual of the reconstruction in time, and the bound of the time error it gives.
 //!
 //! Join the steps of backward Euler by straight lines: $\hat u$ is linear on each
-//! $[t_{n-1}, t_n]$ with $\hat u(t_n) = u_n$. Put into $A\dot u + Bu = f + \iota^*(\text{contact})$,
-//! it leaves, once step $n$'s own equation
-//! $A\,\delta u_n + Bu_n = f(t_n) + \iota^*(w(\xi_n + \mu_n))$ is taken off, the residual
-//! $$R(s) = f(s) - f(t_n) + \tfrac{t_n - s}{k}\,B(u_n - u_{n-1}) + \iota^*\ell(s),
+//! $[t_{n-1}, t_n]$ with $\hat u(t_n) = u_n$. Step $n$ of the scheme is
+//! $A\,\delta u_n + Bu_n + \iota^*(p_n + \mu_n) = f(t_n)$ on $V^h$, with
+//! $\langle\iota^*q, v\rangle = \sum_i w_i q_i v_{\nu,i}$ over the contact nodes, $p_n$ the law's
+//! Clarke value the step found and $\mu_n$ the limit's multiplier. Put into the problem
+//! with contact forces $\hat p(s)$, $\hat\mu(s)$ of its own, $\hat u$ leaves the residual
+//! $$R(s) = f(s) - f(t_n) + \tfrac{t_n - s}{k}\,B(u_n - u_{n-1}) - \iota^*\ell(s),
 //! \qquad s \in (t_{n-1}, t_n),$$
-//! where $\xi_n$ is the law's part of the contact stress the step found, $\mu_n$ the
-//! limit's multiplier, $w$ the nodal weights of $\Gamma_3$ and $\ell$ the contact part
-//! ([`law_change`]: the law at $\hat u_\nu(s)$, the multiplier reconstructed). Without
-//! contact the error $e = u - \hat u$ solves $A\dot e + Be = R$ from $e(0) = 0$, and since
-//! $e^{-tA^{-1}B}$ shrinks $\|\cdot\|_E$ by $e^{-\lambda t}$ ($\lambda$ the slowest rate,
-//! [`crate::material::slowest_rate`]),
+//! with $\ell = (\hat p - p_n) + (\hat\mu - \mu_n)$ the contact part ([`law_change`]; in the
+//! code the contact dofs are $u_y = -u_\nu$, so $-\iota^*\ell$ adds $+w\ell$ there). Without
+//! contact the error $e = u_h - \hat u$ against the solution exact in time on $V^h$ solves
+//! $A\dot e + Be = R$ from $e(0) = 0$, and since $e^{-tA^{-1}B}$ shrinks $\|\cdot\|_E$ by
+//! $e^{-\lambda t}$ ($\lambda$ the slowest rate, [`crate::material::slowest_rate`]),
 //! $$\|e(t_n)\|_E \le F_n, \qquad F_n = e^{-k_n\lambda}F_{n-1} + \theta_n, \qquad
 //! \theta_n = \int_{t_{n-1}}^{t_n} e^{-\lambda(t_n - s)}\,\|A_h^{-1}R(s)\|_E\,ds$$
 //! ([`crate::time_adapt::propagated`]). The integral takes two Gauss points on each piece
-//! of the step between the data's kinks in time ([`time_points`]); $A_h^{-1}$ is one
-//! solve with a factor of $A$ on full fields ([`OnFields`]), and none on the reduced
-//! loop, where $A = cB$ and the residual is a state of its own ([`on_states`]). With
-//! contact it is an estimate: the law's softening branch and the limit are not in the
-//! argument.
+//! of the step between the data's kinks in time ([`time_points`]), so $F_n$ is the bound
+//! up to that quadrature; $A_h^{-1}$ is one solve with a factor of $A$ on full fields
+//! ([`OnFields`]), and none on the reduced loop, where $A = cB$ and the residual is a state
+//! of its own ([`on_states`]). With contact it is an estimate: the law's softening branch
+//! and the limit are not in the argument.
 
 use crate::assembly::{SpMat, matvec};
 use crate::certificate::ContactState;
@@ -75,12 +76,12 @@ impl Before {
     }
 }
 
-/// The contact part of $R(s)$ at the nodes:
-/// $w_i\,\big((\hat p_i - \xi_{n,i}) - \beta\,(\mu_{n,i} - \mu_{n-1,i})\big)$ (the last term only
+/// The contact part of $R(s)$ at the nodes, as it enters the contact dofs:
+/// $w_i\,\big((\hat p_i - p_{n,i}) - \beta\,(\mu_{n,i} - \mu_{n-1,i})\big)$ (the last term only
 /// on a node that was on the limit at $t_{n-1}$), with
 /// $\hat s_i = s_{n,i} - \beta\,(s_{n,i} - s_{n-1,i})$, $\beta = (t_n - s)/k$, and $\hat p_i$ the
-/// point of Clarke's $\partial p(\hat s_i)$ nearest to $\xi_{n,i}$ ($p(\hat s_i)$ where $p$ is
-/// continuous; nothing for a node that rests on a jump of $p$ with $\xi_n$ inside it).
+/// point of Clarke's $\partial p(\hat s_i)$ nearest to $p_{n,i}$ ($p(\hat s_i)$ where $p$ is
+/// continuous; nothing for a node that rests on a jump of $p$ with $p_n$ inside it).
 /// The law's force is taken at the reconstruction. The limit's multiplier is no
 /// function of $\hat s$: on a node that was on the limit at $t_{n-1}$ it is
 /// reconstructed as the displacements are, linear between $\mu_{n-1}$ and $\mu_n$; on a

@@ -97,13 +97,20 @@ pub fn transported(grid: &TimeGrid, eta: &[f64], rate: f64) -> f64 {
 /// damping of a defect, this one the continuous problem's damping of a residual.
 // ANCHOR: propagated
 pub fn propagated(grid: &TimeGrid, theta: &[f64], rate: f64) -> f64 {
+    propagated_each(grid, theta, rate)
+        .into_iter()
+        .fold(0.0, f64::max)
+}
+
+/// Every $F_n$ of [`propagated`], in order: the bound at each $t_n$.
+pub fn propagated_each(grid: &TimeGrid, theta: &[f64], rate: f64) -> Vec<f64> {
     let mut carried = 0.0f64;
-    let mut top = 0.0f64;
-    for (i, th) in theta.iter().enumerate() {
-        carried = carried * (-grid.k(i + 1) * rate).exp() + th;
-        top = top.max(carried);
-    }
-    top
+    (theta.iter().enumerate())
+        .map(|(i, th)| {
+            carried = carried * (-grid.k(i + 1) * rate).exp() + th;
+            carried
+        })
+        .collect()
 }
 // ANCHOR_END: propagated
 

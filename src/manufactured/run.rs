@@ -94,8 +94,9 @@ pub struct StepRow {
     /// The step's reconstruction residual, damped to $t_n$:
     /// $\theta_n = \int_{t_{n-1}}^{t_n} e^{-\lambda(t_n - s)}\,\|A_h^{-1}R(s)\|_E\,ds$, where
     /// $\hat u$ is the piecewise-linear interpolant of the steps in time and
-    /// $R(s) = f(s) - A\dot{\hat u} - B\hat u(s) + \iota^*(p(\hat u_\nu(s)) + \mu_n)$ its residual
-    /// (the limit's multiplier held at the step's), $\lambda$ the material's slowest rate;
+    /// $R(s)$ its residual ([`crate::reconstruction`]: the law at $\hat u_\nu(s)$, the
+    /// limit's multiplier joined linearly on nodes on the limit at $t_{n-1}$ and held at the
+    /// step's on nodes that land), $\lambda$ the material's slowest rate;
     /// two Gauss points on each piece of the step between the data's kinks in time
     /// ([`Solution::time_breaks`]). 0 without viscosity or unless asked for.
     pub theta: f64,

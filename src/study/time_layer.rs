@@ -35,6 +35,9 @@ pub struct LayerRow {
     pub k_first: f64,
     /// The reconstruction's bound ([`crate::time_adapt::Level::bound`]) on this grid.
     pub bound: f64,
+    /// $\min_n F_n / \|u_{ref}(t_n) - u_n\|_E$ over the steps: the bound against the error
+    /// at each step, in absolute terms.
+    pub bound_margin: f64,
     /// Largest error over the grid's times relative to the reference's largest norm
     /// there.
     pub err_max: f64,
@@ -65,6 +68,8 @@ pub struct AdaptiveRow {
     pub sum: f64,
     /// The reconstruction's bound ([`crate::time_adapt::Level::bound`]).
     pub bound: f64,
+    /// As [`LayerRow::bound_margin`].
+    pub bound_margin: f64,
     /// Largest error over the grid's times relative to the reference's largest norm
     /// there.
     pub err_max: f64,
@@ -164,6 +169,7 @@ pub fn study(
             let stride = plan.n_ref / (grid.n() << grid.halvings());
             let last = grid.len();
             let (mut err_max, mut ref_max, mut err_t) = (0.0f64, 0.0f64, f64::NAN);
+            let mut errs = Vec::with_capacity(grid.len());
             let solver = &mut *plan.solver.build();
             let solved = crate::time_adapt::march_reduced(
                 &op,
@@ -176,6 +182,7 @@ pub fn study(
                     let at = grid.units(s.step) as usize * stride - 1;
                     let (st_ref, r) = &refs[at];
                     let e = op.energy_diff(&load, st_ref, s.state);
+                    errs.push(e);
                     err_max = err_max.max(e);
                     ref_max = ref_max.max(*r);
                     if s.step == last {
@@ -183,7 +190,12 @@ pub fn study(
                     }
                 },
             )?;
-            let bound = crate::time_adapt::propagated(grid, &solved.theta, rate) / solved.norm_max;
+            let each = crate::time_adapt::propagated_each(grid, &solved.theta, rate);
+            let bound = each.iter().copied().fold(0.0, f64::max) / solved.norm_max;
+            let bound_margin = (each.iter().zip(&errs))
+                .filter(|(_, e)| **e > 0.0)
+                .map(|(f, e)| f / e)
+                .fold(f64::INFINITY, f64::min);
             Ok(Measured {
                 err_max,
                 ref_max,
@@ -191,6 +203,7 @@ pub fn study(
                 gaps: solved.gaps,
                 theta: solved.theta,
                 bound,
+                bound_margin,
                 norm_max: solved.norm_max,
             })
         };
@@ -206,6 +219,7 @@ pub fn study(
                 steps: grid.len(),
                 k_first: grid.k(1),
                 bound: m.bound,
+                bound_margin: m.bound_margin,
                 err_max: m.err_max / m.ref_max,
                 err_t: m.err_t,
             });
@@ -236,6 +250,7 @@ pub fn study(
                 estimate: l.estimate,
                 sum: l.sum,
                 bound: l.out.bound,
+                bound_margin: l.out.bound_margin,
                 err_max: l.out.err_max / l.out.ref_max,
                 err_t: l.out.err_t,
             });
@@ -254,6 +269,7 @@ struct Measured {
     gaps: Vec<f64>,
     theta: Vec<f64>,
     bound: f64,
+    bound_margin: f64,
     norm_max: f64,
 }
 
@@ -376,6 +392,10 @@ pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
             rows.iter().map(|r| 100.0 * r.bound).collect(),
         )
         .f64(
+            "bound_margin",
+            rows.iter().map(|r| r.bound_margin).collect(),
+        )
+        .f64(
             "rel_err_max_percent",
             rows.iter().map(|r| 100.0 * r.err_max).collect(),
         )
@@ -400,6 +420,10 @@ pub fn table(rows: &[LayerRow]) -> Table {
         .f64(
             "bound_percent",
             rows.iter().map(|r| 100.0 * r.bound).collect(),
+        )
+        .f64(
+            "bound_margin",
+            rows.iter().map(|r| r.bound_margin).collect(),
         )
         .f64(
             "rel_err_max_percent",

@@ -1168,7 +1168,7 @@ fn time_reconstruction_bound_layer() {
         ("1.006".into(), "15.4".into())
     );
     // The largest excess: figure under the ramp to 1, at the most halvings, on grids
-    // whose longest step is T/16.
+    // whose longest step is T/16; the first step there is the reference's own.
     let top = (grids.iter())
         .max_by(|a, b| ratio(a).total_cmp(&ratio(b)))
         .unwrap();
@@ -1181,10 +1181,58 @@ fn time_reconstruction_bound_layer() {
         .fold(0.0, f64::max);
     assert_eq!(num(top, "halvings"), most);
     assert!(grids.iter().all(|r| num(r, "n_longest") == 16.0));
+    assert_eq!(16.0 * 2f64.powf(most), 32768.0);
+    // The excess at the most halvings against the fewest: larger on five runs of six,
+    // literal's constant load and ramp to 1 among them, up to 2.01.
+    let mut grew = vec![];
+    for scn in ["figure", "literal"] {
+        for h in HISTORIES {
+            let run: Vec<&HashMap<String, String>> = (grids.iter())
+                .filter(|r| r["scenario"] == scn && r["history"] == h)
+                .collect();
+            let first = run
+                .iter()
+                .min_by(|a, b| num(a, "halvings").total_cmp(&num(b, "halvings")));
+            let last = run
+                .iter()
+                .max_by(|a, b| num(a, "halvings").total_cmp(&num(b, "halvings")));
+            if ratio(last.unwrap()) > ratio(first.unwrap()) {
+                grew.push(format!("{scn} {h}"));
+            }
+        }
+    }
+    assert_eq!(grew.len(), 5, "{grew:?}");
+    assert!(!grew.contains(&"literal c_ramp0.25".to_string()));
+    let literal: Vec<f64> = (grids.iter())
+        .filter(|r| r["scenario"] == "literal" && r["history"] != "c_ramp0.25")
+        .map(ratio)
+        .collect();
+    assert_eq!(fix(max(&literal), 2), "2.01");
     // The first landing under that ramp.
     let landing = study("figure", "b_ramp1", "t_first_limit");
     assert!(
         landing.iter().all(|t| fix(*t, 4) == "0.7529"),
         "{landing:?}"
     );
+}
+
+#[test]
+fn time_reconstruction_margin() {
+    let (adaptive, layer) = (rows(ADAPTIVE), rows("time_layer.csv"));
+    let least = |rs: &[HashMap<String, String>], scn: &str, hs: &[&str]| -> f64 {
+        (rs.iter())
+            .filter(|r| r["scenario"] == scn && hs.contains(&r["history"].as_str()))
+            .map(|r| num(r, "bound_margin"))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let both = |scn: &str, hs: &[&str]| least(&adaptive, scn, hs).min(least(&layer, scn, hs));
+    assert_eq!(fix(both("literal", &HISTORIES), 3), "1.003");
+    assert_eq!(
+        fix(both("figure", &["a_constant", "c_ramp0.25"]), 3),
+        "1.007"
+    );
+    assert_eq!(fix(least(&layer, "figure", &["b_ramp1"]), 3), "0.954");
+    assert_eq!(fix(least(&adaptive, "figure", &["b_ramp1"]), 3), "0.963");
+    // 4.6 % below at worst: the chapter on the estimator quotes it.
+    assert_eq!(fix(100.0 * (1.0 - both("figure", &["b_ramp1"])), 1), "4.6");
 }

@@ -97,6 +97,9 @@ fn layer_halvings(plan: &Plan) -> Vec<u32> {
         .collect()
 }
 
+/// What the layer and adaptive tables say of their bound columns.
+const BOUND: &str = "bound_percent = max_n F_n / max_n ||u_n||_E, F_n = exp(-k_n lambda) F_(n-1) + theta_n, theta_n the reconstruction's residual of step n measured through A^(-1) and damped to t_n (evhi::reconstruction, evhi::time_adapt::propagated): a bound of the error over time without contact, an estimate with it; bound_margin = min_n F_n / ||u_ref(t_n) - u_n||_E, the bound against the error at each step in absolute terms (above 1 where the bound holds)";
+
 // ANCHOR: layer
 /// The time grid into the initial layer against the uniform levels `uniform` of the
 /// same study, and the adaptive choice of the grid: `time_layer.csv` (each grid's
@@ -116,14 +119,14 @@ fn layer(plan: &Plan, ctx: &Ctx, uniform: &[Row]) -> Result<(), ExpError> {
         "time_layer.csv",
         &time_layer::table(&grids.layer),
         &format!(
-            "{common}; time grids into the initial layer (evhi::time_grid): longest step              T/N with N = n_longest, first step k_first = (T/N)/2^J for J = halvings, each              step growing as k (1 + k/(2 tau)) rounded down to T/N over a power of two;              steps = the grid's count"
+            "{common}; time grids into the initial layer (evhi::time_grid): longest step              T/N with N = n_longest, first step k_first = (T/N)/2^J for J = halvings, each              step growing as k (1 + k/(2 tau)) rounded down to T/N over a power of two;              steps = the grid's count; {BOUND}"
         ),
     )?;
     ctx.write(
         "time_adaptive.csv",
         &time_layer::adaptive_table(&grids.adaptive),
         &format!(
-            "{common}; the adaptive choice of the time grid (evhi::time_adapt): from N0 =              {} uniform steps, each level's steps marked by Doerfler's criterion (theta = {})              on the predictor indicators eta_n and halved, until more than {} steps or a              shortest step below the reference's; estimate = max_n E_n / max ||u_n||_E with E_n = E_(n-1) / (1 + k_n lambda) + eta_n, lambda the body's slowest relaxation rate (evhi::time_adapt::transported); sum = sum eta_n / max ||u_n||_E, the same without the damping",
+            "{common}; the adaptive choice of the time grid (evhi::time_adapt): from N0 =              {} uniform steps, each level's steps marked by Doerfler's criterion (theta = {})              on the predictor indicators eta_n and halved, until more than {} steps or a              shortest step below the reference's; estimate = max_n E_n / max ||u_n||_E with E_n = E_(n-1) / (1 + k_n lambda) + eta_n, lambda the body's slowest relaxation rate (evhi::time_adapt::transported); sum = sum eta_n / max ||u_n||_E, the same without the damping; {BOUND}",
             adapt.n0, adapt.theta, adapt.max_steps
         ),
     )?;
