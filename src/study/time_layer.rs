@@ -372,7 +372,7 @@ pub fn savings(uniform: &[Row], grids: &Grids) -> Table {
 
 /// The adaptive levels' table.
 pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
-    Table::new()
+    let head = Table::new()
         .str(
             "scenario",
             rows.iter().map(|r| r.scenario.clone()).collect(),
@@ -386,15 +386,8 @@ pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
             "estimate_percent",
             rows.iter().map(|r| 100.0 * r.estimate).collect(),
         )
-        .f64("sum_percent", rows.iter().map(|r| 100.0 * r.sum).collect())
-        .f64(
-            "bound_percent",
-            rows.iter().map(|r| 100.0 * r.bound).collect(),
-        )
-        .f64(
-            "bound_margin",
-            rows.iter().map(|r| r.bound_margin).collect(),
-        )
+        .f64("sum_percent", rows.iter().map(|r| 100.0 * r.sum).collect());
+    with_bound(head, rows.iter().map(|r| (r.bound, r.bound_margin)))
         .f64(
             "rel_err_max_percent",
             rows.iter().map(|r| 100.0 * r.err_max).collect(),
@@ -405,9 +398,16 @@ pub fn adaptive_table(rows: &[AdaptiveRow]) -> Table {
         )
 }
 
+/// `t` with the columns of the reconstruction's bound: `bound_percent` and
+/// `bound_margin` from each row's `(bound, margin)`.
+fn with_bound(t: Table, rows: impl Iterator<Item = (f64, f64)>) -> Table {
+    let (bound, margin): (Vec<f64>, Vec<f64>) = rows.map(|(b, m)| (100.0 * b, m)).unzip();
+    t.f64("bound_percent", bound).f64("bound_margin", margin)
+}
+
 /// The layer grids' table.
 pub fn table(rows: &[LayerRow]) -> Table {
-    Table::new()
+    let head = Table::new()
         .str(
             "scenario",
             rows.iter().map(|r| r.scenario.clone()).collect(),
@@ -416,15 +416,8 @@ pub fn table(rows: &[LayerRow]) -> Table {
         .u64("n_longest", rows.iter().map(|r| r.n as u64).collect())
         .u64("halvings", rows.iter().map(|r| r.halvings as u64).collect())
         .u64("steps", rows.iter().map(|r| r.steps as u64).collect())
-        .f64("k_first", rows.iter().map(|r| r.k_first).collect())
-        .f64(
-            "bound_percent",
-            rows.iter().map(|r| 100.0 * r.bound).collect(),
-        )
-        .f64(
-            "bound_margin",
-            rows.iter().map(|r| r.bound_margin).collect(),
-        )
+        .f64("k_first", rows.iter().map(|r| r.k_first).collect());
+    with_bound(head, rows.iter().map(|r| (r.bound, r.bound_margin)))
         .f64(
             "rel_err_max_percent",
             rows.iter().map(|r| 100.0 * r.err_max).collect(),

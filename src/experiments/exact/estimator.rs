@@ -48,31 +48,36 @@ fn transported_estimate(r: &ExactRun, rate: f64) -> f64 {
 }
 // ANCHOR_END: transported_estimate
 
-/// The reconstruction's residuals of `r` ([`StepRow::theta`]) carried forward at the
-/// material's slowest rate ([`evhi::time_adapt::propagated`]), over the largest
-/// $\|u^n_h\|_E$: the estimated relative error of the time scheme; 0 for a static
+/// The bound $F_n$ at each step of `r` ([`StepRow::theta`] carried forward at the
+/// material's slowest rate, [`evhi::time_adapt::propagated_each`]); `None` for a static
 /// solution.
-// ANCHOR: reconstructed_estimate
-fn reconstructed_estimate(r: &ExactRun, rate: f64) -> f64 {
+fn bound_each(r: &ExactRun, rate: f64) -> Option<Vec<f64>> {
     if r.sol.is_static() {
-        return 0.0;
+        return None;
     }
     let grid = TimeGrid::uniform(r.k * r.steps as f64, r.steps);
     let theta: Vec<f64> = r.rows.iter().map(|w| w.theta).collect();
+    Some(evhi::time_adapt::propagated_each(&grid, &theta, rate))
+}
+
+/// The largest $F_n$ ([`bound_each`]) over the largest $\|u^n_h\|_E$: the estimated
+/// relative error of the time scheme; 0 for a static solution.
+// ANCHOR: reconstructed_estimate
+fn reconstructed_estimate(r: &ExactRun, rate: f64) -> f64 {
+    let Some(each) = bound_each(r, rate) else {
+        return 0.0;
+    };
     let size = r.rows.iter().map(|w| w.u_h_e).fold(0.0, f64::max);
-    evhi::time_adapt::propagated(&grid, &theta, rate) / size
+    each.into_iter().fold(0.0, f64::max) / size
 }
 // ANCHOR_END: reconstructed_estimate
 
-/// $\min_n F_n / \|u(t_n) - u_n\|_E$ ([`reconstructed_estimate`]'s $F_n$ against the true
-/// error of each step, in absolute terms); NaN for a static solution.
+/// $\min_n F_n / \|u(t_n) - u_n\|_E$ ([`bound_each`] against the true error of each step,
+/// in absolute terms); NaN for a static solution.
 fn time_bound_margin(r: &ExactRun, rate: f64) -> f64 {
-    if r.sol.is_static() {
+    let Some(each) = bound_each(r, rate) else {
         return f64::NAN;
-    }
-    let grid = TimeGrid::uniform(r.k * r.steps as f64, r.steps);
-    let theta: Vec<f64> = r.rows.iter().map(|w| w.theta).collect();
-    let each = evhi::time_adapt::propagated_each(&grid, &theta, rate);
+    };
     (each.iter().zip(&r.rows))
         .filter(|(_, w)| w.err_e > 0.0)
         .map(|(f, w)| f / w.err_e)
