@@ -28,9 +28,17 @@
 //! ($\lambda = 0$), which counts an error of the initial layer at full weight long after
 //! it has decayed.
 //!
-//! **The refinement.** Dörfler's bulk criterion on the $\eta_n$ (summed, not squared:
-//! the estimate adds them) marks the fewest largest steps that carry the fraction
-//! $\theta$ of $\sum_n\eta_n$, and each marked step is cut into two halves. A halved
+//! **The bound.** Where the body has viscosity, each solve also measures the residual
+//! of the steps joined by straight lines in time ([`crate::reconstruction`]): each
+//! step's $\theta_n$, propagated at the same rate ([`propagated`]), bounds the error over
+//! time without contact. Then the loop marks on the $\theta_n$ and stops on that bound
+//! ([`Level::bound`]); $\eta_n$ and $\mathcal E$ are still reported, and drive a body
+//! without viscosity.
+//!
+//! **The refinement.** Dörfler's bulk criterion on the $\theta_n$, or the $\eta_n$
+//! without them (summed, not squared: the estimates add them), marks the fewest largest
+//! steps that carry the fraction $\theta$ of their sum, and each marked step is cut into
+//! two halves. A halved
 //! step's local error falls by 4 and it becomes two steps, so its share of the sum
 //! halves. Every step is a power of two of the finest unit $(T/N)/2^J$ and starts at
 //! a multiple of its length ([`TimeGrid::from_exponents`]): the grid's times lie on
@@ -121,7 +129,8 @@ pub struct Settings {
     pub n0: usize,
     /// Dörfler's fraction $\theta$ in $(0, 1]$.
     pub theta: f64,
-    /// Stop when the estimate [`Level::estimate`] is at most this.
+    /// Stop when the bound [`Level::bound`] (or, without one, the estimate
+    /// [`Level::estimate`]) is at most this.
     pub tol: f64,
     /// Stop before a grid of more steps than this.
     pub max_steps: usize,
@@ -190,6 +199,8 @@ pub struct Level<T> {
     pub grid: TimeGrid,
     /// Each step's $\eta_n$.
     pub eta: Vec<f64>,
+    /// Each step's $\theta_n$ ([`Solved::theta`]), or empty.
+    pub theta: Vec<f64>,
     /// The estimated relative error over time: the local errors carried forward and
     /// damped at the body's slowest rate ([`transported`]) over $\max_n\|u_n\|_E$.
     pub estimate: f64,
@@ -208,7 +219,7 @@ pub struct Level<T> {
 /// Why an adaptive run stopped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Stop {
-    /// The estimate reached the tolerance.
+    /// The bound ([`Level::bound`]), or without one the estimate, reached the tolerance.
     Tolerance,
     /// The next grid would have had more steps than allowed.
     Steps,
@@ -252,6 +263,15 @@ pub fn adapt_time<T, E: From<InputError>>(
         let estimate = transported(&grid, &eta, rate) / solved.norm_max;
         let bound = (solved.theta.len() == grid.len())
             .then(|| propagated(&grid, &solved.theta, rate) / solved.norm_max);
+        if let Some(b) = bound.filter(|b| !b.is_finite()) {
+            return Err(InputError::field(
+                "time bound",
+                b,
+                "a finite bound over a positive largest norm (the solve returned a NaN \
+                 residual or a zero norm)",
+            )
+            .into());
+        }
         if !(estimate.is_finite() && sum.is_finite()) {
             return Err(InputError::field(
                 "time indicator",
@@ -264,17 +284,25 @@ pub fn adapt_time<T, E: From<InputError>>(
         let level = Level {
             grid,
             eta,
+            theta: solved.theta,
             estimate,
             sum,
             bound,
             out: solved.out,
         };
         on_level(&level);
-        // A zero sum marks nothing: then the estimate is 0, within any tolerance.
-        let marked = dorfler(&level.eta, s.theta);
+        // ANCHOR: mark_and_stop
+        // The bound where the solve measured it, else the predictor's indicators. A
+        // zero sum marks nothing: then the estimate is 0, within any tolerance.
+        let (marks, stop_on) = match bound {
+            Some(b) => (&level.theta, b),
+            None => (&level.eta, estimate),
+        };
+        let marked = dorfler(marks, s.theta);
+        // ANCHOR_END: mark_and_stop
         let grid_now = &level.grid;
         let exps = grid_now.exponents();
-        let next = if estimate <= s.tol || marked.is_empty() {
+        let next = if stop_on <= s.tol || marked.is_empty() {
             Err(Stop::Tolerance)
         } else if marked.iter().any(|&i| exps[i] == 0) && grid_now.halvings() >= s.max_halvings {
             // Halving a step of one unit needs J + 1: past the budget (checked before
@@ -320,7 +348,9 @@ impl Stop {
     /// Why the search stopped, in words.
     pub fn describe(self) -> &'static str {
         match self {
-            Stop::Tolerance => "the estimate is within the tolerance",
+            Stop::Tolerance => {
+                "the bound (or, without viscosity, the estimate) is within the tolerance"
+            }
             Stop::Steps => "the next grid would have more steps than allowed",
             Stop::Halvings => "the next grid would need a shorter step than allowed",
         }

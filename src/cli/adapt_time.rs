@@ -98,7 +98,9 @@ pub fn write(
     let mut header = evhi::output::run::header(prov, scn, run.n, run.steps);
     header.push(format!(
         "one row a level of the time grid's search (evhi::time_adapt), every level solved \
-         on {searched_on}; estimate = the local errors eta_n carried forward and damped at the \
+         on {searched_on}, its steps marked on the reconstruction's residuals and the search \
+         stopped on their bound (on the estimate where the body has no viscosity); \
+         estimate = the local errors eta_n carried forward and damped at the \
          body's slowest relaxation rate, over the largest energy norm (evhi::time_adapt::transported), \
          an estimate (not a bound) of the relative error over time; sum = the same without the \
          damping; bound = the reconstruction's residual propagated at the same rate over the \

@@ -144,14 +144,17 @@ pub struct SolveArgs {
     #[arg(long, value_name = "TOL", allow_hyphen_values = true)]
     pub adapt: Option<f64>,
     /// Choose the time grid from the solution (the library's `time_adapt` module): solve
-    /// on N0 uniform steps (--steps; 4 unless given), estimate each step's local error
-    /// from the distance between u_n and the line through u_(n-1) and u_(n-2), halve the
-    /// fewest steps that carry at least 80 % of the summed estimates (Dörfler, theta = 0.8), and
-    /// solve again from t = 0, until the estimated relative error over time (the
-    /// estimates carried forward, each damped at the body's slowest relaxation rate by
-    /// the steps after it, over the largest energy norm; an estimate, not a bound: the
-    /// book's time chapter measures it) is at most TOL (in [1e-6, 1]) or the next grid would have
-    /// more than --max-steps steps or a step shorter than (T/N0)/2^20. Each level is
+    /// on N0 uniform steps (--steps; 4 unless given), measure each step's residual of
+    /// the steps joined by straight lines in time against the load (the library's
+    /// `reconstruction` module), halve the fewest steps that carry at least 80 % of the
+    /// summed residuals (Dörfler, theta = 0.8), and solve again from t = 0, until the
+    /// bound they give of the relative error over time (each residual carried forward
+    /// and damped at the body's slowest relaxation rate, over the largest energy norm; a
+    /// bound without contact, an estimate with it: the book's time chapter measures it)
+    /// is at most TOL (in [1e-6, 1]) or the next grid would have more than --max-steps
+    /// steps or a step shorter than (T/N0)/2^20. A body without viscosity uses the
+    /// predictor's estimate instead (the distance between u_n and the line through
+    /// u_(n-1) and u_(n-2), carried forward the same way). Each level is
     /// printed on one line, and a line says which rule stopped the search. The run on
     /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).
     /// With --adapt each level's grid is chosen on that level's own mesh before it is

@@ -873,25 +873,23 @@ const ADAPTIVE: &str = "time_adaptive.csv";
 #[test]
 fn time_adaptive_one_percent() {
     let mut ratios = vec![];
-    for (scn, steps) in [("figure", "61"), ("literal", "54")] {
+    for (scn, steps, layer) in [("figure", "52", "61"), ("literal", "53", "54")] {
         let r = saved(scn, "a_constant", "max", "1");
         assert_eq!(r["adaptive_how"], "interpolated");
         assert_eq!(fix(num(&r, "adaptive_steps"), 0), steps, "{scn}");
-        // As few as the layer grid: within one step of it.
-        assert!(
-            (num(&r, "adaptive_steps") - num(&r, "layer_steps")).abs() < 1.0,
-            "{scn}"
-        );
+        // No more than the layer grid.
+        assert_eq!(fix(num(&r, "layer_steps"), 0), layer, "{scn}");
+        assert!(num(&r, "adaptive_steps") <= num(&r, "layer_steps"), "{scn}");
         ratios.push(num(&r, "adaptive_over_uniform"));
     }
-    assert_eq!(fixes(&ratios, 2), ["0.18", "0.21"]);
+    assert_eq!(fixes(&ratios, 2), ["0.15", "0.21"]);
     // The bar: at most a quarter of the uniform steps.
     assert!(ratios.iter().all(|&q| q <= 0.25), "{ratios:?}");
 }
 
 #[test]
 fn time_adaptive_tenth_percent() {
-    for (scn, adaptive, layer) in [("figure", "541", "462"), ("literal", "494", "424")] {
+    for (scn, adaptive, layer) in [("figure", "490", "462"), ("literal", "494", "424")] {
         let r = saved(scn, "a_constant", "max", "0.1");
         assert_eq!(fix(num(&r, "adaptive_steps"), 0), adaptive, "{scn}");
         assert_eq!(fix(num(&r, "layer_steps"), 0), layer, "{scn}");
@@ -919,11 +917,11 @@ fn time_adaptive_ramps() {
     assert_eq!(layer_more, 4);
     assert_eq!(
         (fix(min(&at[0]), 2), fix(max(&at[0]), 2)),
-        ("0.41".into(), "0.78".into())
+        ("0.36".into(), "0.73".into())
     );
     assert_eq!(
         (fix(min(&at[1]), 2), fix(max(&at[1]), 2)),
-        ("0.22".into(), "0.47".into())
+        ("0.21".into(), "0.47".into())
     );
     // Not the quarter at 1 %; the uniform grid reaches 1 % with 14 to 72 steps there.
     assert!(at[0].iter().all(|&q| q > 0.25));
@@ -935,7 +933,7 @@ fn time_adaptive_ramps() {
         .collect();
     assert_eq!(below, [("literal".to_string(), "b_ramp1".to_string())]);
     let r = saved("literal", "b_ramp1", "max", "0.1");
-    assert_eq!(fix(num(&r, "adaptive_over_uniform"), 2), "0.22");
+    assert_eq!(fix(num(&r, "adaptive_over_uniform"), 2), "0.21");
     assert!(num(&r, "layer_over_uniform") < 0.25);
     let mut uniform = vec![];
     for scn in ["figure", "literal"] {
@@ -967,20 +965,23 @@ fn time_adaptive_at_t() {
         }
     }
     assert!(ratios.iter().all(|&q| q >= 1.0), "{ratios:?}");
-    assert_eq!(fix(max(&ratios), 2), "1.35");
-    // Two steps more at most, on grids of 4 to 8.
+    assert_eq!(fix(max(&ratios), 2), "1.87");
+    // Five steps more at most, on grids of 4 to 11.
+    let mut most = 0.0f64;
     for scn in ["figure", "literal"] {
         for h in HISTORIES {
             let r = saved(scn, h, "T", "0.1");
             let (a, u) = (num(&r, "adaptive_steps"), num(&r, "uniform_steps"));
-            assert!(a - u <= 2.1 && (4.0..=8.0).contains(&a) && (4.0..=8.0).contains(&u));
+            most = most.max(a - u);
+            assert!((4.0..=11.0).contains(&a) && (4.0..=11.0).contains(&u));
         }
     }
+    assert_eq!(fix(most, 0), "5");
 }
 
 #[test]
 fn time_adaptive_search_cost() {
-    for (scn, summed, uniform) in [("figure", 188.0, "347"), ("literal", 216.0, "257")] {
+    for (scn, summed, uniform) in [("figure", 157.0, "347"), ("literal", 191.0, "257")] {
         let r = saved(scn, "a_constant", "max", "1");
         assert_eq!(num(&r, "adaptive_levels_steps"), summed, "{scn}");
         assert_eq!(fix(num(&r, "uniform_steps"), 0), uniform, "{scn}");
@@ -1001,7 +1002,7 @@ fn time_adaptive_search_cost() {
     }
     assert_eq!((more, cases), (7, 8));
     let r = saved("literal", "b_ramp1", "max", "0.1");
-    assert_eq!(num(&r, "adaptive_levels_steps"), 133.0);
+    assert_eq!(num(&r, "adaptive_levels_steps"), 117.0);
     assert_eq!(fix(num(&r, "uniform_steps"), 0), "190");
     // The sum counts every level through the first at or below the target.
     let levels = rows(ADAPTIVE);
@@ -1013,7 +1014,7 @@ fn time_adaptive_search_cost() {
         .position(|r| num(r, "rel_err_max_percent") <= 1.0)
         .unwrap();
     let sum: f64 = fig[..=first].iter().map(|r| num(r, "steps")).sum();
-    assert_eq!(sum, 188.0);
+    assert_eq!(sum, 157.0);
 }
 
 #[test]
@@ -1031,7 +1032,7 @@ fn time_adaptive_estimate_above() {
         .filter(|r| num(r, "level") >= 2.0)
         .map(ratio)
         .collect();
-    assert_eq!(fix(max(&later), 1), "3.3");
+    assert_eq!(fix(max(&later), 1), "5.2");
     let constant: Vec<f64> = (levels.iter())
         .filter(|r| r["history"] == "a_constant")
         .map(ratio)
@@ -1088,13 +1089,12 @@ fn time_adaptive_sum_above() {
     );
     assert_eq!(
         (fix(min(&ramp1), 1), fix(max(&ramp1), 1)),
-        ("2.9".into(), "6.4".into())
+        ("2.9".into(), "6.1".into())
     );
     assert_eq!(
         (fix(min(&constant), 1), fix(max(&constant), 1)),
-        ("2.9".into(), "6.9".into())
+        ("2.9".into(), "8.2".into())
     );
-    assert!(max(&constant) < min(&most));
 }
 
 /// Under the ramp to t = 1, from N = 16 on, both scenes' uniform levels make their
@@ -1122,7 +1122,7 @@ fn time_reconstruction_bound_adaptive() {
     let ratio =
         |r: &HashMap<String, String>| num(r, "bound_percent") / num(r, "rel_err_max_percent");
     let ratios: Vec<f64> = levels.iter().map(ratio).collect();
-    assert_eq!(levels.len(), 87);
+    assert_eq!(levels.len(), 88);
     assert!(
         min(&ratios) > 1.0,
         "never below the error: {}",
@@ -1136,19 +1136,19 @@ fn time_reconstruction_bound_adaptive() {
         .filter(|r| num(r, "level") >= 2.0)
         .map(ratio)
         .collect();
-    assert_eq!(fix(max(&later), 2), "2.42");
+    assert_eq!(fix(max(&later), 2), "4.38");
     let literal: Vec<f64> = (levels.iter())
         .filter(|r| r["scenario"] == "literal")
         .map(ratio)
         .collect();
     assert_eq!(
         (fix(min(&literal), 3), fix(max(&literal), 2)),
-        ("1.006".into(), "1.64".into())
+        ("1.006".into(), "1.69".into())
     );
     let below = (levels.iter())
         .filter(|r| num(r, "bound_percent") < num(r, "estimate_percent"))
         .count();
-    assert_eq!(below, 79);
+    assert_eq!(below, 84);
 }
 
 #[test]
