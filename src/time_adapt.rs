@@ -241,8 +241,9 @@ pub struct Solved<T> {
 }
 
 /// Solves on $N_0$ uniform steps, estimates, refines the marked steps and solves
-/// again from $t = 0$, until the estimate is within `s.tol` or the next grid would
-/// leave the step or halving budget. `rate` is the body's slowest relaxation rate
+/// again from $t = 0$, until the bound (where the solve measured $\theta_n$; else the
+/// estimate) is within `s.tol` or the next grid would leave the step or halving
+/// budget. `rate` is the body's slowest relaxation rate
 /// ([`crate::material::slowest_rate`]; 0 sums the local errors without damping).
 /// `solve` runs one grid; `on_level` sees each level as it is done.
 // ANCHOR: adapt_time

@@ -20,8 +20,9 @@ fn search(reduced: bool) -> evhi::time_adapt::Chosen {
     chosen
 }
 
-/// The reduced loop measures the predictor on its states, the general loop on its
-/// fields: the same grids, the same estimates to rounding.
+/// The reduced loop measures the predictor and the reconstruction's residual on its
+/// states, the general loop on its fields: the same grids, the same estimates and
+/// bounds to rounding.
 #[test]
 fn both_loops_choose_the_same_grid() {
     let (r, g) = (search(true), search(false));

@@ -53,15 +53,24 @@ pub fn choose(
     let s = settings(args, sim.steps(), tol)?;
     let t_end = sim.scenario().t_end();
     let chosen = evhi::time_adapt::choose(&sim, &s, &mut |l: &Level<()>| {
-        let bound = l.bound.map_or(String::new(), |b| {
-            format!(", reconstruction's bound {:.3} %", 100.0 * b)
-        });
+        // The quantity that stops the search, beside the tolerance.
+        let measures = match l.bound {
+            Some(b) => format!(
+                "bound {:.3} % (tolerance {} %), estimate {:.3} %",
+                100.0 * b,
+                100.0 * tol,
+                100.0 * l.estimate
+            ),
+            None => format!(
+                "estimate {:.3} % (tolerance {} %)",
+                100.0 * l.estimate,
+                100.0 * tol
+            ),
+        };
         evhi::diag!(
-            "time level: {} steps, shortest T/{}, estimate {:.3} % (tolerance {} %){bound}",
+            "time level: {} steps, shortest T/{}, {measures}",
             l.grid.len(),
             (t_end / l.grid.k_min()).round(),
-            100.0 * l.estimate,
-            100.0 * tol
         );
     })?;
     evhi::diag!(

@@ -1226,13 +1226,16 @@ fn time_reconstruction_margin() {
             .fold(f64::INFINITY, f64::min)
     };
     let both = |scn: &str, hs: &[&str]| least(&adaptive, scn, hs).min(least(&layer, scn, hs));
-    assert_eq!(fix(both("literal", &HISTORIES), 3), "1.003");
+    assert_eq!(fix(both("literal", &HISTORIES), 4), "1.0027");
     assert_eq!(
         fix(both("figure", &["a_constant", "c_ramp0.25"]), 3),
         "1.007"
     );
     assert_eq!(fix(least(&layer, "figure", &["b_ramp1"]), 3), "0.954");
     assert_eq!(fix(least(&adaptive, "figure", &["b_ramp1"]), 3), "0.963");
-    // 4.6 % below at worst: the chapter on the estimator quotes it.
+    // 4.6 % below at worst on the layer grids, 3.7 % on the search's levels: the
+    // chapter on the estimator quotes them.
     assert_eq!(fix(100.0 * (1.0 - both("figure", &["b_ramp1"])), 1), "4.6");
+    let search = least(&adaptive, "figure", &["b_ramp1"]);
+    assert_eq!(fix(100.0 * (1.0 - search), 1), "3.7");
 }

@@ -126,7 +126,7 @@ fn layer(plan: &Plan, ctx: &Ctx, uniform: &[Row]) -> Result<(), ExpError> {
         "time_adaptive.csv",
         &time_layer::adaptive_table(&grids.adaptive),
         &format!(
-            "{common}; the adaptive choice of the time grid (evhi::time_adapt): from N0 =              {} uniform steps, each level's steps marked by Doerfler's criterion (theta = {})              on the predictor indicators eta_n and halved, until more than {} steps or a              shortest step below the reference's; estimate = max_n E_n / max ||u_n||_E with E_n = E_(n-1) / (1 + k_n lambda) + eta_n, lambda the body's slowest relaxation rate (evhi::time_adapt::transported); sum = sum eta_n / max ||u_n||_E, the same without the damping; {BOUND}",
+            "{common}; the adaptive choice of the time grid (evhi::time_adapt): from N0 =              {} uniform steps, each level's steps marked by Doerfler's criterion (theta = {})              on the reconstruction's residuals theta_n (evhi::reconstruction) and halved, until more than {} steps or a              shortest step below the reference's; estimate = max_n E_n / max ||u_n||_E with E_n = E_(n-1) / (1 + k_n lambda) + eta_n, lambda the body's slowest relaxation rate (evhi::time_adapt::transported); sum = sum eta_n / max ||u_n||_E, the same without the damping; {BOUND}",
             adapt.n0, adapt.theta, adapt.max_steps
         ),
     )?;
