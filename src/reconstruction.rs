@@ -224,6 +224,50 @@ pub fn on_states(
 mod tests {
     use super::*;
 
+    fn state(u_nu: f64, xi: f64, mu: f64, at_limit: bool) -> ContactState {
+        ContactState {
+            u_nu,
+            sigma_nu1: -xi,
+            sigma_nu2: -mu,
+            at_limit,
+        }
+    }
+
+    #[test]
+    fn the_contact_part_takes_the_law_at_the_line_and_the_multiplier_by_its_history() {
+        // p = 200 s up to 0.05, a jump down by 4 there, then slope 100.
+        let law = Law::new(&[0.0, 0.05], &[0.0, 200.0, 100.0], &[0.0, -4.0], 0.0).unwrap();
+        let w = [0.5; 4];
+        let before = Before {
+            s: vec![0.01, 0.05, 0.09, 0.1],
+            mu: vec![0.0, 0.0, 0.0, 3.0],
+            on_limit: vec![false, false, false, true],
+        };
+        let now = [
+            // On a continuous branch: p(0.02) = 4 found at the step.
+            state(0.02, 4.0, 0.0, false),
+            // Resting on the jump at 0.05 (p from 10 down to 6), xi = 8 inside it.
+            state(0.05, 8.0, 0.0, false),
+            // Landing on the limit g = 0.1 from 0.09: the multiplier 5 is held.
+            state(0.1, 11.0, 5.0, true),
+            // On the limit before and after: the multiplier joined from 3 to 7.
+            state(0.1, 11.0, 7.0, true),
+        ];
+        // At the start of the step (beta = 1) and at its middle (beta = 1/2).
+        let l = law_change(&law, &w, &before, &now, 1.0);
+        assert!((l[0] - 0.5 * (2.0 - 4.0)).abs() < 1e-12, "{l:?}");
+        assert_eq!(l[1], 0.0);
+        assert!(
+            (l[2] - 0.5 * (6.0 + 100.0 * 0.04 - 11.0)).abs() < 1e-12,
+            "{l:?}"
+        );
+        assert!((l[3] - 0.5 * (0.0 - (7.0 - 3.0))).abs() < 1e-12, "{l:?}");
+        let l = law_change(&law, &w, &before, &now, 0.5);
+        assert!((l[0] - 0.5 * (3.0 - 4.0)).abs() < 1e-12, "{l:?}");
+        assert_eq!(l[1], 0.0);
+        assert!((l[3] + 0.5 * 0.5 * 4.0).abs() < 1e-12, "{l:?}");
+    }
+
     #[test]
     fn time_points_cut_at_the_kinks_inside() {
         let p = time_points(&[0.0, 0.25, 0.4, 1.0], 0.2, 0.3);
