@@ -563,8 +563,10 @@ impl crate::simulation::Observer for Gaps<'_> {
         if let Some(r) = self.rebuilt.as_mut() {
             let k = self.grid.k(n);
             let t = self.grid.t(n);
-            let zero = vec![0.0; u.len()];
+            // u_0 = 0 before the first step.
+            let zero;
             let u_prev = if self.last[0].is_empty() {
+                zero = vec![0.0; u.len()];
                 &zero
             } else {
                 &self.last[0]
