@@ -44,15 +44,16 @@ pub fn time_points(breaks: &[f64], a: f64, b: f64) -> Vec<(f64, f64)> {
 }
 
 /// The contact nodes at the step before: their contact variables $s_{n-1}$ and the
-/// limit's multipliers $\mu_{n-1}$.
+/// limit's multipliers $\mu_{n-1}$. Built only by [`Before::at_rest`] and
+/// [`Before::of`], so its three lists have one entry per contact node.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Before {
     /// $s_{n-1}$ per contact node.
-    pub s: Vec<f64>,
+    s: Vec<f64>,
     /// $\mu_{n-1}$ per contact node.
-    pub mu: Vec<f64>,
+    mu: Vec<f64>,
     /// Whether the node was on the limit.
-    pub on_limit: Vec<bool>,
+    on_limit: Vec<bool>,
 }
 
 impl Before {

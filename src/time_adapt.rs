@@ -122,6 +122,16 @@ pub fn propagated_each(grid: &TimeGrid, theta: &[f64], rate: f64) -> Vec<f64> {
 }
 // ANCHOR_END: propagated
 
+/// $\min_n F_n / e_n$ over the steps with $e_n > 0$: the bounds `each` ([`propagated_each`])
+/// against the errors `err` at the same steps (above 1 where the bound held at every
+/// step); $+\infty$ where no error is positive.
+pub fn least_margin(each: &[f64], err: &[f64]) -> f64 {
+    (each.iter().zip(err))
+        .filter(|(_, e)| **e > 0.0)
+        .map(|(f, e)| f / e)
+        .fold(f64::INFINITY, f64::min)
+}
+
 /// The settings of an adaptive choice of the time grid.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {
@@ -437,8 +447,9 @@ pub fn choose(
                         f: &f,
                         scn,
                         rate,
+                        breaks: scn.history.breaks(),
                         before: crate::reconstruction::Before::at_rest(&disc.gap),
-                        rest: crate::reconstruction::Before::at_rest(&disc.gap),
+                        gap: &disc.gap,
                         theta: Vec::with_capacity(grid.len()),
                     }),
                 };
@@ -544,9 +555,12 @@ struct Rebuilt<'a> {
     f: &'a [f64],
     scn: &'a crate::scenario::Scenario,
     rate: f64,
-    /// The contact nodes at the step before, and at $u_0 = 0$.
+    /// The load history's kinks in time.
+    breaks: Vec<f64>,
+    /// The contact nodes at the step before.
     before: crate::reconstruction::Before,
-    rest: crate::reconstruction::Before,
+    /// The contact gaps, for the state at $u_0 = 0$ after a restart.
+    gap: &'a [f64],
     theta: Vec<f64>,
 }
 
@@ -573,7 +587,7 @@ impl crate::simulation::Observer for Gaps<'_> {
             };
             let phi_n = r.scn.history.phi(t);
             let points: Vec<(f64, f64, Vec<f64>)> =
-                crate::reconstruction::time_points(&r.scn.history.breaks(), t - k, t)
+                crate::reconstruction::time_points(&r.breaks, t - k, t)
                     .into_iter()
                     .map(|(s, w)| {
                         let dphi = r.scn.history.phi(s) - phi_n;
@@ -607,7 +621,7 @@ impl crate::simulation::Observer for Gaps<'_> {
         self.norm_max = 0.0;
         if let Some(r) = self.rebuilt.as_mut() {
             r.theta.clear();
-            r.before.clone_from(&r.rest);
+            r.before = crate::reconstruction::Before::at_rest(r.gap);
         }
     }
 }

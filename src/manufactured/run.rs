@@ -643,7 +643,6 @@ fn run_rules_options(
             } else {
                 (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
             };
-            // ANCHOR: reconstruction
             let theta = match (&chol_a, rate) {
                 (Some(chol_a), Some(lambda)) => {
                     let fields = crate::reconstruction::OnFields {
@@ -667,7 +666,6 @@ fn run_rules_options(
                 }
                 _ => 0.0,
             };
-            // ANCHOR_END: reconstruction
             prev_u[i].clone_from(&u[0]);
             prev2_h[i] = std::mem::replace(&mut prev_h[i], nodal_h);
             let mut row = StepRow {

@@ -192,10 +192,7 @@ pub fn study(
             )?;
             let each = crate::time_adapt::propagated_each(grid, &solved.theta, rate);
             let bound = each.iter().copied().fold(0.0, f64::max) / solved.norm_max;
-            let bound_margin = (each.iter().zip(&errs))
-                .filter(|(_, e)| **e > 0.0)
-                .map(|(f, e)| f / e)
-                .fold(f64::INFINITY, f64::min);
+            let bound_margin = crate::time_adapt::least_margin(&each, &errs);
             Ok(Measured {
                 err_max,
                 ref_max,

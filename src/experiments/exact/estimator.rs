@@ -62,7 +62,6 @@ fn bound_each(r: &ExactRun, rate: f64) -> Option<Vec<f64>> {
 
 /// The largest $F_n$ ([`bound_each`]) over the largest $\|u^n_h\|_E$: the estimated
 /// relative error of the time scheme; 0 for a static solution.
-// ANCHOR: reconstructed_estimate
 fn reconstructed_estimate(r: &ExactRun, rate: f64) -> f64 {
     let Some(each) = bound_each(r, rate) else {
         return 0.0;
@@ -70,7 +69,6 @@ fn reconstructed_estimate(r: &ExactRun, rate: f64) -> f64 {
     let size = r.rows.iter().map(|w| w.u_h_e).fold(0.0, f64::max);
     each.into_iter().fold(0.0, f64::max) / size
 }
-// ANCHOR_END: reconstructed_estimate
 
 /// $\min_n F_n / \|u(t_n) - u_n\|_E$ ([`bound_each`] against the true error of each step,
 /// in absolute terms); NaN for a static solution.
@@ -78,10 +76,8 @@ fn time_bound_margin(r: &ExactRun, rate: f64) -> f64 {
     let Some(each) = bound_each(r, rate) else {
         return f64::NAN;
     };
-    (each.iter().zip(&r.rows))
-        .filter(|(_, w)| w.err_e > 0.0)
-        .map(|(f, w)| f / w.err_e)
-        .fold(f64::INFINITY, f64::min)
+    let err: Vec<f64> = r.rows.iter().map(|w| w.err_e).collect();
+    evhi::time_adapt::least_margin(&each, &err)
 }
 
 /// Runs every solution on the levels and writes `exact_estimator.csv` and its summary.
