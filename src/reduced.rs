@@ -370,6 +370,28 @@ impl<'d> Reduced<'d> {
         timings: &mut Timings,
         observe: &mut dyn FnMut(Stepped<'_>),
     ) -> Result<March, RunError> {
+        let fields = FieldSteps {
+            form: want_field,
+            certify: want_field,
+        };
+        self.march_fields(scn, load, grid, solver, tol, &fields, timings, observe)
+    }
+
+    /// [`Reduced::march_on`] with the steps that form their field and those of them
+    /// that certify it on the full system told apart (`fields`).
+    #[allow(clippy::too_many_arguments)]
+    fn march_fields(
+        &self,
+        scn: &Scenario,
+        load: &Load,
+        grid: &crate::time_grid::TimeGrid,
+        solver: &mut dyn StepSolver,
+        tol: f64,
+        fields: &FieldSteps<'_>,
+        timings: &mut Timings,
+        observe: &mut dyn FnMut(Stepped<'_>),
+    ) -> Result<March, RunError> {
+        let want_field = fields.form;
         let steps = grid.len();
         let cmin = scn.law.curvature_min();
         let mut at = timed(&mut timings.condensation, || self.at(grid.k(1), cmin))?;
@@ -444,7 +466,7 @@ impl<'d> Reduced<'d> {
                 (cond, field)
             });
             let mut check = Check::Condensed;
-            if let Some((u_prev, u)) = &field {
+            if let Some((u_prev, u)) = field.as_ref().filter(|_| (fields.certify)(step)) {
                 let full = timed(&mut timings.certificates, || {
                     self.certify_full(&at, scn, load, (u_prev, u, &s), t)
                 });
@@ -548,16 +570,25 @@ pub struct March {
     pub s_eigen: (f64, f64),
 }
 
+/// Which steps of a march form their field $u_n$ (one solve), and which of those
+/// also certify it on the full system (a product with $A$ and $B$ each); every step
+/// gets the condensed certificate.
+struct FieldSteps<'a> {
+    form: &'a dyn Fn(usize) -> bool,
+    certify: &'a dyn Fn(usize) -> bool,
+}
+
 /// Runs one scenario by the reduced loop, with the result the general loop gives
 /// (the time loop of [`crate::scheme`]): the field is formed, and the step
-/// certified on the full system, where `want_field` asks, at the last step and at
-/// a sample of three more (a quarter, half and three quarters of the way);
-/// `observe(n, t_n, u_n, contact_n)` gets the field where it was formed.
+/// certified on the full system, at the last step and at a sample of three more (a
+/// quarter, half and three quarters of the way); elsewhere the field is formed where
+/// `want_field` asks, and certified on the full system where `certify_field` asks as
+/// well; `observe(n, t_n, u_n, contact_n)` gets the field where it was formed.
 pub(crate) fn run(
     scn: &Scenario,
     opt: &Settings,
     solver: &mut dyn StepSolver,
-    want_field: &dyn Fn(usize) -> bool,
+    (want_field, certify_field): (&dyn Fn(usize) -> bool, &dyn Fn(usize) -> bool),
     observe: &mut FieldObserver<'_>,
 ) -> Result<Run, RunError> {
     crate::scheme::check_steps(Some(scn), opt)?;
@@ -575,15 +606,19 @@ pub(crate) fn run(
     let grid = opt.time_grid(scn)?;
     let last = grid.len();
     let quarter = (last / 4).max(1);
-    let want = |n: usize| n.is_multiple_of(quarter) || n == last || want_field(n);
+    let sample = |n: usize| n.is_multiple_of(quarter) || n == last;
+    let fields = FieldSteps {
+        form: &|n| sample(n) || want_field(n),
+        certify: &|n| sample(n) || (want_field(n) && certify_field(n)),
+    };
     let (mut u, mut contact) = (vec![], vec![]);
-    let march = op.march_on(
+    let march = op.march_fields(
         scn,
         &load,
         &grid,
         solver,
         opt.certificate_tol,
-        &want,
+        &fields,
         &mut timings,
         &mut |s| {
             observe(s.step, s.t, s.field, s.contact);

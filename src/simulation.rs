@@ -215,6 +215,15 @@ pub trait Observer {
     fn wants_field(&self, _step: usize) -> bool {
         false
     }
+    /// Whether the reduced loop should certify on the full system a field it forms
+    /// at `step` because [`Observer::wants_field`] asked (every step is certified on
+    /// the contact problem, and the sample of last and every
+    /// $\max(1, \lfloor N/4 \rfloor)$-th on the full system in any case). Yes by
+    /// default; an observer that asks for every field only to read it (the adaptive
+    /// loop's indicators) says no, and its run is checked as a plain one is.
+    fn certifies_field(&self, step: usize) -> bool {
+        self.wants_field(step)
+    }
     /// Step `n` at time `t` is done: its field (free dofs) where it was formed, and
     /// the state of every contact node.
     fn step(&mut self, _n: usize, _t: f64, _u: Option<&[f64]>, _contact: &[ContactState]) {}
@@ -708,14 +717,14 @@ impl Simulation {
         let opt = self.loop_settings(solver.certified());
         let mut run = if self.reduced {
             // Asked before the loop, so that the observer is free to be told.
-            let wanted: Vec<bool> = (0..=self.grid.len())
-                .map(|s| observer.wants_field(s))
+            let wanted: Vec<(bool, bool)> = (0..=self.grid.len())
+                .map(|s| (observer.wants_field(s), observer.certifies_field(s)))
                 .collect();
             crate::reduced::run(
                 &self.scenario,
                 &opt,
                 solver,
-                &|step| wanted[step],
+                (&|step| wanted[step].0, &|step| wanted[step].1),
                 &mut |n, t, u, c| observer.step(n, t, u, c),
             )
         } else {

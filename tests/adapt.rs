@@ -68,6 +68,41 @@ fn one_step_max_and_mean_agree() {
 
 /// Bad settings are refused by field, before any work; a budget below the first mesh
 /// names that mesh's unknowns.
+/// The estimating solve reads every step's field but is checked as a plain solve is:
+/// on the reduced loop, on the full system at the last step and every N/4-th, on the
+/// contact problem elsewhere; an observer that asks for every field without saying
+/// otherwise gets each certified on the full system; the last field is the same.
+#[test]
+fn the_estimating_solve_is_certified_as_a_plain_one() {
+    use evhi::adapt::solve_estimating;
+    use evhi::scheme::Check;
+    use evhi::simulation::Observer;
+    struct Every;
+    impl Observer for Every {
+        fn wants_field(&self, _: usize) -> bool {
+            true
+        }
+    }
+    let scn = Scenario::load("figure").unwrap();
+    let sim = Simulation::new(scn, RunSettings::default().with_n(8).with_steps(8)).unwrap();
+    let est = solve_estimating(&sim, Aggregate::Max, &mut ()).unwrap();
+    assert!(est.solution.reduced);
+    let checks: Vec<Check> = est.solution.run.records.iter().map(|r| r.check).collect();
+    let sample = |n: usize| n.is_multiple_of(2);
+    for (i, c) in checks.iter().enumerate() {
+        let want = if sample(i + 1) {
+            Check::Full
+        } else {
+            Check::Condensed
+        };
+        assert_eq!(*c, want, "step {}", i + 1);
+    }
+    assert!(est.solution.max_certificate() <= 1e-10);
+    let plain = sim.solve(&mut Every).unwrap();
+    assert!(plain.run.records.iter().all(|r| r.check == Check::Full));
+    assert_eq!(plain.run.u, est.solution.run.u);
+}
+
 #[test]
 fn bad_settings_are_refused() {
     let scn = Scenario::load("figure").unwrap();

@@ -153,7 +153,7 @@ fn adaptive_time_mean() {
 /// whose error is below the graded family's finest, against the graded family's sum.
 #[test]
 fn adaptive_wall_time() {
-    let stated = [("figure", "0.8", "0.2"), ("literal", "0.5", "0.2")];
+    let stated = [("figure", "0.5", "0.2"), ("literal", "0.3", "0.1")];
     for (scn, adaptive, graded) in stated {
         let target = family(scn, "graded").last().unwrap().1;
         let e = column(CONV, &[("scenario", scn), ("family", "adaptive")], "err_T");
@@ -171,7 +171,7 @@ fn adaptive_wall_time() {
 #[test]
 fn adaptive_estimator_cost() {
     const BENCH: &str = "bench_estimator.csv";
-    let stated = [("general", "24", "31"), ("reduced", "71", "85")];
+    let stated = [("general", "23", "33"), ("reduced", "61", "71")];
     for (path, lo, hi) in stated {
         let p = column(BENCH, &[("path", path)], "estimator_percent");
         assert!(p.len() >= 3, "{path}: {p:?}");
@@ -180,17 +180,17 @@ fn adaptive_estimator_cost() {
     }
     let overhead = |path: &str| column(BENCH, &[("path", path)], "overhead_percent");
     let (r, g) = (overhead("reduced"), overhead("general"));
-    assert_eq!([fix(min(&r), 0), fix(max(&r), 0)], ["300", "310"]);
-    assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["25", "42"]);
-    // The phase about the same on both loops; the general loop's plain solve 2.4 to 3
-    // times the reduced one's.
+    assert_eq!([fix(min(&r), 0), fix(max(&r), 0)], ["129", "186"]);
+    assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["24", "40"]);
+    // The phase 0.77 to 0.99 times as long on the reduced loop; the general loop's
+    // plain solve 2.4 to 3.2 times the reduced one's.
     let of = |path: &str, col: &str| column(BENCH, &[("path", path)], col);
     let (er, eg) = (of("reduced", "estimator_s"), of("general", "estimator_s"));
     let (sr, sg) = (of("reduced", "solve_s"), of("general", "solve_s"));
-    for i in 0..er.len() {
-        assert!((er[i] / eg[i] - 1.0).abs() < 0.2, "{er:?} {eg:?}");
-        assert!((2.35..3.05).contains(&(sg[i] / sr[i])), "{sg:?} / {sr:?}");
-    }
+    let phase: Vec<f64> = (0..er.len()).map(|i| er[i] / eg[i]).collect();
+    let plain: Vec<f64> = (0..er.len()).map(|i| sg[i] / sr[i]).collect();
+    assert_eq!([fix(min(&phase), 2), fix(max(&phase), 2)], ["0.77", "0.99"]);
+    assert_eq!([fix(min(&plain), 1), fix(max(&plain), 1)], ["2.4", "3.2"]);
 }
 
 /// The wall time to the finest uniform level's error: the adaptive family's levels
@@ -199,8 +199,8 @@ fn adaptive_estimator_cost() {
 #[test]
 fn adaptive_work_against_uniform() {
     let stated = [
-        ("figure", "9.3", "0.06", "0.16", "0.04"),
-        ("literal", "7.3", "0.07", "0.17", "0.04"),
+        ("figure", "9.3", "0.05", "0.11", "0.03"),
+        ("literal", "7.3", "0.04", "0.10", "0.02"),
     ];
     for (scn, err, adaptive, uniform, graded) in stated {
         let of = |fam: &str, col: &str| column(CONV, &[("scenario", scn), ("family", fam)], col);
@@ -222,17 +222,18 @@ fn adaptive_work_against_uniform() {
             "{scn}"
         );
         assert!(gw[g] < spent && spent < *uw.last().unwrap(), "{scn}");
-        // From the uniform level of 4222 unknowns on adapting is cheaper; below it one
-        // uniform level is.
+        // Adapting is cheaper at the finest uniform level, within 4 % at 4222
+        // unknowns, dearer below it.
         let ud = of("uniform", "dofs");
         for (i, (&t, &w)) in ue.iter().zip(&uw).enumerate() {
             let reach = ae.iter().position(|&x| x <= t).expect("reached");
             let spent: f64 = aw[..=reach].iter().sum();
-            assert_eq!(
-                spent < w,
-                ud[i] >= 4222.0,
-                "{scn} uniform level {i}: {spent} {w}"
-            );
+            let at = format!("{scn} uniform level {i}: {spent} {w}");
+            match ud[i] {
+                d if d < 4222.0 => assert!(spent > w, "{at}"),
+                4222.0 => assert!((spent / w - 1.0).abs() < 0.04, "{at}"),
+                _ => assert!(spent < w, "{at}"),
+            }
         }
     }
 }
