@@ -75,8 +75,10 @@ pub struct AdaptSettings {
     /// `None`: the run settings' own.
     pub time_grid: Option<crate::time_grid::TimeGrid>,
     /// Choose each level's time grid from its own solution
-    /// ([`crate::time_adapt::choose`] on the level's mesh, before it is solved and
-    /// estimated); `None`: no search. Not beside [`AdaptSettings::time_grid`].
+    /// ([`crate::time_adapt::choose`] on the first level's mesh,
+    /// [`crate::time_adapt::choose_from`] the grid of the level before on each later
+    /// one, before the level is solved and estimated); `None`: no search. Not beside
+    /// [`AdaptSettings::time_grid`].
     pub time_search: Option<crate::time_adapt::Settings>,
 }
 
@@ -394,6 +396,8 @@ pub fn adapt_from(
         )
         .into());
     }
+    // The time grid the level before chose: each level's search goes on from it.
+    let mut chosen_before: Option<crate::time_grid::TimeGrid> = None;
     loop {
         let clock = Instant::now();
         let level = levels.len();
@@ -405,7 +409,11 @@ pub fn adapt_from(
         // The level's own time grid, chosen on its mesh.
         let (sim, searched) = match &settings.time_search {
             Some(search) => {
-                let chosen = crate::time_adapt::choose(&sim, search, &mut |_| {})?;
+                let chosen = match chosen_before.take() {
+                    Some(start) => crate::time_adapt::choose_from(&sim, search, start, &mut |_| {}),
+                    None => crate::time_adapt::choose(&sim, search, &mut |_| {}),
+                }?;
+                chosen_before = Some(chosen.grid().clone());
                 (sim.on_time_grid(chosen.grid().clone())?, Some(chosen))
             }
             None => (sim, None),

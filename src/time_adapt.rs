@@ -256,16 +256,46 @@ pub struct Solved<T> {
 /// budget. `rate` is the body's slowest relaxation rate
 /// ([`crate::material::slowest_rate`]; 0 sums the local errors without damping).
 /// `solve` runs one grid; `on_level` sees each level as it is done.
-// ANCHOR: adapt_time
 pub fn adapt_time<T, E: From<InputError>>(
     t_end: f64,
+    s: &Settings,
+    rate: f64,
+    solve: impl FnMut(&TimeGrid) -> Result<Solved<T>, E>,
+    on_level: impl FnMut(&Level<T>),
+) -> Result<(Vec<Level<T>>, Stop), E> {
+    adapt_time_from(TimeGrid::uniform(t_end, s.n0), s, rate, solve, on_level)
+}
+
+/// [`adapt_time`] from the grid `start` in place of $N_0$ uniform steps: a grid an
+/// earlier search chose (its $N$ is $N_0$, within the budgets), so that a search on a
+/// refined mesh goes on from the coarser mesh's grid instead of again from $N_0$.
+// ANCHOR: adapt_time
+pub fn adapt_time_from<T, E: From<InputError>>(
+    start: TimeGrid,
     s: &Settings,
     rate: f64,
     mut solve: impl FnMut(&TimeGrid) -> Result<Solved<T>, E>,
     mut on_level: impl FnMut(&Level<T>),
 ) -> Result<(Vec<Level<T>>, Stop), E> {
     s.check()?;
-    let mut grid = TimeGrid::uniform(t_end, s.n0);
+    if start.n() != s.n0 || start.halvings() > s.max_halvings || start.len() > s.max_steps {
+        return Err(InputError::field(
+            "start",
+            format!(
+                "a grid of {} steps, longest T/{}, {} halvings",
+                start.len(),
+                start.n(),
+                start.halvings()
+            ),
+            format!(
+                "a grid whose longest step is T/N0 = T/{}, with at most {} halvings and at \
+                 most {} steps (one an earlier search with these settings chose)",
+                s.n0, s.max_halvings, s.max_steps
+            ),
+        )
+        .into());
+    }
+    let mut grid = start;
     let mut levels = vec![];
     loop {
         let solved = solve(&grid)?;
@@ -380,7 +410,20 @@ pub fn choose(
     s: &Settings,
     on_level: &mut dyn FnMut(&Level<()>),
 ) -> Result<Chosen, crate::scheme::RunError> {
+    let start = TimeGrid::uniform(sim.scenario().t_end, s.n0);
+    choose_from(sim, s, start, on_level)
+}
+
+/// [`choose`] from the grid `start` ([`adapt_time_from`]): the adaptive mesh loop
+/// starts each level's search from the grid the level before chose.
+pub fn choose_from(
+    sim: &crate::simulation::Simulation,
+    s: &Settings,
+    start: TimeGrid,
+    on_level: &mut dyn FnMut(&Level<()>),
+) -> Result<Chosen, crate::scheme::RunError> {
     let clock = std::time::Instant::now();
+    start.check_ends_at(sim.scenario().t_end)?;
     let scn = sim.scenario();
     let disc = sim.discretisation();
     let tol = sim.settings().certificate_tol;
@@ -389,8 +432,8 @@ pub fn choose(
         let mut timings = crate::scheme::Timings::default();
         let op = sim.reduced_operator(&disc, &mut timings)?;
         let load = op.load_of(scn);
-        adapt_time(
-            scn.t_end,
+        adapt_time_from(
+            start,
             s,
             rate,
             |grid| {
@@ -423,8 +466,8 @@ pub fn choose(
             None => None,
         };
         let f = scn.load_vector(&disc.mesh, &disc.dofs);
-        adapt_time(
-            scn.t_end,
+        adapt_time_from(
+            start,
             s,
             rate,
             |grid| {

@@ -5,7 +5,7 @@ mod common;
 
 use common::*;
 use evhi::prelude::*;
-use evhi::time_adapt::{Settings, Stop, choose};
+use evhi::time_adapt::{Settings, Stop, choose, choose_from};
 use evhi::time_grid::TimeGrid;
 
 fn search(reduced: bool) -> evhi::time_adapt::Chosen {
@@ -288,8 +288,50 @@ fn the_general_loop_factorises_each_length_once() {
     assert_eq!(g.run.steps, 6);
 }
 
-/// The adaptive loop with a time search chooses each level's grid on that level's mesh:
-/// every level searched and timed, the last search returned, its grid the last level's;
+/// A search from a grid goes on from it: from a level of an earlier search it refines
+/// that grid into the same grids the search from N0 went on to, and from the grid that
+/// search chose it stops at once; a grid of another N0, or past the budgets, is refused
+/// by name.
+#[test]
+fn a_search_goes_on_from_the_grid_it_is_given() {
+    let sim = Simulation::new(Scenario::load("figure").unwrap(), on_loop(8, 4, true)).unwrap();
+    let s = Settings {
+        tol: 0.05,
+        ..Settings::default()
+    };
+    let cold = choose(&sim, &s, &mut |_| {}).unwrap();
+    assert!(cold.levels.len() > 3, "{}", cold.levels.len());
+    let from = choose_from(&sim, &s, cold.levels[2].grid.clone(), &mut |_| {}).unwrap();
+    assert_eq!(from.levels.len(), cold.levels.len() - 2);
+    for (a, b) in from.levels.iter().zip(&cold.levels[2..]) {
+        assert_eq!(a.grid, b.grid);
+    }
+    let done = choose_from(&sim, &s, cold.grid().clone(), &mut |_| {}).unwrap();
+    assert_eq!((done.levels.len(), done.stop), (1, Stop::Tolerance));
+    assert_eq!(done.grid(), cold.grid());
+    for (bad, field) in [
+        (TimeGrid::uniform(1.0, 8), "`start`"),
+        (TimeGrid::uniform(2.0, 4), "time grid"),
+    ] {
+        let e = choose_from(&sim, &s, bad, &mut |_| {})
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(field), "{e}");
+    }
+    let small = Settings { max_steps: 5, ..s };
+    let e = choose_from(&sim, &small, cold.grid().clone(), &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("`start`") && e.contains("at most 5 steps"),
+        "{e}"
+    );
+}
+
+/// The adaptive loop with a time search chooses each level's grid on that level's
+/// mesh, going on from the grid the level before chose: every level searched and
+/// timed, the grids never shorter, the last search returned, its grid the last
+/// level's and what a search on the last mesh from the level before's grid chooses;
 /// a given grid beside a search is refused by name.
 #[test]
 fn the_space_loop_chooses_each_levels_time_grid() {
@@ -311,9 +353,16 @@ fn the_space_loop_chooses_each_levels_time_grid() {
             "{l:?}"
         );
     }
-    // Each level's grid is what a search on its mesh alone chooses: the last one here.
+    for w in a.levels.windows(2) {
+        assert!(w[1].steps >= w[0].steps, "{:?}", a.levels);
+    }
+    // Each level's grid is what a search on its mesh chooses from the grid of the level
+    // before: the last one here.
     let chosen = a.time_search.expect("searched");
-    assert_eq!(chosen.grid().len(), a.levels.last().unwrap().steps);
+    let n = a.levels.len();
+    assert_eq!(chosen.grid().len(), a.levels[n - 1].steps);
+    let start = chosen.levels[0].grid.clone();
+    assert_eq!(start.len(), a.levels[n - 2].steps);
     let mesh = a.solution.run.mesh.clone();
     let sim = Simulation::on_mesh(
         a.scenario.clone(),
@@ -321,7 +370,7 @@ fn the_space_loop_chooses_each_levels_time_grid() {
         mesh,
     )
     .unwrap();
-    let alone = choose(&sim, &search, &mut |_| {}).unwrap();
+    let alone = choose_from(&sim, &search, start, &mut |_| {}).unwrap();
     assert_eq!(alone.grid(), chosen.grid());
     let both = s.with_time_grid(TimeGrid::uniform(1.0, 4));
     let e = both.check().unwrap_err().to_string();

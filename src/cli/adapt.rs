@@ -83,7 +83,8 @@ pub fn run(
     };
     let out = RunDir::open(&args.out)?;
     // With --adapt-time, each level's time grid is chosen on its own mesh before it
-    // is solved (the first mesh is too coarse to judge the time error by).
+    // is solved (the first mesh is too coarse to judge the time error by), going on
+    // from the grid of the level before.
     let settings = match args.adapt_time {
         Some(tol_time) => {
             let n0_steps = (run_settings.steps).unwrap_or(evhi::time_adapt::Settings::default().n0);
@@ -194,7 +195,7 @@ pub fn run(
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     if let Some(chosen) = &chosen {
         let on = format!(
-            "the last mesh level's mesh ({} unknowns): each mesh level chose its own time grid by such a search",
+            "the last mesh level's mesh ({} unknowns), from the grid the level before chose: each mesh level chose its own time grid by such a search, the first from N0 steps",
             last.dofs
         );
         super::adapt_time::write(&out, &prov, &scn, run, chosen, &on)?;

@@ -158,8 +158,9 @@ pub struct SolveArgs {
     /// printed on one line, and a line says which rule stopped the search. The run on
     /// the chosen grid writes the usual outputs and time_adapt.csv (one row a level).
     /// With --adapt each level's grid is chosen on that level's own mesh before it is
-    /// solved (a coarse mesh misjudges the time error), each level's line says how many
-    /// steps it got, and time_adapt.csv is the last level's search. Not with
+    /// solved (a coarse mesh misjudges the time error), the search going on from the
+    /// grid the level before chose (so grids only gain steps); each level's line says
+    /// how many steps it got, and time_adapt.csv is the last level's search. Not with
     /// --time-layer.
     #[arg(
         long,
