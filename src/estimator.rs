@@ -331,6 +331,8 @@ pub struct Estimator<'m> {
     modulation: Option<(f64, Vec<[f64; 7]>)>,
     /// Each triangle's stress at the last step (reused from step to step).
     stress: Vec<[f64; 3]>,
+    /// Each node's $(u^n - u^{n-1})/k$ at the last step (reused from step to step).
+    velocity: Vec<[f64; 2]>,
     /// The last step's estimate (its storage reused from step to step).
     out: Estimate,
 }
@@ -354,6 +356,8 @@ enum Volume<'a> {
         phi: f64,
         m: &'a [[f64; 7]],
     },
+    /// A scene's $\varphi(t) f_0$ with $a = 0$: the same force everywhere.
+    Constant([f64; 2]),
 }
 
 impl<'m> Estimator<'m> {
@@ -459,6 +463,7 @@ impl<'m> Estimator<'m> {
             contact_edges,
             modulation: None,
             stress: Vec::with_capacity(nt),
+            velocity: Vec::with_capacity(mesh.nodes.len()),
             out: Estimate::default(),
         }
     }
@@ -491,18 +496,24 @@ impl<'m> Estimator<'m> {
             line: None,
             part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
         };
-        // The volume force at the points, the cosines formed once for the scene.
+        // The volume force at the points, the cosines formed once for the scene; a
+        // force without them is one value for every triangle.
         let a = loads.modulation;
         let mut modulation = match self.modulation.take() {
             Some((b, m)) if b == a => m,
+            _ if a == 0.0 => vec![],
             _ => (self.points.iter())
                 .map(|q| q.map(|x| 1.0 + a * (std::f64::consts::PI * x[0]).cos()))
                 .collect(),
         };
-        let volume = Volume::Scene {
-            f0: loads.f0,
-            phi: loads.phi,
-            m: &modulation,
+        let volume = if a == 0.0 {
+            Volume::Constant(loads.f0.map(|c| c * loads.phi))
+        } else {
+            Volume::Scene {
+                f0: loads.f0,
+                phi: loads.phi,
+                m: &modulation,
+            }
         };
         let sigma_h: Vec<f64> = (contact.iter())
             .map(|c| c.sigma_nu1 + c.sigma_nu2)
@@ -579,17 +590,23 @@ impl<'m> Estimator<'m> {
         // Stresses, the stress norm and the element residuals.
         let mut stress = std::mem::take(&mut self.stress);
         stress.clear();
+        // The velocity once per node, not once per triangle at the node.
+        let mut velocity = std::mem::take(&mut self.velocity);
+        velocity.clear();
+        velocity.extend(
+            u.iter()
+                .zip(u_prev)
+                .map(|(a, b)| [(a[0] - b[0]) / k, (a[1] - b[1]) / k]),
+        );
         for (t, tri) in mesh.triangles.iter().enumerate() {
             let un = tri.map(|v| u[v]);
-            let du = tri.map(|v| {
-                let (a, b) = (u[v], u_prev[v]);
-                [(a[0] - b[0]) / k, (a[1] - b[1]) / k]
-            });
+            let du = tri.map(|v| velocity[v]);
             let s = element_stress(&self.grad[t], un, du, pb);
             out.stress_sq += self.half_det[t] * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]);
             stress.push(s);
             // Element residual: h_T^2 ||f0||^2 (Div sigma = 0 on a P1 triangle), by the
-            // 7-point rule of crate::quadrature on T itself.
+            // 7-point rule of crate::quadrature on T itself, or exactly where f0 is
+            // constant.
             let area = self.half_det[t].abs();
             let point = |i: usize| -> [f64; 2] {
                 match volume {
@@ -598,17 +615,22 @@ impl<'m> Estimator<'m> {
                         let w = phi * m[t][i];
                         f0.map(|c| c * w)
                     }
+                    Volume::Constant(f) => *f,
                 }
             };
-            if let Volume::Scene { f0: [0.0, 0.0], .. } = volume {
-                continue; // every term is zero
-            }
-            let r: f64 = (crate::quadrature::TRI7.iter().enumerate())
-                .map(|(i, &(_, w))| {
-                    let f = point(i);
-                    w * area * (f[0] * f[0] + f[1] * f[1])
-                })
-                .sum();
+            let r: f64 = match volume {
+                Volume::Scene { f0: [0.0, 0.0], .. } | Volume::Constant([0.0, 0.0]) => {
+                    continue; // every term is zero
+                }
+                // A constant force: |T| |f|^2, what the rule gives (its weights sum to 1).
+                Volume::Constant(f) => area * (f[0] * f[0] + f[1] * f[1]),
+                _ => (crate::quadrature::TRI7.iter().enumerate())
+                    .map(|(i, &(_, w))| {
+                        let f = point(i);
+                        w * area * (f[0] * f[0] + f[1] * f[1])
+                    })
+                    .sum(),
+            };
             let term = self.h_t[t] * self.h_t[t] * r;
             out.eta_sq[t] += term;
             out.parts[0] += term;
@@ -691,6 +713,7 @@ impl<'m> Estimator<'m> {
             out.parts[if contact { 3 } else { 2 }] += term;
         }
         self.stress = stress;
+        self.velocity = velocity;
         self.out = out;
     }
     // ANCHOR_END: estimate

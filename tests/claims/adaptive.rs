@@ -153,7 +153,7 @@ fn adaptive_time_mean() {
 /// whose error is below the graded family's finest, against the graded family's sum.
 #[test]
 fn adaptive_wall_time() {
-    let stated = [("figure", "0.5", "0.2"), ("literal", "0.3", "0.1")];
+    let stated = [("figure", "0.4", "0.2"), ("literal", "0.3", "0.1")];
     for (scn, adaptive, graded) in stated {
         let target = family(scn, "graded").last().unwrap().1;
         let e = column(CONV, &[("scenario", scn), ("family", "adaptive")], "err_T");
@@ -167,30 +167,39 @@ fn adaptive_wall_time() {
 }
 
 /// The estimator's phase against the plain solve, per loop, over the levels of
-/// bench_estimator.csv: the goal of a fifth missed on both, by much on the reduced loop.
+/// bench_estimator.csv: the goal of a fifth met on the general loop at n = 64 and 128,
+/// missed at 256 and, by much, on the reduced loop.
 #[test]
 fn adaptive_estimator_cost() {
     const BENCH: &str = "bench_estimator.csv";
-    let stated = [("general", "23", "33"), ("reduced", "61", "71")];
-    for (path, lo, hi) in stated {
-        let p = column(BENCH, &[("path", path)], "estimator_percent");
-        assert!(p.len() >= 3, "{path}: {p:?}");
-        assert_eq!([fix(min(&p), 0), fix(max(&p), 0)], [lo, hi], "{path}");
-        assert!(min(&p) > 20.0, "{path}: the goal is stated as missed");
-    }
-    let overhead = |path: &str| column(BENCH, &[("path", path)], "overhead_percent");
-    let (r, g) = (overhead("reduced"), overhead("general"));
-    assert_eq!([fix(min(&r), 0), fix(max(&r), 0)], ["129", "186"]);
-    assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["24", "40"]);
-    // The phase 0.77 to 0.99 times as long on the reduced loop; the general loop's
-    // plain solve 2.4 to 3.2 times the reduced one's.
     let of = |path: &str, col: &str| column(BENCH, &[("path", path)], col);
+    // The general loop: 18 % at n = 64 and 128 (the goal of a fifth met), 25 % at 256.
+    let (g, n) = (of("general", "estimator_percent"), of("general", "n"));
+    assert_eq!(n, [64.0, 128.0, 256.0]);
+    assert_eq!(
+        [fix(g[0], 0), fix(g[1], 0), fix(g[2], 0)],
+        ["18", "18", "25"]
+    );
+    assert!(g[0] <= 20.0 && g[1] <= 20.0 && g[2] > 20.0, "{g:?}");
+    // The reduced loop: 48 % to 51 %, missed at every level.
+    let r = of("reduced", "estimator_percent");
+    assert_eq!(r.len(), 3);
+    assert_eq!([fix(min(&r), 0), fix(max(&r), 0)], ["48", "51"]);
+    assert!(min(&r) > 20.0, "the goal is stated as missed");
+    let (r, g) = (
+        of("reduced", "overhead_percent"),
+        of("general", "overhead_percent"),
+    );
+    assert_eq!([fix(min(&r), 0), fix(max(&r), 0)], ["120", "158"]);
+    assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["18", "34"]);
+    // The phase 0.77 to 0.97 times as long on the reduced loop; the general loop's
+    // plain solve 2.4 to 3.0 times the reduced one's.
     let (er, eg) = (of("reduced", "estimator_s"), of("general", "estimator_s"));
     let (sr, sg) = (of("reduced", "solve_s"), of("general", "solve_s"));
     let phase: Vec<f64> = (0..er.len()).map(|i| er[i] / eg[i]).collect();
     let plain: Vec<f64> = (0..er.len()).map(|i| sg[i] / sr[i]).collect();
-    assert_eq!([fix(min(&phase), 2), fix(max(&phase), 2)], ["0.77", "0.99"]);
-    assert_eq!([fix(min(&plain), 1), fix(max(&plain), 1)], ["2.4", "3.2"]);
+    assert_eq!([fix(min(&phase), 2), fix(max(&phase), 2)], ["0.77", "0.97"]);
+    assert_eq!([fix(min(&plain), 1), fix(max(&plain), 1)], ["2.4", "3.0"]);
 }
 
 /// The wall time to the finest uniform level's error: the adaptive family's levels
@@ -199,8 +208,8 @@ fn adaptive_estimator_cost() {
 #[test]
 fn adaptive_work_against_uniform() {
     let stated = [
-        ("figure", "9.3", "0.05", "0.11", "0.03"),
-        ("literal", "7.3", "0.04", "0.10", "0.02"),
+        ("figure", "9.3", "0.04", "0.10", "0.02"),
+        ("literal", "7.3", "0.04", "0.08", "0.02"),
     ];
     for (scn, err, adaptive, uniform, graded) in stated {
         let of = |fam: &str, col: &str| column(CONV, &[("scenario", scn), ("family", fam)], col);
