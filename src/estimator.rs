@@ -302,8 +302,9 @@ pub fn estimate(
 /// (each triangle's gradients, size and quadrature points; the interior edges paired
 /// with their two triangles, the boundary edges with their one; the contact edges of
 /// the complementarity term), found once, so that each step is one pass over the
-/// triangles and one over the edges with nothing sorted or searched. The indicators
-/// are the same, bit for bit, as those of a fresh [`estimate`].
+/// nodes, one over the triangles and one over the edges with nothing sorted or
+/// searched. The indicators are the same, bit for bit, as those of a fresh
+/// [`estimate`].
 pub struct Estimator<'m> {
     mesh: &'m Mesh,
     /// Per triangle: the gradient $(\partial_x\phi_i, \partial_y\phi_i)$ of each P1 basis function.
