@@ -153,7 +153,7 @@ fn adaptive_time_mean() {
 /// whose error is below the graded family's finest, against the graded family's sum.
 #[test]
 fn adaptive_wall_time() {
-    let stated = [("figure", "0.4", "0.2"), ("literal", "0.3", "0.1")];
+    let stated = [("figure", "0.42", "0.17"), ("literal", "0.26", "0.12")];
     for (scn, adaptive, graded) in stated {
         let target = family(scn, "graded").last().unwrap().1;
         let e = column(CONV, &[("scenario", scn), ("family", "adaptive")], "err_T");
@@ -161,7 +161,7 @@ fn adaptive_wall_time() {
         let reach = e.iter().position(|&x| x <= target).expect("reached");
         let spent: f64 = w[..=reach].iter().sum();
         let g = summary(scn, "graded", "wall_total_s");
-        assert_eq!([fix(spent, 1), fix(g, 1)], [adaptive, graded], "{scn}");
+        assert_eq!([fix(spent, 2), fix(g, 2)], [adaptive, graded], "{scn}");
         assert!(spent > g, "{scn}: the goal is stated as not met");
     }
 }
@@ -231,7 +231,7 @@ fn adaptive_work_against_uniform() {
             "{scn}"
         );
         assert!(gw[g] < spent && spent < *uw.last().unwrap(), "{scn}");
-        // Adapting is cheaper at the finest uniform level, within 4 % at 4222
+        // Adapting is cheaper at the finest uniform level, within 2 % at 4222
         // unknowns, dearer below it.
         let ud = of("uniform", "dofs");
         for (i, (&t, &w)) in ue.iter().zip(&uw).enumerate() {
@@ -240,7 +240,7 @@ fn adaptive_work_against_uniform() {
             let at = format!("{scn} uniform level {i}: {spent} {w}");
             match ud[i] {
                 d if d < 4222.0 => assert!(spent > w, "{at}"),
-                4222.0 => assert!((spent / w - 1.0).abs() < 0.04, "{at}"),
+                4222.0 => assert!((spent / w - 1.0).abs() < 0.02, "{at}"),
                 _ => assert!(spent < w, "{at}"),
             }
         }
