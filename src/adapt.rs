@@ -219,7 +219,10 @@ pub trait AdaptObserver {
     /// Level `level` starts solving on `mesh` with `steps` steps.
     fn level_started(&mut self, _level: usize, _mesh: &Arc<Mesh>, _steps: usize) {}
     /// Step `n` at time `t` of the current level is done: its field (free dofs) and
-    /// the state of every contact node.
+    /// the state of every contact node. On the reduced loop the step is checked as a
+    /// plain run's is: on its contact problem, and on the full system only at the last
+    /// step and every $\max(1, \lfloor N/4\rfloor)$-th (the field is formed from the
+    /// certified contact unknowns in either case).
     fn step(&mut self, _n: usize, _t: f64, _u: &[f64], _contact: &[ContactState]) {}
     /// The level's run starts again from $t = 0$ (a fallback solver, see
     /// [`Simulation::solve`]): forget its steps told so far.
@@ -249,7 +252,8 @@ pub struct Solved<'a> {
     /// $\bar\eta^2_T$ per triangle, in the mesh's order.
     pub eta_sq: &'a [f64],
     /// The field of each step $0, \dots, N$ (free dofs; step 0 is zero), if
-    /// [`AdaptObserver::keep_fields`]; else empty.
+    /// [`AdaptObserver::keep_fields`]; else empty. Each checked as
+    /// [`AdaptObserver::step`] says.
     pub fields: &'a [Vec<f64>],
 }
 

@@ -14,7 +14,8 @@
 //! discrete contact stress $\sigma^1_\nu + \sigma^2_\nu$ of the step
 //! ([`crate::certificate::ContactState`]), linear between the contact nodes. The
 //! estimate is $\eta = (\sum_T \eta^2_T)^{1/2}$; each term is formed in one pass over the
-//! triangles and one over their edges (bucketed by node, no hashing), so the cost is $O(\#T)$.
+//! nodes (their velocity), one over the triangles and one over their edges (bucketed by
+//! node, no hashing), so the cost is $O(\#T)$.
 //!
 //! Which boundary edge is which is read from the mesh, not from a side's name: an
 //! edge of one triangle whose two nodes are on $\Gamma_3$ is a contact edge; one whose
@@ -623,7 +624,8 @@ impl<'m> Estimator<'m> {
                 Volume::Scene { f0: [0.0, 0.0], .. } | Volume::Constant([0.0, 0.0]) => {
                     continue; // every term is zero
                 }
-                // A constant force: |T| |f|^2, what the rule gives (its weights sum to 1).
+                // A constant force: |T| |f|^2, what the rule gives to rounding (its
+                // weights, as stored, sum to 1 within 1e-15).
                 Volume::Constant(f) => area * (f[0] * f[0] + f[1] * f[1]),
                 _ => (crate::quadrature::TRI7.iter().enumerate())
                     .map(|(i, &(_, w))| {
@@ -829,5 +831,49 @@ mod tests {
                 "{fresh:?}"
             );
         }
+    }
+
+    /// A scene's body force without modulation (`figure`: a = 0, f0 = (0, -5)) takes
+    /// the element residual at once, |T| |phi f0|^2; the generic path's seven points
+    /// give the same indicators to rounding.
+    #[test]
+    fn a_constant_body_force_gives_the_seven_point_residual() {
+        let scn = crate::scenario::Scenario::load("figure").expect("figure");
+        assert!(scn.f0_modulation() == 0.0 && scn.f0() != [0.0, 0.0]);
+        let mesh = Mesh::structured(8).expect("mesh");
+        let u: Vec<[f64; 2]> = (mesh.nodes.iter())
+            .map(|p| [1e-3 * (p[0] * p[1]).sin(), 1e-3 * (p[0] - 2.0 * p[1]).cos()])
+            .collect();
+        let u_prev: Vec<[f64; 2]> = u.iter().map(|v| v.map(|c| 0.5 * c)).collect();
+        let contact: Vec<_> = (0..mesh.contact.len())
+            .map(|i| crate::certificate::ContactState {
+                u_nu: 0.01 * i as f64,
+                sigma_nu1: -(i as f64),
+                sigma_nu2: 0.0,
+                at_limit: false,
+            })
+            .collect();
+        let t = 0.5;
+        let fast = Estimator::new(&mesh)
+            .estimate_scene(&scn, &u, &u_prev, 0.1, t, &contact)
+            .clone();
+        let loads = SceneLoads::new(&scn, t);
+        let f0 = |x: [f64; 2]| loads.f0_at(x);
+        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+        let pb = Problem {
+            elast: scn.elasticity(),
+            visc: Some(scn.viscosity()),
+            f0: &f0,
+            surface: &surface,
+            line: None,
+            part: None,
+        };
+        let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
+        let generic = estimate(&mesh, &pb, &u, &u_prev, 0.1, &sigma_h);
+        for (a, b) in fast.eta_sq.iter().zip(&generic.eta_sq) {
+            assert!((a - b).abs() <= 1e-14 * b, "{a} {b}");
+        }
+        let (a, b) = (fast.parts[0], generic.parts[0]);
+        assert!(a > 0.0 && (a - b).abs() <= 1e-14 * b, "{a} {b}");
     }
 }

@@ -103,8 +103,10 @@ pub struct Stepped<'a> {
     pub state: &'a State,
     /// The step's record: solver status, iterations, certificate, energy norm, time.
     pub record: &'a StepRecord,
-    /// The contact nodes' states, from the full certificate where the field was
-    /// formed, from the condensed one elsewhere.
+    /// The contact nodes' states, from the full certificate where the step was
+    /// certified on the full system, from the condensed one elsewhere (also where the
+    /// field was formed but not certified on the full system, see
+    /// [`crate::simulation::Observer::certifies_field`]; the two differ by rounding).
     pub contact: &'a [ContactState],
     /// $u_n$, at the steps whose field was asked for.
     pub field: Option<&'a [f64]>,

@@ -89,7 +89,8 @@ pub enum Check {
     /// The certificate on the full system $Ku_n = b_n$ plus contact conditions.
     #[default]
     Full,
-    /// The certificate on the condensed problem only (the field was not formed).
+    /// The certificate on the condensed problem only (the field was not formed, or
+    /// formed only to be read, [`crate::simulation::Observer::certifies_field`]).
     Condensed,
 }
 

@@ -206,7 +206,7 @@ pub fn default_steps(scn: &Scenario) -> usize {
     }
 }
 
-/// What a run is told as it goes. All three methods have defaults, so `&mut ()`
+/// What a run is told as it goes. Every method has a default, so `&mut ()`
 /// observes nothing.
 pub trait Observer {
     /// Whether the reduced loop should form the field $u_n$ at `step` (it forms it

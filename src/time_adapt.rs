@@ -268,7 +268,9 @@ pub fn adapt_time<T, E: From<InputError>>(
 
 /// [`adapt_time`] from the grid `start` in place of $N_0$ uniform steps: a grid an
 /// earlier search chose (its $N$ is $N_0$, within the budgets), so that a search on a
-/// refined mesh goes on from the coarser mesh's grid instead of again from $N_0$.
+/// refined mesh goes on from the coarser mesh's grid instead of again from $N_0$. The
+/// grid's $T$ is the caller's to check (`solve` runs it as it is; [`choose_from`]
+/// refuses a grid that does not end at the scene's $T$).
 // ANCHOR: adapt_time
 pub fn adapt_time_from<T, E: From<InputError>>(
     start: TimeGrid,
@@ -278,23 +280,7 @@ pub fn adapt_time_from<T, E: From<InputError>>(
     mut on_level: impl FnMut(&Level<T>),
 ) -> Result<(Vec<Level<T>>, Stop), E> {
     s.check()?;
-    if start.n() != s.n0 || start.halvings() > s.max_halvings || start.len() > s.max_steps {
-        return Err(InputError::field(
-            "start",
-            format!(
-                "a grid of {} steps, longest T/{}, {} halvings",
-                start.len(),
-                start.n(),
-                start.halvings()
-            ),
-            format!(
-                "a grid whose longest step is T/N0 = T/{}, with at most {} halvings and at \
-                 most {} steps (one an earlier search with these settings chose)",
-                s.n0, s.max_halvings, s.max_steps
-            ),
-        )
-        .into());
-    }
+    check_start(&start, s)?;
     let mut grid = start;
     let mut levels = vec![];
     loop {
@@ -366,6 +352,32 @@ pub fn adapt_time_from<T, E: From<InputError>>(
 }
 // ANCHOR_END: adapt_time
 
+/// Refuses, by name, a start grid no search with settings `s` could have chosen: one
+/// with no step, whose longest step is not $T/N_0$, or past the budgets.
+fn check_start(start: &TimeGrid, s: &Settings) -> Result<(), InputError> {
+    if start.is_empty()
+        || start.n() != s.n0
+        || start.halvings() > s.max_halvings
+        || start.len() > s.max_steps
+    {
+        return Err(InputError::field(
+            "start",
+            format!(
+                "a grid of {} steps, longest T/{}, {} halvings",
+                start.len(),
+                start.n(),
+                start.halvings()
+            ),
+            format!(
+                "a grid whose longest step is T/N0 = T/{}, with at most {} halvings and at \
+                 most {} steps (one an earlier search with these settings chose)",
+                s.n0, s.max_halvings, s.max_steps
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// What [`choose`] found: every level, why it stopped, and the seconds the search
 /// took (every level's solve, the indicators with them).
 #[derive(Debug, Clone)]
@@ -423,6 +435,9 @@ pub fn choose_from(
     on_level: &mut dyn FnMut(&Level<()>),
 ) -> Result<Chosen, crate::scheme::RunError> {
     let clock = std::time::Instant::now();
+    // The settings and the start grid before any work.
+    s.check()?;
+    check_start(&start, s)?;
     start.check_ends_at(sim.scenario().t_end)?;
     let scn = sim.scenario();
     let disc = sim.discretisation();

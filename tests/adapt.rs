@@ -66,8 +66,6 @@ fn one_step_max_and_mean_agree() {
     assert_eq!(max.levels[0].estimate, sum.levels[0].estimate);
 }
 
-/// Bad settings are refused by field, before any work; a budget below the first mesh
-/// names that mesh's unknowns.
 /// The estimating solve reads every step's field but is checked as a plain solve is:
 /// on the reduced loop, on the full system at the last step and every N/4-th, on the
 /// contact problem elsewhere; an observer that asks for every field without saying
@@ -103,6 +101,8 @@ fn the_estimating_solve_is_certified_as_a_plain_one() {
     assert_eq!(plain.run.u, est.solution.run.u);
 }
 
+/// Bad settings are refused by field, before any work; a budget below the first mesh
+/// names that mesh's unknowns.
 #[test]
 fn bad_settings_are_refused() {
     let scn = Scenario::load("figure").unwrap();

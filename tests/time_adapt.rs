@@ -300,6 +300,7 @@ fn a_search_goes_on_from_the_grid_it_is_given() {
         ..Settings::default()
     };
     let cold = choose(&sim, &s, &mut |_| {}).unwrap();
+    assert_eq!(cold.stop, Stop::Tolerance);
     assert!(cold.levels.len() > 3, "{}", cold.levels.len());
     let from = choose_from(&sim, &s, cold.levels[2].grid.clone(), &mut |_| {}).unwrap();
     assert_eq!(from.levels.len(), cold.levels.len() - 2);
@@ -311,6 +312,7 @@ fn a_search_goes_on_from_the_grid_it_is_given() {
     assert_eq!(done.grid(), cold.grid());
     for (bad, field) in [
         (TimeGrid::uniform(1.0, 8), "`start`"),
+        (TimeGrid::uniform(1.0, 0), "`start`"),
         (TimeGrid::uniform(2.0, 4), "time grid"),
     ] {
         let e = choose_from(&sim, &s, bad, &mut |_| {})
@@ -326,6 +328,12 @@ fn a_search_goes_on_from_the_grid_it_is_given() {
         e.contains("`start`") && e.contains("at most 5 steps"),
         "{e}"
     );
+    // Bad settings are named before the start grid is looked at.
+    let no_n0 = Settings { n0: 0, ..s };
+    let e = choose_from(&sim, &no_n0, TimeGrid::uniform(1.0, 0), &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`n0`"), "{e}");
 }
 
 /// The adaptive loop with a time search chooses each level's grid on that level's

@@ -194,8 +194,13 @@ pub fn run(
     ));
     out.write_table("adapt.csv", &table(&adaptation.levels), &header)?;
     if let Some(chosen) = &chosen {
+        let from = if adaptation.levels.len() > 1 {
+            "from the grid the level before chose: each mesh level chose its own time grid by such a search, the first from N0 steps"
+        } else {
+            "from N0 steps, the run's one mesh level"
+        };
         let on = format!(
-            "the last mesh level's mesh ({} unknowns), from the grid the level before chose: each mesh level chose its own time grid by such a search, the first from N0 steps",
+            "the last mesh level's mesh ({} unknowns), {from}",
             last.dofs
         );
         super::adapt_time::write(&out, &prov, &scn, run, chosen, &on)?;
