@@ -588,3 +588,46 @@ fn adaptive_exact_gathering() {
         (39, 81)
     );
 }
+
+/// The forest's meshes bisected everywhere against the structured meshes of the same
+/// size: 1.108-1.119 times the index on (a) and (c), 1.005-1.041 on (b), (d), (h); on
+/// (a) and (c) every level of the family between 5.08 and 5.56.
+#[test]
+fn adaptive_exact_bisection() {
+    const BISECTED: &str = "uniform bisection";
+    let (mut strong, mut weak, mut high) = (vec![], vec![], vec![]);
+    for l in SMOOTH {
+        let (bt, be) = (
+            exact(l, BISECTED, "triangles"),
+            exact(l, BISECTED, "efficiency"),
+        );
+        let (ut, ue) = (
+            exact(l, "uniform", "triangles"),
+            exact(l, "uniform", "efficiency"),
+        );
+        assert_eq!([bt[0], *bt.last().unwrap()], [64.0, 4096.0]);
+        let mut matched = 0;
+        for (t, e) in bt.iter().zip(&be) {
+            if let Some(i) = ut.iter().position(|u| u == t) {
+                matched += 1;
+                let ratio = e / ue[i];
+                if l == "(a)" || l == "(c)" {
+                    strong.push(ratio);
+                } else {
+                    weak.push(ratio);
+                }
+            }
+            if l == "(a)" || l == "(c)" {
+                high.push(*e);
+            }
+        }
+        assert_eq!(matched, 4, "{l}: n = 8 to 64");
+    }
+    assert_eq!(
+        [fix(min(&strong), 3), fix(max(&strong), 3)],
+        ["1.108", "1.119"]
+    );
+    assert_eq!([fix(min(&weak), 3), fix(max(&weak), 3)], ["1.005", "1.041"]);
+    assert_eq!([fix(min(&high), 2), fix(max(&high), 2)], ["5.08", "5.56"]);
+    assert!(min(&high) > 5.0);
+}

@@ -18,6 +18,9 @@ use std::sync::Arc;
 /// Dörfler's fraction, the adaptive loop's default.
 const THETA: f64 = 0.5;
 
+/// The family of the forest's meshes bisected everywhere, level by level.
+const BISECTED: &str = "uniform bisection";
+
 /// The plan: the time steps of every level, and the uniform levels $n$ (the last one's
 /// unknowns are the adaptive family's budget).
 fn plan(quick: bool) -> (usize, &'static [usize]) {
@@ -42,8 +45,9 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
     let sols: Vec<Solution> = (evhi::manufactured::SOLUTIONS.into_iter())
         .filter(|s| !s.in_p1())
         .collect();
-    ctx.add_units(2 * sols.len());
-    let budget = Dofs::new(&scn.mesh(*levels.last().expect("a level"))?, true).count;
+    ctx.add_units(3 * sols.len());
+    let finest = scn.mesh(*levels.last().expect("a level"))?;
+    let (budget, budget_triangles) = (Dofs::new(&finest, true).count, finest.triangles.len());
     let mut t = Cols::default();
     let row =
         |t: &mut Cols, (sol, family, level): (Solution, &str, usize), dofs: usize, r: &ExactRun| {
@@ -89,10 +93,29 @@ pub fn write_adaptive(ctx: &Ctx, scn: &Scenario) -> Result<(), ExpError> {
             level += 1;
         }
         ctx.log(&format!("exact adaptive {}: adaptive", sol.name()));
+        // The adaptive family's meshes refined everywhere: every triangle bisected once
+        // per level, so that the two kinds of bisected triangle (hypotenuse on a
+        // diagonal or on an axis) alternate, each level of one kind alone.
+        let (mut forest, mut leaves, n0) = initial_forest(scn)?;
+        for depth in 1.. {
+            let all: Vec<usize> = (0..leaves.0.len()).collect();
+            leaves = refine_marked(&mut forest, &leaves, &all);
+            if leaves.0.len() > budget_triangles {
+                break;
+            }
+            if depth < 2 {
+                continue;
+            }
+            let mesh = Arc::new(forest.mesh(&leaves, level_label(&forest, &leaves, n0)));
+            let dofs = Dofs::new(&mesh, true).count;
+            let r = run_estimated_on(sol, scn, mesh, steps)?;
+            row(&mut t, (sol, BISECTED, depth), dofs, &r);
+        }
+        ctx.log(&format!("exact adaptive {}: uniform bisection", sol.name()));
     }
     let table = t.table();
     let what = format!(
-        "{}; the solutions smooth in space (the fields of V^h, whose space error is nil, left out), each on N = {steps} steps; uniform: the structured meshes n = {levels:?}; adaptive: from the n = 4 mesh, each level's estimator (evhi::estimator with the solution's own data, as in exact_estimator.csv) folded into each triangle's maximum over the steps, Dörfler's bulk criterion with theta = {THETA} on those, newest-vertex bisection of the marked triangles and solved again from t = 0, until the next mesh would pass the last uniform mesh's {budget} unknowns; n = the level label (the uniform level whose cells bound every triangle); err_T = ||u(T) - u_N||_E / ||u(T)||_E, err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (fractions); estimator = sqrt(sum_T max_n eta_T,n^2) / max_n ||sigma_h^n||, the adaptive loop's estimated relative error; efficiency = estimator / err_max; estimator_step = max_n eta_n / max_n ||sigma_h^n||, the largest sum over a step (exact_estimator.csv's estimate), at most estimator",
+        "{}; the solutions smooth in space (the fields of V^h, whose space error is nil, left out), each on N = {steps} steps; uniform: the structured meshes n = {levels:?}; adaptive: from the n = 4 mesh, each level's estimator (evhi::estimator with the solution's own data, as in exact_estimator.csv) folded into each triangle's maximum over the steps, Dörfler's bulk criterion with theta = {THETA} on those, newest-vertex bisection of the marked triangles and solved again from t = 0, until the next mesh would pass the last uniform mesh's {budget} unknowns; uniform bisection: the n = 4 mesh with every triangle bisected once per level (level = the bisections, from 2; even levels have every hypotenuse on a diagonal, as the structured meshes do but in another pattern, odd levels on an axis), up to the last uniform mesh's {budget_triangles} triangles; n = the level label (the uniform level whose cells bound every triangle); err_T = ||u(T) - u_N||_E / ||u(T)||_E, err_max = max_n ||u(t_n) - u_n||_E / max_n ||u(t_n)||_E (fractions); estimator = sqrt(sum_T max_n eta_T,n^2) / max_n ||sigma_h^n||, the adaptive loop's estimated relative error; efficiency = estimator / err_max; estimator_step = max_n eta_n / max_n ||sigma_h^n||, the largest sum over a step (exact_estimator.csv's estimate), at most estimator",
         super::params()
     );
     let path = ctx.write("exact_adaptive.csv", &table, &what)?;
