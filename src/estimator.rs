@@ -781,6 +781,30 @@ mod tests {
         let est = estimate(&mesh, &pb, &u, &u_prev, k, &off);
         assert!(est.parts[3] > 1e-8 && est.parts[0] + est.parts[1] + est.parts[2] < 1e-26);
     }
+    /// The estimate of `scn`'s step through the generic [`estimate`], its loads read by
+    /// the closures of [`SceneLoads`] at every point (the seven-point rule always).
+    fn through_closures(
+        scn: &crate::scenario::Scenario,
+        mesh: &Mesh,
+        (u, u_prev): (&[[f64; 2]], &[[f64; 2]]),
+        (k, t): (f64, f64),
+        contact: &[crate::certificate::ContactState],
+    ) -> Estimate {
+        let loads = SceneLoads::new(scn, t);
+        let f0 = |x: [f64; 2]| loads.f0_at(x);
+        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
+        let pb = Problem {
+            elast: scn.elasticity(),
+            visc: Some(scn.viscosity()),
+            f0: &f0,
+            surface: &surface,
+            line: None,
+            part: None,
+        };
+        let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
+        estimate(mesh, &pb, u, u_prev, k, &sigma_h)
+    }
+
     /// A prepared mesh gives every step the estimate of a fresh one, bit for bit (its
     /// buffers reused, the volume force's cosines formed once), and the scene's volume
     /// force read from the cached cosines is the one the closure gives.
@@ -812,19 +836,7 @@ mod tests {
                 .clone();
             assert_eq!(again, fresh);
             // The closure's volume force, through the generic path.
-            let loads = SceneLoads::new(&scn, t);
-            let f0 = |x: [f64; 2]| loads.f0_at(x);
-            let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-            let pb = Problem {
-                elast: scn.elasticity(),
-                visc: Some(scn.viscosity()),
-                f0: &f0,
-                surface: &surface,
-                line: None,
-                part: None,
-            };
-            let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
-            let generic = estimate(&mesh, &pb, &u, &u_prev, 0.1, &sigma_h);
+            let generic = through_closures(&scn, &mesh, (&u, &u_prev), (0.1, t), &contact);
             assert_eq!(generic.eta_sq, fresh.eta_sq);
             assert!(
                 fresh.parts[0] > 0.0 && fresh.complementarity_total() > 0.0,
@@ -857,19 +869,7 @@ mod tests {
         let fast = Estimator::new(&mesh)
             .estimate_scene(&scn, &u, &u_prev, 0.1, t, &contact)
             .clone();
-        let loads = SceneLoads::new(&scn, t);
-        let f0 = |x: [f64; 2]| loads.f0_at(x);
-        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-        let pb = Problem {
-            elast: scn.elasticity(),
-            visc: Some(scn.viscosity()),
-            f0: &f0,
-            surface: &surface,
-            line: None,
-            part: None,
-        };
-        let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
-        let generic = estimate(&mesh, &pb, &u, &u_prev, 0.1, &sigma_h);
+        let generic = through_closures(&scn, &mesh, (&u, &u_prev), (0.1, t), &contact);
         for (a, b) in fast.eta_sq.iter().zip(&generic.eta_sq) {
             assert!((a - b).abs() <= 1e-14 * b, "{a} {b}");
         }

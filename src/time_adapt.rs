@@ -221,7 +221,6 @@ pub struct Level<T> {
     /// the relative error over time without contact, an estimate with it. `None` where
     /// the solve formed no $\theta_n$.
     pub bound: Option<f64>,
-    /// What the solve returned besides.
     /// Anything else the solve returns.
     pub out: T,
 }
