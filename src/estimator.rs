@@ -63,6 +63,24 @@ pub struct Problem<'a> {
     /// A traction carried by named boundary parts (a mesh scene's), constant on each
     /// boundary edge and added to `surface` there; `None` when the data have none.
     pub part: Option<EdgeLoad<'a>>,
+    /// $f_0$ at each triangle's seven points ([`crate::quadrature::TRI7`], in the mesh's
+    /// order), when the caller has them (to share an expensive force between two
+    /// estimators); then `f0` is not called.
+    pub f0_points: Option<&'a [[[f64; 2]; 7]]>,
+}
+
+/// Each triangle's seven points of [`crate::quadrature::TRI7`], in the mesh's order,
+/// formed as every estimator forms them.
+pub fn seven_points(mesh: &Mesh) -> Vec<[[f64; 2]; 7]> {
+    (mesh.triangles.iter())
+        .map(|tri| points_of(tri.map(|v| mesh.nodes[v])))
+        .collect()
+}
+
+/// The seven points of the triangle `p`.
+pub(crate) fn points_of(p: [[f64; 2]; 3]) -> [[f64; 2]; 7] {
+    crate::quadrature::TRI7
+        .map(|(l, _)| [0, 1].map(|c| l[0] * p[0][c] + l[1] * p[1][c] + l[2] * p[2][c]))
 }
 
 /// A rectangle scene's loads at one time, as the estimator asks for them: the volume
@@ -216,7 +234,7 @@ pub fn complementarity(
 }
 
 /// Gauss–Legendre on $[0, 1]$, 3 points (exact to degree 5).
-const GAUSS3: [(f64, f64); 3] = [
+pub(crate) const GAUSS3: [(f64, f64); 3] = [
     (0.112_701_665_379_258_3, 5.0 / 18.0),
     (0.5, 8.0 / 18.0),
     (0.887_298_334_620_741_7, 5.0 / 18.0),
@@ -226,7 +244,7 @@ const GAUSS3: [(f64, f64); 3] = [
 /// (11, 22, 12), from the basis functions' gradients and the nodal values of $u^n$ and
 /// $\delta u^n = (u^n - u^{n-1})/k$ (the sums in the order of
 /// [`crate::element::strain_matrix`]'s columns).
-fn element_stress(
+pub(crate) fn element_stress(
     grad: &[[f64; 2]; 3],
     u: [[f64; 2]; 3],
     du: [[f64; 2]; 3],
@@ -351,6 +369,8 @@ struct Interior {
 enum Volume<'a> {
     /// Any field.
     Field(&'a dyn Fn([f64; 2]) -> [f64; 2]),
+    /// Any field, given at each triangle's points.
+    Points(&'a [[[f64; 2]; 7]]),
     /// A scene's $\varphi(t) f_0 (1 + a\cos\pi x)$, with $1 + a\cos\pi x$ at each
     /// triangle's points given.
     Scene {
@@ -382,10 +402,7 @@ impl<'m> Estimator<'m> {
                     .map(|i| dist(p[i], p[(i + 1) % 3]))
                     .fold(0.0, f64::max),
             );
-            points
-                .push(crate::quadrature::TRI7.map(|(l, _)| {
-                    [0, 1].map(|c| l[0] * p[0][c] + l[1] * p[1][c] + l[2] * p[2][c])
-                }));
+            points.push(points_of(p));
         }
         let mut on_g3 = vec![false; mesh.nodes.len()];
         mesh.gamma3.iter().for_each(|&v| on_g3[v] = true);
@@ -497,6 +514,7 @@ impl<'m> Estimator<'m> {
             surface: &surface,
             line: None,
             part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
+            f0_points: None,
         };
         // The volume force at the points, the cosines formed once for the scene; a
         // force without them is one value for every triangle.
@@ -538,7 +556,11 @@ impl<'m> Estimator<'m> {
         k: f64,
         sigma_h: &[f64],
     ) -> &Estimate {
-        self.run(pb, &Volume::Field(pb.f0), u, u_prev, k, sigma_h);
+        let volume = match pb.f0_points {
+            Some(p) => Volume::Points(p),
+            None => Volume::Field(pb.f0),
+        };
+        self.run(pb, &volume, u, u_prev, k, sigma_h);
         &self.out
     }
 
@@ -613,6 +635,7 @@ impl<'m> Estimator<'m> {
             let point = |i: usize| -> [f64; 2] {
                 match volume {
                     Volume::Field(f0) => f0(self.points[t][i]),
+                    Volume::Points(p) => p[t][i],
                     Volume::Scene { f0, phi, m } => {
                         let w = phi * m[t][i];
                         f0.map(|c| c * w)
@@ -769,6 +792,7 @@ mod tests {
             surface: &surface,
             line: None,
             part: None,
+            f0_points: None,
         };
         let sn = traction(sig, mesh.normal);
         let sigma_nu = sn[0] * mesh.normal[0] + sn[1] * mesh.normal[1];
@@ -800,6 +824,7 @@ mod tests {
             surface: &surface,
             line: None,
             part: None,
+            f0_points: None,
         };
         let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
         estimate(mesh, &pb, u, u_prev, k, &sigma_h)

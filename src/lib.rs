@@ -49,6 +49,7 @@ pub mod condense;
 pub mod dense;
 pub mod diagnostics;
 pub mod element;
+pub mod equilibrated;
 pub mod error;
 pub mod estimator;
 pub mod frame;

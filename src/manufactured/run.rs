@@ -100,6 +100,15 @@ pub struct StepRow {
     /// two Gauss points on each piece of the step between the data's kinks in time
     /// ([`Solution::time_breaks`]). 0 without viscosity or unless asked for.
     pub theta: f64,
+    /// The equilibrated estimate of the step ([`crate::equilibrated`]),
+    /// $(\sum_T\eta^2_T)^{1/2}$ in the compliance of $\mathcal G$; 0 unless asked for.
+    pub eta_flux: f64,
+    /// $\|\mathcal G^{-1/2}\sigma^n_h\|_{L^2(\Omega)}$, the discrete stress in the norm of
+    /// [`StepRow::eta_flux`]; 0 unless asked for.
+    pub sigma_h_g: f64,
+    /// The equilibrated estimate's largest unbalanced share at a node
+    /// ([`crate::equilibrated::FluxEstimate::defect`]); 0 unless asked for.
+    pub flux_defect: f64,
 }
 
 /// A run against the exact solution.
@@ -123,6 +132,9 @@ pub struct ExactRun {
     /// steps (the adaptive loop's aggregate, [`crate::adapt::Aggregate::Max`]); empty
     /// unless the run was asked for the estimate.
     pub eta_sq_max: Vec<f64>,
+    /// Each triangle's largest equilibrated $\eta^2_{T,n}$ over the steps
+    /// ([`crate::equilibrated`]); empty unless the run was asked for the estimate.
+    pub flux_sq_max: Vec<f64>,
 }
 
 impl ExactRun {
@@ -461,6 +473,21 @@ fn run_rules_options(
             .fold(f64::INFINITY, f64::min)
     };
     let mut eta_sq_max = vec![0.0f64; if estimated { mesh.triangles.len() } else { 0 }];
+    let mut flux_sq_max = eta_sq_max.clone();
+    let seven = match estimated {
+        true => crate::estimator::seven_points(&mesh),
+        false => vec![],
+    };
+    let equilibrator = match estimated {
+        true => Some(crate::equilibrated::Equilibrator::new(&mesh).map_err(|e| {
+            InputError::field(
+                "mesh",
+                e,
+                "a mesh whose node patches carry an equilibrated flux",
+            )
+        })?),
+        false => None,
+    };
     let mut r = vec![vec![0.0; m]; rules.len()];
     let mut rows: Vec<Vec<StepRow>> = vec![Vec::with_capacity(steps); rules.len()];
     let mut diffs = vec![];
@@ -581,7 +608,7 @@ fn run_rules_options(
             }
             let nodal_h = disc.dofs.expand(&u[0]);
             let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
-            let (eta, err_sigma, eta_time, sigma_h_norm, eta_step, u_h_e) = if estimated {
+            let (eta, err_sigma, eta_time, sigma_h_norm, eta_step, u_h_e, flux) = if estimated {
                 let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
                 let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
                 let surface = |x: [f64; 2], nrm: [f64; 2]| {
@@ -599,6 +626,8 @@ fn run_rules_options(
                     let plus = data.traction(x[0] + e * nrm[0], x[1] + e * nrm[1], t, nrm);
                     [minus[0] - plus[0], minus[1] - plus[1]]
                 };
+                // f0 at the points once, for both estimators.
+                let at_points: Vec<[[f64; 2]; 7]> = (seven.iter()).map(|q| q.map(f0)).collect();
                 let pb = crate::estimator::Problem {
                     elast: data.elast,
                     visc: data.visc,
@@ -606,6 +635,7 @@ fn run_rules_options(
                     surface: &surface,
                     line: Some(&line),
                     part: None,
+                    f0_points: Some(&at_points),
                 };
                 let est = prepared.estimate(&pb, &nodal_h, &prev_h[i], k, &sigma_h);
                 let (eta, stress) = (est.total(), est.stress_sq.sqrt());
@@ -639,9 +669,14 @@ fn run_rules_options(
                 });
                 let u_h_e = energy(&|t| now[t]);
                 let err_sigma = stress_error(&data, points, [&now, &before], k);
-                (eta, err_sigma, eta_time, stress, eta_step, u_h_e)
+                let flux = (equilibrator.as_ref().expect("prepared when estimated"))
+                    .estimate(&pb, &nodal_h, &prev_h[i], k, &sigma_h);
+                (flux_sq_max.iter_mut())
+                    .zip(&flux.eta_sq)
+                    .for_each(|(a, &e)| *a = a.max(e));
+                (eta, err_sigma, eta_time, stress, eta_step, u_h_e, flux)
             } else {
-                (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+                (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, Default::default())
             };
             let theta = match (&chol_a, rate) {
                 (Some(chol_a), Some(lambda)) => {
@@ -685,6 +720,9 @@ fn run_rules_options(
             row.eta_step = eta_step;
             row.u_h_e = u_h_e;
             row.theta = theta;
+            row.eta_flux = flux.total();
+            row.sigma_h_g = flux.stress_sq.sqrt();
+            row.flux_defect = flux.defect;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }
@@ -710,6 +748,7 @@ fn run_rules_options(
             rows,
             wall_s,
             eta_sq_max: eta_sq_max.clone(),
+            flux_sq_max: flux_sq_max.clone(),
         })
         .collect();
     Ok((runs, diffs))
