@@ -57,7 +57,7 @@ pub struct FluxEstimate {
 }
 
 /// The equilibrated stress of one step, with what it was built from.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct Reconstruction {
     /// Per triangle and row $d$ of the stress, the outward normal flux density of
     /// $\tau$ through each local edge (edge $j$ opposite vertex $j$): $\tau$ is
@@ -113,18 +113,22 @@ enum Slot {
 
 /// One node's patch problem for one row of the stress, prepared.
 struct Patch {
-    /// The triangles around the node, with the node's local index in each.
-    tris: Vec<(usize, usize)>,
-    /// Each patch triangle's three local edges.
-    slots: Vec<[Slot; 3]>,
+    /// Its triangles (with the node's local index in each) and their local edges'
+    /// slots: `start..start + len` of [`Equilibrator::patch_tris`] and
+    /// [`Equilibrator::patch_slots`].
+    start: usize,
+    len: usize,
     /// Whether some edge is held (free flux): then the node's equation is not needed.
     held_edge: bool,
-    /// The patch triangles that carry a divergence constraint (one is dropped when
-    /// the constraints are dependent).
-    constrained: Vec<usize>,
-    /// The unknowns from `[g; D]` (the first rows of the saddle-point system's
-    /// inverse).
-    solve: DMatrix<f64>,
+    /// How many of its triangles, from the first, carry a divergence constraint (all,
+    /// or all but the last when the constraints are dependent).
+    nc: usize,
+    /// Its unknown fluxes.
+    nx: usize,
+    /// Where its solve matrix starts in [`Equilibrator::solve`]: the first `nx` rows
+    /// of the saddle-point system's inverse, `nx` by `nx + nc`, stored by columns, so
+    /// that the unknowns are that matrix times `[g; D]`.
+    at: usize,
     /// The patch's area.
     area: f64,
 }
@@ -139,7 +143,27 @@ pub struct Equilibrator<'m> {
     /// when the same edges are held for both).
     patch_of: Vec<[usize; 2]>,
     patches: Vec<Patch>,
+    /// The patches' triangles, each with the patch node's local index there.
+    patch_tris: Vec<(usize, usize)>,
+    /// The patches' triangles' local edges.
+    patch_slots: Vec<[Slot; 3]>,
+    /// The patches' solve matrices, one after the other.
+    solve: Vec<f64>,
     contact_at: Vec<Option<usize>>,
+    /// The last step's reconstruction (its storage reused from step to step).
+    last: Reconstruction,
+    /// The last step's estimate (its storage reused from step to step).
+    out: FluxEstimate,
+}
+
+/// The volume force as the reconstruction reads it.
+enum Volume<'a> {
+    /// Any field.
+    Field(&'a dyn Fn([f64; 2]) -> [f64; 2]),
+    /// Any field, given at each triangle's seven points.
+    Points(&'a [[[f64; 2]; 7]]),
+    /// The same force everywhere.
+    Constant([f64; 2]),
 }
 
 fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -172,89 +196,132 @@ impl<'m> Equilibrator<'m> {
             .iter()
             .enumerate()
             .for_each(|(i, &v)| contact_at[v] = Some(i));
-        let mut patches = Vec::new();
         let mut patch_of = vec![[0usize; 2]; nn];
         let geometry = Geometry {
             tris: &tris,
             edges: &edges,
             g3: &g3,
         };
+        let mut out = Equilibrator {
+            mesh,
+            tris: vec![],
+            patch_of: vec![],
+            patches: vec![],
+            patch_tris: vec![],
+            patch_slots: vec![],
+            solve: vec![],
+            contact_at,
+            last: Reconstruction::default(),
+            out: FluxEstimate::default(),
+        };
         for (a, of) in patch_of.iter_mut().enumerate() {
             let mut built: Vec<(Vec<bool>, usize)> = vec![];
             for (d, slot) in of.iter_mut().enumerate() {
-                let (p, key) = patch(mesh, &geometry, &at[a], a, d)
+                let key = patch(mesh, &geometry, &at[a], (a, d), &mut out)
                     .map_err(|e| format!("node {a} at {:?}: {e}", mesh.nodes[a]))?;
                 if let Some((_, i)) = built.iter().find(|(k, _)| *k == key) {
+                    // The same problem as the other row's: drop the copy just made.
+                    let p = out.patches.pop().expect("just pushed");
+                    out.patch_tris.truncate(p.start);
+                    out.patch_slots.truncate(p.start);
+                    out.solve.truncate(p.at);
                     *slot = *i;
                     continue;
                 }
-                patches.push(p);
-                *slot = patches.len() - 1;
-                built.push((key, patches.len() - 1));
+                *slot = out.patches.len() - 1;
+                built.push((key, out.patches.len() - 1));
             }
         }
-        Ok(Equilibrator {
-            mesh,
-            tris,
-            patch_of,
-            patches,
-            contact_at,
-        })
+        out.tris = tris;
+        out.patch_of = patch_of;
+        Ok(out)
     }
 
-    // ANCHOR: equilibrate
     /// The equilibrated stress of the step with nodal displacements `u` $= u^n$,
     /// `u_prev` $= u^{n-1}$, time step `k` and `sigma_h` the discrete contact stress at
     /// each contact node (in [`Mesh::contact`]'s order), as for
     /// [`crate::estimator::estimate`]. The data's line load, if any, is not
     /// reconstructed: it shows in [`Reconstruction::defect`].
     pub fn reconstruct(
-        &self,
+        &mut self,
         pb: &Problem,
         u: &[[f64; 2]],
         u_prev: &[[f64; 2]],
         k: f64,
         sigma_h: &[f64],
-    ) -> Reconstruction {
+    ) -> &Reconstruction {
+        let volume = match pb.f0_points {
+            Some(p) => Volume::Points(p),
+            None => Volume::Field(pb.f0),
+        };
+        self.equilibrate(pb, &volume, (u, u_prev, k), sigma_h);
+        &self.last
+    }
+
+    // ANCHOR: equilibrate
+    /// Forms the step's equilibrated stress in `self.last`.
+    fn equilibrate(
+        &mut self,
+        pb: &Problem,
+        volume: &Volume,
+        (u, u_prev, k): (&[[f64; 2]], &[[f64; 2]], f64),
+        sigma_h: &[f64],
+    ) {
         let mesh = self.mesh;
         let nt = mesh.triangles.len();
+        let mut last = std::mem::take(&mut self.last);
         // Each triangle's stress and the moments of f0: int f0 phi_i and |f0|^2.
-        let mut stress = Vec::with_capacity(nt);
-        let mut moments = Vec::with_capacity(nt);
+        last.stress.clear();
+        last.moments.clear();
         for (t, v) in mesh.triangles.iter().enumerate() {
             let tr = &self.tris[t];
             let un = v.map(|i| u[i]);
             let du = v.map(|i| [(u[i][0] - u_prev[i][0]) / k, (u[i][1] - u_prev[i][1]) / k]);
-            stress.push(crate::estimator::element_stress(&tr.grad, un, du, pb));
-            let (mut m, mut sq) = ([[0.0; 2]; 3], 0.0);
-            for (q, (l, w)) in crate::quadrature::TRI7.iter().enumerate() {
-                let f = match pb.f0_points {
-                    Some(p) => p[t][q],
-                    None => (pb.f0)(tr.points[q]),
-                };
-                let wa = w * tr.area;
-                for i in 0..3 {
-                    m[i][0] += wa * l[i] * f[0];
-                    m[i][1] += wa * l[i] * f[1];
+            last.stress
+                .push(crate::estimator::element_stress(&tr.grad, un, du, pb));
+            let moments = match volume {
+                Volume::Constant(f) => {
+                    let m = f.map(|c| c * tr.area / 3.0);
+                    ([m; 3], tr.area * dot(*f, *f))
                 }
-                sq += wa * dot(f, f);
-            }
-            moments.push((m, sq));
+                _ => {
+                    let (mut m, mut sq) = ([[0.0; 2]; 3], 0.0);
+                    for (q, (l, w)) in crate::quadrature::TRI7.iter().enumerate() {
+                        let f = match volume {
+                            Volume::Points(p) => p[t][q],
+                            Volume::Field(f0) => f0(tr.points[q]),
+                            Volume::Constant(f) => *f,
+                        };
+                        let wa = w * tr.area;
+                        for i in 0..3 {
+                            m[i][0] += wa * l[i] * f[0];
+                            m[i][1] += wa * l[i] * f[1];
+                        }
+                        sq += wa * dot(f, f);
+                    }
+                    (m, sq)
+                }
+            };
+            last.moments.push(moments);
         }
         // The rows of the stress: row d of [s11, s22, s12] is (s_d1, s_d2).
         let row = |s: [f64; 3], d: usize| if d == 0 { [s[0], s[2]] } else { [s[2], s[1]] };
         // Outward fluxes per triangle, row and local edge.
-        let mut flux = vec![[[0.0f64; 3]; 2]; nt];
+        last.flux.clear();
+        last.flux.resize(nt, [[0.0; 3]; 2]);
         // The largest unbalanced force, and the largest element force.
         let (mut defect, mut scale) = (0.0f64, 0.0f64);
-        let (mut g, mut rhs_d) = (vec![], vec![]);
+        // Scratch, reused from patch to patch: the right side [g; D], the unknowns,
+        // and per patch triangle its divergence datum, given and target fluxes.
+        let (mut rhs, mut x) = (vec![], vec![]);
+        let (mut div, mut q0, mut target) = (vec![], vec![], vec![]);
         for a in 0..mesh.nodes.len() {
             for d in 0..2 {
                 let p = &self.patches[self.patch_of[a][d]];
-                // The load's share on each given edge: int_e g_d phi_a, per patch
-                // triangle and local edge (zero elsewhere).
-                let given = |pt: usize, j: usize, b: usize, on_g3: bool| -> f64 {
-                    let (t, _) = p.tris[pt];
+                let tris = &self.patch_tris[p.start..p.start + p.len];
+                let slots = &self.patch_slots[p.start..p.start + p.len];
+                // The load's share on a given edge of a patch triangle: int_e g_d phi_a.
+                let given = |t: usize, j: usize, b: usize, on_g3: bool| -> f64 {
                     let tr = &self.tris[t];
                     let (pa, pbn) = (mesh.nodes[a], mesh.nodes[b]);
                     let n = tr.n[j];
@@ -272,26 +339,25 @@ impl<'m> Equilibrator<'m> {
                     s
                 };
                 // Divergence data, given fluxes and the target fluxes.
-                let np = p.tris.len();
-                let mut div = Vec::with_capacity(np);
-                let mut q0 = Vec::with_capacity(np);
-                let mut target = Vec::with_capacity(np);
+                div.clear();
+                q0.clear();
+                target.clear();
                 let (mut total, mut given_total) = (0.0, 0.0);
-                for (pt, &(t, la)) in p.tris.iter().enumerate() {
+                for (&(t, la), slot) in tris.iter().zip(slots) {
                     let tr = &self.tris[t];
-                    let s = row(stress[t], d);
+                    let s = row(last.stress[t], d);
                     let force = tr.area * dot(s, tr.grad[la]);
-                    let d0 = -moments[t].0[la][d] + force;
+                    let d0 = -last.moments[t].0[la][d] + force;
                     total += d0;
                     scale = scale.max(force.abs());
                     div.push(d0);
                     let mut z = [0.0; 3];
                     let mut w = [0.0; 3];
                     for j in 0..3 {
-                        match p.slots[pt][j] {
+                        match slot[j] {
                             Slot::Zero => {}
                             Slot::Given(b, on_g3) => {
-                                let gi = given(pt, j, b, on_g3);
+                                let gi = given(t, j, b, on_g3);
                                 given_total += gi;
                                 z[j] = gi / tr.len[j];
                                 w[j] = 0.5 * dot(s, tr.n[j]);
@@ -306,38 +372,38 @@ impl<'m> Equilibrator<'m> {
                     // The node's equation: what the data leave unbalanced is spread.
                     let left = total - given_total;
                     defect = defect.max(left.abs());
-                    for (pt, &(t, _)) in p.tris.iter().enumerate() {
-                        div[pt] -= left * self.tris[t].area / p.area;
+                    for (dv, &(t, _)) in div.iter_mut().zip(tris) {
+                        *dv -= left * self.tris[t].area / p.area;
                     }
                 }
-                let nx = p.solve.nrows();
-                g.clear();
-                g.resize(nx, 0.0);
-                for (pt, &(t, _)) in p.tris.iter().enumerate() {
+                // The right side: g = S^T M (target - q0), then the constraints' data.
+                rhs.clear();
+                rhs.resize(p.nx, 0.0);
+                for (pt, (&(t, _), slot)) in tris.iter().zip(slots).enumerate() {
                     let tr = &self.tris[t];
                     let r: [f64; 3] = [0, 1, 2].map(|j| target[pt][j] - q0[pt][j]);
-                    for j in 0..3 {
-                        if let Slot::Unknown(i, sign) = p.slots[pt][j] {
-                            g[i] += sign * (0..3).map(|l| tr.mass[j][l] * r[l]).sum::<f64>();
+                    for (sl, mass) in slot.iter().zip(&tr.mass) {
+                        if let Slot::Unknown(i, sign) = *sl {
+                            rhs[i] += sign * (0..3).map(|l| mass[l] * r[l]).sum::<f64>();
                         }
                     }
                 }
-                rhs_d.clear();
-                for &pt in &p.constrained {
-                    let tr = &self.tris[p.tris[pt].0];
-                    rhs_d.push(div[pt] - (0..3).map(|j| tr.len[j] * q0[pt][j]).sum::<f64>());
+                for pt in 0..p.nc {
+                    let tr = &self.tris[tris[pt].0];
+                    rhs.push(div[pt] - (0..3).map(|j| tr.len[j] * q0[pt][j]).sum::<f64>());
                 }
-                let x: Vec<f64> = (0..nx)
-                    .map(|i| {
-                        (0..nx).map(|c| p.solve[(i, c)] * g[c]).sum::<f64>()
-                            + (0..rhs_d.len())
-                                .map(|c| p.solve[(i, nx + c)] * rhs_d[c])
-                                .sum::<f64>()
-                    })
-                    .collect();
-                for (pt, &(t, _)) in p.tris.iter().enumerate() {
+                // The unknowns: the solve matrix (by columns) times [g; D].
+                x.clear();
+                x.resize(p.nx, 0.0);
+                let m = &self.solve[p.at..p.at + p.nx * rhs.len()];
+                for (col, &r) in m.chunks_exact(p.nx.max(1)).zip(&rhs) {
+                    for (xi, m) in x.iter_mut().zip(col) {
+                        *xi += m * r;
+                    }
+                }
+                for (pt, (&(t, _), slot)) in tris.iter().zip(slots).enumerate() {
                     for j in 0..3 {
-                        flux[t][d][j] += match p.slots[pt][j] {
+                        last.flux[t][d][j] += match slot[j] {
                             Slot::Zero => 0.0,
                             Slot::Given(..) => q0[pt][j],
                             Slot::Unknown(i, sign) => sign * x[i],
@@ -346,28 +412,25 @@ impl<'m> Equilibrator<'m> {
                 }
             }
         }
-        Reconstruction {
-            flux,
-            stress,
-            moments,
-            defect: if scale > 0.0 { defect / scale } else { defect },
-        }
+        last.defect = if scale > 0.0 { defect / scale } else { defect };
+        self.last = last;
     }
     // ANCHOR_END: equilibrate
 
     /// The equilibrated estimate of a step of a scene `scn` (a rectangle or a mesh
     /// scene) at time `t`, its loads read by [`crate::estimator::SceneLoads`] and the
     /// discrete contact stress $\sigma^1_\nu + \sigma^2_\nu$ of each state in `contact`, as
-    /// [`crate::estimator::estimate_scene`] reads them.
+    /// [`crate::estimator::estimate_scene`] reads them. The estimate is kept until the
+    /// next step's.
     pub fn estimate_scene(
-        &self,
+        &mut self,
         scn: &crate::scenario::Scenario,
         u: &[[f64; 2]],
         u_prev: &[[f64; 2]],
         k: f64,
         t: f64,
         contact: &[crate::certificate::ContactState],
-    ) -> FluxEstimate {
+    ) -> &FluxEstimate {
         let loads = crate::estimator::SceneLoads::new(scn, t);
         let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
         let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
@@ -384,28 +447,38 @@ impl<'m> Equilibrator<'m> {
         let sigma_h: Vec<f64> = (contact.iter())
             .map(|c| c.sigma_nu1 + c.sigma_nu2)
             .collect();
-        self.estimate(&pb, u, u_prev, k, &sigma_h)
+        // A force without the cos(pi x) modulation is the same everywhere.
+        let volume = match loads.modulation {
+            0.0 => Volume::Constant(loads.f0.map(|c| c * loads.phi)),
+            _ => Volume::Field(&f0),
+        };
+        self.equilibrate(&pb, &volume, (u, u_prev, k), &sigma_h);
+        self.indicators(&pb)
     }
 
     /// The equilibrated estimate of the step: [`Equilibrator::reconstruct`], then each
     /// triangle's distance to the discrete stress in the compliance of $\mathcal G$,
-    /// with the volume force's oscillation.
+    /// with the volume force's oscillation. The estimate is kept until the next step's.
     pub fn estimate(
-        &self,
+        &mut self,
         pb: &Problem,
         u: &[[f64; 2]],
         u_prev: &[[f64; 2]],
         k: f64,
         sigma_h: &[f64],
-    ) -> FluxEstimate {
+    ) -> &FluxEstimate {
+        self.reconstruct(pb, u, u_prev, k, sigma_h);
+        self.indicators(pb)
+    }
+
+    /// The indicators of the last reconstruction, in `self.out`.
+    fn indicators(&mut self, pb: &Problem) -> &FluxEstimate {
         let Reconstruction {
             flux,
             stress,
             moments,
             defect,
-        } = self.reconstruct(pb, u, u_prev, k, sigma_h);
-        let nt = self.mesh.triangles.len();
-        // The indicators: tau - sigma_h in the compliance of G at the edge midpoints.
+        } = &self.last;
         let Isotropic { a: la, b: lb } = pb.elast;
         let c = la / (2.0 * la + lb);
         let energy = |m: [[f64; 2]; 2]| {
@@ -413,13 +486,10 @@ impl<'m> Equilibrator<'m> {
             (m[0][0].powi(2) + m[0][1].powi(2) + m[1][0].powi(2) + m[1][1].powi(2) - c * tr * tr)
                 / lb
         };
-        let mut out = FluxEstimate {
-            eta_sq: Vec::with_capacity(nt),
-            defect,
-            ..FluxEstimate::default()
-        };
-        for t in 0..nt {
-            let tr = &self.tris[t];
+        let out = &mut self.out;
+        out.eta_sq.clear();
+        (out.oscillation_sq, out.stress_sq, out.defect) = (0.0, 0.0, *defect);
+        for (t, tr) in self.tris.iter().enumerate() {
             let s = stress[t];
             let sig = [[s[0], s[2]], [s[2], s[1]]];
             out.stress_sq += tr.area * energy(sig);
@@ -443,7 +513,7 @@ impl<'m> Equilibrator<'m> {
             out.oscillation_sq += osc_sq;
             out.eta_sq.push((e.max(0.0).sqrt() + osc_sq.sqrt()).powi(2));
         }
-        out
+        &self.out
     }
 }
 
@@ -501,14 +571,15 @@ struct Geometry<'a> {
     g3: &'a std::collections::HashSet<[usize; 2]>,
 }
 
-/// Node `a`'s patch problem for row `d`, and the key of which of its edges are held.
+/// Node `a`'s patch problem for row `d`, pushed onto `out`'s patches, and the key of
+/// which of its edges are held.
 fn patch(
     mesh: &Mesh,
     geo: &Geometry,
     at: &[(usize, usize)],
-    a: usize,
-    d: usize,
-) -> Result<(Patch, Vec<bool>), String> {
+    (a, d): (usize, usize),
+    out: &mut Equilibrator,
+) -> Result<Vec<bool>, String> {
     let (tris, edges, g3) = (geo.tris, geo.edges, geo.g3);
     let held = |v: usize| mesh.fixed[v][d];
     let mut unknown: Vec<[usize; 2]> = vec![];
@@ -547,13 +618,8 @@ fn patch(
     let held_edge = (unknown.iter()).any(|e| edges[e].len() == 1);
     let np = at.len();
     // Without a held edge the constraints sum to the node's equation: drop one.
-    let constrained: Vec<usize> = if held_edge {
-        (0..np).collect()
-    } else {
-        (0..np.saturating_sub(1)).collect()
-    };
+    let nc = if held_edge { np } else { np.saturating_sub(1) };
     let nx = unknown.len();
-    let nc = constrained.len();
     let mut kkt = DMatrix::<f64>::zeros(nx + nc, nx + nc);
     for (pt, &(t, _)) in at.iter().enumerate() {
         let tr = &tris[t];
@@ -568,31 +634,35 @@ fn patch(
             }
         }
     }
-    for (c, &pt) in constrained.iter().enumerate() {
+    for pt in 0..nc {
         let tr = &tris[at[pt].0];
         for (slot, len) in slots[pt].iter().zip(tr.len) {
             if let Slot::Unknown(i, si) = *slot {
-                kkt[(nx + c, i)] += si * len;
-                kkt[(i, nx + c)] += si * len;
+                kkt[(nx + pt, i)] += si * len;
+                kkt[(i, nx + pt)] += si * len;
             }
         }
     }
     let inv = kkt.try_inverse().ok_or_else(|| {
         format!("the patch problem of row {d} is singular ({nx} fluxes, {nc} constraints)")
     })?;
-    let solve = inv.rows(0, nx).into_owned();
+    let at_solve = out.solve.len();
+    for c in 0..nx + nc {
+        out.solve.extend((0..nx).map(|r| inv[(r, c)]));
+    }
     let area = at.iter().map(|&(t, _)| tris[t].area).sum();
-    Ok((
-        Patch {
-            tris: at.to_vec(),
-            slots,
-            held_edge,
-            constrained,
-            solve,
-            area,
-        },
-        key,
-    ))
+    out.patches.push(Patch {
+        start: out.patch_tris.len(),
+        len: np,
+        held_edge,
+        nc,
+        nx,
+        at: at_solve,
+        area,
+    });
+    out.patch_tris.extend_from_slice(at);
+    out.patch_slots.extend(slots);
+    Ok(key)
 }
 
 #[cfg(test)]
@@ -648,7 +718,7 @@ mod tests {
         let sn = traction(mesh.normal);
         let sigma_nu = sn[0] * mesh.normal[0] + sn[1] * mesh.normal[1];
         let sigma_h = vec![sigma_nu; mesh.contact.len()];
-        let eq = Equilibrator::new(&mesh).expect("patches");
+        let mut eq = Equilibrator::new(&mesh).expect("patches");
         let est = eq.estimate(&pb, &u, &u_prev, k, &sigma_h);
         assert!(est.stress_sq > 0.0);
         assert!(

@@ -511,3 +511,78 @@ fn solve_adapt_refuses_bad_input() {
         refused(&o, needles);
     }
 }
+
+/// `Indicator::Equilibrated` marks and stops on the equilibrated indicators: the
+/// first level's estimate is the equilibrated estimate of that mesh (the per-triangle
+/// maxima over the steps, over the largest compliance norm of the stress), below the
+/// residual one; the mesh scene's parts and contact pass through it too; and with the
+/// same tolerance the run stops on a mesh no larger than the residual run's.
+#[test]
+fn the_equilibrated_indicators_drive_the_loop() {
+    use evhi::adapt::{Indicator, solve_estimating_by};
+    let scn = Scenario::load("figure").unwrap();
+    let run = RunSettings::default().with_steps(4);
+    let by = |i: Indicator, tol: f64| {
+        let s = AdaptSettings::default()
+            .with_tol(tol)
+            .with_max_dofs(3000)
+            .with_indicator(i);
+        adapt(&scn, &run, &s, &mut ()).unwrap()
+    };
+    let (eq, res) = (
+        by(Indicator::Equilibrated, 0.25),
+        by(Indicator::Residual, 0.25),
+    );
+    let (e0, r0) = (eq.levels[0].estimate, res.levels[0].estimate);
+    assert!(e0 > 0.0 && e0 < 0.7 * r0, "{e0} {r0}");
+    // The first level's estimate, formed directly on the same mesh.
+    let (_, _, n0) = initial_forest(&scn).unwrap();
+    let sim = Simulation::new(scn.clone(), run.clone().with_n(n0)).unwrap();
+    let direct =
+        solve_estimating_by(&sim, Aggregate::Max, Indicator::Equilibrated, &mut ()).unwrap();
+    let want = (direct.eta_sq.iter().sum::<f64>() / direct.norm_sq).sqrt();
+    assert!((want - e0).abs() <= 1e-12 * want, "{want} {e0}");
+    assert_eq!(eq.stop, Stop::Tolerance);
+    assert!(eq.levels.last().unwrap().dofs <= res.levels.last().unwrap().dofs);
+    // A mesh scene (its parts' tractions, its own contact boundary).
+    let block = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("data/scenarios/examples/holed_block.toml");
+    let block = Scenario::load(block.to_str().unwrap()).unwrap();
+    let s = AdaptSettings::default()
+        .with_tol(1e-6)
+        .with_max_dofs(2000)
+        .with_indicator(Indicator::Equilibrated);
+    let a = adapt(&block, &RunSettings::default().with_steps(2), &s, &mut ()).unwrap();
+    assert!(
+        a.levels.len() >= 2
+            && a.levels
+                .iter()
+                .all(|l| l.estimate.is_finite() && l.estimate > 0.0)
+    );
+}
+
+/// `solve --adapt --estimator equilibrated` says which indicators it used in the
+/// table's header and the run's provenance; another name is refused with the two
+/// allowed.
+#[test]
+fn the_command_line_chooses_the_indicators() {
+    let dir = scratch("adapt-equilibrated");
+    let out = dir.join("run");
+    ok(
+        &evhi_with("solve --adapt 0.3 --steps 4 --estimator equilibrated --scenario figure --out")
+            .arg(&out)
+            .output()
+            .unwrap(),
+    );
+    let table = std::fs::read_to_string(out.join("adapt.csv")).unwrap();
+    assert!(table.contains("the equilibrated indicators'"), "{table}");
+    let bad = evhi_with("solve --adapt 0.3 --estimator flux --scenario figure")
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(
+        err.contains("residual") && err.contains("equilibrated"),
+        "{err}"
+    );
+}

@@ -1,14 +1,15 @@
-//! What the residual estimator costs beside the solve (`evhi bench --estimator`): the
+//! What the estimator costs beside the solve (`evhi bench --estimator`, the residual
+//! indicators; with `--equilibrated`, the equilibrated ones): the
 //! `figure` scene at level $n$ with $N$ steps solved in this process on each time loop
 //! (the default step solver), once plainly and once as the
-//! adaptive loop solves it ([`evhi::adapt::solve_estimating`]: every step's field
+//! adaptive loop solves it ([`evhi::adapt::solve_estimating_by`]: every step's field
 //! formed, its indicators estimated and folded into their maximum over the steps).
 //! The estimator's own phase is `estimator_s` (preparing the mesh once, then every
 //! step's estimate); `estimating_s` is the whole estimating solve, which adds to it
 //! the fields the reduced loop would not otherwise form.
 
 use super::tables::EstimatorRow;
-use evhi::adapt::{Aggregate, solve_estimating};
+use evhi::adapt::{Aggregate, Indicator, solve_estimating_by};
 use evhi::simulation::{Loop, RunSettings, Simulation};
 use evhi::study::{Ctx, ExpError};
 use evhi::timing::median;
@@ -24,9 +25,11 @@ fn load_average() -> f64 {
 }
 
 /// Times each level's plain solve and its estimating solve `repeat` times each, in
-/// turn, and writes `bench_estimator.csv`.
+/// turn, and writes `bench_estimator.csv` (the residual indicators) or
+/// `bench_estimator_equilibrated.csv`.
 pub fn run(
     ctx: &Ctx,
+    indicator: Indicator,
     levels: &[usize],
     steps: usize,
     repeat: usize,
@@ -54,7 +57,7 @@ pub fn run(
                 let sol = sim.solve(&mut ())?;
                 solve.push(clock.elapsed().as_secs_f64());
                 let clock = Instant::now();
-                let e = solve_estimating(&sim, Aggregate::Max, &mut ())?;
+                let e = solve_estimating_by(&sim, Aggregate::Max, indicator, &mut ())?;
                 estimating.push(clock.elapsed().as_secs_f64());
                 est.push(e.estimator_s);
                 std::hint::black_box(e);
@@ -76,12 +79,20 @@ pub fn run(
         }
     }
     let load_after = load_average();
+    let (file, command) = match indicator {
+        Indicator::Residual => ("bench_estimator.csv", "bench --estimator"),
+        Indicator::Equilibrated => (
+            "bench_estimator_equilibrated.csv",
+            "bench --estimator --equilibrated",
+        ),
+    };
     ctx.write_as(
-        "bench_estimator.csv",
+        file,
         &EstimatorRow::table(&rows),
-        "bench --estimator",
+        command,
         &format!(
-            "machine: {machine}; load average {load_before:.2} before, {load_after:.2} after; scenario figure at level n with the given steps on each time loop (default step solver), solved in one process; each level solved plainly (solve_s) and as the adaptive loop solves it (estimating_s: every step's field formed and its indicators estimated, folded into their maximum over the steps), in turn; estimator_s the estimator's own phase in the estimating solve (the mesh prepared once, then every step's estimate); medians of {repeat} runs; estimator_percent = estimator_s / solve_s; overhead_percent = (estimating_s - solve_s) / solve_s, the whole cost of estimating every step"
+            "machine: {machine}; the {} indicators; load average {load_before:.2} before, {load_after:.2} after; scenario figure at level n with the given steps on each time loop (default step solver), solved in one process; each level solved plainly (solve_s) and as the adaptive loop solves it (estimating_s: every step's field formed and its indicators estimated, folded into their maximum over the steps), in turn; estimator_s the estimator's own phase in the estimating solve (the mesh prepared once, then every step's estimate); medians of {repeat} runs; estimator_percent = estimator_s / solve_s; overhead_percent = (estimating_s - solve_s) / solve_s, the whole cost of estimating every step",
+            indicator.name()
         ),
     )?;
     Ok(())

@@ -2,7 +2,7 @@
 //! command line, one line per level, and the last level's run directory.
 
 use super::solve_args::SolveArgs;
-use evhi::adapt::{AdaptLevel, AdaptObserver, AdaptSettings, Aggregate, Solved};
+use evhi::adapt::{AdaptLevel, AdaptObserver, AdaptSettings, Aggregate, Indicator, Solved};
 use evhi::certificate::ContactState;
 use evhi::error::InputError;
 use evhi::mesh::Mesh;
@@ -55,6 +55,9 @@ fn adapt_settings(args: &SolveArgs, tol: f64) -> AdaptSettings {
     if args.aggregate.as_deref() == Some("sum") {
         s = s.with_aggregate(Aggregate::Sum);
     }
+    if args.estimator == Some(super::solve_args::IndicatorArg::Equilibrated) {
+        s = s.with_indicator(Indicator::Equilibrated);
+    }
     s
 }
 
@@ -94,10 +97,11 @@ pub fn run(
     };
     evhi::diag!(
         "adapting `{}` from {from}: tol {tol}, theta {}, at most {} unknowns, \
-         indicators gathered by their {} over the steps",
+         the {} indicators gathered by their {} over the steps",
         scn.name(),
         settings.theta,
         settings.max_dofs,
+        settings.indicator.name(),
         match settings.aggregate {
             Aggregate::Max => "maximum",
             Aggregate::Sum => "time mean",
@@ -164,9 +168,10 @@ pub fn run(
     lines.iter().for_each(|l| evhi::diag!("{l}"));
     let mut prov = Provenance::of(&sim, &solution, evhi::output::run::command_line());
     prov.mesh = format!(
-        "adaptive tol = {tol}, theta = {}, aggregate = {}, level {} of {}",
+        "adaptive tol = {tol}, theta = {}, aggregate = {}, estimator = {}, level {} of {}",
         settings.theta,
         settings.aggregate.name(),
+        settings.indicator.name(),
         last.level,
         adaptation.levels.len()
     );
@@ -185,10 +190,15 @@ pub fn run(
     let mut header = evhi::output::run::header(&prov, &scn, run.n, run.steps);
     header.push(format!(
         "one row a level of the adaptive run; estimate = the estimated relative error \
-         (the indicators' per-triangle {} over the steps, summed, over the same of the \
-         squared L2 norm of the step's stress, square root), eta = the absolute estimate, marked = triangles \
+         (the {} indicators' per-triangle {} over the steps, summed, over the same of the \
+         squared {} of the step's stress, square root), eta = the absolute estimate, marked = triangles \
          Dörfler's criterion with theta = {} marked for the next level; stopped: {}",
+        settings.indicator.name(),
         settings.aggregate.name(),
+        match settings.indicator {
+            Indicator::Residual => "L2 norm",
+            Indicator::Equilibrated => "L2 norm in the compliance of G",
+        },
         settings.theta,
         adaptation.stop.describe()
     ));

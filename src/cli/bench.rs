@@ -75,6 +75,10 @@ pub struct BenchArgs {
     /// at every step as `solve --adapt` does, in turn (data/bench_estimator.csv).
     #[arg(long)]
     pub estimator: bool,
+    /// With --estimator: the equilibrated indicators (`solve --adapt --estimator
+    /// equilibrated`) in place of the residual ones (data/bench_estimator_equilibrated.csv).
+    #[arg(long, requires = "estimator")]
+    pub equilibrated: bool,
     /// Levels n of the estimator's rows.
     #[arg(long, value_delimiter = ',', default_value = "64,128,256")]
     pub estimator_levels: Vec<usize>,
@@ -198,8 +202,13 @@ pub fn run(args: BenchArgs) -> Result<(), Box<dyn std::error::Error>> {
         return scipy(&ctx, &args, &machine);
     }
     if args.estimator {
+        let indicator = match args.equilibrated {
+            true => evhi::adapt::Indicator::Equilibrated,
+            false => evhi::adapt::Indicator::Residual,
+        };
         crate::bench::estimator::run(
             &ctx,
+            indicator,
             &args.estimator_levels,
             args.estimator_steps as usize,
             args.repeat,

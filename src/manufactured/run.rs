@@ -478,7 +478,7 @@ fn run_rules_options(
         true => crate::estimator::seven_points(&mesh),
         false => vec![],
     };
-    let equilibrator = match estimated {
+    let mut equilibrator = match estimated {
         true => Some(crate::equilibrated::Equilibrator::new(&mesh).map_err(|e| {
             InputError::field(
                 "mesh",
@@ -669,14 +669,15 @@ fn run_rules_options(
                 });
                 let u_h_e = energy(&|t| now[t]);
                 let err_sigma = stress_error(&data, points, [&now, &before], k);
-                let flux = (equilibrator.as_ref().expect("prepared when estimated"))
+                let flux = (equilibrator.as_mut().expect("prepared when estimated"))
                     .estimate(&pb, &nodal_h, &prev_h[i], k, &sigma_h);
                 (flux_sq_max.iter_mut())
                     .zip(&flux.eta_sq)
                     .for_each(|(a, &e)| *a = a.max(e));
+                let flux = (flux.total(), flux.stress_sq.sqrt(), flux.defect);
                 (eta, err_sigma, eta_time, stress, eta_step, u_h_e, flux)
             } else {
-                (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, Default::default())
+                (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, (0.0, 0.0, 0.0))
             };
             let theta = match (&chol_a, rate) {
                 (Some(chol_a), Some(lambda)) => {
@@ -720,9 +721,7 @@ fn run_rules_options(
             row.eta_step = eta_step;
             row.u_h_e = u_h_e;
             row.theta = theta;
-            row.eta_flux = flux.total();
-            row.sigma_h_g = flux.stress_sq.sqrt();
-            row.flux_defect = flux.defect;
+            (row.eta_flux, row.sigma_h_g, row.flux_defect) = flux;
             rows[i].push(row);
             fields.push(u.into_iter().next().expect("one field"));
         }

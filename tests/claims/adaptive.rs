@@ -202,6 +202,34 @@ fn adaptive_estimator_cost() {
     assert_eq!([fix(min(&plain), 1), fix(max(&plain), 1)], ["2.4", "3.0"]);
 }
 
+/// The equilibrated indicators' phase: 584 % to 625 % of the reduced plain solve, 205 %
+/// to 255 % of the general one, more than ten times the residual phase at each level
+/// and loop; and their reading against the residual one on the exact solutions.
+#[test]
+fn adaptive_equilibrated_cost() {
+    const EQ: &str = "bench_estimator_equilibrated.csv";
+    let of = |file: &str, path: &str, col: &str| column(file, &[("path", path)], col);
+    let r = of(EQ, "reduced", "estimator_percent");
+    let g = of(EQ, "general", "estimator_percent");
+    assert_eq!(of(EQ, "general", "n"), [64.0, 128.0, 256.0]);
+    assert_eq!(of(EQ, "reduced", "steps"), [64.0; 3]);
+    assert_eq!([fix(min(&r), 0), fix(max(&r), 0)], ["584", "625"]);
+    assert_eq!([fix(min(&g), 0), fix(max(&g), 0)], ["205", "255"]);
+    for path in ["reduced", "general"] {
+        let eq = of(EQ, path, "estimator_s");
+        let res = of("bench_estimator.csv", path, "estimator_s");
+        for (e, r) in eq.iter().zip(&res) {
+            assert!(e / r > 10.0, "{path}: {e} {r}");
+        }
+    }
+    let (flux, res) = (
+        column("exact_adaptive.csv", &[], "efficiency_flux"),
+        column("exact_adaptive.csv", &[], "efficiency"),
+    );
+    assert_eq!([fix(min(&flux), 2), fix(max(&flux), 2)], ["1.74", "3.42"]);
+    assert_eq!([fix(min(&res), 2), fix(max(&res), 2)], ["4.34", "5.85"]);
+}
+
 /// The wall time to the finest uniform level's error: the adaptive family's levels
 /// summed up to the first below it, the uniform level's own, and the first graded level
 /// below it.
