@@ -35,10 +35,12 @@
 //! node held with no held edge beside it) is spread over the node's patch, and
 //! [`FluxEstimate::defect`] reports its largest share.
 
+use crate::error::InputError;
 use crate::estimator::Problem;
 use crate::material::Isotropic;
 use crate::mesh::Mesh;
 use nalgebra::DMatrix;
+use std::collections::{HashMap, HashSet};
 
 /// The equilibrated estimate of one step.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -106,9 +108,20 @@ enum Slot {
     Zero,
     /// Unknown `i`, with the sign that makes it the triangle's outward flux.
     Unknown(usize, f64),
-    /// A loaded boundary edge, with the other node of the edge and whether the edge
-    /// is on $\Gamma_3$ (between nodes consecutive along it): its flux is given.
-    Given(usize, bool),
+    /// A loaded boundary edge: its flux is given.
+    Given(Loaded),
+}
+
+/// A loaded boundary edge as a patch sees it.
+#[derive(Clone, Copy)]
+struct Loaded {
+    /// The edge's other node.
+    other: usize,
+    /// Whether the edge is on $\Gamma_3$ (between nodes consecutive along it).
+    contact: bool,
+    /// The stiffness $k_s$ of a spring support on the edge (zero without one): the
+    /// traction there is the load minus $k_s u_h$.
+    spring: f64,
 }
 
 /// One node's patch problem for one row of the stress, prepared.
@@ -170,15 +183,21 @@ fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 
+/// `x` where it is not negative (a rounding below zero), 0 where it is; NaN stays NaN,
+/// so that the loop's check sees it.
+fn nonnegative(x: f64) -> f64 {
+    if x < 0.0 { 0.0 } else { x }
+}
+
 impl<'m> Equilibrator<'m> {
-    /// Prepares `mesh`, or says why a patch problem has no unique solution.
-    pub fn new(mesh: &'m Mesh) -> Result<Equilibrator<'m>, String> {
+    /// Prepares `mesh`, or says which node's patch problem has no unique solution (a
+    /// node where two fans of triangles touch).
+    pub fn new(mesh: &'m Mesh) -> Result<Equilibrator<'m>, InputError> {
         let tris: Vec<Tri> = mesh.triangles.iter().map(|t| tri(mesh, *t)).collect();
         let nn = mesh.nodes.len();
         // The triangles at each node and each edge's triangles (by sorted ends).
         let mut at: Vec<Vec<(usize, usize)>> = vec![vec![]; nn];
-        let mut edges: std::collections::HashMap<[usize; 2], Vec<(usize, usize)>> =
-            std::collections::HashMap::new();
+        let mut edges: HashMap<[usize; 2], Vec<(usize, usize)>> = HashMap::new();
         for (t, v) in mesh.triangles.iter().enumerate() {
             for i in 0..3 {
                 at[v[i]].push((t, i));
@@ -186,26 +205,29 @@ impl<'m> Equilibrator<'m> {
                 edges.entry([p.min(q), p.max(q)]).or_default().push((t, i));
             }
         }
-        let g3: std::collections::HashSet<[usize; 2]> = mesh
-            .gamma3
-            .windows(2)
+        let g3: HashSet<[usize; 2]> = (mesh.gamma3.windows(2))
             .map(|w| [w[0].min(w[1]), w[0].max(w[1])])
             .collect();
+        let mut springs: HashMap<[usize; 2], f64> = HashMap::new();
+        for &([p, q], k) in &mesh.boundary_terms {
+            *springs.entry([p.min(q), p.max(q)]).or_default() += k;
+        }
         let mut contact_at = vec![None; nn];
         mesh.contact
             .iter()
             .enumerate()
             .for_each(|(i, &v)| contact_at[v] = Some(i));
-        let mut patch_of = vec![[0usize; 2]; nn];
         let geometry = Geometry {
             tris: &tris,
             edges: &edges,
             g3: &g3,
+            springs: &springs,
+            held: held_by_axis(mesh),
         };
         let mut out = Equilibrator {
             mesh,
             tris: vec![],
-            patch_of: vec![],
+            patch_of: vec![[0usize; 2]; nn],
             patches: vec![],
             patch_tris: vec![],
             patch_slots: vec![],
@@ -214,26 +236,26 @@ impl<'m> Equilibrator<'m> {
             last: Reconstruction::default(),
             out: FluxEstimate::default(),
         };
-        for (a, of) in patch_of.iter_mut().enumerate() {
-            let mut built: Vec<(Vec<bool>, usize)> = vec![];
-            for (d, slot) in of.iter_mut().enumerate() {
-                let key = patch(mesh, &geometry, &at[a], (a, d), &mut out)
-                    .map_err(|e| format!("node {a} at {:?}: {e}", mesh.nodes[a]))?;
-                if let Some((_, i)) = built.iter().find(|(k, _)| *k == key) {
-                    // The same problem as the other row's: drop the copy just made.
-                    let p = out.patches.pop().expect("just pushed");
-                    out.patch_tris.truncate(p.start);
-                    out.patch_slots.truncate(p.start);
-                    out.solve.truncate(p.at);
-                    *slot = *i;
-                    continue;
-                }
-                *slot = out.patches.len() - 1;
-                built.push((key, out.patches.len() - 1));
+        for (a, around) in at.iter().enumerate() {
+            let refuse = |why: String| {
+                InputError::field(
+                    "mesh",
+                    format!("node {a} at {:?}: {why}", mesh.nodes[a]),
+                    "a mesh whose triangles around each node form one fan, for the \
+                     equilibrated indicators (the residual ones need no such thing)",
+                )
+            };
+            let first = slots_of(mesh, &geometry, around, (a, 0)).map_err(&refuse)?;
+            let second = slots_of(mesh, &geometry, around, (a, 1)).map_err(&refuse)?;
+            let same = first.key == second.key;
+            out.patch_of[a][0] = out.patches.len();
+            prepare(&geometry, around, first, &mut out).map_err(&refuse)?;
+            if !same {
+                prepare(&geometry, around, second, &mut out).map_err(&refuse)?;
             }
+            out.patch_of[a][1] = out.patches.len() - 1;
         }
         out.tris = tris;
-        out.patch_of = patch_of;
         Ok(out)
     }
 
@@ -290,7 +312,7 @@ impl<'m> Equilibrator<'m> {
                         let f = match volume {
                             Volume::Points(p) => p[t][q],
                             Volume::Field(f0) => f0(tr.points[q]),
-                            Volume::Constant(f) => *f,
+                            Volume::Constant(_) => unreachable!("formed at once above"),
                         };
                         let wa = w * tr.area;
                         for i in 0..3 {
@@ -321,8 +343,9 @@ impl<'m> Equilibrator<'m> {
                 let tris = &self.patch_tris[p.start..p.start + p.len];
                 let slots = &self.patch_slots[p.start..p.start + p.len];
                 // The load's share on a given edge of a patch triangle: int_e g_d phi_a.
-                let given = |t: usize, j: usize, b: usize, on_g3: bool| -> f64 {
+                let given = |t: usize, j: usize, e: Loaded| -> f64 {
                     let tr = &self.tris[t];
+                    let b = e.other;
                     let (pa, pbn) = (mesh.nodes[a], mesh.nodes[b]);
                     let n = tr.n[j];
                     let part = pb.part.map_or([0.0; 2], |l| l(pa, pbn));
@@ -333,10 +356,11 @@ impl<'m> Equilibrator<'m> {
                         s += w * (1.0 - x) * (f[d] + part[d]);
                     }
                     let mut s = s * tr.len[j];
-                    if let (true, Some(i)) = (on_g3, self.contact_at[a]) {
+                    if let (true, Some(i)) = (e.contact, self.contact_at[a]) {
                         s += 0.5 * tr.len[j] * sigma_h[i] * mesh.normal[d];
                     }
-                    s
+                    // A spring's traction -k_s u_h, linear along the edge: exact.
+                    s - e.spring * tr.len[j] * (u[a][d] / 3.0 + u[b][d] / 6.0)
                 };
                 // Divergence data, given fluxes and the target fluxes.
                 div.clear();
@@ -356,8 +380,8 @@ impl<'m> Equilibrator<'m> {
                     for j in 0..3 {
                         match slot[j] {
                             Slot::Zero => {}
-                            Slot::Given(b, on_g3) => {
-                                let gi = given(t, j, b, on_g3);
+                            Slot::Given(e) => {
+                                let gi = given(t, j, e);
                                 given_total += gi;
                                 z[j] = gi / tr.len[j];
                                 w[j] = 0.5 * dot(s, tr.n[j]);
@@ -507,11 +531,12 @@ impl<'m> Equilibrator<'m> {
             }
             let (m, sq) = moments[t];
             let mean = [0, 1].map(|d| (0..3).map(|i| m[i][d]).sum::<f64>());
-            let osc_sq = ((sq - dot(mean, mean) / tr.area).max(0.0))
+            let osc_sq = nonnegative(sq - dot(mean, mean) / tr.area)
                 * (tr.h / std::f64::consts::PI).powi(2)
                 / lb;
             out.oscillation_sq += osc_sq;
-            out.eta_sq.push((e.max(0.0).sqrt() + osc_sq.sqrt()).powi(2));
+            out.eta_sq
+                .push((nonnegative(e).sqrt() + osc_sq.sqrt()).powi(2));
         }
         &self.out
     }
@@ -566,25 +591,57 @@ fn tri(mesh: &Mesh, v: [usize; 3]) -> Tri {
 struct Geometry<'a> {
     tris: &'a [Tri],
     /// Each edge (by its sorted ends) with its triangles and local index there.
-    edges: &'a std::collections::HashMap<[usize; 2], Vec<(usize, usize)>>,
+    edges: &'a HashMap<[usize; 2], Vec<(usize, usize)>>,
     /// The edges of $\Gamma_3$ (between nodes consecutive along it), sorted ends.
-    g3: &'a std::collections::HashSet<[usize; 2]>,
+    g3: &'a HashSet<[usize; 2]>,
+    /// The spring supports' stiffness on their edges, sorted ends.
+    springs: &'a HashMap<[usize; 2], f64>,
+    /// Per node, whether the reaction of a held component can act along x and y.
+    held: Vec<[bool; 2]>,
 }
 
-/// Node `a`'s patch problem for row `d`, pushed onto `out`'s patches, and the key of
-/// which of its edges are held.
-fn patch(
+/// Per node, whether a held component's reaction acts along x and along y:
+/// [`Mesh::fixed`] itself, but at a node of $\Gamma_3$ under a foundation normal
+/// other than the paper's, whose components are the contact frame's (tangent,
+/// normal), each held frame direction marks the axes it has a part along (both for
+/// an oblique one, which leaves both rows' reactions free there).
+fn held_by_axis(mesh: &Mesh) -> Vec<[bool; 2]> {
+    let mut held = mesh.fixed.clone();
+    if let Some(f) = crate::frame::Frame::of_normal(mesh.normal) {
+        for &v in &mesh.gamma3 {
+            let mut h = [false; 2];
+            for (k, dir) in [f.tau, f.e].into_iter().enumerate() {
+                if mesh.fixed[v][k] {
+                    (0..2).for_each(|d| h[d] |= dir[d].abs() > 1e-12);
+                }
+            }
+            held[v] = h;
+        }
+    }
+    held
+}
+
+/// Node `a`'s patch for row `d` before its matrix: each triangle's local edges, the
+/// unknown fluxes' edges, and the key of which edges are held.
+struct Slots {
+    slots: Vec<[Slot; 3]>,
+    unknown: Vec<[usize; 2]>,
+    key: Vec<bool>,
+    d: usize,
+}
+
+/// The local edges of node `a`'s patch for row `d`, or why it is not one fan.
+fn slots_of(
     mesh: &Mesh,
     geo: &Geometry,
     at: &[(usize, usize)],
     (a, d): (usize, usize),
-    out: &mut Equilibrator,
-) -> Result<Vec<bool>, String> {
-    let (tris, edges, g3) = (geo.tris, geo.edges, geo.g3);
-    let held = |v: usize| mesh.fixed[v][d];
+) -> Result<Slots, String> {
+    let held = |v: usize| geo.held[v][d];
     let mut unknown: Vec<[usize; 2]> = vec![];
     let mut key = vec![];
     let mut slots = vec![];
+    let mut outer = 0;
     for &(t, la) in at {
         let v = mesh.triangles[t];
         let mut s = [Slot::Zero; 3];
@@ -595,9 +652,14 @@ fn patch(
             // Local edge j runs between the two vertices other than j; one is a.
             let b = v[3 - j - la];
             let e = [a.min(b), a.max(b)];
-            let sides = &edges[&e];
+            let sides = &geo.edges[&e];
+            outer += usize::from(sides.len() == 1);
             if sides.len() == 1 && !(held(a) && held(b)) {
-                *slot = Slot::Given(b, g3.contains(&e));
+                *slot = Slot::Given(Loaded {
+                    other: b,
+                    contact: geo.g3.contains(&e),
+                    spring: geo.springs.get(&e).copied().unwrap_or(0.0),
+                });
                 key.push(false);
                 continue;
             }
@@ -615,6 +677,29 @@ fn patch(
         }
         slots.push(s);
     }
+    if outer > 2 {
+        return Err(format!(
+            "{outer} boundary edges meet there: its triangles form more than one fan"
+        ));
+    }
+    Ok(Slots {
+        slots,
+        unknown,
+        key,
+        d,
+    })
+}
+
+/// Inverts the saddle-point system of a patch and pushes it onto `out`'s patches.
+fn prepare(
+    geo: &Geometry,
+    at: &[(usize, usize)],
+    Slots {
+        slots, unknown, d, ..
+    }: Slots,
+    out: &mut Equilibrator,
+) -> Result<(), String> {
+    let (tris, edges) = (geo.tris, geo.edges);
     let held_edge = (unknown.iter()).any(|e| edges[e].len() == 1);
     let np = at.len();
     // Without a held edge the constraints sum to the node's equation: drop one.
@@ -644,7 +729,8 @@ fn patch(
         }
     }
     let inv = kkt.try_inverse().ok_or_else(|| {
-        format!("the patch problem of row {d} is singular ({nx} fluxes, {nc} constraints)")
+        let axis = ["x", "y"][d];
+        format!("the patch problem of the {axis} row is singular ({nx} fluxes, {nc} constraints)")
     })?;
     let at_solve = out.solve.len();
     for c in 0..nx + nc {
@@ -662,7 +748,7 @@ fn patch(
     });
     out.patch_tris.extend_from_slice(at);
     out.patch_slots.extend(slots);
-    Ok(key)
+    Ok(())
 }
 
 #[cfg(test)]

@@ -342,6 +342,9 @@ pub struct Estimator<'m> {
     interior: Vec<Interior>,
     /// Boundary edges: the triangle and the edge's ends as it runs them (counter-clockwise).
     boundary: Vec<(usize, [usize; 2])>,
+    /// Each boundary edge's spring stiffness $k_s$ ([`Mesh::boundary_terms`]; zero
+    /// without a spring support): its traction is the load minus $k_s u_h$.
+    spring: Vec<f64>,
     /// Whether each node is on $\Gamma_3$.
     on_g3: Vec<bool>,
     /// Each node's index in [`Mesh::contact`], if it is a contact node.
@@ -459,6 +462,15 @@ impl<'m> Estimator<'m> {
                 });
             }
         }
+        let spring = {
+            let mut k = std::collections::HashMap::new();
+            for &([p, q], ks) in &mesh.boundary_terms {
+                *k.entry([p.min(q), p.max(q)]).or_insert(0.0) += ks;
+            }
+            (boundary.iter())
+                .map(|(_, [a, b])| k.get(&[*a.min(b), *a.max(b)]).copied().unwrap_or(0.0))
+                .collect()
+        };
         let mut contact_edges = Vec::new();
         for (t, tri) in mesh.triangles.iter().enumerate() {
             for i in 0..3 {
@@ -480,6 +492,7 @@ impl<'m> Estimator<'m> {
             points,
             interior,
             boundary,
+            spring,
             on_g3,
             contact_at,
             contact_edges,
@@ -687,7 +700,7 @@ impl<'m> Estimator<'m> {
             out.parts[1] += term;
         }
         // The boundary's edges, each with its one triangle (a -> b counter-clockwise).
-        for &(t, [a, b]) in &self.boundary {
+        for (&(t, [a, b]), &ks) in self.boundary.iter().zip(&self.spring) {
             let both_fixed = |v: usize| mesh.fixed[v][0] && mesh.fixed[v][1];
             let contact = self.on_g3[a] && self.on_g3[b];
             if !contact && both_fixed(a) && both_fixed(b) {
@@ -726,13 +739,15 @@ impl<'m> Estimator<'m> {
                     r += w * he * (tau[0] * tau[0] + tau[1] * tau[1] + rn * rn);
                 }
             } else {
-                // Gamma_2: the components left free at both ends.
+                // Gamma_2: the components left free at both ends; on a spring support
+                // the traction is the load minus k_s u_h.
                 let free = [0, 1].map(|c| !(mesh.fixed[a][c] && mesh.fixed[b][c]));
                 for (s, w) in GAUSS3 {
                     let f = load(at(s));
                     for c in 0..2 {
                         if free[c] {
-                            r += w * he * (f[c] - sn[c]).powi(2);
+                            let spring = ks * (u[a][c] + s * (u[b][c] - u[a][c]));
+                            r += w * he * (f[c] - spring - sn[c]).powi(2);
                         }
                     }
                 }

@@ -513,10 +513,11 @@ fn solve_adapt_refuses_bad_input() {
 }
 
 /// `Indicator::Equilibrated` marks and stops on the equilibrated indicators: the
-/// first level's estimate is the equilibrated estimate of that mesh (the per-triangle
-/// maxima over the steps, over the largest compliance norm of the stress), below the
-/// residual one; the mesh scene's parts and contact pass through it too; and with the
-/// same tolerance the run stops on a mesh no larger than the residual run's.
+/// first level's estimated relative error is the equilibrated estimate of that mesh
+/// (the per-triangle maxima over the steps, over the largest compliance norm of the
+/// stress), below the residual one's (each relative to its own norm, as the loop
+/// compares them with the tolerance); with the same tolerance both runs stop on it,
+/// the equilibrated one on a mesh no larger; and a mesh scene runs through it.
 #[test]
 fn the_equilibrated_indicators_drive_the_loop() {
     use evhi::adapt::{Indicator, solve_estimating_by};
@@ -542,7 +543,7 @@ fn the_equilibrated_indicators_drive_the_loop() {
         solve_estimating_by(&sim, Aggregate::Max, Indicator::Equilibrated, &mut ()).unwrap();
     let want = (direct.eta_sq.iter().sum::<f64>() / direct.norm_sq).sqrt();
     assert!((want - e0).abs() <= 1e-12 * want, "{want} {e0}");
-    assert_eq!(eq.stop, Stop::Tolerance);
+    assert_eq!((eq.stop, res.stop), (Stop::Tolerance, Stop::Tolerance));
     assert!(eq.levels.last().unwrap().dofs <= res.levels.last().unwrap().dofs);
     // A mesh scene (its parts' tractions, its own contact boundary).
     let block = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -561,22 +562,21 @@ fn the_equilibrated_indicators_drive_the_loop() {
     );
 }
 
-/// `solve --adapt --estimator equilibrated` says which indicators it used in the
-/// table's header and the run's provenance; another name is refused with the two
-/// allowed.
+/// `solve --adapt --indicators equilibrated` says which indicators it used in
+/// adapt.csv's header; another name is refused with the two allowed.
 #[test]
 fn the_command_line_chooses_the_indicators() {
     let dir = scratch("adapt-equilibrated");
     let out = dir.join("run");
     ok(
-        &evhi_with("solve --adapt 0.3 --steps 4 --estimator equilibrated --scenario figure --out")
+        &evhi_with("solve --adapt 0.3 --steps 4 --indicators equilibrated --scenario figure --out")
             .arg(&out)
             .output()
             .unwrap(),
     );
     let table = std::fs::read_to_string(out.join("adapt.csv")).unwrap();
     assert!(table.contains("the equilibrated indicators'"), "{table}");
-    let bad = evhi_with("solve --adapt 0.3 --estimator flux --scenario figure")
+    let bad = evhi_with("solve --adapt 0.3 --indicators flux --scenario figure")
         .output()
         .unwrap();
     assert!(!bad.status.success());

@@ -155,18 +155,39 @@ fn the_estimate_lies_between_one_and_five_times_the_error() {
     }
 }
 
+/// `figure` with the right side on a spring support instead of clamped: its traction
+/// $-k_s u$ on that side (general loop: the spring breaks proportional damping).
+fn figure_on_a_spring() -> Scenario {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("data/scenarios/figure.toml")).unwrap();
+    let text = text.replace(
+        "[material]",
+        "[geometry]\nsupports = { left = \"clamped\", right = { spring = 500.0 } }\n[material]",
+    );
+    Scenario::from_toml(&text, "figure-on-a-spring").unwrap()
+}
+
 /// A mesh scene (the holed block: tractions on named parts, its own contact boundary)
-/// leaves nothing unbalanced either: the parts' loads reach the patches as the scheme
-/// assembles them.
+/// and a scene on a spring support (the support's traction $-k_s u_h$) leave nothing
+/// unbalanced either: their loads reach the patches as the scheme assembles them.
 #[test]
-fn a_mesh_scene_balances_too() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+fn other_scenes_balance_too() {
+    let block = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("data/scenarios/examples/holed_block.toml");
-    let (sim, u, u_prev, contact) = solved_step(Scenario::load(path.to_str().unwrap()).unwrap());
-    let scn = sim.scenario();
-    let mut eq = Equilibrator::new(sim.mesh()).unwrap();
-    let k = scn.t_end() / 8.0;
-    let est = eq.estimate_scene(scn, &u, &u_prev, k, scn.t_end(), &contact);
-    assert!(est.defect < 1e-8, "{}", est.defect);
-    assert!(est.total() > 0.0 && est.stress_sq > 0.0);
+    let block = Scenario::load(block.to_str().unwrap()).unwrap();
+    for (name, scn) in [("holed block", block), ("spring", figure_on_a_spring())] {
+        let (sim, u, u_prev, contact) = solved_step(scn);
+        let file = name;
+        let scn = sim.scenario();
+        assert_eq!(
+            sim.mesh().boundary_terms.is_empty(),
+            name == "holed block",
+            "{name}"
+        );
+        let mut eq = Equilibrator::new(sim.mesh()).unwrap();
+        let k = scn.t_end() / 8.0;
+        let est = eq.estimate_scene(scn, &u, &u_prev, k, scn.t_end(), &contact);
+        assert!(est.defect < 1e-8, "{file}: {}", est.defect);
+        assert!(est.total() > 0.0 && est.stress_sq > 0.0);
+    }
 }

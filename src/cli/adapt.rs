@@ -55,7 +55,7 @@ fn adapt_settings(args: &SolveArgs, tol: f64) -> AdaptSettings {
     if args.aggregate.as_deref() == Some("sum") {
         s = s.with_aggregate(Aggregate::Sum);
     }
-    if args.estimator == Some(super::solve_args::IndicatorArg::Equilibrated) {
+    if args.indicators == Some(super::solve_args::IndicatorArg::Equilibrated) {
         s = s.with_indicator(Indicator::Equilibrated);
     }
     s

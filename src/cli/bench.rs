@@ -75,7 +75,7 @@ pub struct BenchArgs {
     /// at every step as `solve --adapt` does, in turn (data/bench_estimator.csv).
     #[arg(long)]
     pub estimator: bool,
-    /// With --estimator: the equilibrated indicators (`solve --adapt --estimator
+    /// With --estimator: the equilibrated indicators (`solve --adapt --indicators
     /// equilibrated`) in place of the residual ones (data/bench_estimator_equilibrated.csv).
     #[arg(long, requires = "estimator")]
     pub equilibrated: bool,

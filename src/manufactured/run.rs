@@ -314,7 +314,8 @@ pub fn run_refined(
 }
 
 /// [`run`] with the residual estimate $\eta$ of every step ([`crate::estimator`]) in
-/// [`StepRow::eta`], from the exact $f_0$, $f_2$ and $f_3$ of the solution.
+/// [`StepRow::eta`] and the equilibrated one ([`crate::equilibrated`]) in
+/// [`StepRow::eta_flux`], from the exact $f_0$, $f_2$ and $f_3$ of the solution.
 pub fn run_estimated(
     sol: Solution,
     scn: &Scenario,
@@ -479,13 +480,7 @@ fn run_rules_options(
         false => vec![],
     };
     let mut equilibrator = match estimated {
-        true => Some(crate::equilibrated::Equilibrator::new(&mesh).map_err(|e| {
-            InputError::field(
-                "mesh",
-                e,
-                "a mesh whose node patches carry an equilibrated flux",
-            )
-        })?),
+        true => Some(crate::equilibrated::Equilibrator::new(&mesh)?),
         false => None,
     };
     let mut r = vec![vec![0.0; m]; rules.len()];

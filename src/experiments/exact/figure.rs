@@ -807,7 +807,8 @@ impl Figure for SmallMultiples {
 }
 
 /// `exact_adaptive.png`: per solution, the largest error over time against the
-/// unknowns, the uniform and the adaptive family of `exact_adaptive.csv`.
+/// unknowns, the uniform family and the two adaptive families (marked by the residual
+/// and by the equilibrated indicators) of `exact_adaptive.csv`.
 pub fn draw_adaptive(ctx: &Ctx, table: &Path) -> Result<(), ExpError> {
     let df = read_csv(table)?;
     let (sol, fam, dofs, err) = (
@@ -834,12 +835,17 @@ pub fn draw_adaptive(ctx: &Ctx, table: &Path) -> Result<(), ExpError> {
             series: vec![
                 (families[0].into(), pick(s, families[0]), oi::BLACK),
                 (families[2].into(), pick(s, families[2]), oi::VERMILLION),
+                (
+                    "adaptive, equilibrated".into(),
+                    pick(s, "adaptive equilibrated"),
+                    oi::BLUE,
+                ),
             ],
             guides: vec![(0.5, "slope −1/2: order 1 in h".into())],
             legend_at: SeriesLabelPosition::LowerLeft,
             headroom: 1.5,
             fonts: PANEL_FONTS,
-            markers: vec![0, 1],
+            markers: vec![0, 1, 2],
             nested: false,
         })
         .collect();
