@@ -2,6 +2,9 @@
 //! step's loads, and on the exact solutions it lies above the true error and within
 //! five times it.
 
+mod common;
+
+use common::{evhi_with, failed_with, ok, scratch};
 use evhi::certificate::ContactState;
 use evhi::equilibrated::Equilibrator;
 use evhi::manufactured::Solution;
@@ -190,4 +193,49 @@ fn other_scenes_balance_too() {
         assert!(est.defect < 1e-8, "{file}: {}", est.defect);
         assert!(est.total() > 0.0 && est.stress_sq > 0.0);
     }
+}
+
+/// `solve --estimate --indicators equilibrated` writes the equilibrated indicators of
+/// the last step (estimator.csv without the residual's complementarity column, and the
+/// cell field `eta`); `--indicators` without `--estimate` or `--adapt` is refused by
+/// name.
+#[test]
+fn the_command_line_writes_the_equilibrated_indicators() {
+    let dir = scratch("equilibrated-estimate");
+    let (eq, res) = (dir.join("eq"), dir.join("res"));
+    let run = "solve --scenario figure --n 8 --steps 4 --estimate";
+    ok(
+        &evhi_with(&format!("{run} --indicators equilibrated --out"))
+            .arg(&eq)
+            .output()
+            .unwrap(),
+    );
+    ok(&evhi_with(&format!("{run} --out"))
+        .arg(&res)
+        .output()
+        .unwrap());
+    let read = |d: &std::path::Path| std::fs::read_to_string(d.join("estimator.csv")).unwrap();
+    let (e, r) = (read(&eq), read(&res));
+    assert!(e.starts_with("x,y,eta\n") && r.starts_with("x,y,eta,complementarity\n"));
+    // Per triangle, the equilibrated indicator is the smaller here.
+    let total = |t: &str| -> f64 {
+        (t.lines().skip(1))
+            .map(|l| l.split(',').nth(2).unwrap().parse::<f64>().unwrap().powi(2))
+            .sum::<f64>()
+            .sqrt()
+    };
+    assert!(
+        total(&e) > 0.0 && total(&e) < total(&r),
+        "{} {}",
+        total(&e),
+        total(&r)
+    );
+    let vtu = std::fs::read_to_string(eq.join("solution.vtu")).unwrap();
+    assert!(vtu.contains("Name=\"eta\""));
+    failed_with(
+        &evhi_with("solve --scenario figure --n 8 --steps 2 --indicators equilibrated")
+            .output()
+            .unwrap(),
+        "--indicators",
+    );
 }

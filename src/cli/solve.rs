@@ -33,6 +33,14 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
     if let Some(tol) = args.adapt {
         return super::adapt::run(&args, scn, &toml, tol, wall);
     }
+    if let (Some(i), false) = (args.indicators, args.estimate) {
+        return Err(evhi::error::InputError::field(
+            "--indicators",
+            format!("{i:?}").to_lowercase(),
+            "only with --adapt or --estimate, which compute indicators",
+        )
+        .into());
+    }
     let sim = Simulation::new(scn, settings(&args)).map_err(settings_flag)?;
     // The output directory is checked and locked before any work.
     let out = RunDir::open(&args.out)?;
@@ -95,7 +103,7 @@ pub fn run(args: SolveArgs) -> Result<(), Box<dyn std::error::Error>> {
             scn,
             run,
             &last,
-            sim.grid().k(sim.steps()),
+            (sim.grid().k(sim.steps()), args.indicators),
         )?)
     } else {
         None
@@ -154,15 +162,16 @@ struct Progress<'a> {
     last: Vec<(usize, Vec<f64>)>,
 }
 
-/// The residual estimate of the run's last step: `estimator.csv` and `solution.vtu`
-/// again with the cell field `eta`. $u^{N-1}$ is the field before the last (zero for
-/// a run of one step). Returns the seconds the estimate took (not the writing).
+/// The estimate of the run's last step (the residual indicators, or the equilibrated
+/// ones if `indicators` says so): `estimator.csv` and `solution.vtu` again with the
+/// cell field `eta`. $u^{N-1}$ is the field before the last (zero for a run of one
+/// step). Returns the seconds the estimate took (not the writing).
 fn write_estimate(
     out: &RunDir,
     scn: &Scenario,
     run: &evhi::scheme::Run,
     last: &[(usize, Vec<f64>)],
-    k: f64,
+    (k, indicators): (f64, Option<super::solve_args::IndicatorArg>),
 ) -> Result<f64, Box<dyn std::error::Error>> {
     use evhi::estimator::estimate_scene;
     let mesh = &run.mesh;
@@ -176,6 +185,14 @@ fn write_estimate(
     // The last step's time; `k` is its length on the run's grid.
     let t = run.records.last().map_or(scn.t_end(), |r| r.t);
     let clock = Instant::now();
+    if indicators == Some(super::solve_args::IndicatorArg::Equilibrated) {
+        let mut eq = evhi::equilibrated::Equilibrator::new(mesh)?;
+        let est = eq.estimate_scene(scn, &u, &u_prev, k, t, &run.contact);
+        let eta: Vec<f64> = est.eta_sq.iter().map(|e| e.sqrt()).collect();
+        let seconds = clock.elapsed().as_secs_f64();
+        super::outputs::write_eta(out, scn, run, &eta, None)?;
+        return Ok(seconds);
+    }
     let est = estimate_scene(scn, mesh, &u, &u_prev, k, t, &run.contact);
     let seconds = clock.elapsed().as_secs_f64();
     super::outputs::write_eta(out, scn, run, &est.eta(), Some(&est.complementarity))?;

@@ -186,12 +186,13 @@ pub struct SolveArgs {
     /// steps weigh as little as their duration).
     #[arg(long, requires = "adapt", value_parser = ["max", "sum"])]
     pub aggregate: Option<String>,
-    /// Which indicators `--adapt` marks and stops on: `residual` (the default: the
-    /// residual estimator, one pass over the triangles and edges) or `equilibrated`
-    /// (an equilibrated stress built around every node: closer to the true error, so
-    /// the same --adapt stops no later, and dearer; see the book's chapter on the
-    /// estimator).
-    #[arg(long, requires = "adapt", value_enum)]
+    /// Which indicators `--adapt` marks and stops on and `--estimate` writes:
+    /// `residual` (the default: the residual estimator, one pass over the triangles and
+    /// edges) or `equilibrated` (an equilibrated stress built around every node: closer
+    /// to the true error, so --adapt tends to stop sooner, and dearer; see the book's
+    /// chapter on the estimator). With `equilibrated`, estimator.csv has no
+    /// complementarity column.
+    #[arg(long, value_enum)]
     pub indicators: Option<IndicatorArg>,
 }
 
