@@ -456,28 +456,17 @@ impl<'m> Equilibrator<'m> {
         contact: &[crate::certificate::ContactState],
     ) -> &FluxEstimate {
         let loads = crate::estimator::SceneLoads::new(scn, t);
-        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-        let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
-        let f0 = |x: [f64; 2]| loads.f0_at(x);
-        let pb = Problem {
-            elast: scn.elasticity(),
-            visc: Some(scn.viscosity()),
-            f0: &f0,
-            surface: &surface,
-            line: None,
-            part: (!loads.parts.is_empty()).then_some(&part as crate::estimator::EdgeLoad),
-            f0_points: None,
-        };
-        let sigma_h: Vec<f64> = (contact.iter())
-            .map(|c| c.sigma_nu1 + c.sigma_nu2)
-            .collect();
-        // A force without the cos(pi x) modulation is the same everywhere.
-        let volume = match loads.modulation {
-            0.0 => Volume::Constant(loads.f0.map(|c| c * loads.phi)),
-            _ => Volume::Field(&f0),
-        };
-        self.equilibrate(&pb, &volume, (u, u_prev, k), &sigma_h);
-        self.indicators(&pb)
+        let sigma_h = crate::estimator::contact_stress(contact);
+        loads.with_problem(scn, |pb| {
+            // A force without the cos(pi x) modulation is the same everywhere.
+            let volume = match loads.modulation {
+                0.0 => Volume::Constant(loads.f0.map(|c| c * loads.phi)),
+                _ => Volume::Field(pb.f0),
+            };
+            self.equilibrate(pb, &volume, (u, u_prev, k), &sigma_h);
+            self.indicators(pb);
+        });
+        &self.out
     }
 
     /// The equilibrated estimate of the step: [`Equilibrator::reconstruct`], then each

@@ -155,6 +155,36 @@ impl SceneLoads {
     }
 }
 
+impl SceneLoads {
+    /// Calls `f` with the estimators' [`Problem`] of `scn` at these loads: its tensors,
+    /// these loads read at every point, the parts' tractions where it has parts, no
+    /// line load.
+    pub fn with_problem<R>(
+        &self,
+        scn: &crate::scenario::Scenario,
+        f: impl FnOnce(&Problem) -> R,
+    ) -> R {
+        let surface = |x: [f64; 2], n: [f64; 2]| self.surface_at(x, n);
+        let part = |a: [f64; 2], b: [f64; 2]| self.part_at(a, b);
+        let f0 = |x: [f64; 2]| self.f0_at(x);
+        f(&Problem {
+            elast: scn.elasticity(),
+            visc: Some(scn.viscosity()),
+            f0: &f0,
+            surface: &surface,
+            line: None,
+            part: (!self.parts.is_empty()).then_some(&part as EdgeLoad),
+            f0_points: None,
+        })
+    }
+}
+
+/// The discrete contact stress $\sigma^1_\nu + \sigma^2_\nu$ of each contact state, in the
+/// states' order: what both estimators read on $\Gamma_3$.
+pub fn contact_stress(contact: &[crate::certificate::ContactState]) -> Vec<f64> {
+    contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect()
+}
+
 /// The loaded edges of a mesh scene's body, with their part's force density.
 fn part_edges(body: &crate::body::Body) -> Vec<([[f64; 2]; 2], [f64; 2])> {
     let mut out = Vec::new();
@@ -520,18 +550,6 @@ impl<'m> Estimator<'m> {
         contact: &[crate::certificate::ContactState],
     ) -> &Estimate {
         let loads = SceneLoads::new(scn, t);
-        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-        let part = |a: [f64; 2], b: [f64; 2]| loads.part_at(a, b);
-        let f0 = |x: [f64; 2]| loads.f0_at(x);
-        let pb = Problem {
-            elast: scn.elasticity(),
-            visc: Some(scn.viscosity()),
-            f0: &f0,
-            surface: &surface,
-            line: None,
-            part: (!loads.parts.is_empty()).then_some(&part as EdgeLoad),
-            f0_points: None,
-        };
         // The volume force at the points, the cosines formed once for the scene; a
         // force without them is one value for every triangle.
         let a = loads.modulation;
@@ -551,10 +569,8 @@ impl<'m> Estimator<'m> {
                 m: &modulation,
             }
         };
-        let sigma_h: Vec<f64> = (contact.iter())
-            .map(|c| c.sigma_nu1 + c.sigma_nu2)
-            .collect();
-        self.run(&pb, &volume, u, u_prev, k, &sigma_h);
+        let sigma_h = contact_stress(contact);
+        loads.with_problem(scn, |pb| self.run(pb, &volume, u, u_prev, k, &sigma_h));
         self.modulation = Some((a, std::mem::take(&mut modulation)));
         let mut comp = std::mem::take(&mut self.out.complementarity);
         self.complementarity_into(scn.g(), contact, &mut comp);
@@ -832,20 +848,9 @@ mod tests {
         (k, t): (f64, f64),
         contact: &[crate::certificate::ContactState],
     ) -> Estimate {
-        let loads = SceneLoads::new(scn, t);
-        let f0 = |x: [f64; 2]| loads.f0_at(x);
-        let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-        let pb = Problem {
-            elast: scn.elasticity(),
-            visc: Some(scn.viscosity()),
-            f0: &f0,
-            surface: &surface,
-            line: None,
-            part: None,
-            f0_points: None,
-        };
-        let sigma_h: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
-        estimate(mesh, &pb, u, u_prev, k, &sigma_h)
+        SceneLoads::new(scn, t).with_problem(scn, |pb| {
+            estimate(mesh, pb, u, u_prev, k, &contact_stress(contact))
+        })
     }
 
     /// A prepared mesh gives every step the estimate of a fresh one, bit for bit (its

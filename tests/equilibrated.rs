@@ -53,19 +53,9 @@ fn the_reconstruction_balances_a_solved_step() {
     let mut eq = Equilibrator::new(mesh).unwrap();
     let loads = evhi::estimator::SceneLoads::new(scn, scn.t_end());
     let surface = |x: [f64; 2], n: [f64; 2]| loads.surface_at(x, n);
-    let f0 = |x: [f64; 2]| loads.f0_at(x);
-    let pb = evhi::estimator::Problem {
-        elast: scn.elasticity(),
-        visc: Some(scn.viscosity()),
-        f0: &f0,
-        surface: &surface,
-        line: None,
-        part: None,
-        f0_points: None,
-    };
-    let xi: Vec<f64> = contact.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect();
+    let xi = evhi::estimator::contact_stress(&contact);
     let k = scn.t_end() / 8.0;
-    let r = eq.reconstruct(&pb, &u, &u_prev, k, &xi);
+    let r = loads.with_problem(scn, |pb| eq.reconstruct(pb, &u, &u_prev, k, &xi).clone());
     assert!(r.defect < 1e-8, "{}", r.defect);
     let node = |v: usize| mesh.nodes[v];
     let len = |a: usize, b: usize| {

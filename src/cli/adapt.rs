@@ -55,8 +55,8 @@ fn adapt_settings(args: &SolveArgs, tol: f64) -> AdaptSettings {
     if args.aggregate.as_deref() == Some("sum") {
         s = s.with_aggregate(Aggregate::Sum);
     }
-    if args.indicators == Some(super::solve_args::IndicatorArg::Equilibrated) {
-        s = s.with_indicator(Indicator::Equilibrated);
+    if let Some(i) = args.indicators {
+        s = s.with_indicator(i.indicator());
     }
     s
 }
@@ -168,7 +168,7 @@ pub fn run(
     lines.iter().for_each(|l| evhi::diag!("{l}"));
     let mut prov = Provenance::of(&sim, &solution, evhi::output::run::command_line());
     prov.mesh = format!(
-        "adaptive tol = {tol}, theta = {}, aggregate = {}, estimator = {}, level {} of {}",
+        "adaptive tol = {tol}, theta = {}, aggregate = {}, indicators = {}, level {} of {}",
         settings.theta,
         settings.aggregate.name(),
         settings.indicator.name(),

@@ -185,7 +185,7 @@ fn write_estimate(
     // The last step's time; `k` is its length on the run's grid.
     let t = run.records.last().map_or(scn.t_end(), |r| r.t);
     let clock = Instant::now();
-    if indicators == Some(super::solve_args::IndicatorArg::Equilibrated) {
+    if indicators.map(|i| i.indicator()) == Some(evhi::adapt::Indicator::Equilibrated) {
         let mut eq = evhi::equilibrated::Equilibrator::new(mesh)?;
         let est = eq.estimate_scene(scn, &u, &u_prev, k, t, &run.contact);
         let eta: Vec<f64> = est.eta_sq.iter().map(|e| e.sqrt()).collect();

@@ -206,6 +206,16 @@ pub enum IndicatorArg {
     Equilibrated,
 }
 
+impl IndicatorArg {
+    /// The library's name for it.
+    pub fn indicator(self) -> evhi::adapt::Indicator {
+        match self {
+            IndicatorArg::Residual => evhi::adapt::Indicator::Residual,
+            IndicatorArg::Equilibrated => evhi::adapt::Indicator::Equilibrated,
+        }
+    }
+}
+
 /// Parses `FX,FY` into two finite numbers.
 pub fn parse_pair(s: &str) -> Result<[f64; 2], String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();

@@ -604,7 +604,7 @@ fn run_rules_options(
             let nodal_h = disc.dofs.expand(&u[0]);
             let (err_e, err_v_sq) = measure_error(&data, &mesh, &bms, points, &nodal_h);
             let (eta, err_sigma, eta_time, sigma_h_norm, eta_step, u_h_e, flux) = if estimated {
-                let sigma_h: Vec<f64> = states.iter().map(|s| s.sigma_nu1 + s.sigma_nu2).collect();
+                let sigma_h = crate::estimator::contact_stress(&states);
                 let f0 = |x: [f64; 2]| data.body_force(x[0], x[1], t);
                 let surface = |x: [f64; 2], nrm: [f64; 2]| {
                     if x[1].abs() < 1e-12 && nrm[1] < -0.5 {

@@ -226,7 +226,7 @@ fn run_level(
     let kept = |step: usize| (step * per).is_multiple_of(stride);
     let field = |u: &[f64], states: &[ContactState]| Field {
         u: dofs.expand(u),
-        sigma: states.iter().map(|c| c.sigma_nu1 + c.sigma_nu2).collect(),
+        sigma: evhi::estimator::contact_stress(states),
     };
     if evhi::reduced::proportional(&scns[0], &disc).is_some() {
         let mut timings = evhi::scheme::Timings::default();
