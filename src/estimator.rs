@@ -20,7 +20,8 @@
 //! Which boundary edge is which is read from the mesh, not from a side's name: an
 //! edge of one triangle whose two nodes are on $\Gamma_3$ is a contact edge; one whose
 //! two nodes hold both components is on $\Gamma_1$ and carries no term; every other
-//! boundary edge is on $\Gamma_2$ and contributes the components its nodes leave free.
+//! boundary edge is on $\Gamma_2$ and contributes the components its nodes leave free,
+//! with $f_2 - k_s u_h$ in place of $f_2$ on a spring support ([`Mesh::boundary_terms`]).
 //! A node of $\Gamma_3$ that is not a contact node (its normal component held) has no
 //! discrete contact stress; there $\sigma^h_\nu$ is taken as the element's own
 //! $\sigma_\nu - f_{3,\nu}$, so that end adds no normal residual. The loads $f_2$, $f_3$
